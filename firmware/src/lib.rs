@@ -1,0 +1,22 @@
+//! The MRE damper control core: pure `no_std` logic, f32, no heap, no panics.
+//!
+//! The firmware binary and the host tools (`mre`) both link this crate, so the
+//! host simulates exactly the arithmetic that runs on the board.
+//!
+//! Data flow of one control period:
+//! `estimate` (velocity from displacement) → `law` (target force for the impact)
+//! → `inverse` (current that gives that force, via `model` and `table`) → coil.
+#![cfg_attr(not(test), no_std)]
+#![deny(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::indexing_slicing)]
+
+pub mod estimate;
+pub mod flags;
+pub mod inverse;
+pub mod law;
+pub mod math;
+pub mod model;
+pub mod table;
+
+pub use flags::Flags;
+pub use model::Branch;
+pub use table::{CurrentEntry, Quartic, Table, TableError};

@@ -1,0 +1,306 @@
+//! Per-current coefficient tables: the paper's model as data.
+//!
+//! A table holds, for each tabulated coil current (ascending), one quartic for
+//! the compression branch and one for the extension branch, and the stroke the
+//! quartics were fitted on. x is in mm and F in N, as the paper's Table 4.
+//!
+//! Tables are stored in flash as a [`TableImage`] (version + entries + CRC-32)
+//! and only become a usable [`Table`] through a validating constructor, so a
+//! corrupt or inconsistent table is never evaluated.
+use crc::{Crc, CRC_32_ISO_HDLC};
+
+/// Most currents one table can hold (fixed size: no heap on the board).
+pub const MAX_CURRENTS: usize = 8;
+/// Format version written into every table image and covered by its CRC.
+pub const FORMAT_VERSION: u16 = 1;
+
+const CRC32: Crc<u32> = Crc::<u32>::new(&CRC_32_ISO_HDLC);
+/// Bytes hashed per entry: current, x range, 2 × 5 coefficients, all f32.
+const ENTRY_BYTES: usize = 13 * 4;
+const IMAGE_BYTES: usize = 3 + MAX_CURRENTS * ENTRY_BYTES;
+
+/// `F(x) = c[0]·x⁴ + c[1]·x³ + c[2]·x² + c[3]·x + c[4]` (highest power first,
+/// as the paper prints it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Quartic {
+    pub coeffs: [f32; 5],
+}
+
+impl Quartic {
+    pub const fn new(coeffs: [f32; 5]) -> Self {
+        Self { coeffs }
+    }
+
+    /// Horner's scheme: four multiplies and four adds.
+    #[inline]
+    pub fn eval(&self, x: f32) -> f32 {
+        let [a4, a3, a2, a1, a0] = self.coeffs;
+        (((a4 * x + a3) * x + a2) * x + a1) * x + a0
+    }
+
+    fn is_finite(&self) -> bool {
+        self.coeffs.iter().all(|c| c.is_finite())
+    }
+}
+
+/// One tabulated current: its two branch quartics and their fitted stroke.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CurrentEntry {
+    pub current_a: f32,
+    pub compression: Quartic,
+    pub extension: Quartic,
+    /// Fitted displacement range; outside it the model clamps x (see `model`).
+    pub x_min_mm: f32,
+    pub x_max_mm: f32,
+}
+
+impl CurrentEntry {
+    const ZERO: CurrentEntry = CurrentEntry {
+        current_a: 0.0,
+        compression: Quartic::new([0.0; 5]),
+        extension: Quartic::new([0.0; 5]),
+        x_min_mm: 0.0,
+        x_max_mm: 0.0,
+    };
+}
+
+/// A table as it is stored in flash or in a generated source file.
+#[derive(Clone, Copy, Debug)]
+pub struct TableImage<'a> {
+    pub version: u16,
+    pub entries: &'a [CurrentEntry],
+    pub crc32: u32,
+}
+
+/// Why a table was rejected.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TableError {
+    Empty,
+    TooManyEntries { count: usize },
+    UnsupportedVersion { version: u16 },
+    /// Currents must be finite and strictly ascending.
+    UnsortedCurrents { index: usize },
+    NonFiniteValue { index: usize },
+    /// The fitted stroke must be finite with `x_min_mm < x_max_mm`.
+    BadStroke { index: usize },
+    CrcMismatch { stored: u32, computed: u32 },
+}
+
+impl core::fmt::Display for TableError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            TableError::Empty => write!(f, "table has no entries"),
+            TableError::TooManyEntries { count } => {
+                write!(f, "table has {count} entries, at most {MAX_CURRENTS} fit")
+            }
+            TableError::UnsupportedVersion { version } => {
+                write!(f, "table format version {version} is not supported (expected {FORMAT_VERSION})")
+            }
+            TableError::UnsortedCurrents { index } => {
+                write!(f, "entry {index}: currents must be finite and strictly ascending")
+            }
+            TableError::NonFiniteValue { index } => {
+                write!(f, "entry {index}: coefficient or stroke is NaN or infinite")
+            }
+            TableError::BadStroke { index } => {
+                write!(f, "entry {index}: fitted stroke needs x_min_mm < x_max_mm")
+            }
+            TableError::CrcMismatch { stored, computed } => {
+                write!(f, "table CRC mismatch: stored {stored:#010x}, computed {computed:#010x}")
+            }
+        }
+    }
+}
+
+/// A validated table. The only way to get one is through [`Table::new`] or
+/// [`Table::from_image`], which check every invariant the model relies on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Table {
+    version: u16,
+    len: usize,
+    entries: [CurrentEntry; MAX_CURRENTS],
+    crc32: u32,
+}
+
+impl Table {
+    /// Validates `entries` and seals them with the current format version and CRC.
+    pub fn new(entries: &[CurrentEntry]) -> Result<Self, TableError> {
+        validate_entries(entries)?;
+        let mut table = Table {
+            version: FORMAT_VERSION,
+            len: entries.len(),
+            entries: [CurrentEntry::ZERO; MAX_CURRENTS],
+            crc32: content_crc(FORMAT_VERSION, entries),
+        };
+        for (slot, entry) in table.entries.iter_mut().zip(entries) {
+            *slot = *entry;
+        }
+        Ok(table)
+    }
+
+    /// Validates a stored image, including its version and CRC.
+    pub fn from_image(image: &TableImage<'_>) -> Result<Self, TableError> {
+        if image.version != FORMAT_VERSION {
+            return Err(TableError::UnsupportedVersion { version: image.version });
+        }
+        let table = Self::new(image.entries)?;
+        if table.crc32 != image.crc32 {
+            return Err(TableError::CrcMismatch { stored: image.crc32, computed: table.crc32 });
+        }
+        Ok(table)
+    }
+
+    /// The paper's Table 4 (built-in default).
+    pub fn paper() -> Result<Self, TableError> {
+        Self::from_image(&PAPER_TABLE4)
+    }
+
+    #[inline]
+    pub fn entries(&self) -> &[CurrentEntry] {
+        self.entries.get(..self.len).unwrap_or(&[])
+    }
+
+    pub fn version(&self) -> u16 {
+        self.version
+    }
+
+    pub fn crc32(&self) -> u32 {
+        self.crc32
+    }
+
+    /// Lowest and highest tabulated current.
+    pub fn current_range_a(&self) -> (f32, f32) {
+        let e = self.entries();
+        match (e.first(), e.last()) {
+            (Some(lo), Some(hi)) => (lo.current_a, hi.current_a),
+            _ => (0.0, 0.0),
+        }
+    }
+}
+
+fn validate_entries(entries: &[CurrentEntry]) -> Result<(), TableError> {
+    if entries.is_empty() {
+        return Err(TableError::Empty);
+    }
+    if entries.len() > MAX_CURRENTS {
+        return Err(TableError::TooManyEntries { count: entries.len() });
+    }
+    let mut previous_current = f32::NEG_INFINITY;
+    for (index, e) in entries.iter().enumerate() {
+        if !e.compression.is_finite() || !e.extension.is_finite() {
+            return Err(TableError::NonFiniteValue { index });
+        }
+        // `!(a > b)` also rejects NaN.
+        if !e.current_a.is_finite() || e.current_a <= previous_current {
+            return Err(TableError::UnsortedCurrents { index });
+        }
+        if !e.x_min_mm.is_finite() || !e.x_max_mm.is_finite() {
+            return Err(TableError::NonFiniteValue { index });
+        }
+        if e.x_min_mm >= e.x_max_mm {
+            return Err(TableError::BadStroke { index });
+        }
+        previous_current = e.current_a;
+    }
+    Ok(())
+}
+
+/// CRC-32 (ISO-HDLC, as zlib) over the version (u16 LE), the entry count (u8)
+/// and every entry's f32 fields in little-endian order: current, x_min, x_max,
+/// compression c0..c4, extension c0..c4. `const`, so flash images carry a CRC
+/// computed by the compiler; the host's table generator writes the same value.
+// Indexing is bounded by construction (count ≤ MAX_CURRENTS, so `at` ≤
+// IMAGE_BYTES); iterators are not available in `const fn`.
+#[allow(clippy::indexing_slicing)]
+pub const fn content_crc(version: u16, entries: &[CurrentEntry]) -> u32 {
+    let mut buf = [0u8; IMAGE_BYTES];
+    let count = if entries.len() > MAX_CURRENTS { MAX_CURRENTS } else { entries.len() };
+    let v = version.to_le_bytes();
+    buf[0] = v[0];
+    buf[1] = v[1];
+    buf[2] = count as u8;
+    let mut at = 3;
+    let mut i = 0;
+    while i < count {
+        let e = &entries[i];
+        let mut fields = [0f32; 13];
+        fields[0] = e.current_a;
+        fields[1] = e.x_min_mm;
+        fields[2] = e.x_max_mm;
+        let mut k = 0;
+        while k < 5 {
+            fields[3 + k] = e.compression.coeffs[k];
+            fields[8 + k] = e.extension.coeffs[k];
+            k += 1;
+        }
+        let mut f = 0;
+        while f < 13 {
+            let b = fields[f].to_bits().to_le_bytes();
+            buf[at] = b[0];
+            buf[at + 1] = b[1];
+            buf[at + 2] = b[2];
+            buf[at + 3] = b[3];
+            at += 4;
+            f += 1;
+        }
+        i += 1;
+    }
+    let (used, _) = buf.split_at(at);
+    CRC32.checksum(used)
+}
+
+const fn paper_entry(current_a: f32, c: [f32; 5], e: [f32; 5], x_max_mm: f32) -> CurrentEntry {
+    CurrentEntry {
+        current_a,
+        compression: Quartic::new(c),
+        extension: Quartic::new(e),
+        x_min_mm: 0.0,
+        x_max_mm,
+    }
+}
+
+/// The paper's Table 4 (x in mm, F in N; see `shared/paper/README.md` on units).
+///
+/// The paper does not publish the fitted stroke. Each loop starts at x = 0 and
+/// closes where its compression and extension quartics cross again, so that
+/// crossing (0.88–1.15 mm, found by root-finding the branch difference) is
+/// used as `x_max_mm`. A host test checks the branches meet there.
+pub const PAPER_TABLE4_ENTRIES: [CurrentEntry; 5] = [
+    paper_entry(
+        0.0,
+        [-1201.40, 4792.40, -8317.70, 8945.10, -236.86],
+        [-2198.30, 5862.70, -1052.60, 465.53, 2.19],
+        1.1531,
+    ),
+    paper_entry(
+        0.5,
+        [-10630.00, 15621.00, -3332.90, 3968.60, 93.28],
+        [-8708.80, 20027.00, -7723.00, 1209.50, -19.39],
+        1.0838,
+    ),
+    paper_entry(
+        1.0,
+        [3422.00, -8986.60, 2936.20, 9330.20, 336.52],
+        [-2193.60, 8677.00, -7363.90, 7180.70, -22.37],
+        1.0891,
+    ),
+    paper_entry(
+        1.5,
+        [-7302.70, 8103.30, -1859.90, 8441.90, 37.99],
+        [-1962.30, 7596.90, -2696.10, 4795.50, -65.56],
+        0.9823,
+    ),
+    paper_entry(
+        2.0,
+        [-6619.60, 19772.00, -24021.00, 19016.00, -105.53],
+        [32293.00, -61171.00, 35010.00, 3166.00, -58.19],
+        0.8819,
+    ),
+];
+
+/// The built-in default table as a flash image, CRC computed at compile time.
+pub static PAPER_TABLE4: TableImage<'static> = TableImage {
+    version: FORMAT_VERSION,
+    entries: &PAPER_TABLE4_ENTRIES,
+    crc32: content_crc(FORMAT_VERSION, &PAPER_TABLE4_ENTRIES),
+};

@@ -1,0 +1,140 @@
+//! The table file format (TOML) that host tools read and write.
+//!
+//! ```toml
+//! format_version = 1            # optional; 1 is the only version so far
+//! [[current]]
+//! current_a = 0.0               # ascending, at most 8 entries
+//! compression = [a1, a2, a3, a4, a5]   # F = a1·x⁴ + … + a5, highest power first
+//! extension   = [a1, a2, a3, a4, a5]   # x in mm, F in N
+//! x_min_mm = 0.0                # fitted stroke (optional, see below)
+//! x_max_mm = 1.1531
+//! ```
+//!
+//! If `x_min_mm`/`x_max_mm` are absent (as in the paper's `table4.toml`), the
+//! stroke defaults to `[0, first crossing of the two branches above 0]`:
+//! the point where the loop closes. Other top-level tables (metadata such as
+//! `[fit]` or the paper's `[[table5]]`) are ignored by this reader; unknown
+//! keys inside a `[[current]]` entry are an error.
+use anyhow::{bail, Context, Result};
+use mre_core::table::{CurrentEntry, Quartic, Table};
+use serde::Deserialize;
+use std::path::Path;
+
+#[derive(Debug, Deserialize)]
+struct TableToml {
+    format_version: Option<u16>,
+    current: Vec<CurrentToml>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CurrentToml {
+    current_a: f64,
+    compression: [f64; 5],
+    extension: [f64; 5],
+    x_min_mm: Option<f64>,
+    x_max_mm: Option<f64>,
+    /// Fit metadata written by `mre fit`; not part of the flash table.
+    #[serde(default)]
+    #[allow(dead_code)]
+    fit: Option<toml::Table>,
+}
+
+/// Where `--table` points: the built-in paper table or a file.
+pub fn load_table(spec: &str) -> Result<Table> {
+    if spec == "paper" {
+        return Table::paper().map_err(|e| anyhow::anyhow!("built-in paper table is corrupt: {e}"));
+    }
+    read_table_file(Path::new(spec))
+}
+
+pub fn read_table_file(path: &Path) -> Result<Table> {
+    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read table file {}", path.display()))?;
+    parse_table_toml(&text).with_context(|| format!("in table file {}", path.display()))
+}
+
+pub fn parse_table_toml(text: &str) -> Result<Table> {
+    let doc: TableToml = toml::from_str(text)?;
+    if let Some(v) = doc.format_version {
+        if v != mre_core::table::FORMAT_VERSION {
+            bail!("format_version = {v} is not supported (expected {})", mre_core::table::FORMAT_VERSION);
+        }
+    }
+    let mut entries = Vec::with_capacity(doc.current.len());
+    for (i, c) in doc.current.iter().enumerate() {
+        let (x_min_mm, x_max_mm) = match (c.x_min_mm, c.x_max_mm) {
+            (Some(lo), Some(hi)) => (lo, hi),
+            (None, None) => match first_branch_crossing_mm(&c.compression, &c.extension, 0.0, 10.0) {
+                Some(hi) => (0.0, hi),
+                None => bail!(
+                    "[[current]] #{} ({} A): no x_min_mm/x_max_mm and the branches never cross in 0..10 mm; \
+                     give the fitted stroke explicitly",
+                    i + 1,
+                    c.current_a
+                ),
+            },
+            _ => bail!("[[current]] #{} ({} A): give both x_min_mm and x_max_mm, or neither", i + 1, c.current_a),
+        };
+        entries.push(CurrentEntry {
+            current_a: c.current_a as f32,
+            compression: Quartic::new(c.compression.map(|v| v as f32)),
+            extension: Quartic::new(c.extension.map(|v| v as f32)),
+            x_min_mm: x_min_mm as f32,
+            x_max_mm: x_max_mm as f32,
+        });
+    }
+    Table::new(&entries).map_err(|e| anyhow::anyhow!("invalid table: {e}"))
+}
+
+/// Renders a table in this format (round-trips through [`parse_table_toml`]).
+pub fn table_to_toml(table: &Table) -> String {
+    let mut s = format!("format_version = {}\n", table.version());
+    for e in table.entries() {
+        s.push_str(&format!(
+            "\n[[current]]\ncurrent_a = {:?}\ncompression = {:?}\nextension = {:?}\nx_min_mm = {:?}\nx_max_mm = {:?}\n",
+            e.current_a, e.compression.coeffs, e.extension.coeffs, e.x_min_mm, e.x_max_mm
+        ));
+    }
+    s
+}
+
+fn horner(c: &[f64; 5], x: f64) -> f64 {
+    c.iter().fold(0.0, |acc, &a| acc * x + a)
+}
+
+/// First x in `(lo, hi]` where the two quartics are equal, to 1e-9 mm.
+/// The branches start apart at the loop's origin, so a crossing right at `lo`
+/// is skipped.
+pub fn first_branch_crossing_mm(c: &[f64; 5], e: &[f64; 5], lo: f64, hi: f64) -> Option<f64> {
+    let diff = |x: f64| horner(c, x) - horner(e, x);
+    const STEPS: usize = 10_000;
+    let h = (hi - lo) / STEPS as f64;
+    // Skip the first 1 % so a near-zero start does not count as closing.
+    let start = STEPS / 100;
+    let mut a = lo + start as f64 * h;
+    let mut fa = diff(a);
+    for k in start + 1..=STEPS {
+        let b = lo + k as f64 * h;
+        let fb = diff(b);
+        if fa == 0.0 {
+            return Some(a);
+        }
+        if fa.signum() != fb.signum() {
+            let (mut l, mut r, mut fl) = (a, b, fa);
+            for _ in 0..100 {
+                let m = 0.5 * (l + r);
+                let fm = diff(m);
+                if fm.signum() == fl.signum() {
+                    l = m;
+                    fl = fm;
+                } else {
+                    r = m;
+                }
+            }
+            return Some(0.5 * (l + r));
+        }
+        a = b;
+        fa = fb;
+    }
+    None
+}
