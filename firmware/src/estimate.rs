@@ -36,7 +36,14 @@ impl AlphaBeta {
         } else {
             (1.0e-4, 0.2, 0.2 * 0.2 / 1.8)
         };
-        Self { alpha, beta, period_s, x_mm: 0.0, v_m_s: 0.0, primed: false }
+        Self {
+            alpha,
+            beta,
+            period_s,
+            x_mm: 0.0,
+            v_m_s: 0.0,
+            primed: false,
+        }
     }
 
     /// `β = α²/(2 − α)`.
