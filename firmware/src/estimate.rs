@@ -16,6 +16,13 @@
 use crate::flags::Flags;
 use micromath::F32Ext;
 
+/// Samples beyond ±10 m cannot come from a damper; they are rejected.
+pub const MAX_ABS_X_MM: f32 = 1.0e4;
+
+fn clamp_finite(x_mm: f32) -> f32 {
+    crate::math::clamp(x_mm, -MAX_ABS_X_MM, MAX_ABS_X_MM)
+}
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AlphaBeta {
     alpha: f32,
@@ -36,7 +43,14 @@ impl AlphaBeta {
         } else {
             (1.0e-4, 0.2, 0.2 * 0.2 / 1.8)
         };
-        Self { alpha, beta, period_s, x_mm: 0.0, v_m_s: 0.0, primed: false }
+        Self {
+            alpha,
+            beta,
+            period_s,
+            x_mm: 0.0,
+            v_m_s: 0.0,
+            primed: false,
+        }
     }
 
     /// `β = α²/(2 − α)`.
@@ -55,7 +69,7 @@ impl AlphaBeta {
     /// Ratio σ_v / σ_x in 1/s (multiply by the position noise in m).
     pub fn velocity_noise_gain_per_s(&self) -> f32 {
         let (a, b) = (self.alpha, self.beta);
-        F32Ext::sqrt(2.0 * b * b / (a * (4.0 - 2.0 * a - b))) / self.period_s
+        crate::math::sqrt_precise(2.0 * b * b / (a * (4.0 - 2.0 * a - b))) / self.period_s
     }
 
     /// Velocity error (m/s) under a constant acceleration `a_m_s2`.
@@ -64,18 +78,29 @@ impl AlphaBeta {
     }
 
     /// Restarts from a known state (e.g. at first contact).
+    /// Non-finite values restart from zero.
     pub fn reset(&mut self, x_mm: f32, v_m_s: f32) {
-        self.x_mm = x_mm;
-        self.v_m_s = v_m_s;
+        self.x_mm = if x_mm.is_finite() { clamp_finite(x_mm) } else { 0.0 };
+        self.v_m_s = if v_m_s.is_finite() { v_m_s } else { 0.0 };
         self.primed = true;
     }
 
     /// Feeds one displacement sample; returns the velocity estimate (m/s).
-    /// A non-finite sample is skipped (prediction only) and flagged.
+    /// A non-finite sample, or one beyond ±`MAX_ABS_X_MM`, is skipped
+    /// (prediction only) and flagged, so the estimate stays finite.
     pub fn update(&mut self, z_mm: f32) -> (f32, Flags) {
-        if !z_mm.is_finite() {
-            self.x_mm += self.v_m_s * self.period_s * 1.0e3;
-            return (self.v_m_s, Flags::NON_FINITE_INPUT);
+        let flags = if !z_mm.is_finite() {
+            Flags::NON_FINITE_INPUT
+        } else if F32Ext::abs(z_mm) > MAX_ABS_X_MM {
+            Flags::SENSOR_RANGE
+        } else {
+            Flags::NONE
+        };
+        if flags != Flags::NONE {
+            if self.primed {
+                self.x_mm = clamp_finite(self.x_mm + self.v_m_s * self.period_s * 1.0e3);
+            }
+            return (self.v_m_s, flags);
         }
         if !self.primed {
             self.reset(z_mm, 0.0);

@@ -25,7 +25,10 @@ impl Table {
         let entries = self.entries();
         let (lowest_a, _) = self.current_range_a();
         if !target_force_n.is_finite() {
-            return CurrentResult { current_a: lowest_a, flags: Flags::NON_FINITE_INPUT };
+            return CurrentResult {
+                current_a: lowest_a,
+                flags: Flags::NON_FINITE_INPUT,
+            };
         }
 
         let mut flags = Flags::NONE;
@@ -41,7 +44,10 @@ impl Table {
         let mut previous: Option<(f32, f32)> = None;
         for (entry, &force) in entries.iter().zip(forces) {
             if force == target_force_n {
-                return CurrentResult { current_a: entry.current_a, flags };
+                return CurrentResult {
+                    current_a: entry.current_a,
+                    flags,
+                };
             }
             if let Some((i0, f0)) = previous {
                 if (f0 < target_force_n) != (force < target_force_n) {
@@ -66,7 +72,11 @@ impl Table {
                 best = Some((entry.current_a, force));
             }
         }
-        flags |= if above_all { Flags::SATURATED_HIGH } else { Flags::SATURATED_LOW };
+        flags |= if above_all {
+            Flags::SATURATED_HIGH
+        } else {
+            Flags::SATURATED_LOW
+        };
         let current_a = best.map_or(lowest_a, |(current_a, _)| current_a);
         CurrentResult { current_a, flags }
     }

@@ -107,7 +107,13 @@ impl LawConfig {
                 return Err(ConfigError::NonFinite);
             }
         }
-        let positive = [self.mass_kg, self.stroke_max_mm, self.slew_a_per_s, self.v_valid_max_m_s, self.period_s];
+        let positive = [
+            self.mass_kg,
+            self.stroke_max_mm,
+            self.slew_a_per_s,
+            self.v_valid_max_m_s,
+            self.period_s,
+        ];
         if positive.iter().any(|&v| v <= 0.0) || self.gravity_m_s2 < 0.0 || self.branch_band_m_s < 0.0 {
             return Err(ConfigError::NonPositive);
         }
@@ -243,7 +249,11 @@ impl ImpactLaw {
             flags |= Flags::OUTPUT_CLAMPED;
         }
         let max_step_a = cfg.slew_a_per_s * cfg.period_s;
-        let current_a = math::clamp(clamped_a, self.last_current_a - max_step_a, self.last_current_a + max_step_a);
+        let current_a = math::clamp(
+            clamped_a,
+            self.last_current_a - max_step_a,
+            self.last_current_a + max_step_a,
+        );
         if current_a != clamped_a {
             flags |= Flags::SLEW_LIMITED;
         }
@@ -254,6 +264,11 @@ impl ImpactLaw {
         if branch == Branch::Compression {
             self.last_compression_current_a = current_a;
         }
-        Command { current_a, target_force_n, branch, flags }
+        Command {
+            current_a,
+            target_force_n,
+            branch,
+            flags,
+        }
     }
 }

@@ -22,3 +22,16 @@ pub fn clamp(x: f32, lo: f32, hi: f32) -> f32 {
         lo
     }
 }
+
+/// Square root to f32 precision: micromath's fast estimate refined by two
+/// Newton steps. For configuration-time quantities, not the hot path.
+pub fn sqrt_precise(x: f32) -> f32 {
+    if x.is_nan() || x <= 0.0 || !x.is_finite() {
+        return F32Ext::sqrt(x);
+    }
+    let mut y = F32Ext::sqrt(x);
+    for _ in 0..2 {
+        y = 0.5 * (y + x / y);
+    }
+    y
+}

@@ -49,8 +49,15 @@ pub struct BranchSelector {
 impl BranchSelector {
     /// A non-finite or negative band is treated as zero (no hysteresis).
     pub fn new(band_m_s: f32, initial: Branch) -> Self {
-        let band_m_s = if band_m_s.is_finite() && band_m_s > 0.0 { band_m_s } else { 0.0 };
-        Self { band_m_s, branch: initial }
+        let band_m_s = if band_m_s.is_finite() && band_m_s > 0.0 {
+            band_m_s
+        } else {
+            0.0
+        };
+        Self {
+            band_m_s,
+            branch: initial,
+        }
     }
 
     /// Feeds one velocity sample; NaN keeps the current branch.
@@ -95,7 +102,10 @@ impl CurrentEntry {
             Branch::Compression => &self.compression,
             Branch::Extension => &self.extension,
         };
-        ForceResult { force_n: quartic.eval(x), flags }
+        ForceResult {
+            force_n: quartic.eval(x),
+            flags,
+        }
     }
 }
 
@@ -115,26 +125,54 @@ impl Table {
         let (lo, hi) = self.current_range_a();
         let last = entries.len().saturating_sub(1);
         if !current_a.is_finite() {
-            return CurrentSegment { lower: 0, t: 0.0, flags: Flags::NON_FINITE_INPUT };
+            return CurrentSegment {
+                lower: 0,
+                t: 0.0,
+                flags: Flags::NON_FINITE_INPUT,
+            };
         }
         if current_a <= lo {
-            let flags = if current_a < lo { Flags::CURRENT_CLAMPED } else { Flags::NONE };
-            return CurrentSegment { lower: 0, t: 0.0, flags };
+            let flags = if current_a < lo {
+                Flags::CURRENT_CLAMPED
+            } else {
+                Flags::NONE
+            };
+            return CurrentSegment {
+                lower: 0,
+                t: 0.0,
+                flags,
+            };
         }
         if current_a >= hi {
-            let flags = if current_a > hi { Flags::CURRENT_CLAMPED } else { Flags::NONE };
-            return CurrentSegment { lower: last, t: 0.0, flags };
+            let flags = if current_a > hi {
+                Flags::CURRENT_CLAMPED
+            } else {
+                Flags::NONE
+            };
+            return CurrentSegment {
+                lower: last,
+                t: 0.0,
+                flags,
+            };
         }
         // lo < current_a < hi, so some pair brackets it.
         for (k, pair) in entries.windows(2).enumerate() {
             if let [a, b] = pair {
                 if current_a < b.current_a {
                     let t = (current_a - a.current_a) / (b.current_a - a.current_a);
-                    return CurrentSegment { lower: k, t, flags: Flags::NONE };
+                    return CurrentSegment {
+                        lower: k,
+                        t,
+                        flags: Flags::NONE,
+                    };
                 }
             }
         }
-        CurrentSegment { lower: last, t: 0.0, flags: Flags::NONE }
+        CurrentSegment {
+            lower: last,
+            t: 0.0,
+            flags: Flags::NONE,
+        }
     }
 
     /// Force on a given branch at `x_mm` and `current_a` (interpolated).
@@ -143,7 +181,12 @@ impl Table {
         let entries = self.entries();
         let lower = match entries.get(seg.lower) {
             Some(e) => e.force_n(x_mm, branch),
-            None => return ForceResult { force_n: 0.0, flags: Flags::TABLE_FAULT },
+            None => {
+                return ForceResult {
+                    force_n: 0.0,
+                    flags: Flags::TABLE_FAULT,
+                }
+            }
         };
         let mut flags = seg.flags | lower.flags;
         let force_n = match entries.get(seg.lower + 1) {

@@ -76,14 +76,27 @@ pub struct TableImage<'a> {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TableError {
     Empty,
-    TooManyEntries { count: usize },
-    UnsupportedVersion { version: u16 },
+    TooManyEntries {
+        count: usize,
+    },
+    UnsupportedVersion {
+        version: u16,
+    },
     /// Currents must be finite and strictly ascending.
-    UnsortedCurrents { index: usize },
-    NonFiniteValue { index: usize },
+    UnsortedCurrents {
+        index: usize,
+    },
+    NonFiniteValue {
+        index: usize,
+    },
     /// The fitted stroke must be finite with `x_min_mm < x_max_mm`.
-    BadStroke { index: usize },
-    CrcMismatch { stored: u32, computed: u32 },
+    BadStroke {
+        index: usize,
+    },
+    CrcMismatch {
+        stored: u32,
+        computed: u32,
+    },
 }
 
 impl core::fmt::Display for TableError {
@@ -94,7 +107,10 @@ impl core::fmt::Display for TableError {
                 write!(f, "table has {count} entries, at most {MAX_CURRENTS} fit")
             }
             TableError::UnsupportedVersion { version } => {
-                write!(f, "table format version {version} is not supported (expected {FORMAT_VERSION})")
+                write!(
+                    f,
+                    "table format version {version} is not supported (expected {FORMAT_VERSION})"
+                )
             }
             TableError::UnsortedCurrents { index } => {
                 write!(f, "entry {index}: currents must be finite and strictly ascending")
@@ -106,7 +122,10 @@ impl core::fmt::Display for TableError {
                 write!(f, "entry {index}: fitted stroke needs x_min_mm < x_max_mm")
             }
             TableError::CrcMismatch { stored, computed } => {
-                write!(f, "table CRC mismatch: stored {stored:#010x}, computed {computed:#010x}")
+                write!(
+                    f,
+                    "table CRC mismatch: stored {stored:#010x}, computed {computed:#010x}"
+                )
             }
         }
     }
@@ -145,7 +164,10 @@ impl Table {
         }
         let table = Self::new(image.entries)?;
         if table.crc32 != image.crc32 {
-            return Err(TableError::CrcMismatch { stored: image.crc32, computed: table.crc32 });
+            return Err(TableError::CrcMismatch {
+                stored: image.crc32,
+                computed: table.crc32,
+            });
         }
         Ok(table)
     }
@@ -214,7 +236,11 @@ fn validate_entries(entries: &[CurrentEntry]) -> Result<(), TableError> {
 #[allow(clippy::indexing_slicing)]
 pub const fn content_crc(version: u16, entries: &[CurrentEntry]) -> u32 {
     let mut buf = [0u8; IMAGE_BYTES];
-    let count = if entries.len() > MAX_CURRENTS { MAX_CURRENTS } else { entries.len() };
+    let count = if entries.len() > MAX_CURRENTS {
+        MAX_CURRENTS
+    } else {
+        entries.len()
+    };
     let v = version.to_le_bytes();
     buf[0] = v[0];
     buf[1] = v[1];

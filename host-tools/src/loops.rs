@@ -60,7 +60,11 @@ pub fn write_loop_csv(out: &mut impl Write, points: &[LoopPoint]) -> Result<()> 
     let mut w = csv::Writer::from_writer(out);
     w.write_record(["x_mm", "compression_force_n", "extension_force_n"])?;
     for p in points {
-        w.write_record([p.x_mm.to_string(), p.compression_n.to_string(), p.extension_n.to_string()])?;
+        w.write_record([
+            p.x_mm.to_string(),
+            p.compression_n.to_string(),
+            p.extension_n.to_string(),
+        ])?;
     }
     w.flush()?;
     Ok(())

@@ -5,7 +5,11 @@ use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
 #[derive(Parser)]
-#[command(name = "mre", version, about = "Model, fit, validate and diagnose MRE impact dampers")]
+#[command(
+    name = "mre",
+    version,
+    about = "Model, fit, validate and diagnose MRE impact dampers"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -38,7 +42,12 @@ fn main() {
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
-        Command::Model { table, current, points, out } => {
+        Command::Model {
+            table,
+            current,
+            points,
+            out,
+        } => {
             let table = mre_host::table_file::load_table(&table)?;
             let curve = mre_host::loops::model_loop(&table, current, points)?;
             mre_host::atomic_write::write_atomic_with(&out, |buf| mre_host::loops::write_loop_csv(buf, &curve))?;

@@ -57,7 +57,10 @@ pub fn parse_table_toml(text: &str) -> Result<Table> {
     let doc: TableToml = toml::from_str(text)?;
     if let Some(v) = doc.format_version {
         if v != mre_core::table::FORMAT_VERSION {
-            bail!("format_version = {v} is not supported (expected {})", mre_core::table::FORMAT_VERSION);
+            bail!(
+                "format_version = {v} is not supported (expected {})",
+                mre_core::table::FORMAT_VERSION
+            );
         }
     }
     let mut entries = Vec::with_capacity(doc.current.len());
@@ -73,7 +76,11 @@ pub fn parse_table_toml(text: &str) -> Result<Table> {
                     c.current_a
                 ),
             },
-            _ => bail!("[[current]] #{} ({} A): give both x_min_mm and x_max_mm, or neither", i + 1, c.current_a),
+            _ => bail!(
+                "[[current]] #{} ({} A): give both x_min_mm and x_max_mm, or neither",
+                i + 1,
+                c.current_a
+            ),
         };
         entries.push(CurrentEntry {
             current_a: c.current_a as f32,

@@ -1,0 +1,193 @@
+//! The impact-mitigation law: physics of the stopping force, and its limits.
+use mre_core::law::{stopping_force_n, ConfigError, ImpactLaw, LawConfig, ReboundPolicy};
+use mre_core::model::Branch;
+use mre_core::{Flags, Table};
+
+fn paper() -> Table {
+    Table::paper().expect("built-in table is valid")
+}
+
+fn fast_config() -> LawConfig {
+    // No slew limit in the way, so one step reaches the wanted current.
+    LawConfig {
+        slew_a_per_s: 1.0e9,
+        ..LawConfig::default()
+    }
+}
+
+#[test]
+fn stopping_force_is_the_energy_balance() {
+    // 5.5 kg at 2.24 m/s with 10 mm left: ½mv²/r + mg
+    // = 0.5·5.5·5.0176/0.010 + 5.5·9.81 = 1379.84 + 53.955 N.
+    let f = stopping_force_n(5.5, 9.81, 2.24, 10.0).expect("stroke remains");
+    assert!((f - 1433.795).abs() < 0.01, "{f}");
+    assert_eq!(stopping_force_n(5.5, 9.81, 2.24, 0.0), None);
+    assert_eq!(stopping_force_n(5.5, 9.81, 2.24, -3.0), None);
+    assert_eq!(stopping_force_n(5.5, 9.81, 2.24, f32::NAN), None);
+}
+
+#[test]
+fn compression_command_produces_the_stopping_force() {
+    let t = paper();
+    let cfg = LawConfig {
+        stroke_max_mm: 1.2,
+        ..fast_config()
+    };
+    let mut law = ImpactLaw::new(cfg).expect("valid config");
+    // x = 0.5 mm, v = 1.0 m/s: F* = 0.5·5.5·1.0/0.0007 + 53.955 = 3982.5 N,
+    // which the paper's table reaches between 0.5 A (2532.6 N) and 1 A
+    // (4826.2 N) at x = 0.5 mm.
+    let cmd = law.step(&t, 0.5, 1.0);
+    let expected_force = 0.5 * 5.5 * 1.0 / 0.0007 + 5.5 * 9.81;
+    assert!(
+        (cmd.target_force_n - expected_force).abs() < 0.5,
+        "{}",
+        cmd.target_force_n
+    );
+    assert_eq!(cmd.branch, Branch::Compression);
+    assert!(!cmd.flags.is_fault());
+    let achieved = t.force_on_branch(0.5, Branch::Compression, cmd.current_a).force_n;
+    assert!(
+        (achieved - cmd.target_force_n).abs() < 1.0,
+        "{achieved} vs {}",
+        cmd.target_force_n
+    );
+    assert!(cmd.current_a > 0.5 && cmd.current_a < 1.0, "{}", cmd.current_a);
+}
+
+#[test]
+fn slew_rate_limits_each_step() {
+    let t = paper();
+    let cfg = LawConfig {
+        stroke_max_mm: 1.2,
+        slew_a_per_s: 1000.0,
+        period_s: 1.0e-4,
+        ..LawConfig::default()
+    };
+    let mut law = ImpactLaw::new(cfg).expect("valid config");
+    // The wanted current is far above 0 A; each step may move 1000 A/s · 100 µs = 0.1 A.
+    let first = law.step(&t, 0.9, 2.0);
+    assert!((first.current_a - 0.1).abs() < 1e-6, "{}", first.current_a);
+    assert!(first.flags.contains(Flags::SLEW_LIMITED));
+    let second = law.step(&t, 0.9, 2.0);
+    assert!((second.current_a - 0.2).abs() < 1e-6);
+}
+
+#[test]
+fn rebound_policies() {
+    let t = paper();
+    for (policy, expected_a) in [
+        (ReboundPolicy::Minimum, 0.0),
+        (ReboundPolicy::Fixed { current_a: 0.7 }, 0.7),
+        (ReboundPolicy::Fixed { current_a: 9.0 }, 2.0), // clamped to the output range
+    ] {
+        let mut law = ImpactLaw::new(LawConfig {
+            rebound: policy,
+            ..fast_config()
+        })
+        .expect("valid config");
+        let cmd = law.step(&t, 0.5, -1.0);
+        assert_eq!(cmd.current_a, expected_a, "{policy:?}");
+        assert!(cmd.flags.contains(Flags::REBOUND));
+    }
+    let mut law = ImpactLaw::new(LawConfig {
+        rebound: ReboundPolicy::Hold,
+        stroke_max_mm: 1.2,
+        ..fast_config()
+    })
+    .expect("valid config");
+    let pressing = law.step(&t, 0.5, 1.2);
+    let rebounding = law.step(&t, 0.6, -0.5);
+    assert_eq!(rebounding.current_a, pressing.current_a);
+}
+
+#[test]
+fn branch_hysteresis_ignores_noise_around_zero_velocity() {
+    let t = paper();
+    let mut law = ImpactLaw::new(LawConfig {
+        branch_band_m_s: 0.01,
+        ..fast_config()
+    })
+    .expect("valid config");
+    assert_eq!(law.step(&t, 0.5, 0.5).branch, Branch::Compression);
+    // Inside the ±10 mm/s band the branch holds.
+    assert_eq!(law.step(&t, 0.5, -0.004).branch, Branch::Compression);
+    assert_eq!(law.step(&t, 0.5, 0.003).branch, Branch::Compression);
+    assert_eq!(law.step(&t, 0.5, -0.02).branch, Branch::Extension);
+    assert_eq!(law.step(&t, 0.5, 0.009).branch, Branch::Extension);
+}
+
+#[test]
+fn exhausted_stroke_commands_the_maximum() {
+    let t = paper();
+    let mut law = ImpactLaw::new(LawConfig {
+        stroke_max_mm: 5.0,
+        ..fast_config()
+    })
+    .expect("valid config");
+    let cmd = law.step(&t, 5.0, 0.5);
+    assert_eq!(cmd.current_a, 2.0);
+    assert!(cmd.flags.contains(Flags::STROKE_EXHAUSTED));
+}
+
+#[test]
+fn untrusted_inputs_command_the_fail_safe_current() {
+    let t = paper();
+    let cfg = LawConfig {
+        failsafe_current_a: 1.25,
+        ..fast_config()
+    };
+    let mut law = ImpactLaw::new(cfg).expect("valid config");
+    for (x, v, flag) in [
+        (f32::NAN, 1.0, Flags::NON_FINITE_INPUT),
+        (0.5, f32::INFINITY, Flags::NON_FINITE_INPUT),
+        (cfg.x_valid_max_mm + 1.0, 1.0, Flags::SENSOR_RANGE),
+        (0.5, -cfg.v_valid_max_m_s * 2.0, Flags::SENSOR_RANGE),
+    ] {
+        let cmd = law.step(&t, x, v);
+        assert_eq!(cmd.current_a, 1.25, "x={x} v={v}");
+        assert!(cmd.flags.contains(flag | Flags::FAIL_SAFE));
+    }
+}
+
+#[test]
+fn invalid_configurations_are_refused() {
+    let base = LawConfig::default();
+    assert_eq!(
+        ImpactLaw::new(LawConfig {
+            mass_kg: f32::NAN,
+            ..base
+        })
+        .err(),
+        Some(ConfigError::NonFinite)
+    );
+    assert_eq!(
+        ImpactLaw::new(LawConfig { mass_kg: 0.0, ..base }).err(),
+        Some(ConfigError::NonPositive)
+    );
+    assert_eq!(
+        ImpactLaw::new(LawConfig {
+            current_min_a: 2.0,
+            current_max_a: 1.0,
+            ..base
+        })
+        .err(),
+        Some(ConfigError::EmptyOutputRange)
+    );
+    assert_eq!(
+        ImpactLaw::new(LawConfig {
+            failsafe_current_a: 3.0,
+            ..base
+        })
+        .err(),
+        Some(ConfigError::FailsafeOutsideRange)
+    );
+    assert_eq!(
+        ImpactLaw::new(LawConfig {
+            rebound: ReboundPolicy::Fixed { current_a: f32::NAN },
+            ..base
+        })
+        .err(),
+        Some(ConfigError::NonFinite)
+    );
+}
