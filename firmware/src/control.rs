@@ -84,7 +84,9 @@ pub struct ControlConfig {
 /// Why a control configuration was refused.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ControlConfigError {
-    Rate { rate_hz: u32 },
+    Rate {
+        rate_hz: u32,
+    },
     Law(ConfigError),
     /// Period of the law does not match the rate.
     PeriodMismatch,
@@ -98,7 +100,10 @@ impl ControlConfig {
         if !(RATE_MIN_HZ..=RATE_MAX_HZ).contains(&rate_hz) {
             return Err(ControlConfigError::Rate { rate_hz });
         }
-        let law = LawConfig { period_s: 1.0 / rate_hz as f32, ..LawConfig::default() };
+        let law = LawConfig {
+            period_s: 1.0 / rate_hz as f32,
+            ..LawConfig::default()
+        };
         let cfg = Self {
             rate_hz,
             law,

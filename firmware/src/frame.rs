@@ -32,6 +32,9 @@ pub const KIND_COMMAND: u8 = 2;
 /// A sample with this sequence number ends a PIL run: the firmware logs its
 /// link statistics and exits QEMU (semihosting) with status 0.
 pub const END_OF_RUN_SEQ: u32 = u32::MAX;
+/// The firmware's first command frame carries this sequence number: the
+/// link is up and samples may be sent (samples start at 1).
+pub const HELLO_SEQ: u32 = 0;
 const PRESENT_V: u8 = 1 << 0;
 const PRESENT_FORCE: u8 = 1 << 1;
 const CRC_AT: usize = 20;
@@ -63,13 +66,23 @@ pub struct CommandFrame {
 /// Why a frame was refused.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FrameError {
-    Crc { stored: u32, computed: u32 },
+    Crc {
+        stored: u32,
+        computed: u32,
+    },
     BadSync,
-    BadKind { kind: u8 },
+    BadKind {
+        kind: u8,
+    },
     /// Older than the last accepted sequence number.
-    OutOfOrder { seq: u32, last: u32 },
+    OutOfOrder {
+        seq: u32,
+        last: u32,
+    },
     /// The last accepted sequence number again (a host retry).
-    Duplicate { seq: u32 },
+    Duplicate {
+        seq: u32,
+    },
 }
 
 fn put(buf: &mut [u8; FRAME_LEN], at: usize, bytes: [u8; 4]) {
@@ -113,7 +126,8 @@ fn check(buf: &[u8; FRAME_LEN], kind: u8) -> Result<(), FrameError> {
 impl SampleFrame {
     pub fn encode(&self) -> [u8; FRAME_LEN] {
         let mut buf = [0u8; FRAME_LEN];
-        let present = if self.v_m_s.is_some() { PRESENT_V } else { 0 } | if self.force_n.is_some() { PRESENT_FORCE } else { 0 };
+        let present =
+            if self.v_m_s.is_some() { PRESENT_V } else { 0 } | if self.force_n.is_some() { PRESENT_FORCE } else { 0 };
         let [s0, s1] = SYNC;
         put(&mut buf, 0, [s0, s1, KIND_SAMPLE, present]);
         put(&mut buf, 4, self.seq.to_le_bytes());
@@ -183,7 +197,10 @@ pub struct LinkStats {
 impl LinkStats {
     /// Frames refused (corrupt or out of order), saturated to the frame field.
     pub fn rejected(&self) -> u16 {
-        let n = self.crc_errors.saturating_add(self.bad_kind).saturating_add(self.out_of_order);
+        let n = self
+            .crc_errors
+            .saturating_add(self.bad_kind)
+            .saturating_add(self.out_of_order);
         u16::try_from(n).unwrap_or(u16::MAX)
     }
 }
@@ -205,15 +222,20 @@ impl Default for SampleReceiver {
 
 impl SampleReceiver {
     pub const fn new() -> Self {
-        Self { buf: [0; FRAME_LEN], len: 0, last_seq: None, stats: LinkStats {
-            accepted: 0,
-            crc_errors: 0,
-            bad_kind: 0,
-            out_of_order: 0,
-            duplicates: 0,
-            lost: 0,
-            skipped_bytes: 0,
-        } }
+        Self {
+            buf: [0; FRAME_LEN],
+            len: 0,
+            last_seq: None,
+            stats: LinkStats {
+                accepted: 0,
+                crc_errors: 0,
+                bad_kind: 0,
+                out_of_order: 0,
+                duplicates: 0,
+                lost: 0,
+                skipped_bytes: 0,
+            },
+        }
     }
 
     pub fn stats(&self) -> LinkStats {

@@ -24,12 +24,20 @@ mod fw {
     use mre_core::table::{Table, PAPER_TABLE4};
 
     /// Control rate: 10 kHz, or 20 kHz with the `rate-20khz` feature.
-    const RATE_HZ: u32 = if cfg!(feature = "rate-20khz") { 20_000 } else { DEFAULT_RATE_HZ };
+    const RATE_HZ: u32 = if cfg!(feature = "rate-20khz") {
+        20_000
+    } else {
+        DEFAULT_RATE_HZ
+    };
 
     #[embassy_executor::main]
     async fn main(spawner: Spawner) {
         let board = board::init(RATE_HZ);
-        defmt::info!("mre-firmware on {=str}, core clock {=u32} Hz", board::NAME, board::core_clock_hz());
+        defmt::info!(
+            "mre-firmware on {=str}, core clock {=u32} Hz",
+            board::NAME,
+            board::core_clock_hz()
+        );
 
         // A rejected table is not fatal: the controller latches TABLE_FAULT
         // and commands the fail-safe current every period.
@@ -58,13 +66,18 @@ mod fw {
                 board::halt_fail_safe(board)
             }
         };
-        let ctl = match Controller::new(cfg, table) {
+        #[allow(unused_mut)]
+        let mut ctl = match Controller::new(cfg, table) {
             Ok(c) => c,
             Err(e) => {
                 defmt::error!("controller refused config: {}", defmt::Debug2Format(&e));
                 board::halt_fail_safe(board)
             }
         };
+        // Instruction-count benchmark image: measure, then exit QEMU.
+        #[cfg(all(feature = "pil", feature = "bench"))]
+        board::icount::run(&mut ctl);
+
         defmt::info!(
             "control {=u32} Hz, fail-safe {=f32} A, output {=f32}..{=f32} A, slew {=f32} A/s, stroke {=f32} mm, mass {=f32} kg",
             cfg.rate_hz,
@@ -111,7 +124,7 @@ mod fw {
                     s.step_cycles_max,
                     board.io.link_summary()
                 );
-                #[cfg(feature = "bench")]
+                #[cfg(all(feature = "bench", feature = "hw"))]
                 crate::board::bench_model_step(ctl.table());
                 last = s;
                 ctl.reset_cycle_stats();

@@ -49,8 +49,14 @@ const FAILSAFE_A: f32 = 2.0;
 fn rate_config_sets_period_and_refuses_out_of_range_rates() {
     assert_eq!(ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap().period_s(), 1.0e-4);
     assert_eq!(ControlConfig::at_rate(20_000).unwrap().period_s(), 5.0e-5);
-    assert_eq!(ControlConfig::at_rate(500), Err(ControlConfigError::Rate { rate_hz: 500 }));
-    assert_eq!(ControlConfig::at_rate(50_000), Err(ControlConfigError::Rate { rate_hz: 50_000 }));
+    assert_eq!(
+        ControlConfig::at_rate(500),
+        Err(ControlConfigError::Rate { rate_hz: 500 })
+    );
+    assert_eq!(
+        ControlConfig::at_rate(50_000),
+        Err(ControlConfigError::Rate { rate_hz: 50_000 })
+    );
     // A law period that disagrees with the rate is refused.
     let mut cfg = ControlConfig::at_rate(10_000).unwrap();
     cfg.rate_hz = 20_000;
@@ -69,7 +75,11 @@ fn slew_limit_per_period_follows_the_rate() {
         assert_eq!(cmd.branch, Branch::Compression);
         assert!((cmd.target_force_n - 1726.25).abs() < 0.05, "{}", cmd.target_force_n);
         assert!(cmd.flags.contains(Flags::SLEW_LIMITED));
-        assert!((cmd.current_a - first_step_a).abs() < 1e-6, "{rate_hz} Hz: {}", cmd.current_a);
+        assert!(
+            (cmd.current_a - first_step_a).abs() < 1e-6,
+            "{rate_hz} Hz: {}",
+            cmd.current_a
+        );
         let cmd = c.step_sample(0.21, Some(3.0));
         assert!((cmd.current_a - 2.0 * first_step_a).abs() < 1e-6);
     }
@@ -79,7 +89,10 @@ fn slew_limit_per_period_follows_the_rate() {
 fn step_reads_sensors_and_commands_the_coil_with_the_returned_current() {
     let mut c = controller(10_000);
     // At 4 m/s the stopping force (about 3 kN) needs 1.9–2 A at these x.
-    let mut x = ScriptX { xs: vec![0.2, 0.21, 0.22, 0.23], at: 0 };
+    let mut x = ScriptX {
+        xs: vec![0.2, 0.21, 0.22, 0.23],
+        at: 0,
+    };
     let mut v = ConstV(Some(4.0));
     let mut coil = RecordingCoil::default();
     let cmds: Vec<_> = (0..4).map(|_| c.step(&mut x, &mut v, &mut coil)).collect();
@@ -93,7 +106,10 @@ fn step_reads_sensors_and_commands_the_coil_with_the_returned_current() {
 
 #[test]
 fn corrupt_table_latches_table_fault_and_stays_fail_safe() {
-    let corrupt = TableImage { crc32: PAPER_TABLE4.crc32 ^ 1, ..PAPER_TABLE4 };
+    let corrupt = TableImage {
+        crc32: PAPER_TABLE4.crc32 ^ 1,
+        ..PAPER_TABLE4
+    };
     let table = Table::from_image(&corrupt);
     assert!(matches!(table, Err(TableError::CrcMismatch { .. })));
     let mut c = Controller::new(ControlConfig::at_rate(10_000).unwrap(), table).unwrap();
@@ -143,7 +159,12 @@ fn persistent_out_of_range_latches_until_cleared() {
 #[test]
 fn non_finite_samples_give_finite_fail_safe_and_latch() {
     let mut c = controller(10_000);
-    for (k, x) in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY].into_iter().cycle().take(10).enumerate() {
+    for (k, x) in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY]
+        .into_iter()
+        .cycle()
+        .take(10)
+        .enumerate()
+    {
         let cmd = c.step_sample(x, None);
         assert_eq!(cmd.current_a, FAILSAFE_A, "sample {k}");
         assert!(cmd.flags.contains(Flags::NON_FINITE_INPUT));
@@ -232,7 +253,10 @@ fn cycle_stats_report_min_mean_max() {
         c.record_step_cycles(cycles);
     }
     let s = c.stats();
-    assert_eq!((s.step_cycles_min, s.step_cycles_mean(), s.step_cycles_max), (100, 200, 300));
+    assert_eq!(
+        (s.step_cycles_min, s.step_cycles_mean(), s.step_cycles_max),
+        (100, 200, 300)
+    );
     c.reset_cycle_stats();
     assert_eq!(c.stats().step_cycles_count, 0);
 }
@@ -246,7 +270,10 @@ fn without_velocity_sensor_the_estimator_feeds_the_law() {
     let mut c = Controller::new(cfg, Ok(table)).unwrap();
     let mut est = AlphaBeta::benedict_bordner(cfg.period_s(), cfg.estimator_alpha);
     let mut law = ImpactLaw::new(cfg.law).unwrap();
-    let mut x = ScriptX { xs: (0..300).map(|k| 0.15 * k as f32).collect(), at: 0 };
+    let mut x = ScriptX {
+        xs: (0..300).map(|k| 0.15 * k as f32).collect(),
+        at: 0,
+    };
     let mut coil = RecordingCoil::default();
     let mut saw_compression = false;
     for _ in 0..300 {

@@ -11,14 +11,23 @@ fn crc32_reference(bytes: &[u8]) -> u32 {
     for &b in bytes {
         crc ^= u32::from(b);
         for _ in 0..8 {
-            crc = if crc & 1 != 0 { (crc >> 1) ^ 0xEDB8_8320 } else { crc >> 1 };
+            crc = if crc & 1 != 0 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
         }
     }
     !crc
 }
 
 fn sample(seq: u32) -> SampleFrame {
-    SampleFrame { seq, x_mm: 1.25, v_m_s: Some(-0.5), force_n: None }
+    SampleFrame {
+        seq,
+        x_mm: 1.25,
+        v_m_s: Some(-0.5),
+        force_n: None,
+    }
 }
 
 fn feed(rx: &mut SampleReceiver, bytes: &[u8]) -> Vec<Result<SampleFrame, FrameError>> {
@@ -39,7 +48,10 @@ fn sample_frame_layout_is_as_documented() {
     assert_eq!(&buf[8..12], &1.25f32.to_le_bytes());
     assert_eq!(&buf[12..16], &(-0.5f32).to_le_bytes());
     assert_eq!(&buf[16..20], &[0, 0, 0, 0]);
-    assert_eq!(u32::from_le_bytes(buf[20..24].try_into().unwrap()), crc32_reference(&buf[..20]));
+    assert_eq!(
+        u32::from_le_bytes(buf[20..24].try_into().unwrap()),
+        crc32_reference(&buf[..20])
+    );
 }
 
 #[test]
@@ -54,18 +66,39 @@ fn command_frame_layout_and_round_trip() {
     let buf = cmd.encode();
     assert_eq!(&buf[..8], &[0xA5, 0x5A, 2, 0, 7, 0, 0, 0]);
     assert_eq!(&buf[16..20], &[0x80, 0x01, 3, 0]);
-    assert_eq!(u32::from_le_bytes(buf[20..24].try_into().unwrap()), crc32_reference(&buf[..20]));
+    assert_eq!(
+        u32::from_le_bytes(buf[20..24].try_into().unwrap()),
+        crc32_reference(&buf[..20])
+    );
     assert_eq!(CommandFrame::decode(&buf), Ok(cmd));
     // A sample frame is not a command frame.
-    assert_eq!(CommandFrame::decode(&sample(1).encode()), Err(FrameError::BadKind { kind: 1 }));
+    assert_eq!(
+        CommandFrame::decode(&sample(1).encode()),
+        Err(FrameError::BadKind { kind: 1 })
+    );
 }
 
 #[test]
 fn optional_fields_round_trip() {
     for s in [
-        SampleFrame { seq: 1, x_mm: 0.0, v_m_s: None, force_n: None },
-        SampleFrame { seq: 2, x_mm: -0.25, v_m_s: Some(2.24), force_n: Some(950.0) },
-        SampleFrame { seq: 3, x_mm: 3.0, v_m_s: None, force_n: Some(-1.0) },
+        SampleFrame {
+            seq: 1,
+            x_mm: 0.0,
+            v_m_s: None,
+            force_n: None,
+        },
+        SampleFrame {
+            seq: 2,
+            x_mm: -0.25,
+            v_m_s: Some(2.24),
+            force_n: Some(950.0),
+        },
+        SampleFrame {
+            seq: 3,
+            x_mm: 3.0,
+            v_m_s: None,
+            force_n: Some(-1.0),
+        },
     ] {
         assert_eq!(SampleFrame::decode(&s.encode()), Ok(s));
     }
@@ -92,7 +125,10 @@ fn corrupt_frame_is_counted_and_the_next_one_accepted() {
     assert!(matches!(out[0], Err(FrameError::Crc { .. })));
     assert_eq!(out[1], Ok(sample(2)));
     assert_eq!(out.len(), 2);
-    assert_eq!((rx.stats().crc_errors, rx.stats().accepted, rx.stats().rejected()), (1, 1, 1));
+    assert_eq!(
+        (rx.stats().crc_errors, rx.stats().accepted, rx.stats().rejected()),
+        (1, 1, 1)
+    );
 }
 
 #[test]

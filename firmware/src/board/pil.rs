@@ -19,7 +19,9 @@ use embassy_time::Timer;
 use embassy_time_driver::Driver;
 use embassy_time_queue_utils::Queue;
 use mre_core::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
-use mre_core::frame::{CommandFrame, FrameError, LinkStats, SampleFrame, SampleReceiver, END_OF_RUN_SEQ, FRAME_LEN};
+use mre_core::frame::{
+    CommandFrame, FrameError, LinkStats, SampleFrame, SampleReceiver, END_OF_RUN_SEQ, FRAME_LEN, HELLO_SEQ,
+};
 use mre_core::law::Command;
 use mre_core::Flags;
 
@@ -150,7 +152,12 @@ pub fn init(_rate_hz: u32) -> Board {
     Board {
         io: Io {
             rx: SampleReceiver::new(),
-            sample: SampleFrame { seq: 0, x_mm: f32::NAN, v_m_s: None, force_n: None },
+            sample: SampleFrame {
+                seq: 0,
+                x_mm: f32::NAN,
+                v_m_s: None,
+                force_n: None,
+            },
             current_a: 0.0,
             last_reply: None,
             last_rejected: 0,
@@ -160,8 +167,19 @@ pub fn init(_rate_hz: u32) -> Board {
 }
 
 impl Board {
+    /// Announces the link with a command frame of sequence 0 (`HELLO_SEQ`):
+    /// the host sends no sample before it, so no byte can arrive while the
+    /// firmware is still booting.
     pub fn start(&mut self) {
         defmt::info!("PIL link up on USART1: waiting for sample frames");
+        let hello = CommandFrame {
+            seq: HELLO_SEQ,
+            current_a: 0.0,
+            target_force_n: 0.0,
+            flags: Flags::NONE,
+            rejected: 0,
+        };
+        usart_write(&hello.encode());
     }
 }
 
@@ -272,4 +290,64 @@ impl Coil for Io {
 fn panic(info: &core::panic::PanicInfo) -> ! {
     defmt::error!("panic: {}", defmt::Display2Format(info));
     semihosting::process::exit(101)
+}
+
+/// `pil` + `bench`: executed-instruction counts of the model step and the
+/// control step, read from a QEMU exec trace (`firmware/bench/icount.sh`).
+/// Each measured call sits between a call of `mre_mark_begin` and one of
+/// `mre_mark_end`; the script counts the instructions executed from the
+/// entry of the first to the entry of the second and subtracts the 3 of
+/// the markers themselves (begin's `nop; bx lr` and the `bl` to end).
+#[cfg(feature = "bench")]
+pub mod icount {
+    use core::hint::black_box;
+    use mre_core::control::Controller;
+    use mre_core::Branch;
+
+    #[inline(never)]
+    #[no_mangle]
+    pub extern "C" fn mre_mark_begin() {
+        cortex_m::asm::nop();
+    }
+
+    #[inline(never)]
+    #[no_mangle]
+    pub extern "C" fn mre_mark_end() {
+        // Two nops so the linker cannot fold this into `mre_mark_begin`.
+        cortex_m::asm::nop();
+        cortex_m::asm::nop();
+    }
+
+    /// Model step cases: (x_mm, target_force_n) on the compression branch.
+    /// Table 4 at these x brackets the targets in different segments; the
+    /// last is above every current (saturated: the longest path).
+    const MODEL_CASES: [(f32, f32); 4] = [(0.1, 600.0), (0.2, 1726.25), (0.5, 3000.0), (0.9, 9000.0)];
+    /// Control step cases: (x_mm, velocity sensor) from one impact.
+    const CONTROL_CASES: [(f32, Option<f32>); 4] = [(0.2, Some(3.0)), (0.5, Some(2.0)), (0.8, None), (0.3, Some(-1.0))];
+
+    pub fn run(ctl: &mut Controller) {
+        // No SysTick interrupts inside the measured windows.
+        // SAFETY: only SYST is touched; the executor has not started yet.
+        let mut syst = unsafe { cortex_m::Peripherals::steal() }.SYST;
+        syst.disable_interrupt();
+        syst.disable_counter();
+        if let Some(table) = ctl.table().copied() {
+            for &(x_mm, force_n) in &MODEL_CASES {
+                let (x_mm, force_n) = (black_box(x_mm), black_box(force_n));
+                mre_mark_begin();
+                let r = table.current_for_branch(x_mm, Branch::Compression, force_n);
+                mre_mark_end();
+                black_box(r);
+            }
+        }
+        for &(x_mm, v) in &CONTROL_CASES {
+            let (x_mm, v) = (black_box(x_mm), black_box(v));
+            mre_mark_begin();
+            let cmd = ctl.step_sample(x_mm, v);
+            mre_mark_end();
+            black_box(cmd);
+        }
+        defmt::info!("icount bench done");
+        semihosting::process::exit(0)
+    }
 }

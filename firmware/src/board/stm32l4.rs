@@ -157,7 +157,10 @@ pub fn init(rate_hz: u32) -> Board {
         next_tick: Instant::now(),
     };
     // Until the loop runs, hold the fail-safe current (stiffest damper).
-    io.set_duty(open_loop_duty(LawConfig::default().failsafe_current_a, COIL_FULL_SCALE_A));
+    io.set_duty(open_loop_duty(
+        LawConfig::default().failsafe_current_a,
+        COIL_FULL_SCALE_A,
+    ));
     let watchdog = IndependentWatchdog::new(p.IWDG, WATCHDOG_TIMEOUT_US);
     Board { io, watchdog }
 }
@@ -173,7 +176,10 @@ impl Board {
 
 /// Holds the fail-safe coil current forever (configuration refused).
 pub fn halt_fail_safe(mut board: Board) -> ! {
-    board.io.set_duty(open_loop_duty(LawConfig::default().failsafe_current_a, COIL_FULL_SCALE_A));
+    board.io.set_duty(open_loop_duty(
+        LawConfig::default().failsafe_current_a,
+        COIL_FULL_SCALE_A,
+    ));
     loop {
         cortex_m::asm::wfi();
     }
@@ -247,5 +253,10 @@ pub fn bench_model_step(table: Option<&mre_core::Table>) {
         max = max.max(dt);
         sum = sum.wrapping_add(dt);
     }
-    defmt::info!("bench model step cycles min/mean/max {=u32}/{=u32}/{=u32}", min, sum / points.len() as u32, max);
+    defmt::info!(
+        "bench model step cycles min/mean/max {=u32}/{=u32}/{=u32}",
+        min,
+        sum / points.len() as u32,
+        max
+    );
 }
