@@ -205,6 +205,13 @@ impl LinkStats {
     }
 }
 
+/// What a complete frame from the host carried.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Incoming {
+    Sample(SampleFrame),
+    Config(ConfigChunk),
+}
+
 /// Byte-stream receiver for sample frames with resync and sequence checks.
 #[derive(Clone, Copy, Debug)]
 pub struct SampleReceiver {
@@ -242,16 +249,37 @@ impl SampleReceiver {
         self.stats
     }
 
-    /// Feeds one received byte; returns a result when a frame completes.
+    /// Feeds one received byte; returns a result when a sample frame
+    /// completes. Config frames are refused here (counted as a bad kind);
+    /// a receiver that accepts them uses [`SampleReceiver::push_any`].
     pub fn push(&mut self, byte: u8) -> Option<Result<SampleFrame, FrameError>> {
+        match self.push_any(byte)? {
+            Ok(Incoming::Sample(s)) => Some(Ok(s)),
+            Ok(Incoming::Config(_)) => {
+                self.stats.bad_kind = self.stats.bad_kind.saturating_add(1);
+                Some(Err(FrameError::BadKind { kind: KIND_CONFIG }))
+            }
+            Err(e) => Some(Err(e)),
+        }
+    }
+
+    /// Feeds one received byte; returns a sample or config chunk when a
+    /// frame completes. Only samples go through the sequence checks.
+    pub fn push_any(&mut self, byte: u8) -> Option<Result<Incoming, FrameError>> {
         self.accept_byte(byte);
         if self.len < FRAME_LEN {
             return None;
         }
         let frame = self.buf;
         self.len = 0;
-        match SampleFrame::decode(&frame) {
-            Ok(sample) => Some(self.sequence(sample)),
+        let decoded = if frame.get(2) == Some(&KIND_CONFIG) {
+            ConfigChunk::decode(&frame).map(Incoming::Config)
+        } else {
+            SampleFrame::decode(&frame).map(Incoming::Sample)
+        };
+        match decoded {
+            Ok(Incoming::Sample(sample)) => Some(self.sequence(sample).map(Incoming::Sample)),
+            Ok(chunk) => Some(Ok(chunk)),
             Err(e) => {
                 match e {
                     FrameError::BadKind { .. } => self.stats.bad_kind = self.stats.bad_kind.saturating_add(1),
@@ -307,5 +335,291 @@ impl SampleReceiver {
         self.last_seq = Some(sample.seq);
         self.stats.accepted = self.stats.accepted.saturating_add(1);
         Ok(sample)
+    }
+}
+
+// ---- Configuration upload (PIL) ---------------------------------------------
+//
+// Before the first sample the host may upload the controller's table and
+// configuration, so the firmware controls the simulated plant with the same
+// table and parameters as the host's in-process run. The configuration is a
+// blob of 32-bit words (see `encode_config`), sent in config frames (kind 3)
+// of up to three words each:
+//
+// | bytes  | config frame (host → board, kind 3)                            |
+// |--------|----------------------------------------------------------------|
+// | 0..3   | sync `A5 5A`, kind 3                                           |
+// | 3      | words in this frame (1–3); 0 = commit: bytes 4..8 = total words |
+// | 4..8   | index of the first word u32                                    |
+// | 8..20  | up to three words, little-endian                               |
+// | 20..24 | CRC-32 of bytes 0..20                                          |
+//
+// On commit the firmware decodes the blob, validates the table (its own
+// CRC-32 and invariants, `Table::from_image`) and the configuration, and
+// answers with a hello frame (sequence 0) whose flags are `NONE` when it
+// switched, or `TABLE_FAULT` when it refused and kept its built-in table.
+
+pub const KIND_CONFIG: u8 = 3;
+/// Header (2) + 13 per table entry + law (13) + control (7).
+pub const CONFIG_MAX_WORDS: usize = 2 + 13 * MAX_CURRENTS + LAW_WORDS + CONTROL_WORDS;
+const LAW_WORDS: usize = 13;
+const CONTROL_WORDS: usize = 7;
+
+use crate::control::ControlConfig;
+use crate::law::{LawConfig, ReboundPolicy};
+use crate::table::{CurrentEntry, Quartic, Table, TableImage, MAX_CURRENTS};
+
+/// One received piece of the configuration blob.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ConfigChunk {
+    Words { index: u32, count: u8, words: [u32; 3] },
+    Commit { total_words: u32 },
+}
+
+impl ConfigChunk {
+    pub fn encode(&self) -> [u8; FRAME_LEN] {
+        let mut buf = [0u8; FRAME_LEN];
+        let [s0, s1] = SYNC;
+        match *self {
+            ConfigChunk::Words { index, count, words } => {
+                put(&mut buf, 0, [s0, s1, KIND_CONFIG, count]);
+                put(&mut buf, 4, index.to_le_bytes());
+                for (k, w) in words.iter().enumerate() {
+                    put(&mut buf, 8 + 4 * k, w.to_le_bytes());
+                }
+            }
+            ConfigChunk::Commit { total_words } => {
+                put(&mut buf, 0, [s0, s1, KIND_CONFIG, 0]);
+                put(&mut buf, 4, total_words.to_le_bytes());
+            }
+        }
+        seal(&mut buf);
+        buf
+    }
+
+    pub fn decode(buf: &[u8; FRAME_LEN]) -> Result<Self, FrameError> {
+        check(buf, KIND_CONFIG)?;
+        let count = buf.get(3).copied().unwrap_or(0);
+        let index = u32::from_le_bytes(get4(buf, 4));
+        if count == 0 {
+            return Ok(ConfigChunk::Commit { total_words: index });
+        }
+        if count > 3 {
+            return Err(FrameError::BadKind { kind: KIND_CONFIG });
+        }
+        let w = |k: usize| u32::from_le_bytes(get4(buf, 8 + 4 * k));
+        Ok(ConfigChunk::Words {
+            index,
+            count,
+            words: [w(0), w(1), w(2)],
+        })
+    }
+}
+
+/// Why an uploaded configuration was refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ConfigBlobError {
+    /// Wrong length, a missing word, or a word index out of range.
+    Incomplete,
+    Table(crate::table::TableError),
+    Control(crate::control::ControlConfigError),
+    BadRebound,
+}
+
+/// Appends the blob for `table` and `cfg` to `out` (returns the word count):
+/// word 0 = format version | entry count << 16, word 1 = table CRC-32, then
+/// per entry current, x_min, x_max, compression c0..c4, extension c0..c4;
+/// then the law (mass, stroke, g, current min/max, slew, fail-safe, rebound
+/// kind (0 minimum, 1 fixed, 2 hold), rebound current, branch band, x valid
+/// min/max, v valid max) and the control settings (rate, α, range samples,
+/// stuck samples, stuck speed, overrun limit, overrun window). f32 as bits.
+pub fn encode_config(table: &Table, cfg: &ControlConfig, out: &mut [u32; CONFIG_MAX_WORDS]) -> usize {
+    let entries = table.entries();
+    let mut words = out.iter_mut();
+    let mut n = 0usize;
+    let mut push = |w: u32| {
+        if let Some(slot) = words.next() {
+            *slot = w;
+            n += 1;
+        }
+    };
+    push(u32::from(table.version()) | ((entries.len() as u32) << 16));
+    push(table.crc32());
+    for e in entries {
+        for f in [e.current_a, e.x_min_mm, e.x_max_mm] {
+            push(f.to_bits());
+        }
+        for c in e.compression.coeffs.iter().chain(e.extension.coeffs.iter()) {
+            push(c.to_bits());
+        }
+    }
+    let law = &cfg.law;
+    let (rebound_kind, rebound_a) = match law.rebound {
+        ReboundPolicy::Minimum => (0, 0.0),
+        ReboundPolicy::Fixed { current_a } => (1, current_a),
+        ReboundPolicy::Hold => (2, 0.0),
+    };
+    for f in [
+        law.mass_kg,
+        law.stroke_max_mm,
+        law.gravity_m_s2,
+        law.current_min_a,
+        law.current_max_a,
+        law.slew_a_per_s,
+    ] {
+        push(f.to_bits());
+    }
+    push(law.failsafe_current_a.to_bits());
+    push(rebound_kind);
+    for f in [
+        rebound_a,
+        law.branch_band_m_s,
+        law.x_valid_min_mm,
+        law.x_valid_max_mm,
+        law.v_valid_max_m_s,
+    ] {
+        push(f.to_bits());
+    }
+    push(cfg.rate_hz);
+    push(cfg.estimator_alpha.to_bits());
+    push(u32::from(cfg.range_fault_samples));
+    push(u32::from(cfg.stuck_samples));
+    push(cfg.stuck_min_speed_m_s.to_bits());
+    push(u32::from(cfg.overrun_limit));
+    push(u32::from(cfg.overrun_window));
+    n
+}
+
+/// Inverse of [`encode_config`], with full validation: the table goes
+/// through `Table::from_image` (version, invariants, CRC) and the control
+/// configuration through `ControlConfig::validate`.
+pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlobError> {
+    let mut it = words.iter().copied();
+    let mut next = || it.next().ok_or(ConfigBlobError::Incomplete);
+    let head = next()?;
+    let version = (head & 0xFFFF) as u16;
+    let count = (head >> 16) as usize;
+    if count > MAX_CURRENTS || words.len() != 2 + 13 * count + LAW_WORDS + CONTROL_WORDS {
+        return Err(ConfigBlobError::Incomplete);
+    }
+    let crc32 = next()?;
+    let mut entries = [CurrentEntry {
+        current_a: 0.0,
+        compression: Quartic::new([0.0; 5]),
+        extension: Quartic::new([0.0; 5]),
+        x_min_mm: 0.0,
+        x_max_mm: 0.0,
+    }; MAX_CURRENTS];
+    for e in entries.iter_mut().take(count) {
+        e.current_a = f32::from_bits(next()?);
+        e.x_min_mm = f32::from_bits(next()?);
+        e.x_max_mm = f32::from_bits(next()?);
+        for c in e.compression.coeffs.iter_mut().chain(e.extension.coeffs.iter_mut()) {
+            *c = f32::from_bits(next()?);
+        }
+    }
+    let image = TableImage {
+        version,
+        entries: entries.get(..count).unwrap_or(&[]),
+        crc32,
+    };
+    let table = Table::from_image(&image).map_err(ConfigBlobError::Table)?;
+
+    let mut f = || next().map(f32::from_bits);
+    let (mass_kg, stroke_max_mm, gravity_m_s2, current_min_a, current_max_a, slew_a_per_s, failsafe_current_a) =
+        (f()?, f()?, f()?, f()?, f()?, f()?, f()?);
+    let rebound_kind = f()?.to_bits();
+    let rebound_a = f()?;
+    let rebound = match rebound_kind {
+        0 => ReboundPolicy::Minimum,
+        1 => ReboundPolicy::Fixed { current_a: rebound_a },
+        2 => ReboundPolicy::Hold,
+        _ => return Err(ConfigBlobError::BadRebound),
+    };
+    let (branch_band_m_s, x_valid_min_mm, x_valid_max_mm, v_valid_max_m_s) = (f()?, f()?, f()?, f()?);
+    let rate_hz = f()?.to_bits();
+    let estimator_alpha = f()?;
+    let small = |w: u32| u16::try_from(w).map_err(|_| ConfigBlobError::Incomplete);
+    let range_fault_samples = small(f()?.to_bits())?;
+    let stuck_samples = small(f()?.to_bits())?;
+    let stuck_min_speed_m_s = f()?;
+    let overrun_limit = small(f()?.to_bits())?;
+    let overrun_window = small(f()?.to_bits())?;
+    let period_s = if rate_hz > 0 { 1.0 / rate_hz as f32 } else { 0.0 };
+    let cfg = ControlConfig {
+        rate_hz,
+        law: LawConfig {
+            mass_kg,
+            stroke_max_mm,
+            gravity_m_s2,
+            current_min_a,
+            current_max_a,
+            slew_a_per_s,
+            failsafe_current_a,
+            rebound,
+            branch_band_m_s,
+            x_valid_min_mm,
+            x_valid_max_mm,
+            v_valid_max_m_s,
+            period_s,
+        },
+        estimator_alpha,
+        range_fault_samples,
+        stuck_samples,
+        stuck_min_speed_m_s,
+        overrun_limit,
+        overrun_window,
+    };
+    cfg.validate().map_err(ConfigBlobError::Control)?;
+    Ok((table, cfg))
+}
+
+/// Collects config chunks into a blob (firmware side).
+#[derive(Clone, Copy, Debug)]
+pub struct ConfigCollector {
+    words: [u32; CONFIG_MAX_WORDS],
+    /// Bit k set: word k received.
+    received: u128,
+}
+
+impl Default for ConfigCollector {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl ConfigCollector {
+    pub const fn new() -> Self {
+        Self {
+            words: [0; CONFIG_MAX_WORDS],
+            received: 0,
+        }
+    }
+
+    /// Stores a chunk; on commit returns the decoded configuration (and
+    /// starts over either way).
+    pub fn push(&mut self, chunk: ConfigChunk) -> Option<Result<(Table, ControlConfig), ConfigBlobError>> {
+        match chunk {
+            ConfigChunk::Words { index, count, words } => {
+                for (k, w) in words.iter().take(usize::from(count)).enumerate() {
+                    let at = (index as usize).saturating_add(k);
+                    if let Some(slot) = self.words.get_mut(at) {
+                        *slot = *w;
+                        self.received |= 1u128 << at;
+                    }
+                }
+                None
+            }
+            ConfigChunk::Commit { total_words } => {
+                let n = total_words as usize;
+                let all = if n >= 128 { u128::MAX } else { (1u128 << n) - 1 };
+                let result = match self.words.get(..n) {
+                    Some(words) if n <= CONFIG_MAX_WORDS && self.received & all == all => decode_config(words),
+                    _ => Err(ConfigBlobError::Incomplete),
+                };
+                *self = Self::new();
+                Some(result)
+            }
+        }
     }
 }

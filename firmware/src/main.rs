@@ -97,11 +97,10 @@ mod fw {
 
     #[embassy_executor::task]
     async fn control_task(mut ctl: Controller, mut board: board::Board) {
-        let rate_hz = ctl.config().rate_hz;
         let mut last = ctl.stats();
         board.start();
         loop {
-            board.io.next_period().await;
+            board.io.next_period(&mut ctl).await;
             let t0 = board::cycles();
             let cmd = ctl.step_io(&mut board.io);
             ctl.record_step_cycles(board::cycles().wrapping_sub(t0));
@@ -111,7 +110,7 @@ mod fw {
             board.watchdog.pet();
 
             let s = ctl.stats();
-            if s.periods.wrapping_sub(last.periods) >= rate_hz {
+            if s.periods.wrapping_sub(last.periods) >= ctl.config().rate_hz {
                 defmt::info!(
                     "stats: periods {=u32} (+{=u32}), overruns {=u32}, fail-safe periods {=u32}, latched {=u16:#06x}, step cycles min/mean/max {=u32}/{=u32}/{=u32}{}",
                     s.periods,

@@ -195,3 +195,125 @@ proptest! {
         prop_assert_eq!(got, sorted);
     }
 }
+
+mod config_upload {
+    use mre_core::control::{ControlConfig, ControlConfigError};
+    use mre_core::frame::{
+        decode_config, encode_config, ConfigBlobError, ConfigChunk, ConfigCollector, Incoming, SampleReceiver,
+        CONFIG_MAX_WORDS,
+    };
+    use mre_core::law::ReboundPolicy;
+    use mre_core::table::{Table, TableError, PAPER_TABLE4_ENTRIES};
+
+    fn custom() -> (Table, ControlConfig) {
+        let mut entries = PAPER_TABLE4_ENTRIES;
+        for e in &mut entries {
+            e.x_max_mm *= 10.0;
+        }
+        let table = Table::new(&entries).unwrap();
+        let mut cfg = ControlConfig::at_rate(20_000).unwrap();
+        cfg.law.stroke_max_mm = 12.0;
+        cfg.law.rebound = ReboundPolicy::Fixed { current_a: 0.5 };
+        cfg.stuck_samples = 0;
+        (table, cfg)
+    }
+
+    fn blob(table: &Table, cfg: &ControlConfig) -> Vec<u32> {
+        let mut words = [0u32; CONFIG_MAX_WORDS];
+        let n = encode_config(table, cfg, &mut words);
+        words[..n].to_vec()
+    }
+
+    #[test]
+    fn round_trip_restores_table_and_config_exactly() {
+        let (table, cfg) = custom();
+        let words = blob(&table, &cfg);
+        // 2 header words, 13 per current, 13 law, 7 control.
+        assert_eq!(words.len(), 2 + 13 * 5 + 13 + 7);
+        assert_eq!(decode_config(&words), Ok((table, cfg)));
+    }
+
+    #[test]
+    fn corrupt_or_short_blobs_are_refused() {
+        let (table, cfg) = custom();
+        let words = blob(&table, &cfg);
+        // A flipped coefficient bit no longer matches the table CRC.
+        let mut bad = words.clone();
+        bad[5] ^= 1;
+        assert!(matches!(
+            decode_config(&bad),
+            Err(ConfigBlobError::Table(TableError::CrcMismatch { .. }))
+        ));
+        assert_eq!(
+            decode_config(&words[..words.len() - 1]),
+            Err(ConfigBlobError::Incomplete)
+        );
+        // A rate outside 1–40 kHz.
+        let mut bad = words.clone();
+        let rate_at = words.len() - 7;
+        bad[rate_at] = 100_000;
+        assert_eq!(
+            decode_config(&bad),
+            Err(ConfigBlobError::Control(ControlConfigError::Rate { rate_hz: 100_000 }))
+        );
+    }
+
+    /// Splits a blob into config frames, as the host does.
+    fn frames(words: &[u32]) -> Vec<u8> {
+        let mut out = Vec::new();
+        for (k, chunk) in words.chunks(3).enumerate() {
+            let mut three = [0u32; 3];
+            three[..chunk.len()].copy_from_slice(chunk);
+            out.extend_from_slice(
+                &ConfigChunk::Words {
+                    index: 3 * k as u32,
+                    count: chunk.len() as u8,
+                    words: three,
+                }
+                .encode(),
+            );
+        }
+        out.extend_from_slice(
+            &ConfigChunk::Commit {
+                total_words: words.len() as u32,
+            }
+            .encode(),
+        );
+        out
+    }
+
+    #[test]
+    fn receiver_and_collector_reassemble_an_upload() {
+        let (table, cfg) = custom();
+        let mut rx = SampleReceiver::new();
+        let mut collector = ConfigCollector::new();
+        let mut results = Vec::new();
+        for b in frames(&blob(&table, &cfg)) {
+            if let Some(Ok(Incoming::Config(chunk))) = rx.push_any(b) {
+                results.extend(collector.push(chunk));
+            }
+        }
+        assert_eq!(results, vec![Ok((table, cfg))]);
+        // Samples keep their sequence checks; config frames do not use them.
+        assert_eq!(rx.stats().accepted, 0);
+    }
+
+    #[test]
+    fn an_upload_with_a_lost_frame_is_incomplete() {
+        let (table, cfg) = custom();
+        let bytes = frames(&blob(&table, &cfg));
+        let mut rx = SampleReceiver::new();
+        let mut collector = ConfigCollector::new();
+        let mut results = Vec::new();
+        // Drop the second frame (bytes 24..48).
+        for (i, &b) in bytes.iter().enumerate() {
+            if (24..48).contains(&i) {
+                continue;
+            }
+            if let Some(Ok(Incoming::Config(chunk))) = rx.push_any(b) {
+                results.extend(collector.push(chunk));
+            }
+        }
+        assert_eq!(results, vec![Err(ConfigBlobError::Incomplete)]);
+    }
+}

@@ -20,7 +20,8 @@ use embassy_time_driver::Driver;
 use embassy_time_queue_utils::Queue;
 use mre_core::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
 use mre_core::frame::{
-    CommandFrame, FrameError, LinkStats, SampleFrame, SampleReceiver, END_OF_RUN_SEQ, FRAME_LEN, HELLO_SEQ,
+    CommandFrame, ConfigCollector, FrameError, Incoming, LinkStats, SampleFrame, SampleReceiver, END_OF_RUN_SEQ,
+    FRAME_LEN, HELLO_SEQ,
 };
 use mre_core::law::Command;
 use mre_core::Flags;
@@ -133,6 +134,7 @@ pub struct Board {
 /// in the answer frame.
 pub struct Io {
     rx: SampleReceiver,
+    config: ConfigCollector,
     sample: SampleFrame,
     current_a: f32,
     last_reply: Option<[u8; FRAME_LEN]>,
@@ -152,6 +154,7 @@ pub fn init(_rate_hz: u32) -> Board {
     Board {
         io: Io {
             rx: SampleReceiver::new(),
+            config: ConfigCollector::new(),
             sample: SampleFrame {
                 seq: 0,
                 x_mm: f32::NAN,
@@ -183,13 +186,25 @@ impl Board {
     }
 }
 
+fn send_hello(flags: Flags) {
+    let hello = CommandFrame {
+        seq: HELLO_SEQ,
+        current_a: 0.0,
+        target_force_n: 0.0,
+        flags,
+        rejected: 0,
+    };
+    usart_write(&hello.encode());
+}
+
 pub fn halt_fail_safe(_board: Board) -> ! {
     semihosting::process::exit(2)
 }
 
 impl Io {
-    /// Waits for the next valid sample frame (one control period).
-    pub async fn next_period(&mut self) {
+    /// Waits for the next valid sample frame (one control period). An
+    /// uploaded configuration (config frames + commit) replaces `ctl`.
+    pub async fn next_period(&mut self, ctl: &mut Controller) {
         loop {
             let mut idle_polls = 0u32;
             while idle_polls < SPIN_POLLS {
@@ -198,9 +213,28 @@ impl Io {
                     continue;
                 };
                 idle_polls = 0;
-                match self.rx.push(byte) {
-                    Some(Ok(sample)) if sample.seq == END_OF_RUN_SEQ => end_of_run(self.rx.stats()),
-                    Some(Ok(sample)) => {
+                match self.rx.push_any(byte) {
+                    Some(Ok(Incoming::Config(chunk))) => match self.config.push(chunk) {
+                        Some(Ok((table, cfg))) => match Controller::new(cfg, Ok(table)) {
+                            Ok(new_ctl) => {
+                                *ctl = new_ctl;
+                                defmt::info!(
+                                    "configuration uploaded: table CRC {=u32:#010x}, {=u32} Hz",
+                                    table.crc32(),
+                                    cfg.rate_hz
+                                );
+                                send_hello(Flags::NONE);
+                            }
+                            Err(_) => send_hello(Flags::TABLE_FAULT),
+                        },
+                        Some(Err(e)) => {
+                            defmt::warn!("configuration refused: {}", defmt::Debug2Format(&e));
+                            send_hello(Flags::TABLE_FAULT);
+                        }
+                        None => {}
+                    },
+                    Some(Ok(Incoming::Sample(sample))) if sample.seq == END_OF_RUN_SEQ => end_of_run(self.rx.stats()),
+                    Some(Ok(Incoming::Sample(sample))) => {
                         self.sample = sample;
                         return;
                     }

@@ -192,7 +192,7 @@ impl Io {
     }
 
     /// Waits for the next tick of the control rate.
-    pub async fn next_period(&mut self) {
+    pub async fn next_period(&mut self, _ctl: &mut Controller) {
         self.ticker.next().await;
         self.next_tick += self.period;
     }

@@ -2,7 +2,12 @@
 //! chardev, with TCP_NODELAY (without it a round trip takes ~48 ms).
 use super::ControlBackend;
 use anyhow::{bail, Context, Result};
-use mre_core::frame::{CommandFrame, SampleFrame, END_OF_RUN_SEQ, FRAME_LEN, HELLO_SEQ};
+use mre_core::control::ControlConfig;
+use mre_core::frame::{
+    encode_config, CommandFrame, ConfigChunk, SampleFrame, CONFIG_MAX_WORDS, END_OF_RUN_SEQ, FRAME_LEN, HELLO_SEQ,
+};
+use mre_core::table::Table;
+use mre_core::Flags;
 use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::time::Duration;
@@ -51,6 +56,39 @@ impl PilLink {
         }
         self.frames += 1;
         Ok(cmd)
+    }
+
+    /// Uploads the controller's table and configuration (before the first
+    /// sample) and waits for the firmware to accept them.
+    pub fn upload_config(&mut self, table: &Table, cfg: &ControlConfig) -> Result<()> {
+        let mut words = [0u32; CONFIG_MAX_WORDS];
+        let n = encode_config(table, cfg, &mut words);
+        for (k, chunk) in words[..n].chunks(3).enumerate() {
+            let mut three = [0u32; 3];
+            three[..chunk.len()].copy_from_slice(chunk);
+            let frame = ConfigChunk::Words {
+                index: 3 * k as u32,
+                count: chunk.len() as u8,
+                words: three,
+            };
+            self.stream.write_all(&frame.encode()).context("sending config frame")?;
+        }
+        self.stream
+            .write_all(&ConfigChunk::Commit { total_words: n as u32 }.encode())
+            .context("sending config commit")?;
+        let answer = self
+            .read_command()
+            .context("waiting for the firmware to accept the configuration")?;
+        if answer.seq != HELLO_SEQ {
+            bail!(
+                "expected the configuration answer (sequence {HELLO_SEQ}), got sequence {}",
+                answer.seq
+            );
+        }
+        if answer.flags.contains(Flags::TABLE_FAULT) {
+            bail!("the firmware refused the uploaded table or configuration");
+        }
+        Ok(())
     }
 
     /// Sends raw bytes (tests use it to inject corrupt frames).

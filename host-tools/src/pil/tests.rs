@@ -164,3 +164,35 @@ fn firmware_rejects_corrupt_and_out_of_order_frames_and_counts_them() {
     assert!((fourth.current_a - 0.8).abs() < 1e-5, "{}", fourth.current_a);
     finish(qemu, link);
 }
+
+#[test]
+fn uploaded_table_and_config_drive_the_firmware() {
+    let Some((qemu, mut link)) = start() else { return };
+    // Table 4 with a 10× longer fitted stroke, at 20 kHz with a 12 mm stroke.
+    let mut entries = mre_core::table::PAPER_TABLE4_ENTRIES;
+    for e in &mut entries {
+        e.x_max_mm *= 10.0;
+    }
+    let table = Table::new(&entries).unwrap();
+    let mut cfg = ControlConfig::at_rate(20_000).unwrap();
+    cfg.law.stroke_max_mm = 12.0;
+    link.upload_config(&table, &cfg).unwrap();
+    let period_s = cfg.period_s();
+    let pil = run_lockstep(&mut StandInDrop::new(true), &mut link, 400, period_s).unwrap();
+    finish(qemu, link);
+    let host = run_lockstep(
+        &mut StandInDrop::new(true),
+        &mut InProcess::new(cfg, table).unwrap(),
+        400,
+        period_s,
+    )
+    .unwrap();
+    assert_eq!(first_mismatch(&pil, &host, 1.0e-6), None);
+    // At 20 kHz the slew limit allows 2000 A/s · 50 µs = 0.1 A per period
+    // (the built-in 10 kHz configuration would give 0.2 A).
+    assert!(
+        (pil[0].command.current_a - 0.1).abs() < 1e-6,
+        "{}",
+        pil[0].command.current_a
+    );
+}
