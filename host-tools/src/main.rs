@@ -31,6 +31,28 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
+    /// Fit the per-current branch quartics to a data set (GSA, least squares, or both).
+    Fit {
+        /// Data set folder (holding dataset.toml).
+        dataset: PathBuf,
+        /// gsa, lsq, or both (table gets the lsq optimum; GSA's gap is reported).
+        #[arg(long, default_value = "both")]
+        method: mre_host::fit::Method,
+        /// GSA agents N.
+        #[arg(long, default_value_t = 100)]
+        agents: usize,
+        /// GSA iterations T.
+        #[arg(long, default_value_t = 100)]
+        iters: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// GSA search box: `data` (around a cheap estimate) or `paper` (Table 3).
+        #[arg(long, default_value = "data")]
+        bounds: mre_host::fit::bounds::BoundsChoice,
+        /// Model file to write (TOML; also a table file for --table).
+        #[arg(long)]
+        out: PathBuf,
+    },
 }
 
 fn main() {
@@ -38,6 +60,12 @@ fn main() {
         eprintln!("error: {e:#}");
         std::process::exit(1);
     }
+}
+
+/// Progress bars only on an interactive terminal, never in CI.
+fn show_progress() -> bool {
+    use std::io::IsTerminal;
+    std::io::stderr().is_terminal() && std::env::var_os("CI").is_none()
 }
 
 fn run(cli: Cli) -> Result<()> {
@@ -52,6 +80,35 @@ fn run(cli: Cli) -> Result<()> {
             let curve = mre_host::loops::model_loop(&table, current, points)?;
             mre_host::atomic_write::write_atomic_with(&out, |buf| mre_host::loops::write_loop_csv(buf, &curve))?;
             println!("wrote {} points at {current} A to {}", curve.len(), out.display());
+        }
+        Command::Fit {
+            dataset,
+            method,
+            agents,
+            iters,
+            seed,
+            bounds,
+            out,
+        } => {
+            let options = mre_host::fit::FitOptions {
+                method,
+                gsa: mre_host::fit::gsa::GsaParams {
+                    agents,
+                    iters,
+                    seed,
+                    ..Default::default()
+                },
+                bounds,
+                progress: show_progress(),
+            };
+            let run = mre_host::fit::run_fit(&dataset, &options, &out)?;
+            print!("{}", mre_host::fit::summary_markdown(&run.fits));
+            println!(
+                "fitted {} branches in {:.3} s; wrote {}",
+                run.fits.len(),
+                run.fit_seconds,
+                out.display()
+            );
         }
     }
     Ok(())
