@@ -6,3 +6,4 @@ pub mod fit;
 pub mod linalg;
 pub mod loops;
 pub mod table_file;
+pub mod tables;

@@ -53,6 +53,13 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
+    /// Generate the firmware's flash table (Rust source with CRC) from a model file.
+    Tables {
+        /// Model file from `mre fit` (or any table file).
+        model: PathBuf,
+        #[arg(long, default_value = mre_host::tables::DEFAULT_OUT)]
+        out: PathBuf,
+    },
 }
 
 fn main() {
@@ -107,6 +114,15 @@ fn run(cli: Cli) -> Result<()> {
                 "fitted {} branches in {:.3} s; wrote {}",
                 run.fits.len(),
                 run.fit_seconds,
+                out.display()
+            );
+        }
+        Command::Tables { model, out } => {
+            let table = mre_host::tables::run_tables(&model, &out)?;
+            println!(
+                "wrote {} entries (CRC-32 {:#010x}) to {}",
+                table.entries().len(),
+                table.crc32(),
                 out.display()
             );
         }
