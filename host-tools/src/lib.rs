@@ -7,3 +7,4 @@ pub mod linalg;
 pub mod loops;
 pub mod table_file;
 pub mod tables;
+pub mod validate;

@@ -49,9 +49,25 @@ enum Command {
         /// GSA search box: `data` (around a cheap estimate) or `paper` (Table 3).
         #[arg(long, default_value = "data")]
         bounds: mre_host::fit::bounds::BoundsChoice,
+        /// Treat recordings at these currents as `validate` (held out of the fit).
+        #[arg(long, value_delimiter = ',')]
+        hold_out_current: Vec<f64>,
         /// Model file to write (TOML; also a table file for --table).
         #[arg(long)]
         out: PathBuf,
+    },
+    /// Compare a model with every recording of a data set; write report.md and report.json.
+    Validate {
+        dataset: PathBuf,
+        /// `paper` or a model/table file.
+        #[arg(long)]
+        model: String,
+        /// Folder for report.md and report.json.
+        #[arg(long)]
+        report: PathBuf,
+        /// Treat recordings at these currents as `validate` (as given to `fit`).
+        #[arg(long, value_delimiter = ',')]
+        hold_out_current: Vec<f64>,
     },
     /// Generate the firmware's flash table (Rust source with CRC) from a model file.
     Tables {
@@ -95,6 +111,7 @@ fn run(cli: Cli) -> Result<()> {
             iters,
             seed,
             bounds,
+            hold_out_current,
             out,
         } => {
             let options = mre_host::fit::FitOptions {
@@ -108,7 +125,7 @@ fn run(cli: Cli) -> Result<()> {
                 bounds,
                 progress: show_progress(),
             };
-            let run = mre_host::fit::run_fit(&dataset, &options, &out)?;
+            let run = mre_host::fit::run_fit(&dataset, &options, &hold_out_current, &out)?;
             print!("{}", mre_host::fit::summary_markdown(&run.fits));
             println!(
                 "fitted {} branches in {:.3} s; wrote {}",
@@ -116,6 +133,16 @@ fn run(cli: Cli) -> Result<()> {
                 run.fit_seconds,
                 out.display()
             );
+        }
+        Command::Validate {
+            dataset,
+            model,
+            report,
+            hold_out_current,
+        } => {
+            let r = mre_host::validate::run_validate(&dataset, &model, &hold_out_current, &report)?;
+            print!("{}", mre_host::validate::report::markdown(&r));
+            println!("\nwrote {}/report.md and report.json", report.display());
         }
         Command::Tables { model, out } => {
             let table = mre_host::tables::run_tables(&model, &out)?;

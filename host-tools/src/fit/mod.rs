@@ -262,8 +262,15 @@ pub fn fit_dataset(ds: &crate::dataset::Dataset, options: &FitOptions) -> Result
 }
 
 /// `mre fit DATASET --out MODEL`: load, fit, write the model file atomically.
-pub fn run_fit(dataset_dir: &std::path::Path, options: &FitOptions, out: &std::path::Path) -> Result<FitRun> {
-    let ds = crate::dataset::Dataset::load(dataset_dir)?;
+/// Recordings at a current in `hold_out_a` are made `validate` (not fitted).
+pub fn run_fit(
+    dataset_dir: &std::path::Path,
+    options: &FitOptions,
+    hold_out_a: &[f64],
+    out: &std::path::Path,
+) -> Result<FitRun> {
+    let mut ds = crate::dataset::Dataset::load(dataset_dir)?;
+    problems::hold_out(&mut ds, hold_out_a);
     let run = fit_dataset(&ds, options)?;
     model_file::write(out, &run.model)?;
     Ok(run)
