@@ -5,6 +5,7 @@ pub mod dataset;
 pub mod fit;
 pub mod linalg;
 pub mod loops;
+pub mod plot;
 pub mod table_file;
 pub mod tables;
 pub mod validate;

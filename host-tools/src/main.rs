@@ -69,6 +69,22 @@ enum Command {
         #[arg(long, value_delimiter = ',')]
         hold_out_current: Vec<f64>,
     },
+    /// Draw the paper's figures (PNG + SVG): loops per current, all currents, interpolated, bracket, convergence.
+    Plot {
+        dataset: PathBuf,
+        /// Model file from `mre fit` (or any table file; then no convergence plot).
+        #[arg(long)]
+        model: PathBuf,
+        /// Output folder.
+        #[arg(long)]
+        out: PathBuf,
+        /// Currents to draw interpolated loops at (default: midpoints and validate currents).
+        #[arg(long, value_delimiter = ',')]
+        interpolate: Vec<f64>,
+        /// Treat recordings at these currents as `validate` (as given to `fit`).
+        #[arg(long, value_delimiter = ',')]
+        hold_out_current: Vec<f64>,
+    },
     /// Generate the firmware's flash table (Rust source with CRC) from a model file.
     Tables {
         /// Model file from `mre fit` (or any table file).
@@ -143,6 +159,21 @@ fn run(cli: Cli) -> Result<()> {
             let r = mre_host::validate::run_validate(&dataset, &model, &hold_out_current, &report)?;
             print!("{}", mre_host::validate::report::markdown(&r));
             println!("\nwrote {}/report.md and report.json", report.display());
+        }
+        Command::Plot {
+            dataset,
+            model,
+            out,
+            interpolate,
+            hold_out_current,
+        } => {
+            let options = mre_host::plot::PlotOptions {
+                interpolated_a: interpolate,
+            };
+            let files = mre_host::plot::run_plot(&dataset, &model, &hold_out_current, &options, &out)?;
+            for f in files {
+                println!("wrote {}.png and .svg", f.display());
+            }
         }
         Command::Tables { model, out } => {
             let table = mre_host::tables::run_tables(&model, &out)?;
