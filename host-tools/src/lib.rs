@@ -4,4 +4,5 @@ pub mod atomic_write;
 pub mod dataset;
 pub mod linalg;
 pub mod loops;
+pub mod plant;
 pub mod table_file;
