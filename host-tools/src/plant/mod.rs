@@ -13,6 +13,7 @@ pub mod effects;
 pub mod law;
 pub mod measure;
 pub mod stepper;
+pub mod synth;
 
 pub use effects::{Effect, EFFECT_NAMES};
 pub use law::LawParams;
