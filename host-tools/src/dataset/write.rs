@@ -93,7 +93,8 @@ fn publish(staging: tempfile::TempDir, dir: &Path) -> Result<()> {
             std::fs::remove_dir_all(&aside).ok();
             Ok(())
         } else {
-            std::fs::rename(&staged, dir).with_context(|| format!("cannot move the new data set into {}", dir.display()))
+            std::fs::rename(&staged, dir)
+                .with_context(|| format!("cannot move the new data set into {}", dir.display()))
         }
     })();
     if result.is_err() {
@@ -157,7 +158,11 @@ pub fn dataset_toml(dataset: &Dataset) -> Result<String> {
             }
         }
         if let Some(v) = rec.impact_velocity_m_s {
-            writeln!(out, "impact_velocity_m_s = {}", toml_float(v, &what("impact_velocity_m_s"))?)?;
+            writeln!(
+                out,
+                "impact_velocity_m_s = {}",
+                toml_float(v, &what("impact_velocity_m_s"))?
+            )?;
         }
         if let Some(n) = rec.sequence {
             writeln!(out, "sequence = {n}")?;
@@ -188,8 +193,16 @@ fn check_files(dataset: &Dataset) -> Result<()> {
         let inside = !rec.file.is_empty()
             && path.components().all(|c| matches!(c, Component::Normal(_)))
             && path.file_name().is_some_and(|n| n != "dataset.toml");
-        ensure!(inside, "recording file `{}` must be a relative path inside the data set folder", rec.file);
-        ensure!(seen.insert(rec.file.as_str()), "recording file `{}` is listed twice", rec.file);
+        ensure!(
+            inside,
+            "recording file `{}` must be a relative path inside the data set folder",
+            rec.file
+        );
+        ensure!(
+            seen.insert(rec.file.as_str()),
+            "recording file `{}` is listed twice",
+            rec.file
+        );
     }
     Ok(())
 }

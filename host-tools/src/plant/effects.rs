@@ -149,9 +149,10 @@ pub fn draw_effect(name: &str, rng: &mut impl Rng, scale: EffectScale) -> Result
             c0_n_s_per_m: rng.random_range(100.0..250.0),
             increase_per_a: rng.random_range(0.2..0.6),
         },
-        // 2–5 samples at 20 kHz: an ADC anti-alias filter's group delay.
+        // 3–6 samples at 20 kHz: the group delay of a ~1 kHz anti-alias
+        // filter on the load cell channel.
         "sensor_delay" => Effect::SensorDelay {
-            delay_s: rng.random_range(100.0e-6..250.0e-6),
+            delay_s: rng.random_range(150.0e-6..300.0e-6),
         },
         // Mullins softening: 8–18 % over the campaign, mostly within 4–15 tests.
         "stress_softening" => Effect::StressSoftening {

@@ -168,7 +168,10 @@ fn plan_tests(plan: &SynthPlan, seed: u64) -> Result<Vec<Test>> {
     ensure!(plan.repeats >= 1, "at least one repeat");
     ensure!(!plan.velocities_m_s.is_empty(), "at least one impact velocity");
     let mut tests = Vec::new();
-    let roles = [(Role::Fit, &plan.fit_currents_a), (Role::Validate, &plan.validate_currents_a)];
+    let roles = [
+        (Role::Fit, &plan.fit_currents_a),
+        (Role::Validate, &plan.validate_currents_a),
+    ];
     for (role, currents) in roles {
         for &current_a in currents.iter() {
             for &v in &plan.velocities_m_s {
@@ -296,7 +299,10 @@ fn key_json(plant: &Plant, seed: u64) -> Result<serde_json::Value> {
 
 /// Where the key goes by default: `<folder>.key.json` beside the folder.
 pub fn default_key_path(out: &Path) -> PathBuf {
-    let mut name = out.file_name().map(|n| n.to_os_string()).unwrap_or_else(|| "dataset".into());
+    let mut name = out
+        .file_name()
+        .map(|n| n.to_os_string())
+        .unwrap_or_else(|| "dataset".into());
     name.push(".key.json");
     out.with_file_name(name)
 }
