@@ -66,3 +66,43 @@ fn stepper_in_lockstep_reproduces_the_callback_run() {
         }
     }
 }
+
+#[test]
+fn sim_report_writes_csv_summary_and_plots() {
+    use mre_host::plant::closed_loop::{run_sim, SimRequest};
+    let dir = tempfile::tempdir().unwrap();
+    let request = SimRequest {
+        runs: vec![RunSpec::Passive(2.0), RunSpec::Passive(0.5)],
+        ..SimRequest::default()
+    };
+    let cmp = run_sim(&request, dir.path()).unwrap();
+    assert_eq!(cmp.runs.len(), 2);
+    assert!(cmp.controlled_vs_passive.is_none(), "no controlled run, no comparison");
+    for name in [
+        "passive-2a.csv",
+        "passive-0.5a.csv",
+        "summary.json",
+        "summary.md",
+        "force_time.png",
+        "force_displacement.png",
+    ] {
+        assert!(dir.path().join(name).metadata().unwrap().len() > 100, "{name}");
+    }
+    let mut reader = csv::Reader::from_path(dir.path().join("passive-2a.csv")).unwrap();
+    let headers: Vec<String> = reader.headers().unwrap().iter().map(str::to_owned).collect();
+    assert_eq!(
+        headers,
+        [
+            "time_s",
+            "displacement_mm",
+            "velocity_m_s",
+            "force_n",
+            "command_a",
+            "current_a"
+        ]
+    );
+    let png = std::fs::read(dir.path().join("force_time.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    assert!(RunSpec::parse("passive:3").is_err() && RunSpec::parse("active").is_err());
+    assert_eq!(RunSpec::parse("passive:0").unwrap(), RunSpec::Passive(0.0));
+}

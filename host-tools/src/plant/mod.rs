@@ -13,6 +13,8 @@ pub mod closed_loop;
 pub mod effects;
 pub mod law;
 pub mod measure;
+pub mod plots;
+pub mod sim_report;
 pub mod stepper;
 pub mod synth;
 

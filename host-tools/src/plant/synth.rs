@@ -121,7 +121,7 @@ pub fn draw_base_plant(seed: u64) -> Plant {
 
 /// Sizes effects against the longest-stroke test of the plan (lowest
 /// current, fastest drop) on the plant without any effect.
-fn effect_scale(base: &Plant, plan: &SynthPlan) -> Result<EffectScale> {
+pub fn effect_scale(base: &Plant, plan: &SynthPlan) -> Result<EffectScale> {
     let lowest_a = plan
         .fit_currents_a
         .iter()
