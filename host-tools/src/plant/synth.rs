@@ -103,13 +103,13 @@ pub fn draw_base_plant(seed: u64) -> Plant {
         k1_n_per_mm: nominal.k1_n_per_mm * rng.random_range(0.92..1.08),
         k3_n_per_mm3: nominal.k3_n_per_mm3 * rng.random_range(0.85..1.15),
         loss_eta: rng.random_range(0.42..0.58),
-        turn_mm: rng.random_range(0.2..0.45),
+        turn_velocity_m_s: rng.random_range(0.002..0.005),
         gain_knots,
     };
     let measurement = MeasurementModel {
         force_noise_n: rng.random_range(3.0..15.0),
         x_noise_mm: rng.random_range(0.003..0.015),
-        v_noise_m_s: rng.random_range(0.004..0.02),
+        v_noise_m_s: rng.random_range(0.001..0.004),
         ..MeasurementModel::default()
     };
     Plant {
