@@ -25,8 +25,15 @@ fn calibration_matches_table5_peaks_within_10_percent() {
         "the paper's drop test"
     );
     for (current_a, measured_n) in TABLE5 {
-        let peak = passive(&plant, &cfg, current_a).summary.peak_force_n;
+        let s = passive(&plant, &cfg, current_a).summary;
+        let peak = s.peak_force_n;
         let err = (peak - measured_n) / measured_n;
+        eprintln!(
+            "| {current_a} | {measured_n} | {peak:.0} | {:+.1} | {:.2} | {:.2} |",
+            err * 100.0,
+            s.max_stroke_mm,
+            s.rebound_velocity_m_s.unwrap_or(f64::NAN)
+        );
         assert!(
             err.abs() < 0.10,
             "{current_a} A: simulated {peak:.0} N vs Table 5 {measured_n} N ({:.1} %)",

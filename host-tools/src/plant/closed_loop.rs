@@ -113,12 +113,12 @@ fn velocity_for_stroke(plant: &Plant, impact: &ImpactConfig, current_a: f64, str
             .summary
             .max_stroke_mm)
     };
-    let (mut lo, mut hi) = (0.05, 50.0);
+    let (mut lo, mut hi): (f64, f64) = (0.05, 50.0);
     if stroke_at(hi)? < stroke_mm {
         bail!("{current_a} A: even {hi} m/s does not reach {stroke_mm} mm");
     }
     for _ in 0..30 {
-        let mid = (lo * hi as f64).sqrt();
+        let mid: f64 = (lo * hi).sqrt();
         if stroke_at(mid)? < stroke_mm {
             lo = mid;
         } else {
@@ -212,7 +212,14 @@ pub fn run_comparison(setup: &SimSetup, specs: &[RunSpec]) -> Result<Comparison>
     let mut runs = Vec::new();
     for &spec in specs {
         let trajectory = match (spec, &table) {
-            (RunSpec::Passive(a), _) => simulate(&setup.plant, &setup.impact, CurrentSource::Constant(a))?,
+            (RunSpec::Passive(a), _) => {
+                // A passive damper's coil is energised before the impact.
+                let impact = ImpactConfig {
+                    initial_current_a: a,
+                    ..setup.impact.clone()
+                };
+                simulate(&setup.plant, &impact, CurrentSource::Constant(a))?
+            }
             (RunSpec::Controlled, Some(table)) => run_controlled(setup, table)?,
             (RunSpec::Controlled, None) => bail!("internal: no table for the controlled run"),
         };

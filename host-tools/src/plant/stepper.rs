@@ -162,6 +162,8 @@ pub struct PlantStepper {
     steps_per_period: u64,
     steps_per_sample: u64,
     step: u64,
+    /// Step index of the next recorded sample.
+    next_sample_step: u64,
     state: State,
     command_a: f64,
     current_a: f64,
@@ -225,6 +227,7 @@ impl PlantStepper {
             steps_per_period,
             steps_per_sample,
             step: 0,
+            next_sample_step: 0,
             state: State {
                 x_m: 0.0,
                 v_m_s: cfg.impact_velocity_m_s,
@@ -361,7 +364,7 @@ impl PlantStepper {
             self.summary.contact_time_s = self.time_s();
             self.finished = true;
         }
-        if !self.finished && self.step % self.steps_per_sample == 0 {
+        if !self.finished && self.step >= self.next_sample_step {
             self.record_sample();
         }
     }
@@ -380,6 +383,7 @@ impl PlantStepper {
     }
 
     fn record_sample(&mut self) {
+        self.next_sample_step = self.step + self.steps_per_sample;
         let m = &self.plant.measurement;
         let true_force_n = self.delayed_force_n(self.plant.effect.force_delay_s());
         let (x_mm, v_m_s) = (self.state.x_m * 1.0e3, self.state.v_m_s);
