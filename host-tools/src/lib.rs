@@ -6,6 +6,7 @@ pub mod fit;
 pub mod linalg;
 pub mod loops;
 pub mod plot;
+pub mod plant;
 pub mod table_file;
 pub mod tables;
 pub mod validate;

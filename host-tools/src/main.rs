@@ -92,6 +92,49 @@ enum Command {
         #[arg(long, default_value = mre_host::tables::DEFAULT_OUT)]
         out: PathBuf,
     },
+    /// Write a synthetic drop-impact data set with a concealed effect (key file beside it).
+    Synth {
+        /// none, viscous_damping, sensor_delay, stress_softening, end_stop, magnetic_saturation, or random.
+        #[arg(long, default_value = "random")]
+        effect: String,
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Data set folder to create.
+        #[arg(long)]
+        out: PathBuf,
+        /// Key file (effect + parameters, JSON); default `<out>.key.json` beside the folder.
+        #[arg(long)]
+        key: Option<PathBuf>,
+        /// Replace an existing non-empty folder.
+        #[arg(long)]
+        force: bool,
+    },
+    /// Simulate the drop test: passive 0 A, passive 2 A and the core's impact law in the loop.
+    Sim {
+        /// passive:<A> or controlled (repeatable); default: passive:0, passive:2 and controlled.
+        #[arg(long = "current")]
+        current: Vec<String>,
+        /// Include the controlled run (the core's ImpactLaw in the loop).
+        #[arg(long)]
+        controlled: bool,
+        /// Concealed effect on the plant: none, a vocabulary name, or random.
+        #[arg(long, default_value = "none")]
+        effect: String,
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Impact velocity (m/s).
+        #[arg(long, default_value_t = 2.24)]
+        velocity: f64,
+        /// Drop mass (kg).
+        #[arg(long, default_value_t = 5.5)]
+        mass: f64,
+        /// Coil time constant L/R (ms); default: the current follows the command at once.
+        #[arg(long)]
+        coil_lag_ms: Option<f64>,
+        /// Folder for CSV, summary and plots.
+        #[arg(long)]
+        report: PathBuf,
+    },
 }
 
 fn main() {
@@ -183,6 +226,52 @@ fn run(cli: Cli) -> Result<()> {
                 table.crc32(),
                 out.display()
             );
+        }
+        Command::Synth {
+            effect,
+            seed,
+            out,
+            key,
+            force,
+        } => {
+            let output = mre_host::plant::synth::write_synth(&effect, seed, &out, key.as_deref(), force)?;
+            let key_path = key.unwrap_or_else(|| mre_host::plant::synth::default_key_path(&out));
+            println!(
+                "wrote {} recordings to {} (key: {})",
+                output.dataset.recordings.len(),
+                out.display(),
+                key_path.display()
+            );
+        }
+        Command::Sim {
+            current,
+            controlled,
+            effect,
+            seed,
+            velocity,
+            mass,
+            coil_lag_ms,
+            report,
+        } => {
+            use mre_host::plant::closed_loop::{run_sim, RunSpec, SimRequest, DEFAULT_RUNS};
+            let mut runs = current.iter().map(|c| RunSpec::parse(c)).collect::<Result<Vec<_>>>()?;
+            if controlled && !runs.is_empty() && !runs.contains(&RunSpec::Controlled) {
+                runs.push(RunSpec::Controlled);
+            }
+            if runs.is_empty() {
+                runs = DEFAULT_RUNS.to_vec();
+            }
+            let request = SimRequest {
+                runs,
+                effect,
+                seed,
+                impact_velocity_m_s: velocity,
+                mass_kg: mass,
+                coil_lag_s: coil_lag_ms.map(|ms| ms * 1e-3),
+            };
+            let cmp = run_sim(&request, &report)?;
+            print!("{}", mre_host::plant::sim_report::summary_table(&cmp));
+            println!("report: {}", report.join("summary.md").display());
         }
     }
     Ok(())

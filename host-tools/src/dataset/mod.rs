@@ -84,3 +84,6 @@ pub struct Dataset {
     pub root: PathBuf,
     pub recordings: Vec<Recording>,
 }
+
+// Writing data sets (`dataset.toml` + CSV files), atomically.
+pub mod write;
