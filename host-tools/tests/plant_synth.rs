@@ -274,3 +274,39 @@ fn random_effect_covers_the_vocabulary_including_none() {
     assert_eq!(picked, EFFECT_NAMES.iter().copied().collect());
     assert!(resolve_effect_name("inertia_typo", 0).is_err());
 }
+
+#[test]
+fn effect_terms_match_the_spec_formulas() {
+    // Hand-evaluated spec terms on the nominal plant at x = 5 mm, v = 1 m/s.
+    use mre_host::plant::Plant;
+    let base = Plant::nominal();
+    let (x, v) = (5.0, 1.0);
+    let elastic = 66.0 * x + 0.080 * x * x * x;
+    let loading = |gain: f64| gain * elastic * (1.0 + 0.5 * (v / 0.003f64).tanh());
+    assert!((base.force_n(x, v, 0.0, 1) - loading(1.0)).abs() < 1e-9);
+
+    let sat = base.clone().with_effect(Effect::MagneticSaturation { i_s_a: 0.4 });
+    let u = |i: f64| (i / 0.4f64).tanh();
+    let gain = 1.0 + (u(0.3) - u(0.0)) / (u(0.5) - u(0.0)) * (10.15 - 1.0);
+    assert!((sat.force_n(x, v, 0.3, 1) - loading(gain)).abs() < 1e-6);
+    assert_eq!(sat.force_n(x, v, 0.5, 1), base.force_n(x, v, 0.5, 1));
+
+    let stop = base.clone().with_effect(Effect::EndStop {
+        x_e_mm: 4.0,
+        k_e_n_per_mm2: 100.0,
+    });
+    assert!((stop.force_n(x, v, 0.0, 1) - (loading(1.0) + 100.0)).abs() < 1e-9);
+
+    let soft = base.clone().with_effect(Effect::StressSoftening {
+        depth: 0.2,
+        tests_n0: 5.0,
+    });
+    let factor = 1.0 - 0.2 * (1.0 - (-10.0f64 / 5.0).exp());
+    assert!((soft.force_n(x, v, 0.0, 11) - factor * loading(1.0)).abs() < 1e-9);
+
+    let visc = base.with_effect(Effect::ViscousDamping {
+        c0_n_s_per_m: 300.0,
+        increase_per_a: 0.5,
+    });
+    assert!((visc.force_n(x, v, 1.0, 1) - (loading(15.13) + 300.0 * 1.5 * v)).abs() < 1e-9);
+}

@@ -78,6 +78,13 @@ fn check_target(dir: &Path, force: bool) -> Result<()> {
 
 /// Moves the finished staging folder to `dir`, replacing what was there.
 fn publish(staging: tempfile::TempDir, dir: &Path) -> Result<()> {
+    // The staging folder is private (0700); the data set is an ordinary folder.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(0o755))
+            .with_context(|| format!("cannot set permissions on {}", staging.path().display()))?;
+    }
     let staged = staging.keep();
     let result = (|| {
         if dir.exists() {
