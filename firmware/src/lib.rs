@@ -13,6 +13,7 @@ pub mod control;
 pub mod estimate;
 pub mod flags;
 pub mod frame;
+pub mod generated_table;
 pub mod inverse;
 pub mod law;
 pub mod math;

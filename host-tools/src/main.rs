@@ -31,6 +31,110 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
+    /// Fit the per-current branch quartics to a data set (GSA, least squares, or both).
+    Fit {
+        /// Data set folder (holding dataset.toml).
+        dataset: PathBuf,
+        /// gsa, lsq, or both (table gets the lsq optimum; GSA's gap is reported).
+        #[arg(long, default_value = "both")]
+        method: mre_host::fit::Method,
+        /// GSA agents N.
+        #[arg(long, default_value_t = 100)]
+        agents: usize,
+        /// GSA iterations T.
+        #[arg(long, default_value_t = 100)]
+        iters: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// GSA search box: `data` (around a cheap estimate) or `paper` (Table 3).
+        #[arg(long, default_value = "data")]
+        bounds: mre_host::fit::bounds::BoundsChoice,
+        /// Treat recordings at these currents as `validate` (held out of the fit).
+        #[arg(long, value_delimiter = ',')]
+        hold_out_current: Vec<f64>,
+        /// Model file to write (TOML; also a table file for --table).
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Compare a model with every recording of a data set; write report.md and report.json.
+    Validate {
+        dataset: PathBuf,
+        /// `paper` or a model/table file.
+        #[arg(long)]
+        model: String,
+        /// Folder for report.md and report.json.
+        #[arg(long)]
+        report: PathBuf,
+        /// Treat recordings at these currents as `validate` (as given to `fit`).
+        #[arg(long, value_delimiter = ',')]
+        hold_out_current: Vec<f64>,
+    },
+    /// Draw the paper's figures (PNG + SVG): loops per current, all currents, interpolated, bracket, convergence.
+    Plot {
+        dataset: PathBuf,
+        /// Model file from `mre fit` (or any table file; then no convergence plot).
+        #[arg(long)]
+        model: PathBuf,
+        /// Output folder.
+        #[arg(long)]
+        out: PathBuf,
+        /// Currents to draw interpolated loops at (default: midpoints and validate currents).
+        #[arg(long, value_delimiter = ',')]
+        interpolate: Vec<f64>,
+        /// Treat recordings at these currents as `validate` (as given to `fit`).
+        #[arg(long, value_delimiter = ',')]
+        hold_out_current: Vec<f64>,
+    },
+    /// Generate the firmware's flash table (Rust source with CRC) from a model file.
+    Tables {
+        /// Model file from `mre fit` (or any table file).
+        model: PathBuf,
+        #[arg(long, default_value = mre_host::tables::DEFAULT_OUT)]
+        out: PathBuf,
+    },
+    /// Write a synthetic drop-impact data set with a concealed effect (key file beside it).
+    Synth {
+        /// none, viscous_damping, sensor_delay, stress_softening, end_stop, magnetic_saturation, or random.
+        #[arg(long, default_value = "random")]
+        effect: String,
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Data set folder to create.
+        #[arg(long)]
+        out: PathBuf,
+        /// Key file (effect + parameters, JSON); default `<out>.key.json` beside the folder.
+        #[arg(long)]
+        key: Option<PathBuf>,
+        /// Replace an existing non-empty folder.
+        #[arg(long)]
+        force: bool,
+    },
+    /// Simulate the drop test: passive 0 A, passive 2 A and the core's impact law in the loop.
+    Sim {
+        /// passive:<A> or controlled (repeatable); default: passive:0, passive:2 and controlled.
+        #[arg(long = "current")]
+        current: Vec<String>,
+        /// Include the controlled run (the core's ImpactLaw in the loop).
+        #[arg(long)]
+        controlled: bool,
+        /// Concealed effect on the plant: none, a vocabulary name, or random.
+        #[arg(long, default_value = "none")]
+        effect: String,
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Impact velocity (m/s).
+        #[arg(long, default_value_t = 2.24)]
+        velocity: f64,
+        /// Drop mass (kg).
+        #[arg(long, default_value_t = 5.5)]
+        mass: f64,
+        /// Coil time constant L/R (ms); default: the current follows the command at once.
+        #[arg(long)]
+        coil_lag_ms: Option<f64>,
+        /// Folder for CSV, summary and plots.
+        #[arg(long)]
+        report: PathBuf,
+    },
 }
 
 fn main() {
@@ -38,6 +142,12 @@ fn main() {
         eprintln!("error: {e:#}");
         std::process::exit(1);
     }
+}
+
+/// Progress bars only on an interactive terminal, never in CI.
+fn show_progress() -> bool {
+    use std::io::IsTerminal;
+    std::io::stderr().is_terminal() && std::env::var_os("CI").is_none()
 }
 
 fn run(cli: Cli) -> Result<()> {
@@ -52,6 +162,116 @@ fn run(cli: Cli) -> Result<()> {
             let curve = mre_host::loops::model_loop(&table, current, points)?;
             mre_host::atomic_write::write_atomic_with(&out, |buf| mre_host::loops::write_loop_csv(buf, &curve))?;
             println!("wrote {} points at {current} A to {}", curve.len(), out.display());
+        }
+        Command::Fit {
+            dataset,
+            method,
+            agents,
+            iters,
+            seed,
+            bounds,
+            hold_out_current,
+            out,
+        } => {
+            let options = mre_host::fit::FitOptions {
+                method,
+                gsa: mre_host::fit::gsa::GsaParams {
+                    agents,
+                    iters,
+                    seed,
+                    ..Default::default()
+                },
+                bounds,
+                progress: show_progress(),
+            };
+            let run = mre_host::fit::run_fit(&dataset, &options, &hold_out_current, &out)?;
+            print!("{}", mre_host::fit::summary_markdown(&run.fits));
+            println!(
+                "fitted {} branches in {:.3} s; wrote {}",
+                run.fits.len(),
+                run.fit_seconds,
+                out.display()
+            );
+        }
+        Command::Validate {
+            dataset,
+            model,
+            report,
+            hold_out_current,
+        } => {
+            let r = mre_host::validate::run_validate(&dataset, &model, &hold_out_current, &report)?;
+            print!("{}", mre_host::validate::report::markdown(&r));
+            println!("\nwrote {}/report.md and report.json", report.display());
+        }
+        Command::Plot {
+            dataset,
+            model,
+            out,
+            interpolate,
+            hold_out_current,
+        } => {
+            let options = mre_host::plot::PlotOptions {
+                interpolated_a: interpolate,
+            };
+            let files = mre_host::plot::run_plot(&dataset, &model, &hold_out_current, &options, &out)?;
+            for f in files {
+                println!("wrote {}.png and .svg", f.display());
+            }
+        }
+        Command::Tables { model, out } => {
+            let table = mre_host::tables::run_tables(&model, &out)?;
+            println!(
+                "wrote {} entries (CRC-32 {:#010x}) to {}",
+                table.entries().len(),
+                table.crc32(),
+                out.display()
+            );
+        }
+        Command::Synth {
+            effect,
+            seed,
+            out,
+            key,
+            force,
+        } => {
+            let output = mre_host::plant::synth::write_synth(&effect, seed, &out, key.as_deref(), force)?;
+            let key_path = key.unwrap_or_else(|| mre_host::plant::synth::default_key_path(&out));
+            println!(
+                "wrote {} recordings to {} (key: {})",
+                output.dataset.recordings.len(),
+                out.display(),
+                key_path.display()
+            );
+        }
+        Command::Sim {
+            current,
+            controlled,
+            effect,
+            seed,
+            velocity,
+            mass,
+            coil_lag_ms,
+            report,
+        } => {
+            use mre_host::plant::closed_loop::{run_sim, RunSpec, SimRequest, DEFAULT_RUNS};
+            let mut runs = current.iter().map(|c| RunSpec::parse(c)).collect::<Result<Vec<_>>>()?;
+            if controlled && !runs.is_empty() && !runs.contains(&RunSpec::Controlled) {
+                runs.push(RunSpec::Controlled);
+            }
+            if runs.is_empty() {
+                runs = DEFAULT_RUNS.to_vec();
+            }
+            let request = SimRequest {
+                runs,
+                effect,
+                seed,
+                impact_velocity_m_s: velocity,
+                mass_kg: mass,
+                coil_lag_s: coil_lag_ms.map(|ms| ms * 1e-3),
+            };
+            let cmp = run_sim(&request, &report)?;
+            print!("{}", mre_host::plant::sim_report::summary_table(&cmp));
+            println!("report: {}", report.join("summary.md").display());
         }
     }
     Ok(())
