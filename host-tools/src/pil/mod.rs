@@ -12,6 +12,7 @@
 //!   sample, so a PIL run and a host run can be compared sample for sample.
 pub mod link;
 pub mod qemu;
+pub mod sim;
 #[cfg(test)]
 mod tests;
 

@@ -196,3 +196,41 @@ fn uploaded_table_and_config_drive_the_firmware() {
         pil[0].command.current_a
     );
 }
+
+#[test]
+fn mre_pil_closes_the_drop_test_through_the_firmware() {
+    if qemu_or_skip().is_none() {
+        return;
+    }
+    use super::sim::{run_pil, PilRequest};
+    use crate::plant::closed_loop::{RunSpec, SimRequest};
+    let dir = tempfile::tempdir().unwrap();
+    let request = PilRequest {
+        sim: SimRequest::default(),
+        elf: Some(firmware()),
+    };
+    let out = run_pil(&request, dir.path()).unwrap();
+
+    // Sample for sample: the firmware in QEMU, the same Controller in
+    // process, and `mre sim --controlled` (the core's ImpactLaw alone).
+    assert!(out.agreement.agrees(), "{:?}", out.agreement);
+    assert_eq!(out.agreement.bit_identical_commands, out.agreement.samples);
+    assert!(out.agreement_with_sim.agrees(), "{:?}", out.agreement_with_sim);
+    assert!(out.agreement.frames > 100, "{} control periods", out.agreement.frames);
+
+    let runs = &out.comparison.runs;
+    let by = |spec: RunSpec| runs.iter().find(|r| r.spec == spec).unwrap();
+    let controlled = by(RunSpec::Controlled);
+    assert!(
+        controlled.within_stroke,
+        "controlled used {} mm",
+        controlled.summary.max_stroke_mm
+    );
+    // The best passive run within the stroke is stiffer and peaks higher.
+    let (reference, reduction_pct) = out.comparison.controlled_vs_passive.clone().unwrap();
+    let passive = runs.iter().find(|r| r.label == reference).unwrap();
+    assert!(passive.within_stroke);
+    assert!(controlled.summary.peak_force_n < passive.summary.peak_force_n);
+    assert!(reduction_pct > 0.0);
+    assert!(dir.path().join("summary.md").is_file() && dir.path().join("pil.json").is_file());
+}
