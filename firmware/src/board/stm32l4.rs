@@ -169,7 +169,8 @@ impl Board {
     /// Starts the ticker and the watchdog right before the first period.
     pub fn start(&mut self) {
         self.io.ticker.reset();
-        self.io.next_tick = Instant::now();
+        // The first tick is one period from now; its deadline one more.
+        self.io.next_tick = Instant::now() + self.io.period;
         self.watchdog.unleash();
     }
 }
