@@ -76,6 +76,8 @@ impl Qemu {
             Some(p) => Stdio::from(std::fs::File::create(p).with_context(|| format!("creating {}", p.display()))?),
             None => Stdio::null(),
         };
+        // stderr to a file, not a pipe: an undrained pipe could stall QEMU.
+        let mut errors = tempfile::tempfile().context("temporary file for QEMU's stderr")?;
         let child = Command::new(qemu)
             .args(["-M", "b-l475e-iot01a", "-nographic", "-monitor", "none"])
             .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
@@ -87,7 +89,7 @@ impl Qemu {
             .args(["-serial", "chardev:u1"])
             .stdin(Stdio::null())
             .stdout(stdout)
-            .stderr(Stdio::piped())
+            .stderr(Stdio::from(errors.try_clone()?))
             .spawn()
             .with_context(|| format!("starting {}", qemu.display()))?;
         let mut qemu = Qemu { child };
@@ -97,10 +99,10 @@ impl Qemu {
                 Ok(stream) => return Ok((qemu, PilLink::new(stream)?)),
                 Err(e) => {
                     if let Some(status) = qemu.child.try_wait()? {
+                        use std::io::{Read, Seek};
                         let mut err = String::new();
-                        if let Some(mut s) = qemu.child.stderr.take() {
-                            std::io::Read::read_to_string(&mut s, &mut err).ok();
-                        }
+                        errors.rewind().ok();
+                        errors.read_to_string(&mut err).ok();
                         bail!("QEMU exited ({status}) before the link came up: {err}");
                     }
                     if Instant::now() > deadline {
