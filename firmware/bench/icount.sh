@@ -35,7 +35,7 @@ awk -v b="$BEGIN_PC" -v e="$END_PC" '
                else if (on) n++ ; next }
   /^Stopped/ { if (on) n-- }
   END {
-    split("model x=0.1mm,F=600N|model x=0.2mm,F=1726N|model x=0.5mm,F=3000N|model x=0.9mm,F=9000N (saturated)|control x=0.2mm,v=3m/s (sensor)|control x=0.5mm,v=2m/s (sensor)|control x=0.8mm (estimator)|control x=0.3mm,v=-1m/s (rebound)", names, "|")
+    split("model x=0.1mm,F=600N|model x=0.2mm,F=1726N|model x=0.5mm,F=3000N|model x=0.9mm,F=9000N (saturated)|law x=0.2mm,v=3m/s|law x=0.5mm,v=2m/s|control x=0.2mm,v=3m/s (sensor)|control x=0.5mm,v=2m/s (sensor)|control x=0.8mm (estimator)|control x=0.3mm,v=-1m/s (rebound)", names, "|")
     for (i = 0; i < k; i++) printf "%-42s %6d instructions\n", names[i + 1], counts[i]
-    if (k != 8) { print "expected 8 measurements, got " k > "/dev/stderr"; exit 1 }
+    if (k != 10) { print "expected 10 measurements, got " k > "/dev/stderr"; exit 1 }
   }' "$TRACE"

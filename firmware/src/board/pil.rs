@@ -356,6 +356,8 @@ pub mod icount {
     /// Table 4 at these x brackets the targets in different segments; the
     /// last is above every current (saturated: the longest path).
     const MODEL_CASES: [(f32, f32); 4] = [(0.1, 600.0), (0.2, 1726.25), (0.5, 3000.0), (0.9, 9000.0)];
+    /// Law step cases: (x_mm, v_m_s), the first two control cases.
+    const LAW_CASES: [(f32, f32); 2] = [(0.2, 3.0), (0.5, 2.0)];
     /// Control step cases: (x_mm, velocity sensor) from one impact.
     const CONTROL_CASES: [(f32, Option<f32>); 4] = [(0.2, Some(3.0)), (0.5, Some(2.0)), (0.8, None), (0.3, Some(-1.0))];
 
@@ -372,6 +374,16 @@ pub mod icount {
                 let r = table.current_for_branch(x_mm, Branch::Compression, force_n);
                 mre_mark_end();
                 black_box(r);
+            }
+        }
+        // The law alone (no estimator, stuck check or fault accounting).
+        if let (Some(table), Ok(mut law)) = (ctl.table().copied(), mre_core::law::ImpactLaw::new(ctl.config().law)) {
+            for &(x_mm, v_m_s) in &LAW_CASES {
+                let (x_mm, v_m_s) = (black_box(x_mm), black_box(v_m_s));
+                mre_mark_begin();
+                let cmd = law.step(&table, x_mm, v_m_s);
+                mre_mark_end();
+                black_box(cmd);
             }
         }
         for &(x_mm, v) in &CONTROL_CASES {
