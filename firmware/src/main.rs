@@ -24,7 +24,11 @@ mod fw {
             PAPER_TABLE4.crc32
         );
         match Table::from_image(&PAPER_TABLE4) {
-            Ok(t) => defmt::info!("table OK: {=usize} currents, CRC {=u32:#010x}", t.entries().len(), t.crc32()),
+            Ok(t) => defmt::info!(
+                "table OK: {=usize} currents, CRC {=u32:#010x}",
+                t.entries().len(),
+                t.crc32()
+            ),
             Err(e) => defmt::error!("table rejected: {}", defmt::Debug2Format(&e)),
         }
     }

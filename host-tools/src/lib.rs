@@ -2,11 +2,12 @@
 //! function here; `main.rs` only parses arguments.
 pub mod atomic_write;
 pub mod dataset;
+pub mod demo;
 pub mod fit;
 pub mod linalg;
 pub mod loops;
-pub mod plot;
 pub mod plant;
+pub mod plot;
 pub mod table_file;
 pub mod tables;
 pub mod validate;
