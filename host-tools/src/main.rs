@@ -17,6 +17,17 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Run the whole workflow on the bundled data (the README's main command).
+    Demo {
+        /// Folder with the bundled data sets.
+        #[arg(long, default_value = "data")]
+        data: PathBuf,
+        /// Output folder.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+    },
     /// Write the model's compression and extension curves at one current (CSV).
     Model {
         /// `paper` (built-in Table 4) or a table TOML file.
@@ -176,6 +187,22 @@ fn show_progress() -> bool {
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
+        Command::Demo { data, out, seed } => {
+            let steps = mre_host::demo::run_demo(&mre_host::demo::DemoOptions {
+                data_dir: data,
+                out_dir: out,
+                seed,
+            })?;
+            println!();
+            for step in steps {
+                println!(
+                    "{}\n  {}\n  report: {}",
+                    step.title,
+                    step.headline,
+                    step.report.display()
+                );
+            }
+        }
         Command::Model {
             table,
             current,
