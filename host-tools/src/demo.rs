@@ -7,6 +7,8 @@
 //!    (`data/drop-none`), with its intermediate currents predicted by
 //!    interpolation, and its flash table generated.
 //! 3. The closed-loop drop test: passive 0 A, passive 2 A, controlled by the core.
+//! 4. The same with the firmware in QEMU closing the loop (`mre pil`), when
+//!    `qemu-system-arm` is installed; otherwise it says how to install it.
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 
@@ -85,6 +87,40 @@ fn closed_loop(out: &Path, seed: u64) -> Result<DemoStep> {
     })
 }
 
+fn processor_in_the_loop(out: &Path, seed: u64) -> Result<DemoStep> {
+    use crate::pil::qemu::{qemu_binary, workspace_root, INSTALL_HINT};
+    let title = "closed-loop drop test, firmware in QEMU (PIL)".to_string();
+    if qemu_binary().is_none() {
+        return Ok(DemoStep {
+            title,
+            headline: format!("skipped: {INSTALL_HINT}"),
+            report: workspace_root().join("firmware/README.md"),
+        });
+    }
+    let dir = out.join("pil");
+    let request = crate::pil::sim::PilRequest {
+        sim: crate::plant::closed_loop::SimRequest {
+            seed,
+            ..Default::default()
+        },
+        elf: None,
+    };
+    let run = crate::pil::sim::run_pil(&request, &dir)?;
+    let a = run.agreement;
+    let gain = match &run.comparison.controlled_vs_passive {
+        Some((reference, pct)) => format!("; controlled peak force {pct:.1} % below {reference}"),
+        None => String::new(),
+    };
+    Ok(DemoStep {
+        title,
+        headline: format!(
+            "{} of {} commands bit-identical to the host run over {} frames{gain}",
+            a.bit_identical_commands, a.samples, a.frames
+        ),
+        report: dir.join("summary.md"),
+    })
+}
+
 /// Runs every step; stops at the first failure (each step's outputs are
 /// written atomically, so a failed step leaves no partial file).
 pub fn run_demo(options: &DemoOptions) -> Result<Vec<DemoStep>> {
@@ -104,6 +140,7 @@ pub fn run_demo(options: &DemoOptions) -> Result<Vec<DemoStep>> {
             "paper workflow on drop tests",
         )?,
         closed_loop(out, options.seed)?,
+        processor_in_the_loop(out, options.seed)?,
     ];
     Ok(steps)
 }
