@@ -163,9 +163,9 @@ fn run(cli: Cli) -> Result<()> {
             let run = mre_host::fit::run_fit(&dataset, &options, &hold_out_current, &out)?;
             print!("{}", mre_host::fit::summary_markdown(&run.fits));
             println!(
-                "fitted {} branches in {:.3} s; wrote {}",
+                "fitted {} branches in {:.3} ms; wrote {}",
                 run.fits.len(),
-                run.fit_seconds,
+                run.fit_seconds * 1e3,
                 out.display()
             );
         }
