@@ -9,8 +9,10 @@
 #![cfg_attr(not(test), no_std)]
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::indexing_slicing)]
 
+pub mod control;
 pub mod estimate;
 pub mod flags;
+pub mod frame;
 pub mod generated_table;
 pub mod inverse;
 pub mod law;

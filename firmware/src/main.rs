@@ -1,6 +1,11 @@
 //! Firmware entry point. The board image is built only for
 //! `thumbv7em-none-eabihf` (`cargo fw`); on the host this is a stub so that
 //! `cargo test` and `cargo clippy --all-targets` cover the whole workspace.
+//!
+//! One embassy task runs the control loop: wait for the period (a `Ticker`
+//! on hardware, the next sample frame in PIL), run the core's
+//! [`Controller::step_io`](mre_core::control::Controller::step_io), account
+//! for overruns, feed the watchdog, and log statistics once a second.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(not(target_os = "none"))]
@@ -9,27 +14,120 @@ fn main() {
 }
 
 #[cfg(target_os = "none")]
+mod board;
+
+#[cfg(target_os = "none")]
 mod fw {
-    use defmt_rtt as _;
+    use crate::board;
     use embassy_executor::Spawner;
+    use mre_core::control::{ControlConfig, Controller, DEFAULT_RATE_HZ};
     use mre_core::table::{Table, PAPER_TABLE4};
-    use panic_probe as _;
+
+    /// Control rate: 10 kHz, or 20 kHz with the `rate-20khz` feature.
+    const RATE_HZ: u32 = if cfg!(feature = "rate-20khz") {
+        20_000
+    } else {
+        DEFAULT_RATE_HZ
+    };
 
     #[embassy_executor::main]
-    async fn main(_spawner: Spawner) {
-        let _p = embassy_stm32::init(Default::default());
+    async fn main(spawner: Spawner) {
+        let board = board::init(RATE_HZ);
         defmt::info!(
-            "mre-firmware boot: table v{=u16} stored CRC {=u32:#010x}",
-            PAPER_TABLE4.version,
-            PAPER_TABLE4.crc32
+            "mre-firmware on {=str}, core clock {=u32} Hz",
+            board::NAME,
+            board::core_clock_hz()
         );
-        match Table::from_image(&PAPER_TABLE4) {
+
+        // A rejected table is not fatal: the controller latches TABLE_FAULT
+        // and commands the fail-safe current every period.
+        let table = Table::from_image(&PAPER_TABLE4);
+        match &table {
             Ok(t) => defmt::info!(
-                "table OK: {=usize} currents, CRC {=u32:#010x}",
+                "table v{=u16}: {=usize} currents, CRC {=u32:#010x} OK",
+                t.version(),
                 t.entries().len(),
                 t.crc32()
             ),
-            Err(e) => defmt::error!("table rejected: {}", defmt::Debug2Format(&e)),
+            Err(e) => defmt::error!(
+                "table v{=u16} stored CRC {=u32:#010x} REJECTED: {}",
+                PAPER_TABLE4.version,
+                PAPER_TABLE4.crc32,
+                defmt::Debug2Format(e)
+            ),
+        }
+
+        let cfg = match ControlConfig::at_rate(RATE_HZ) {
+            Ok(cfg) => cfg,
+            Err(e) => {
+                // Only a build with a bad RATE_HZ gets here: hold the coil at
+                // the fail-safe duty and let the watchdog (never fed) reset.
+                defmt::error!("control config refused: {}", defmt::Debug2Format(&e));
+                board::halt_fail_safe(board)
+            }
+        };
+        #[allow(unused_mut)]
+        let mut ctl = match Controller::new(cfg, table) {
+            Ok(c) => c,
+            Err(e) => {
+                defmt::error!("controller refused config: {}", defmt::Debug2Format(&e));
+                board::halt_fail_safe(board)
+            }
+        };
+        // Instruction-count benchmark image: measure, then exit QEMU.
+        #[cfg(all(feature = "pil", feature = "bench"))]
+        board::icount::run(&mut ctl);
+
+        defmt::info!(
+            "control {=u32} Hz, fail-safe {=f32} A, output {=f32}..{=f32} A, slew {=f32} A/s, stroke {=f32} mm, mass {=f32} kg",
+            cfg.rate_hz,
+            cfg.law.failsafe_current_a,
+            cfg.law.current_min_a,
+            cfg.law.current_max_a,
+            cfg.law.slew_a_per_s,
+            cfg.law.stroke_max_mm,
+            cfg.law.mass_kg
+        );
+        // The task pool holds one control task and this is its only spawn.
+        match control_task(ctl, board) {
+            Ok(token) => spawner.spawn(token),
+            Err(_) => defmt::error!("control task already running"),
+        }
+    }
+
+    #[embassy_executor::task]
+    async fn control_task(mut ctl: Controller, mut board: board::Board) {
+        let mut last = ctl.stats();
+        board.start();
+        loop {
+            board.io.next_period(&mut ctl).await;
+            let t0 = board::cycles();
+            let cmd = ctl.step_io(&mut board.io);
+            ctl.record_step_cycles(board::cycles().wrapping_sub(t0));
+            let overran = board.io.finish_period(&cmd, &ctl);
+            ctl.end_period(overran);
+            // Fed here only: a stalled control loop must reset the chip.
+            board.watchdog.pet();
+
+            let s = ctl.stats();
+            if s.periods.wrapping_sub(last.periods) >= ctl.config().rate_hz {
+                defmt::info!(
+                    "stats: periods {=u32} (+{=u32}), overruns {=u32}, fail-safe periods {=u32}, latched {=u16:#06x}, step cycles min/mean/max {=u32}/{=u32}/{=u32}{}",
+                    s.periods,
+                    s.periods.wrapping_sub(last.periods),
+                    s.overruns,
+                    s.failsafe_periods,
+                    s.latched.0,
+                    s.step_cycles_min,
+                    s.step_cycles_mean(),
+                    s.step_cycles_max,
+                    board.io.link_summary()
+                );
+                #[cfg(all(feature = "bench", feature = "hw"))]
+                crate::board::bench_model_step(ctl.table());
+                last = s;
+                ctl.reset_cycle_stats();
+            }
         }
     }
 }

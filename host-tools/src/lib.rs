@@ -6,6 +6,7 @@ pub mod demo;
 pub mod fit;
 pub mod linalg;
 pub mod loops;
+pub mod pil;
 pub mod plant;
 pub mod plot;
 pub mod table_file;

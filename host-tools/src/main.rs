@@ -165,6 +165,30 @@ enum Command {
         #[arg(long)]
         report: PathBuf,
     },
+    /// Processor-in-the-loop: the drop comparison with the controlled run
+    /// closed through the firmware in QEMU (`cargo fw-pil` image).
+    Pil {
+        /// passive:<A> or controlled (repeatable); default: passive:0, passive:2 and controlled.
+        #[arg(long = "current")]
+        current: Vec<String>,
+        /// Concealed effect on the plant: none, a vocabulary name, or random.
+        #[arg(long, default_value = "none")]
+        effect: String,
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Impact velocity (m/s).
+        #[arg(long, default_value_t = 2.24)]
+        velocity: f64,
+        /// Drop mass (kg).
+        #[arg(long, default_value_t = 5.5)]
+        mass: f64,
+        /// The PIL firmware image; default: build it with `cargo fw-pil`.
+        #[arg(long)]
+        elf: Option<PathBuf>,
+        /// Folder for CSV, summary, plots and pil.json.
+        #[arg(long)]
+        report: PathBuf,
+    },
 }
 
 fn main() {
@@ -341,6 +365,22 @@ fn run(cli: Cli) -> Result<()> {
             let cmp = run_sim(&request, &report)?;
             print!("{}", mre_host::plant::sim_report::summary_table(&cmp));
             println!("report: {}", report.join("summary.md").display());
+        }
+        Command::Pil { current, effect, seed, velocity, mass, elf, report } => {
+            use mre_host::plant::closed_loop::{RunSpec, SimRequest};
+            let runs = current.iter().map(|c| RunSpec::parse(c)).collect::<Result<Vec<_>>>()?;
+            let sim = SimRequest { runs, effect, seed, impact_velocity_m_s: velocity, mass_kg: mass, coil_lag_s: None };
+            let out = mre_host::pil::sim::run_pil(&mre_host::pil::sim::PilRequest { sim, elf }, &report)?;
+            print!("{}", mre_host::plant::sim_report::summary_table(&out.comparison));
+            let a = out.agreement;
+            println!(
+                "firmware (QEMU) vs in-process control: {} of {} commands bit-identical, max diff {:.3e} A, {} frames",
+                a.bit_identical_commands, a.samples, a.max_command_diff_a, a.frames
+            );
+            println!("report: {}", report.join("summary.md").display());
+            if !a.agrees() {
+                anyhow::bail!("the firmware run does not match the in-process run (see pil.json)");
+            }
         }
     }
     Ok(())

@@ -1,0 +1,399 @@
+//! Processor-in-the-loop board for `qemu-system-arm -M b-l475e-iot01a`.
+//!
+//! QEMU's model has no TIM, ADC or PWR, so `embassy_stm32::init` is not
+//! called: USART1 is driven through the PAC (32-bit register accesses only,
+//! as QEMU requires), embassy-time runs on a 10 kHz SysTick driver (core
+//! clock: MSI 4 MHz after reset), and defmt goes out over semihosting.
+//! The control task and the core are the same code as on hardware; only
+//! the I/O below differs: each sample frame from the host is one control
+//! period, and each period answers with one command frame (`mre_core::frame`).
+use core::cell::{Cell, RefCell};
+use core::task::Waker;
+
+use cortex_m::peripheral::syst::SystClkSource;
+use cortex_m_rt::exception;
+use critical_section::Mutex;
+use defmt_semihosting as _;
+use embassy_stm32::pac;
+use embassy_time::Timer;
+use embassy_time_driver::Driver;
+use embassy_time_queue_utils::Queue;
+use mre_core::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
+use mre_core::frame::{
+    CommandFrame, ConfigCollector, FrameError, Incoming, LinkStats, SampleFrame, SampleReceiver, END_OF_RUN_SEQ,
+    FRAME_LEN, HELLO_SEQ,
+};
+use mre_core::law::Command;
+use mre_core::Flags;
+
+pub const NAME: &str = "PIL (QEMU b-l475e-iot01a)";
+/// MSI after reset; nothing here changes the clock tree.
+const CORE_CLOCK_HZ: u32 = 4_000_000;
+const SYSTICK_HZ: u32 = 10_000;
+/// embassy-time runs at its default 1 MHz tick.
+const EMBASSY_TICKS_PER_SYSTICK: u64 = 1_000_000 / SYSTICK_HZ as u64;
+/// Empty USART polls before sleeping to the next SysTick: QEMU hands the
+/// next byte over only after RDR is read, so spinning briefly keeps a
+/// frame's 24 bytes flowing instead of one byte per tick.
+const SPIN_POLLS: u32 = 200;
+
+pub fn core_clock_hz() -> u32 {
+    CORE_CLOCK_HZ
+}
+
+/// QEMU models no DWT cycle counter; instructions are counted with
+/// `-icount`/exec traces instead (BENCHMARKS.md).
+#[inline(always)]
+pub fn cycles() -> u32 {
+    0
+}
+
+// ---- embassy-time driver on SysTick ----------------------------------------
+
+struct SysTickDriver {
+    systicks: Mutex<Cell<u64>>,
+    queue: Mutex<RefCell<Queue>>,
+}
+
+impl Driver for SysTickDriver {
+    fn now(&self) -> u64 {
+        critical_section::with(|cs| self.systicks.borrow(cs).get()) * EMBASSY_TICKS_PER_SYSTICK
+    }
+
+    fn schedule_wake(&self, at: u64, waker: &Waker) {
+        critical_section::with(|cs| {
+            // The SysTick handler checks the queue every tick, so the "next
+            // alarm changed" result is not needed.
+            if let Ok(mut q) = self.queue.borrow(cs).try_borrow_mut() {
+                q.schedule_wake(at, waker);
+            }
+        });
+    }
+}
+
+embassy_time_driver::time_driver_impl!(static DRIVER: SysTickDriver = SysTickDriver {
+    systicks: Mutex::new(Cell::new(0)),
+    queue: Mutex::new(RefCell::new(Queue::new())),
+});
+
+#[exception]
+fn SysTick() {
+    critical_section::with(|cs| {
+        let ticks = DRIVER.systicks.borrow(cs);
+        ticks.set(ticks.get().wrapping_add(1));
+        let now = ticks.get() * EMBASSY_TICKS_PER_SYSTICK;
+        if let Ok(mut q) = DRIVER.queue.borrow(cs).try_borrow_mut() {
+            q.next_expiration(now);
+        }
+    });
+}
+
+// ---- USART1 through the PAC ---------------------------------------------------
+
+fn usart_init() {
+    pac::RCC.apb2enr().modify(|w| w.set_usart1en(true));
+    // 115200 Bd at 4 MHz (QEMU ignores the rate; real hardware would not).
+    pac::USART1.brr().write(|w| w.set_brr((CORE_CLOCK_HZ / 115_200) as u16));
+    pac::USART1.cr1().write(|w| {
+        w.set_ue(true);
+        w.set_te(true);
+        w.set_re(true);
+    });
+}
+
+fn usart_read() -> Option<u8> {
+    let isr = pac::USART1.isr().read();
+    if isr.ore() {
+        // Clear only ORE: writing the whole ISR value to ICR would clear TXE in QEMU.
+        pac::USART1.icr().write(|w| w.set_ore(true));
+    }
+    isr.rxne().then(|| pac::USART1.rdr().read().dr() as u8)
+}
+
+fn usart_write(bytes: &[u8]) {
+    for &b in bytes {
+        while !pac::USART1.isr().read().txe() {}
+        pac::USART1.tdr().write(|w| w.set_dr(u16::from(b)));
+    }
+}
+
+// ---- Board ----------------------------------------------------------------------
+
+/// No hardware watchdog in QEMU's model: feeding is a no-op.
+pub struct Watchdog;
+impl Watchdog {
+    pub fn pet(&mut self) {}
+}
+
+pub struct Board {
+    pub io: Io,
+    pub watchdog: Watchdog,
+}
+
+/// The latest sample frame stands in for the sensors; the command goes back
+/// in the answer frame.
+pub struct Io {
+    rx: SampleReceiver,
+    config: ConfigCollector,
+    sample: SampleFrame,
+    current_a: f32,
+    last_reply: Option<[u8; FRAME_LEN]>,
+    last_rejected: u16,
+}
+
+pub fn init(_rate_hz: u32) -> Board {
+    // SAFETY: the only user of the core peripherals, once, at boot.
+    let core = unsafe { cortex_m::Peripherals::steal() };
+    let mut syst = core.SYST;
+    syst.set_clock_source(SystClkSource::Core);
+    syst.set_reload(CORE_CLOCK_HZ / SYSTICK_HZ - 1);
+    syst.clear_current();
+    syst.enable_interrupt();
+    syst.enable_counter();
+    usart_init();
+    Board {
+        io: Io {
+            rx: SampleReceiver::new(),
+            config: ConfigCollector::new(),
+            sample: SampleFrame {
+                seq: 0,
+                x_mm: f32::NAN,
+                v_m_s: None,
+                force_n: None,
+            },
+            current_a: 0.0,
+            last_reply: None,
+            last_rejected: 0,
+        },
+        watchdog: Watchdog,
+    }
+}
+
+impl Board {
+    /// Announces the link with a command frame of sequence 0 (`HELLO_SEQ`):
+    /// the host sends no sample before it, so no byte can arrive while the
+    /// firmware is still booting.
+    pub fn start(&mut self) {
+        defmt::info!("PIL link up on USART1: waiting for sample frames");
+        let hello = CommandFrame {
+            seq: HELLO_SEQ,
+            current_a: 0.0,
+            target_force_n: 0.0,
+            flags: Flags::NONE,
+            rejected: 0,
+        };
+        usart_write(&hello.encode());
+    }
+}
+
+fn send_hello(flags: Flags) {
+    let hello = CommandFrame {
+        seq: HELLO_SEQ,
+        current_a: 0.0,
+        target_force_n: 0.0,
+        flags,
+        rejected: 0,
+    };
+    usart_write(&hello.encode());
+}
+
+pub fn halt_fail_safe(_board: Board) -> ! {
+    semihosting::process::exit(2)
+}
+
+impl Io {
+    /// Waits for the next valid sample frame (one control period). An
+    /// uploaded configuration (config frames + commit) replaces `ctl`.
+    pub async fn next_period(&mut self, ctl: &mut Controller) {
+        loop {
+            let mut idle_polls = 0u32;
+            while idle_polls < SPIN_POLLS {
+                let Some(byte) = usart_read() else {
+                    idle_polls += 1;
+                    continue;
+                };
+                idle_polls = 0;
+                match self.rx.push_any(byte) {
+                    Some(Ok(Incoming::Config(chunk))) => match self.config.push(chunk) {
+                        Some(Ok((table, cfg))) => match Controller::new(cfg, Ok(table)) {
+                            Ok(new_ctl) => {
+                                *ctl = new_ctl;
+                                defmt::info!(
+                                    "configuration uploaded: table CRC {=u32:#010x}, {=u32} Hz",
+                                    table.crc32(),
+                                    cfg.rate_hz
+                                );
+                                send_hello(Flags::NONE);
+                            }
+                            Err(_) => send_hello(Flags::TABLE_FAULT),
+                        },
+                        Some(Err(e)) => {
+                            defmt::warn!("configuration refused: {}", defmt::Debug2Format(&e));
+                            send_hello(Flags::TABLE_FAULT);
+                        }
+                        None => {}
+                    },
+                    Some(Ok(Incoming::Sample(sample))) if sample.seq == END_OF_RUN_SEQ => end_of_run(self.rx.stats()),
+                    Some(Ok(Incoming::Sample(sample))) => {
+                        self.sample = sample;
+                        return;
+                    }
+                    // A host retry: answer again without a second step.
+                    Some(Err(FrameError::Duplicate { .. })) => {
+                        if let Some(reply) = self.last_reply {
+                            usart_write(&reply);
+                        }
+                    }
+                    // Corrupt or out of order: counted by the receiver, skipped.
+                    Some(Err(_)) | None => {}
+                }
+            }
+            // Sleep until the next SysTick; QEMU polls the socket meanwhile.
+            Timer::after_ticks(1).await;
+        }
+    }
+
+    /// Sends the answer. Simulated time has no deadline: never an overrun.
+    pub fn finish_period(&mut self, cmd: &Command, _ctl: &Controller) -> bool {
+        let rejected = self.rx.stats().rejected();
+        let mut flags = cmd.flags;
+        if rejected != self.last_rejected {
+            flags |= Flags::FRAME_FAULT;
+            self.last_rejected = rejected;
+        }
+        let reply = CommandFrame {
+            seq: self.sample.seq,
+            // What the coil was given: the same path as a PWM write.
+            current_a: self.current_a,
+            target_force_n: cmd.target_force_n,
+            flags,
+            rejected,
+        }
+        .encode();
+        usart_write(&reply);
+        self.last_reply = Some(reply);
+        false
+    }
+
+    pub fn link_summary(&self) -> LinkSummary {
+        LinkSummary(self.rx.stats())
+    }
+}
+
+pub struct LinkSummary(LinkStats);
+impl defmt::Format for LinkSummary {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        let s = &self.0;
+        defmt::write!(
+            f,
+            ", frames ok {=u32} crc {=u32} kind {=u32} order {=u32} dup {=u32} lost {=u32}",
+            s.accepted,
+            s.crc_errors,
+            s.bad_kind,
+            s.out_of_order,
+            s.duplicates,
+            s.lost
+        );
+    }
+}
+
+fn end_of_run(stats: LinkStats) -> ! {
+    defmt::info!("PIL end of run{}", LinkSummary(stats));
+    semihosting::process::exit(0)
+}
+
+impl DisplacementSensor for Io {
+    fn read_x_mm(&mut self) -> f32 {
+        self.sample.x_mm
+    }
+}
+
+impl VelocitySensor for Io {
+    fn read_v_m_s(&mut self) -> Option<f32> {
+        self.sample.v_m_s
+    }
+}
+
+impl Coil for Io {
+    fn set_current_a(&mut self, current_a: f32) {
+        self.current_a = current_a;
+    }
+}
+
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo) -> ! {
+    defmt::error!("panic: {}", defmt::Display2Format(info));
+    semihosting::process::exit(101)
+}
+
+/// `pil` + `bench`: executed-instruction counts of the model step and the
+/// control step, read from a QEMU exec trace (`firmware/bench/icount.sh`).
+/// Each measured call sits between a call of `mre_mark_begin` and one of
+/// `mre_mark_end`; the script counts the instructions executed from the
+/// entry of the first to the entry of the second and subtracts the 3 of
+/// the markers themselves (begin's `nop; bx lr` and the `bl` to end).
+#[cfg(feature = "bench")]
+pub mod icount {
+    use core::hint::black_box;
+    use mre_core::control::Controller;
+    use mre_core::Branch;
+
+    #[inline(never)]
+    #[no_mangle]
+    pub extern "C" fn mre_mark_begin() {
+        cortex_m::asm::nop();
+    }
+
+    #[inline(never)]
+    #[no_mangle]
+    pub extern "C" fn mre_mark_end() {
+        // Two nops so the linker cannot fold this into `mre_mark_begin`.
+        cortex_m::asm::nop();
+        cortex_m::asm::nop();
+    }
+
+    /// Model step cases: (x_mm, target_force_n) on the compression branch.
+    /// Table 4 at these x brackets the targets in different segments; the
+    /// last is above every current (saturated: the longest path).
+    const MODEL_CASES: [(f32, f32); 4] = [(0.1, 600.0), (0.2, 1726.25), (0.5, 3000.0), (0.9, 9000.0)];
+    /// Law step cases: (x_mm, v_m_s), the first two control cases.
+    const LAW_CASES: [(f32, f32); 2] = [(0.2, 3.0), (0.5, 2.0)];
+    /// Control step cases: (x_mm, velocity sensor) from one impact.
+    const CONTROL_CASES: [(f32, Option<f32>); 4] = [(0.2, Some(3.0)), (0.5, Some(2.0)), (0.8, None), (0.3, Some(-1.0))];
+
+    pub fn run(ctl: &mut Controller) {
+        // No SysTick interrupts inside the measured windows.
+        // SAFETY: only SYST is touched; the executor has not started yet.
+        let mut syst = unsafe { cortex_m::Peripherals::steal() }.SYST;
+        syst.disable_interrupt();
+        syst.disable_counter();
+        if let Some(table) = ctl.table().copied() {
+            for &(x_mm, force_n) in &MODEL_CASES {
+                let (x_mm, force_n) = (black_box(x_mm), black_box(force_n));
+                mre_mark_begin();
+                let r = table.current_for_branch(x_mm, Branch::Compression, force_n);
+                mre_mark_end();
+                black_box(r);
+            }
+        }
+        // The law alone (no estimator, stuck check or fault accounting).
+        if let (Some(table), Ok(mut law)) = (ctl.table().copied(), mre_core::law::ImpactLaw::new(ctl.config().law)) {
+            for &(x_mm, v_m_s) in &LAW_CASES {
+                let (x_mm, v_m_s) = (black_box(x_mm), black_box(v_m_s));
+                mre_mark_begin();
+                let cmd = law.step(&table, x_mm, v_m_s);
+                mre_mark_end();
+                black_box(cmd);
+            }
+        }
+        for &(x_mm, v) in &CONTROL_CASES {
+            let (x_mm, v) = (black_box(x_mm), black_box(v));
+            mre_mark_begin();
+            let cmd = ctl.step_sample(x_mm, v);
+            mre_mark_end();
+            black_box(cmd);
+        }
+        defmt::info!("icount bench done");
+        semihosting::process::exit(0)
+    }
+}

@@ -1,0 +1,263 @@
+//! Real STM32L4 boards (B-L475E-IOT01A, NUCLEO-L476RG): 80 MHz PLL, three
+//! ADCs (displacement, velocity, coil current), TIM3 PWM coil drive, IWDG,
+//! DWT cycle counter. Pins and scaling are documented in `firmware/README.md`;
+//! the per-board difference is only the pin table below.
+use defmt_rtt as _;
+use panic_probe as _;
+
+use embassy_stm32::adc::{Adc, AdcChannel, AnyAdcChannel, SampleTime};
+use embassy_stm32::gpio::OutputType;
+use embassy_stm32::peripherals::{ADC1, ADC2, ADC3, IWDG, TIM3};
+use embassy_stm32::time::khz;
+use embassy_stm32::timer::low_level::CountingMode;
+use embassy_stm32::timer::simple_pwm::{PwmPin, SimplePwm, SimplePwmChannel};
+use embassy_stm32::wdg::IndependentWatchdog;
+use embassy_time::{Duration, Instant, Ticker};
+use mre_core::control::{open_loop_duty, Coil, Controller, CurrentLoop, DisplacementSensor, VelocitySensor};
+use mre_core::law::{Command, LawConfig};
+
+#[cfg(feature = "board-b-l475e-iot01a")]
+pub const NAME: &str = "B-L475E-IOT01A";
+/// Arduino A0 = PC5 (ADC1_IN14) displacement, A1 = PC4 (ADC2_IN13) velocity,
+/// A2 = PC3 (ADC3_IN4) coil current, D5 = PB4 (TIM3_CH1, AF2) coil PWM.
+#[cfg(feature = "board-b-l475e-iot01a")]
+macro_rules! board_pins {
+    ($p:ident) => {
+        ($p.PC5, $p.PC4, $p.PC3, $p.PB4)
+    };
+}
+
+#[cfg(feature = "board-nucleo-l476rg")]
+pub const NAME: &str = "NUCLEO-L476RG";
+/// Arduino A0 = PA0 (ADC1_IN5) displacement, A1 = PA1 (ADC2_IN6) velocity,
+/// A4 = PC1 (ADC3_IN2) coil current, D5 = PB4 (TIM3_CH1, AF2) coil PWM.
+#[cfg(feature = "board-nucleo-l476rg")]
+macro_rules! board_pins {
+    ($p:ident) => {
+        ($p.PA0, $p.PA1, $p.PC1, $p.PB4)
+    };
+}
+
+/// What is wired: a velocity transducer on the velocity channel, and a coil
+/// current sense amplifier for the PI current loop (cargo features).
+pub const HAS_VELOCITY_SENSOR: bool = cfg!(feature = "velocity-sensor");
+pub const HAS_CURRENT_SENSE: bool = cfg!(feature = "current-loop");
+
+// Scaling (firmware/README.md, "Wiring"). 12-bit ADC, 3.3 V reference.
+const VREF_V: f32 = 3.3;
+const ADC_FULL_SCALE: f32 = 4095.0;
+/// Displacement: 0.3 V at 0 mm … 3.0 V at 25 mm. The ADC rails (a broken or
+/// shorted wire) then read −2.8 mm and 27.8 mm: outside the valid range.
+const X_ZERO_V: f32 = 0.3;
+const X_MM_PER_V: f32 = 25.0 / 2.7;
+/// Velocity transducer conditioned to 1.65 V ± 1.5 V for ±5 m/s (+ = compression).
+const V_ZERO_V: f32 = 1.65;
+const V_M_S_PER_V: f32 = 5.0 / 1.5;
+/// Coil current sense: 0.1 Ω shunt, gain 10: 1 V per A.
+const I_A_PER_V: f32 = 1.0;
+/// Coil driver: 12 V into a 4 Ω coil, so 100 % duty is 3 A on average.
+const COIL_FULL_SCALE_A: f32 = 3.0;
+const PWM_KHZ: u32 = 20;
+/// PI current loop gains (duty per A, duty per A·s).
+const CURRENT_KP_PER_A: f32 = 0.2;
+const CURRENT_KI_PER_A_S: f32 = 100.0;
+/// 24.5 + 12.5 ADC cycles at 80 MHz: 0.46 µs per conversion.
+const SAMPLE_TIME: SampleTime = SampleTime::CYCLES24_5;
+/// 50 periods at 10 kHz: long enough for the 1 Hz stats log, short enough
+/// that a hung control loop releases the coil to the reset state quickly.
+const WATCHDOG_TIMEOUT_US: u32 = 5_000;
+
+/// The core clock: 16 MHz HSI / 2 × 20 / 2 = 80 MHz (PLL R). The one place
+/// clocks are set. ADCs run from SYSCLK.
+pub const SYSCLK_HZ: u32 = 80_000_000;
+fn clock_config() -> embassy_stm32::Config {
+    use embassy_stm32::rcc::{mux, Pll, PllMul, PllPreDiv, PllRDiv, PllSource, Sysclk};
+    let mut config = embassy_stm32::Config::default();
+    config.rcc.hsi = true;
+    config.rcc.pll = Some(Pll {
+        source: PllSource::HSI,
+        prediv: PllPreDiv::DIV2,
+        mul: PllMul::MUL20,
+        divp: None,
+        divq: None,
+        divr: Some(PllRDiv::DIV2),
+    });
+    config.rcc.sys = Sysclk::PLL1_R;
+    config.rcc.mux.adcsel = mux::Adcsel::SYS;
+    config
+}
+
+pub fn core_clock_hz() -> u32 {
+    SYSCLK_HZ
+}
+
+/// DWT cycle counter (enabled in [`init`]).
+#[inline(always)]
+pub fn cycles() -> u32 {
+    cortex_m::peripheral::DWT::cycle_count()
+}
+
+fn volts(code: u16) -> f32 {
+    f32::from(code) * (VREF_V / ADC_FULL_SCALE)
+}
+
+/// Sensors, coil and pacing: implements the core's I/O traits.
+pub struct Io {
+    adc_x: Adc<'static, ADC1>,
+    ch_x: AnyAdcChannel<'static, ADC1>,
+    velocity: Option<(Adc<'static, ADC2>, AnyAdcChannel<'static, ADC2>)>,
+    sense: Option<(Adc<'static, ADC3>, AnyAdcChannel<'static, ADC3>)>,
+    pwm: SimplePwmChannel<'static, TIM3>,
+    max_duty: u32,
+    current_loop: CurrentLoop,
+    ticker: Ticker,
+    period: Duration,
+    next_tick: Instant,
+}
+
+pub struct Board {
+    pub io: Io,
+    pub watchdog: IndependentWatchdog<'static, IWDG>,
+}
+
+pub fn init(rate_hz: u32) -> Board {
+    let p = embassy_stm32::init(clock_config());
+    let (pin_x, pin_v, pin_i, pin_pwm) = board_pins!(p);
+
+    // SAFETY: only DCB/DWT are touched, once, before anything else uses them.
+    let mut core = unsafe { cortex_m::Peripherals::steal() };
+    core.DCB.enable_trace();
+    core.DWT.enable_cycle_counter();
+
+    let pwm = SimplePwm::new(
+        p.TIM3,
+        Some(PwmPin::new(pin_pwm, OutputType::PushPull)),
+        None,
+        None,
+        None,
+        khz(PWM_KHZ),
+        CountingMode::EdgeAlignedUp,
+    );
+    let mut ch = pwm.split().ch1;
+    let max_duty = ch.max_duty_cycle();
+    ch.enable();
+
+    let period = Duration::from_hz(u64::from(rate_hz));
+    let period_s = 1.0 / rate_hz as f32;
+    let mut io = Io {
+        adc_x: Adc::new(p.ADC1),
+        ch_x: pin_x.degrade_adc(),
+        velocity: HAS_VELOCITY_SENSOR.then(|| (Adc::new(p.ADC2), pin_v.degrade_adc())),
+        sense: HAS_CURRENT_SENSE.then(|| (Adc::new(p.ADC3), pin_i.degrade_adc())),
+        pwm: ch,
+        max_duty,
+        current_loop: CurrentLoop::new(CURRENT_KP_PER_A, CURRENT_KI_PER_A_S, period_s, COIL_FULL_SCALE_A),
+        ticker: Ticker::every(period),
+        period,
+        next_tick: Instant::now(),
+    };
+    // Until the loop runs, hold the fail-safe current (stiffest damper).
+    io.set_duty(open_loop_duty(
+        LawConfig::default().failsafe_current_a,
+        COIL_FULL_SCALE_A,
+    ));
+    let watchdog = IndependentWatchdog::new(p.IWDG, WATCHDOG_TIMEOUT_US);
+    Board { io, watchdog }
+}
+
+impl Board {
+    /// Starts the ticker and the watchdog right before the first period.
+    pub fn start(&mut self) {
+        self.io.ticker.reset();
+        // The first tick is one period from now; its deadline one more.
+        self.io.next_tick = Instant::now() + self.io.period;
+        self.watchdog.unleash();
+    }
+}
+
+/// Holds the fail-safe coil current forever (configuration refused).
+pub fn halt_fail_safe(mut board: Board) -> ! {
+    board.io.set_duty(open_loop_duty(
+        LawConfig::default().failsafe_current_a,
+        COIL_FULL_SCALE_A,
+    ));
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
+
+impl Io {
+    fn set_duty(&mut self, duty: f32) {
+        // duty ∈ [0, 1] by construction; `as` saturates anyway.
+        self.pwm.set_duty_cycle((duty * self.max_duty as f32) as u32);
+    }
+
+    /// Waits for the next tick of the control rate.
+    pub async fn next_period(&mut self, _ctl: &mut Controller) {
+        self.ticker.next().await;
+        self.next_tick += self.period;
+    }
+
+    /// True when this period's work ended after the next tick was due.
+    pub fn finish_period(&mut self, _cmd: &Command, _ctl: &Controller) -> bool {
+        Instant::now() >= self.next_tick
+    }
+
+    pub fn link_summary(&self) -> &'static str {
+        ""
+    }
+}
+
+impl DisplacementSensor for Io {
+    fn read_x_mm(&mut self) -> f32 {
+        let code = self.adc_x.blocking_read(&mut self.ch_x, SAMPLE_TIME);
+        (volts(code) - X_ZERO_V) * X_MM_PER_V
+    }
+}
+
+impl VelocitySensor for Io {
+    fn read_v_m_s(&mut self) -> Option<f32> {
+        let (adc, ch) = self.velocity.as_mut()?;
+        let code = adc.blocking_read(ch, SAMPLE_TIME);
+        Some((volts(code) - V_ZERO_V) * V_M_S_PER_V)
+    }
+}
+
+impl Coil for Io {
+    fn set_current_a(&mut self, current_a: f32) {
+        let duty = match self.sense.as_mut() {
+            Some((adc, ch)) => {
+                let measured_a = volts(adc.blocking_read(ch, SAMPLE_TIME)) * I_A_PER_V;
+                self.current_loop.update(current_a, measured_a)
+            }
+            None => open_loop_duty(current_a, COIL_FULL_SCALE_A),
+        };
+        self.set_duty(duty);
+    }
+}
+
+/// `bench`: DWT cycles of the model step alone (inverse solve at a few
+/// operating points, which includes branch data, five Horner quartics and
+/// the interpolation), min/mean/max.
+#[cfg(feature = "bench")]
+pub fn bench_model_step(table: Option<&mre_core::Table>) {
+    use mre_core::Branch;
+    let Some(table) = table else { return };
+    let (mut min, mut max, mut sum) = (u32::MAX, 0u32, 0u32);
+    let points = [(0.1f32, 600.0f32), (0.2, 1726.25), (0.5, 3000.0), (0.9, 9000.0)];
+    for &(x_mm, force_n) in &points {
+        let t0 = cycles();
+        let r = table.current_for_branch(core::hint::black_box(x_mm), Branch::Compression, force_n);
+        let dt = cycles().wrapping_sub(t0);
+        core::hint::black_box(r);
+        min = min.min(dt);
+        max = max.max(dt);
+        sum = sum.wrapping_add(dt);
+    }
+    defmt::info!(
+        "bench model step cycles min/mean/max {=u32}/{=u32}/{=u32}",
+        min,
+        sum / points.len() as u32,
+        max
+    );
+}

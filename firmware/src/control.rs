@@ -1,0 +1,436 @@
+//! One control period over small I/O traits: sample → estimate → law → coil,
+//! with fault latching, overrun accounting and statistics.
+//!
+//! This is the whole control task minus the timing: the board's embassy task
+//! (a `Ticker`) and the PIL frame link both call [`Controller::step`] once per
+//! period, so the host can test exactly the logic that runs on the board.
+//!
+//! Faults and the fail-safe (see `firmware/README.md`):
+//! - A non-finite or out-of-range sample makes that period fail-safe (the law
+//!   does that); `range_fault_samples` of them in a row latch `SENSOR_RANGE`
+//!   (or `NON_FINITE_INPUT`).
+//! - `SENSOR_STUCK` latches when the velocity sensor reports motion
+//!   (|v| ≥ `stuck_min_speed_m_s`) but the displacement reading has not changed
+//!   at all for `stuck_samples` periods: one of the two sensors is lying.
+//!   Without a velocity sensor a frozen displacement cannot be told from a
+//!   resting mass, so only its range (ADC rails) is checked.
+//! - `OVERRUN` latches when `overrun_limit` periods of one window of
+//!   `overrun_window` periods overran their deadline.
+//! - `TABLE_FAULT` latches at construction if the table was rejected.
+//!
+//! While any fault is latched every period commands the law's fail-safe
+//! current (default 2 A: the stiffest damper, so an impact cannot bottom out).
+//! Latched faults clear only by [`Controller::clear_faults`] (a reset).
+use crate::estimate::AlphaBeta;
+use crate::flags::Flags;
+use crate::law::{Command, ConfigError, ImpactLaw, LawConfig};
+use crate::math;
+use crate::table::{Table, TableError};
+
+/// Displacement sensor (e.g. an ADC channel with linear scaling).
+pub trait DisplacementSensor {
+    /// Displacement from first contact in mm (may be NaN on a read error).
+    fn read_x_mm(&mut self) -> f32;
+}
+
+/// Optional velocity sensor. Boards without one return `None` and the
+/// controller uses its displacement-based estimator.
+pub trait VelocitySensor {
+    fn read_v_m_s(&mut self) -> Option<f32>;
+}
+
+/// The coil driver: PWM open loop or a PI current loop behind it.
+pub trait Coil {
+    fn set_current_a(&mut self, current_a: f32);
+}
+
+/// For boards without a velocity sensor.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoVelocitySensor;
+
+impl VelocitySensor for NoVelocitySensor {
+    #[inline]
+    fn read_v_m_s(&mut self) -> Option<f32> {
+        None
+    }
+}
+
+/// Control rate limits: below 1 kHz an impact (a few ms) is under-sampled;
+/// 40 kHz leaves the M4F at 80 MHz 2000 cycles per period.
+pub const RATE_MIN_HZ: u32 = 1_000;
+pub const RATE_MAX_HZ: u32 = 40_000;
+pub const DEFAULT_RATE_HZ: u32 = 10_000;
+
+/// Everything the control step needs besides the law's own parameters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ControlConfig {
+    /// Control rate; `law.period_s` is derived from it by [`ControlConfig::at_rate`].
+    pub rate_hz: u32,
+    pub law: LawConfig,
+    /// Alpha-beta estimator gain α (β by Benedict–Bordner).
+    pub estimator_alpha: f32,
+    /// Consecutive bad samples (non-finite or out of range) that latch a fault.
+    pub range_fault_samples: u16,
+    /// Periods of an unchanged displacement while the velocity sensor reports
+    /// motion that latch `SENSOR_STUCK`; 0 disables the check.
+    pub stuck_samples: u16,
+    pub stuck_min_speed_m_s: f32,
+    /// `overrun_limit` overruns within one window of `overrun_window` periods
+    /// latch `OVERRUN`.
+    pub overrun_limit: u16,
+    pub overrun_window: u16,
+}
+
+/// Why a control configuration was refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ControlConfigError {
+    Rate {
+        rate_hz: u32,
+    },
+    Law(ConfigError),
+    /// Period of the law does not match the rate.
+    PeriodMismatch,
+    Estimator,
+    Counts,
+}
+
+impl ControlConfig {
+    /// Defaults (the paper's drop test, see [`LawConfig::default`]) at `rate_hz`.
+    pub fn at_rate(rate_hz: u32) -> Result<Self, ControlConfigError> {
+        if !(RATE_MIN_HZ..=RATE_MAX_HZ).contains(&rate_hz) {
+            return Err(ControlConfigError::Rate { rate_hz });
+        }
+        let law = LawConfig {
+            period_s: 1.0 / rate_hz as f32,
+            ..LawConfig::default()
+        };
+        let cfg = Self {
+            rate_hz,
+            law,
+            estimator_alpha: 0.3,
+            // 1 ms of bad samples at 10 kHz: a glitch is ridden out in
+            // fail-safe, a broken wire latches.
+            range_fault_samples: 10,
+            // 5 ms at ≥ 50 mm/s is ≥ 0.25 mm of motion: tens of ADC LSBs.
+            stuck_samples: 50,
+            stuck_min_speed_m_s: 0.05,
+            overrun_limit: 10,
+            overrun_window: 1000,
+        };
+        cfg.validate()?;
+        Ok(cfg)
+    }
+
+    pub fn period_s(&self) -> f32 {
+        self.law.period_s
+    }
+
+    pub fn validate(&self) -> Result<(), ControlConfigError> {
+        if !(RATE_MIN_HZ..=RATE_MAX_HZ).contains(&self.rate_hz) {
+            return Err(ControlConfigError::Rate { rate_hz: self.rate_hz });
+        }
+        self.law.validate().map_err(ControlConfigError::Law)?;
+        let period_s = 1.0 / self.rate_hz as f32;
+        if math::abs(self.law.period_s - period_s) > period_s * 1.0e-4 {
+            return Err(ControlConfigError::PeriodMismatch);
+        }
+        let a = self.estimator_alpha;
+        if !(a > 0.0 && a <= 1.0) {
+            return Err(ControlConfigError::Estimator);
+        }
+        if self.range_fault_samples == 0
+            || self.overrun_limit == 0
+            || self.overrun_window < self.overrun_limit
+            || !self.stuck_min_speed_m_s.is_finite()
+            || self.stuck_min_speed_m_s < 0.0
+        {
+            return Err(ControlConfigError::Counts);
+        }
+        Ok(())
+    }
+}
+
+/// Counters for the periodic defmt statistics. Cycle figures are fed by the
+/// board ([`Controller::record_step_cycles`]); they stay 0 where no cycle
+/// counter exists (QEMU).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    pub periods: u32,
+    pub overruns: u32,
+    /// Periods that commanded the fail-safe current.
+    pub failsafe_periods: u32,
+    /// Times a fault got latched.
+    pub fault_latches: u32,
+    pub latched: Flags,
+    pub step_cycles_min: u32,
+    pub step_cycles_max: u32,
+    pub step_cycles_sum: u64,
+    pub step_cycles_count: u32,
+}
+
+impl Stats {
+    pub fn step_cycles_mean(&self) -> u32 {
+        if self.step_cycles_count == 0 {
+            0
+        } else {
+            (self.step_cycles_sum / u64::from(self.step_cycles_count)) as u32
+        }
+    }
+}
+
+/// The control loop's state: law, estimator, fault latches and statistics.
+#[derive(Clone, Copy, Debug)]
+pub struct Controller {
+    cfg: ControlConfig,
+    table: Option<Table>,
+    law: ImpactLaw,
+    estimator: AlphaBeta,
+    latched: Flags,
+    bad_samples: u16,
+    last_x_mm: f32,
+    unchanged_moving: u16,
+    window_periods: u16,
+    window_overruns: u16,
+    stats: Stats,
+}
+
+impl Controller {
+    /// A rejected table does not stop construction: the controller then
+    /// latches `TABLE_FAULT` and runs fail-safe, which is what the board must do.
+    pub fn new(cfg: ControlConfig, table: Result<Table, TableError>) -> Result<Self, ControlConfigError> {
+        cfg.validate()?;
+        let law = ImpactLaw::new(cfg.law).map_err(ControlConfigError::Law)?;
+        let mut c = Self {
+            cfg,
+            table: None,
+            law,
+            estimator: AlphaBeta::benedict_bordner(cfg.period_s(), cfg.estimator_alpha),
+            latched: Flags::NONE,
+            bad_samples: 0,
+            last_x_mm: f32::NAN,
+            unchanged_moving: 0,
+            window_periods: 0,
+            window_overruns: 0,
+            stats: Stats::default(),
+        };
+        match table {
+            Ok(t) => c.table = Some(t),
+            Err(_) => c.latch(Flags::TABLE_FAULT),
+        }
+        Ok(c)
+    }
+
+    pub fn config(&self) -> &ControlConfig {
+        &self.cfg
+    }
+
+    pub fn table(&self) -> Option<&Table> {
+        self.table.as_ref()
+    }
+
+    pub fn latched(&self) -> Flags {
+        self.latched
+    }
+
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    /// Restarts the cycle statistics (min/max/mean per logging interval).
+    pub fn reset_cycle_stats(&mut self) {
+        self.stats.step_cycles_min = 0;
+        self.stats.step_cycles_max = 0;
+        self.stats.step_cycles_sum = 0;
+        self.stats.step_cycles_count = 0;
+    }
+
+    /// Clears latched sensor and overrun faults (not a table fault: the table
+    /// does not heal). Counters keep running.
+    pub fn clear_faults(&mut self) {
+        self.latched = Flags(self.latched.0 & Flags::TABLE_FAULT.0);
+        self.bad_samples = 0;
+        self.unchanged_moving = 0;
+        self.window_periods = 0;
+        self.window_overruns = 0;
+    }
+
+    fn latch(&mut self, fault: Flags) {
+        if !self.latched.contains(fault) {
+            self.stats.fault_latches = self.stats.fault_latches.saturating_add(1);
+        }
+        self.latched |= fault;
+        self.stats.latched = self.latched;
+    }
+
+    /// One period from I/O: read the sensors, decide, command the coil.
+    #[inline]
+    pub fn step<D, V, C>(&mut self, displacement: &mut D, velocity: &mut V, coil: &mut C) -> Command
+    where
+        D: DisplacementSensor + ?Sized,
+        V: VelocitySensor + ?Sized,
+        C: Coil + ?Sized,
+    {
+        let x_mm = displacement.read_x_mm();
+        let v_m_s = velocity.read_v_m_s();
+        let cmd = self.step_sample(x_mm, v_m_s);
+        coil.set_current_a(cmd.current_a);
+        cmd
+    }
+
+    /// [`Controller::step`] for a board whose one I/O object implements all
+    /// three traits (it then owns the peripherals or the PIL frame state).
+    #[inline]
+    pub fn step_io<B>(&mut self, io: &mut B) -> Command
+    where
+        B: DisplacementSensor + VelocitySensor + Coil + ?Sized,
+    {
+        let x_mm = io.read_x_mm();
+        let v_m_s = io.read_v_m_s();
+        let cmd = self.step_sample(x_mm, v_m_s);
+        io.set_current_a(cmd.current_a);
+        cmd
+    }
+
+    /// One period from sampled values (`v_measured_m_s = None`: no velocity
+    /// sensor, use the estimator). The returned current is always finite and
+    /// inside the law's output range.
+    pub fn step_sample(&mut self, x_mm: f32, v_measured_m_s: Option<f32>) -> Command {
+        self.stats.periods = self.stats.periods.wrapping_add(1);
+        // The estimator runs every period so it is settled if the velocity
+        // sensor is ever dropped; a non-finite x only predicts.
+        let (v_est_m_s, _) = self.estimator.update(x_mm);
+        let v_m_s = v_measured_m_s.unwrap_or(v_est_m_s);
+        self.check_stuck(x_mm, v_measured_m_s);
+
+        let mut cmd = match &self.table {
+            Some(table) if !self.latched.is_fault() => self.law.step(table, x_mm, v_m_s),
+            _ => self.law.fail_safe(self.latched),
+        };
+
+        let input_fault = Flags(cmd.flags.0 & (Flags::SENSOR_RANGE.0 | Flags::NON_FINITE_INPUT.0));
+        if input_fault != Flags::NONE && cmd.flags.contains(Flags::FAIL_SAFE) {
+            self.bad_samples = self.bad_samples.saturating_add(1);
+            if self.bad_samples >= self.cfg.range_fault_samples {
+                self.latch(input_fault);
+            }
+        } else if !self.latched.is_fault() {
+            self.bad_samples = 0;
+        }
+        if cmd.flags.contains(Flags::FAIL_SAFE) {
+            self.stats.failsafe_periods = self.stats.failsafe_periods.saturating_add(1);
+        }
+        cmd.flags |= self.latched;
+        cmd
+    }
+
+    fn check_stuck(&mut self, x_mm: f32, v_measured_m_s: Option<f32>) {
+        if self.cfg.stuck_samples == 0 {
+            return;
+        }
+        let moving = match v_measured_m_s {
+            Some(v) => v.is_finite() && math::abs(v) >= self.cfg.stuck_min_speed_m_s,
+            None => false,
+        };
+        // Bit-identical: a real moving sensor changes by at least one LSB.
+        let unchanged = x_mm.to_bits() == self.last_x_mm.to_bits();
+        self.last_x_mm = x_mm;
+        if moving && unchanged {
+            self.unchanged_moving = self.unchanged_moving.saturating_add(1);
+            if self.unchanged_moving >= self.cfg.stuck_samples {
+                self.latch(Flags::SENSOR_STUCK);
+            }
+        } else {
+            self.unchanged_moving = 0;
+        }
+    }
+
+    /// Call once per period after the step, with whether the period's work
+    /// finished after the next tick was due.
+    pub fn end_period(&mut self, overran: bool) {
+        if overran {
+            self.stats.overruns = self.stats.overruns.saturating_add(1);
+            self.window_overruns = self.window_overruns.saturating_add(1);
+            if self.window_overruns >= self.cfg.overrun_limit {
+                self.latch(Flags::OVERRUN);
+            }
+        }
+        self.window_periods = self.window_periods.saturating_add(1);
+        if self.window_periods >= self.cfg.overrun_window {
+            self.window_periods = 0;
+            self.window_overruns = 0;
+        }
+    }
+
+    /// Adds ticks that were missed entirely (the ticker skipped them).
+    pub fn record_missed_periods(&mut self, missed: u32) {
+        for _ in 0..missed.min(u32::from(self.cfg.overrun_limit)) {
+            self.end_period(true);
+        }
+        let extra = missed.saturating_sub(u32::from(self.cfg.overrun_limit));
+        self.stats.overruns = self.stats.overruns.saturating_add(extra);
+    }
+
+    /// Cycle count of one step (DWT CYCCNT on the board).
+    pub fn record_step_cycles(&mut self, cycles: u32) {
+        let s = &mut self.stats;
+        if s.step_cycles_count == 0 || cycles < s.step_cycles_min {
+            s.step_cycles_min = cycles;
+        }
+        s.step_cycles_max = s.step_cycles_max.max(cycles);
+        s.step_cycles_sum = s.step_cycles_sum.saturating_add(u64::from(cycles));
+        s.step_cycles_count = s.step_cycles_count.saturating_add(1);
+    }
+}
+
+/// PWM duty for a coil current without current feedback: the coil draws
+/// `duty · full_scale_a` on average (duty ∈ [0, 1]).
+#[inline]
+pub fn open_loop_duty(current_a: f32, full_scale_a: f32) -> f32 {
+    if full_scale_a.is_nan() || full_scale_a <= 0.0 {
+        return 0.0;
+    }
+    math::clamp(current_a / full_scale_a, 0.0, 1.0)
+}
+
+/// PI current loop: coil current setpoint and measured current in, PWM duty
+/// out. Feed-forward is the open-loop duty, so the integrator only trims the
+/// coil's resistance drift and supply sag. Anti-windup: the integral is
+/// clamped so that feed-forward + integral stays within the duty range.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CurrentLoop {
+    kp_per_a: f32,
+    ki_per_a_s: f32,
+    period_s: f32,
+    full_scale_a: f32,
+    integral: f32,
+}
+
+impl CurrentLoop {
+    /// Non-finite or negative gains become 0 (pure feed-forward).
+    pub fn new(kp_per_a: f32, ki_per_a_s: f32, period_s: f32, full_scale_a: f32) -> Self {
+        let sane = |g: f32| if g.is_finite() && g > 0.0 { g } else { 0.0 };
+        Self {
+            kp_per_a: sane(kp_per_a),
+            ki_per_a_s: sane(ki_per_a_s),
+            period_s: sane(period_s),
+            full_scale_a: sane(full_scale_a),
+            integral: 0.0,
+        }
+    }
+
+    /// Duty ∈ [0, 1]. A non-finite measurement falls back to feed-forward
+    /// and freezes the integrator.
+    pub fn update(&mut self, setpoint_a: f32, measured_a: f32) -> f32 {
+        let ff = open_loop_duty(setpoint_a, self.full_scale_a);
+        if !measured_a.is_finite() || !setpoint_a.is_finite() {
+            return ff;
+        }
+        let error_a = setpoint_a - measured_a;
+        self.integral = math::clamp(self.integral + self.ki_per_a_s * self.period_s * error_a, -ff, 1.0 - ff);
+        math::clamp(ff + self.kp_per_a * error_a + self.integral, 0.0, 1.0)
+    }
+
+    pub fn integral(&self) -> f32 {
+        self.integral
+    }
+}

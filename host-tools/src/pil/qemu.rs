@@ -1,0 +1,139 @@
+//! Finds QEMU and the `pil` firmware image, starts QEMU, and connects.
+use super::link::PilLink;
+use anyhow::{bail, Context, Result};
+use std::net::{TcpListener, TcpStream};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, ExitStatus, Stdio};
+use std::time::{Duration, Instant};
+
+/// `qemu-system-arm` from `$MRE_QEMU` or the PATH.
+pub fn qemu_binary() -> Option<PathBuf> {
+    if let Some(p) = std::env::var_os("MRE_QEMU") {
+        return Some(PathBuf::from(p));
+    }
+    std::env::var_os("PATH")?
+        .to_str()?
+        .split(':')
+        .map(|dir| Path::new(dir).join("qemu-system-arm"))
+        .find(|p| p.is_file())
+}
+
+/// How to install QEMU 10 (the `b-l475e-iot01a` machine is not in bookworm's 7.2).
+pub const INSTALL_HINT: &str = "install qemu-system-arm ≥ 9 (Debian bookworm: \
+    echo 'deb http://deb.debian.org/debian bookworm-backports main' > /etc/apt/sources.list.d/backports.list \
+    && apt-get update && apt-get install -y -t bookworm-backports qemu-system-arm)";
+
+/// The workspace root (this crate's parent directory).
+pub fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_default()
+}
+
+/// Where `cargo fw-pil` puts the image, or `$MRE_PIL_ELF`.
+pub fn default_elf() -> PathBuf {
+    match std::env::var_os("MRE_PIL_ELF") {
+        Some(p) => PathBuf::from(p),
+        None => workspace_root().join("target/pil/thumbv7em-none-eabihf/release/mre-firmware"),
+    }
+}
+
+/// Builds the PIL image (`cargo fw-pil`, its own target dir, so it never
+/// waits on the lock of a running `cargo test`). Returns its path.
+pub fn build_firmware() -> Result<PathBuf> {
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let status = Command::new(cargo)
+        .current_dir(workspace_root())
+        .args(["fw-pil", "--quiet"])
+        .status()
+        .context("running cargo fw-pil")?;
+    if !status.success() {
+        bail!("cargo fw-pil failed: {status}");
+    }
+    Ok(workspace_root().join("target/pil/thumbv7em-none-eabihf/release/mre-firmware"))
+}
+
+/// A running QEMU with the firmware; killed on drop.
+pub struct Qemu {
+    child: Child,
+}
+
+impl Qemu {
+    /// Starts `elf` on the `b-l475e-iot01a` machine with USART1 on a local
+    /// TCP socket and connects to it. defmt (semihosting) output goes to
+    /// `log` (binary defmt frames; decode with `defmt-print -e ELF`).
+    pub fn start(qemu: &Path, elf: &Path, log: Option<&Path>) -> Result<(Qemu, PilLink)> {
+        if !elf.is_file() {
+            bail!(
+                "firmware image {} not found: build it with `cargo fw-pil`",
+                elf.display()
+            );
+        }
+        // Ask the OS for a free port; QEMU binds it right after.
+        let port = TcpListener::bind("127.0.0.1:0")?.local_addr()?.port();
+        let stdout = match log {
+            Some(p) => Stdio::from(std::fs::File::create(p).with_context(|| format!("creating {}", p.display()))?),
+            None => Stdio::null(),
+        };
+        // stderr to a file, not a pipe: an undrained pipe could stall QEMU.
+        let mut errors = tempfile::tempfile().context("temporary file for QEMU's stderr")?;
+        let child = Command::new(qemu)
+            .args(["-M", "b-l475e-iot01a", "-nographic", "-monitor", "none"])
+            .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
+            .arg(elf)
+            .arg("-chardev")
+            .arg(format!(
+                "socket,id=u1,host=127.0.0.1,port={port},server=on,wait=on,nodelay=on"
+            ))
+            .args(["-serial", "chardev:u1"])
+            .stdin(Stdio::null())
+            .stdout(stdout)
+            .stderr(Stdio::from(errors.try_clone()?))
+            .spawn()
+            .with_context(|| format!("starting {}", qemu.display()))?;
+        let mut qemu = Qemu { child };
+        let deadline = Instant::now() + Duration::from_secs(20);
+        loop {
+            match TcpStream::connect(("127.0.0.1", port)) {
+                Ok(stream) => return Ok((qemu, PilLink::new(stream)?)),
+                Err(e) => {
+                    if let Some(status) = qemu.child.try_wait()? {
+                        use std::io::{Read, Seek};
+                        let mut err = String::new();
+                        errors.rewind().ok();
+                        errors.read_to_string(&mut err).ok();
+                        bail!("QEMU exited ({status}) before the link came up: {err}");
+                    }
+                    if Instant::now() > deadline {
+                        bail!("cannot connect to QEMU's USART1 socket on port {port}: {e}");
+                    }
+                    std::thread::sleep(Duration::from_millis(50));
+                }
+            }
+        }
+    }
+
+    /// Waits for QEMU to exit (after [`PilLink::end_of_run`]).
+    pub fn wait(mut self, timeout: Duration) -> Result<ExitStatus> {
+        let deadline = Instant::now() + timeout;
+        loop {
+            if let Some(status) = self.child.try_wait()? {
+                return Ok(status);
+            }
+            if Instant::now() > deadline {
+                bail!("QEMU did not exit within {timeout:?}");
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+}
+
+impl Drop for Qemu {
+    fn drop(&mut self) {
+        if let Ok(None) = self.child.try_wait() {
+            self.child.kill().ok();
+            self.child.wait().ok();
+        }
+    }
+}

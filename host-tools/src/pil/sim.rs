@@ -1,0 +1,223 @@
+//! `mre pil`: the drop-test comparison of `mre sim` (passive 0 A, passive
+//! 2 A, controlled) with the controlled run closed through the real firmware
+//! in QEMU. The same controlled run is repeated in process with the core
+//! linked directly; the two must agree sample for sample, which shows that
+//! the firmware's I/O path (frames, USART, task) adds no error.
+use super::link::PilLink;
+use super::qemu::{qemu_binary, Qemu, INSTALL_HINT};
+use crate::plant::closed_loop::{
+    fit_controller_table, law_config, setup_for, Comparison, RunResult, RunSpec, SimRequest, SimSetup, DEFAULT_RUNS,
+};
+use crate::plant::stepper::{simulate, CurrentSource, Trajectory};
+use anyhow::{anyhow, bail, Context, Result};
+use mre_core::control::{ControlConfig, Controller};
+use mre_core::frame::SampleFrame;
+use mre_core::law::LawConfig;
+use mre_core::table::Table;
+use serde::Serialize;
+use std::cell::RefCell;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+/// What `mre pil` was asked for.
+#[derive(Clone, Debug)]
+pub struct PilRequest {
+    pub sim: SimRequest,
+    /// The `pil` firmware image; default: build it (`cargo fw-pil`).
+    pub elf: Option<PathBuf>,
+}
+
+/// How closely the firmware run matched the in-process run.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
+pub struct Agreement {
+    pub samples: usize,
+    pub bit_identical_commands: usize,
+    pub max_command_diff_a: f64,
+    pub max_displacement_diff_mm: f64,
+    pub frames: u64,
+}
+
+impl Agreement {
+    /// Within f32 rounding: commands within 1e-6 A, trajectories within 1e-9 mm.
+    pub fn agrees(&self) -> bool {
+        self.samples > 0 && self.max_command_diff_a <= 1.0e-6 && self.max_displacement_diff_mm <= 1.0e-9
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct PilOutcome {
+    pub comparison: Comparison,
+    /// Firmware (QEMU) vs the same `Controller` in process.
+    pub agreement: Agreement,
+    /// Firmware vs `mre sim --controlled` (the core's `ImpactLaw` in process).
+    pub agreement_with_sim: Agreement,
+}
+
+/// The firmware's configuration for this drop: the law `mre sim` runs, at
+/// the drop's control rate.
+pub fn control_config(setup: &SimSetup) -> Result<ControlConfig> {
+    let rate_hz = (1.0 / setup.impact.control_period_s).round() as u32;
+    let mut cfg = ControlConfig::at_rate(rate_hz).map_err(|e| anyhow!("control rate {rate_hz} Hz: {e:?}"))?;
+    cfg.law = LawConfig {
+        period_s: cfg.law.period_s,
+        ..law_config(setup)
+    };
+    cfg.validate().map_err(|e| anyhow!("control configuration: {e:?}"))?;
+    Ok(cfg)
+}
+
+/// The controlled drop with the firmware's control code linked in process.
+pub fn run_in_process(setup: &SimSetup, table: &Table, cfg: &ControlConfig) -> Result<Trajectory> {
+    let mut ctl = Controller::new(*cfg, Ok(*table)).map_err(|e| anyhow!("controller: {e:?}"))?;
+    let controller = move |x_mm: f32, v_m_s: f32| {
+        let current_a = ctl.step_sample(x_mm, Some(v_m_s)).current_a;
+        ctl.end_period(false);
+        current_a
+    };
+    simulate(
+        &setup.plant,
+        &setup.impact,
+        CurrentSource::Controller(Box::new(controller)),
+    )
+}
+
+/// The controlled drop with the firmware in QEMU in the loop.
+pub fn run_firmware(setup: &SimSetup, table: &Table, cfg: &ControlConfig, elf: &Path) -> Result<(Trajectory, u64)> {
+    let qemu_bin = qemu_binary().ok_or_else(|| anyhow!("qemu-system-arm not found: {INSTALL_HINT}"))?;
+    let (qemu, mut link): (Qemu, PilLink) = Qemu::start(&qemu_bin, elf, None)?;
+    link.upload_config(table, cfg)?;
+    let error = RefCell::new(None);
+    let mut seq = 0u32;
+    let failsafe_a = cfg.law.failsafe_current_a;
+    let trajectory = {
+        let link = &mut link;
+        let error = &error;
+        let controller = move |x_mm: f32, v_m_s: f32| {
+            seq += 1;
+            match link.exchange(&SampleFrame {
+                seq,
+                x_mm,
+                v_m_s: Some(v_m_s),
+                force_n: None,
+            }) {
+                Ok(cmd) => cmd.current_a,
+                Err(e) => {
+                    error.borrow_mut().get_or_insert(e);
+                    failsafe_a
+                }
+            }
+        };
+        simulate(
+            &setup.plant,
+            &setup.impact,
+            CurrentSource::Controller(Box::new(controller)),
+        )?
+    };
+    if let Some(e) = error.into_inner() {
+        return Err(e.context("PIL link failed during the drop"));
+    }
+    let frames = link.frames();
+    link.end_of_run()?;
+    let status = qemu.wait(Duration::from_secs(20))?;
+    if !status.success() {
+        bail!("firmware ended the run with {status}");
+    }
+    Ok((trajectory, frames))
+}
+
+pub fn compare(a: &Trajectory, b: &Trajectory, frames: u64) -> Agreement {
+    let mut ag = Agreement {
+        samples: a.samples.len().min(b.samples.len()),
+        bit_identical_commands: 0,
+        max_command_diff_a: if a.samples.len() == b.samples.len() {
+            0.0
+        } else {
+            f64::INFINITY
+        },
+        max_displacement_diff_mm: 0.0,
+        frames,
+    };
+    for (p, q) in a.samples.iter().zip(&b.samples) {
+        if p.command_a.to_bits() == q.command_a.to_bits() {
+            ag.bit_identical_commands += 1;
+        }
+        ag.max_command_diff_a = ag.max_command_diff_a.max((p.command_a - q.command_a).abs());
+        ag.max_displacement_diff_mm = ag.max_displacement_diff_mm.max((p.x_mm - q.x_mm).abs());
+    }
+    ag
+}
+
+/// `mre pil`: runs the comparison with the controlled run in QEMU, checks it
+/// against the in-process runs, and writes the `mre sim` report plus
+/// `pil.json` into `report_dir`.
+pub fn run_pil(request: &PilRequest, report_dir: &Path) -> Result<PilOutcome> {
+    let setup = setup_for(&request.sim)?;
+    let mut specs = if request.sim.runs.is_empty() {
+        DEFAULT_RUNS.to_vec()
+    } else {
+        request.sim.runs.clone()
+    };
+    if !specs.contains(&RunSpec::Controlled) {
+        specs.push(RunSpec::Controlled);
+    }
+    let elf = match &request.elf {
+        Some(p) => p.clone(),
+        None => super::qemu::build_firmware()?,
+    };
+    let table = fit_controller_table(&setup.plant, &setup.impact, setup.usable_stroke_mm)?;
+    let cfg = control_config(&setup)?;
+
+    let (firmware, frames) = run_firmware(&setup, &table, &cfg, &elf)?;
+    let host = run_in_process(&setup, &table, &cfg)?;
+    let sim = crate::plant::closed_loop::run_controlled(&setup, &table)?;
+    let agreement = compare(&firmware, &host, frames);
+    let agreement_with_sim = compare(&firmware, &sim, frames);
+
+    let mut runs = Vec::new();
+    for &spec in &specs {
+        let trajectory = match spec {
+            RunSpec::Passive(a) => simulate(&setup.plant, &setup.impact, CurrentSource::Constant(a))?,
+            RunSpec::Controlled => firmware.clone(),
+        };
+        let summary = trajectory.summary;
+        runs.push(RunResult {
+            spec,
+            label: match spec {
+                RunSpec::Controlled => "controlled (firmware in QEMU)".to_owned(),
+                _ => spec.label(),
+            },
+            summary,
+            usable_stroke_mm: setup.usable_stroke_mm,
+            within_stroke: summary.max_stroke_mm <= setup.usable_stroke_mm,
+            trajectory,
+        });
+    }
+    let controlled = runs.iter().find(|r| r.spec == RunSpec::Controlled);
+    let reference = runs
+        .iter()
+        .filter(|r| matches!(r.spec, RunSpec::Passive(_)) && r.within_stroke)
+        .min_by(|a, b| a.summary.peak_force_n.total_cmp(&b.summary.peak_force_n));
+    let controlled_vs_passive = match (controlled, reference) {
+        (Some(c), Some(p)) => Some((
+            p.label.clone(),
+            100.0 * (1.0 - c.summary.peak_force_n / p.summary.peak_force_n),
+        )),
+        _ => None,
+    };
+    let comparison = Comparison {
+        runs,
+        controlled_vs_passive,
+    };
+    crate::plant::sim_report::write_sim_report(&comparison, report_dir)?;
+    let json = serde_json::json!({ "firmware_vs_in_process": agreement, "firmware_vs_mre_sim": agreement_with_sim });
+    crate::atomic_write::write_atomic_with(&report_dir.join("pil.json"), |buf| {
+        serde_json::to_writer_pretty(&mut *buf, &json)?;
+        Ok(())
+    })
+    .context("writing pil.json")?;
+    Ok(PilOutcome {
+        comparison,
+        agreement,
+        agreement_with_sim,
+    })
+}
