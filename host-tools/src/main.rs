@@ -96,6 +96,25 @@ enum Command {
         #[arg(long, value_delimiter = ',')]
         hold_out_current: Vec<f64>,
     },
+    /// GSA performance index against iterations and agents (the paper's Figs. 13/14).
+    Sweep {
+        dataset: PathBuf,
+        /// Agents for the iteration sweep.
+        #[arg(long, default_value_t = 100)]
+        agents: usize,
+        /// Iterations for the agent sweep.
+        #[arg(long, default_value_t = 100)]
+        iters: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        #[arg(long, default_value = "data")]
+        bounds: mre_host::fit::bounds::BoundsChoice,
+        #[arg(long, value_delimiter = ',')]
+        hold_out_current: Vec<f64>,
+        /// Output folder (sweep.csv and the figures).
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Generate the firmware's flash table (Rust source with CRC) from a model file.
     Tables {
         /// Model file from `mre fit` (or any table file).
@@ -238,9 +257,9 @@ fn run(cli: Cli) -> Result<()> {
             let run = mre_host::fit::run_fit(&dataset, &options, &hold_out_current, &out)?;
             print!("{}", mre_host::fit::summary_markdown(&run.fits));
             println!(
-                "fitted {} branches in {:.3} s; wrote {}",
+                "fitted {} branches in {:.3} ms; wrote {}",
                 run.fits.len(),
-                run.fit_seconds,
+                run.fit_seconds * 1e3,
                 out.display()
             );
         }
@@ -268,6 +287,29 @@ fn run(cli: Cli) -> Result<()> {
             for f in files {
                 println!("wrote {}.png and .svg", f.display());
             }
+        }
+        Command::Sweep {
+            dataset,
+            agents,
+            iters,
+            seed,
+            bounds,
+            hold_out_current,
+            out,
+        } => {
+            let base = mre_host::fit::FitOptions {
+                gsa: mre_host::fit::gsa::GsaParams {
+                    agents,
+                    iters,
+                    seed,
+                    ..Default::default()
+                },
+                bounds,
+                ..Default::default()
+            };
+            let s = mre_host::fit::sweep::run_sweep(&dataset, &base, &hold_out_current, &out)?;
+            print!("{}", mre_host::fit::sweep::to_csv(&s));
+            println!("wrote {}/sweep.csv and the Fig. 13/14 plots", out.display());
         }
         Command::Tables { model, out } => {
             let table = mre_host::tables::run_tables(&model, &out)?;

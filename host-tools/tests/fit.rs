@@ -206,3 +206,26 @@ fn both_reports_gap_and_model_file_is_a_table() {
     let back: mre_host::fit::model_file::ModelFile = toml::from_str(&text).unwrap();
     assert_eq!(back, model);
 }
+
+#[test]
+fn sweep_reports_an_index_at_or_above_the_optimum() {
+    let (x_mm, force_n) = synthetic(&PAPER_1A_C, 200, 10.0, 8);
+    let problems = vec![BranchProblem {
+        current_a: 0.0,
+        branch: Branch::Compression,
+        samples: BranchSamples { x_mm, force_n },
+    }];
+    let s = mre_host::fit::sweep::sweep(&problems, &FitOptions::default(), &[2, 8], &[4, 12]).unwrap();
+    assert_eq!(
+        s.vs_iters.iter().map(|p| (p.agents, p.iters)).collect::<Vec<_>>(),
+        [(100, 2), (100, 8)]
+    );
+    assert_eq!(
+        s.vs_agents.iter().map(|p| (p.agents, p.iters)).collect::<Vec<_>>(),
+        [(4, 100), (12, 100)]
+    );
+    for p in s.vs_iters.iter().chain(&s.vs_agents) {
+        assert!(p.mean_gsa_over_lsq >= 1.0 - 1e-9);
+    }
+    assert_eq!(mre_host::fit::sweep::to_csv(&s).lines().count(), 5);
+}

@@ -125,11 +125,7 @@ pub fn minimize(
                 if j == i {
                     continue;
                 }
-                let mut r2 = 0.0;
-                for d in 0..D {
-                    let diff = x[j][d] - x[i][d];
-                    r2 += diff * diff;
-                }
+                let r2: f64 = x[j].iter().zip(&x[i]).map(|(a, b)| (a - b) * (a - b)).sum();
                 let w = rng.random::<f64>() * mass[j] / (r2.sqrt() + eps);
                 for d in 0..D {
                     acc[d] += w * (x[j][d] - x[i][d]);

@@ -7,6 +7,7 @@ pub mod model_file;
 pub mod objective;
 pub mod poly;
 pub mod problems;
+pub mod sweep;
 
 use anyhow::{Context, Result};
 use bounds::{BoundsChoice, SearchBox};

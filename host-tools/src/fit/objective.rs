@@ -41,6 +41,8 @@ impl BranchMoments {
             }
             sum_f2 += f * f;
         }
+        // Mirror the upper triangle.
+        #[allow(clippy::needless_range_loop)]
         for j in 0..5 {
             for k in 0..j {
                 m[j][k] = m[k][j];

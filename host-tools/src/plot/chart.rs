@@ -78,7 +78,7 @@ fn ranges(chart: &Chart) -> Result<((f64, f64), (f64, f64))> {
         y0 = y0.min(y);
         y1 = y1.max(y);
     }
-    if !(x0 < x1) || !y0.is_finite() {
+    if x0.partial_cmp(&x1) != Some(std::cmp::Ordering::Less) || !y0.is_finite() {
         return Err(anyhow!("chart `{}` has no data to plot", chart.title));
     }
     let pad = |a: f64, b: f64| {

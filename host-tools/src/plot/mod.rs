@@ -4,6 +4,7 @@
 //! (Figs. 13/14).
 pub mod chart;
 pub mod figures;
+pub mod sweep;
 
 pub use chart::{render, Chart, Series, Style, PALETTE};
 pub use figures::{run_plot, PlotOptions};
