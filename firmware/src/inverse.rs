@@ -9,7 +9,7 @@
 //! force is returned and flagged `SATURATED_HIGH` or `SATURATED_LOW`.
 use crate::flags::Flags;
 use crate::model::Branch;
-use crate::table::{Table, MAX_CURRENTS};
+use crate::table::{CurrentEntry, Table};
 
 /// A current with the flags that qualify it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -21,64 +21,42 @@ pub struct CurrentResult {
 impl Table {
     /// Lowest current whose interpolated force on `branch` at `x_mm` equals
     /// `target_force_n`; see the module docs for the saturated cases.
+    ///
+    /// One pass from the lowest current up: each entry's quartic is evaluated
+    /// only when the scan reaches it, and the pass stops at the first segment
+    /// that brackets the target, keeping the nearest force seen for the
+    /// unreachable case. When x lies in every entry's stroke
+    /// (the usual case) the per-entry clamps are skipped.
     pub fn current_for_branch(&self, x_mm: f32, branch: Branch, target_force_n: f32) -> CurrentResult {
         let entries = self.entries();
-        let (lowest_a, _) = self.current_range_a();
+        let Some(first) = entries.first() else {
+            return CurrentResult {
+                current_a: 0.0,
+                flags: Flags::TABLE_FAULT,
+            };
+        };
         if !target_force_n.is_finite() {
             return CurrentResult {
-                current_a: lowest_a,
+                current_a: first.current_a,
                 flags: Flags::NON_FINITE_INPUT,
             };
         }
-
-        let mut flags = Flags::NONE;
-        let mut forces = [0f32; MAX_CURRENTS];
-        for (slot, entry) in forces.iter_mut().zip(entries) {
-            let r = entry.force_n(x_mm, branch);
-            flags |= r.flags;
-            *slot = r.force_n;
-        }
-        let forces = forces.get(..entries.len()).unwrap_or(&[]);
-
-        // First segment that brackets the target, from the lowest current up.
-        let mut previous: Option<(f32, f32)> = None;
-        for (entry, &force) in entries.iter().zip(forces) {
-            if force == target_force_n {
-                return CurrentResult {
-                    current_a: entry.current_a,
-                    flags,
-                };
-            }
-            if let Some((i0, f0)) = previous {
-                if (f0 < target_force_n) != (force < target_force_n) {
-                    let t = (target_force_n - f0) / (force - f0);
-                    let current_a = i0 + t * (entry.current_a - i0);
-                    return CurrentResult { current_a, flags };
-                }
-            }
-            previous = Some((entry.current_a, force));
-        }
-
-        // Unreachable: the nearest force is the largest or smallest knot.
-        let above_all = forces.iter().all(|&f| f < target_force_n);
-        let mut best: Option<(f32, f32)> = None;
-        for (entry, &force) in entries.iter().zip(forces) {
-            let better = match best {
-                None => true,
-                Some((_, best_force)) if above_all => force > best_force,
-                Some((_, best_force)) => force < best_force,
+        if self.in_shared_stroke(x_mm) {
+            return match branch {
+                Branch::Compression => solve(entries, target_force_n, |e| e.compression.eval(x_mm)),
+                Branch::Extension => solve(entries, target_force_n, |e| e.extension.eval(x_mm)),
             };
-            if better {
-                best = Some((entry.current_a, force));
-            }
         }
-        flags |= if above_all {
-            Flags::SATURATED_HIGH
+        // Some entry clamps x. A non-finite x is evaluated at each entry's
+        // x_min, as the forward model does (and flagged as non-finite only).
+        let (x_mm, flag) = if x_mm.is_finite() {
+            (x_mm, Flags::X_CLAMPED)
         } else {
-            Flags::SATURATED_LOW
+            (f32::NEG_INFINITY, Flags::NON_FINITE_INPUT)
         };
-        let current_a = best.map_or(lowest_a, |(current_a, _)| current_a);
-        CurrentResult { current_a, flags }
+        let mut r = solve(entries, target_force_n, |e| e.force_n(x_mm, branch).force_n);
+        r.flags |= flag;
+        r
     }
 
     /// [`Table::current_for_branch`] with the branch from the sign of `v_m_s`.
@@ -88,5 +66,58 @@ impl Table {
             r.flags |= Flags::NON_FINITE_INPUT;
         }
         r
+    }
+}
+
+/// The inverse over entries whose force at the fixed x is `force_at`.
+#[inline(always)]
+fn solve(
+    entries: &[CurrentEntry],
+    target_force_n: f32,
+    mut force_at: impl FnMut(&CurrentEntry) -> f32,
+) -> CurrentResult {
+    let Some(first) = entries.first() else {
+        return CurrentResult {
+            current_a: 0.0,
+            flags: Flags::TABLE_FAULT,
+        };
+    };
+    let mut f0 = force_at(first);
+    let mut i0 = first.current_a;
+    if f0 == target_force_n {
+        return CurrentResult {
+            current_a: i0,
+            flags: Flags::NONE,
+        };
+    }
+    let below = f0 < target_force_n;
+    // Until a crossing, every force lies on the `below` side of the target,
+    // so the nearest one so far is the largest (below) or smallest (above).
+    // Ties keep the lowest current.
+    let mut nearest = (i0, f0);
+    for entry in entries.iter().skip(1) {
+        let force = force_at(entry);
+        // A sign change, or touching the target from above.
+        if (force < target_force_n) != below || force == target_force_n {
+            let t = (target_force_n - f0) / (force - f0);
+            return CurrentResult {
+                current_a: i0 + t * (entry.current_a - i0),
+                flags: Flags::NONE,
+            };
+        }
+        if (below && force > nearest.1) || (!below && force < nearest.1) {
+            nearest = (entry.current_a, force);
+        }
+        f0 = force;
+        i0 = entry.current_a;
+    }
+    let side = if below {
+        Flags::SATURATED_HIGH
+    } else {
+        Flags::SATURATED_LOW
+    };
+    CurrentResult {
+        current_a: nearest.0,
+        flags: side,
     }
 }

@@ -139,6 +139,11 @@ pub struct Table {
     len: usize,
     entries: [CurrentEntry; MAX_CURRENTS],
     crc32: u32,
+    /// The stroke every entry was fitted on (the intersection of their
+    /// ranges; empty if they share none). Inside it no x needs clamping, which
+    /// lets the inverse skip per-entry clamps on its hot path.
+    shared_x_min_mm: f32,
+    shared_x_max_mm: f32,
 }
 
 impl Table {
@@ -150,9 +155,13 @@ impl Table {
             len: entries.len(),
             entries: [CurrentEntry::ZERO; MAX_CURRENTS],
             crc32: content_crc(FORMAT_VERSION, entries),
+            shared_x_min_mm: f32::NEG_INFINITY,
+            shared_x_max_mm: f32::INFINITY,
         };
         for (slot, entry) in table.entries.iter_mut().zip(entries) {
             *slot = *entry;
+            table.shared_x_min_mm = table.shared_x_min_mm.max(entry.x_min_mm);
+            table.shared_x_max_mm = table.shared_x_max_mm.min(entry.x_max_mm);
         }
         Ok(table)
     }
@@ -188,6 +197,13 @@ impl Table {
 
     pub fn crc32(&self) -> u32 {
         self.crc32
+    }
+
+    /// True when `x_mm` lies in every entry's fitted stroke (so no entry
+    /// clamps it). False for NaN.
+    #[inline]
+    pub fn in_shared_stroke(&self, x_mm: f32) -> bool {
+        x_mm >= self.shared_x_min_mm && x_mm <= self.shared_x_max_mm
     }
 
     /// Lowest and highest tabulated current.

@@ -366,10 +366,25 @@ fn run(cli: Cli) -> Result<()> {
             print!("{}", mre_host::plant::sim_report::summary_table(&cmp));
             println!("report: {}", report.join("summary.md").display());
         }
-        Command::Pil { current, effect, seed, velocity, mass, elf, report } => {
+        Command::Pil {
+            current,
+            effect,
+            seed,
+            velocity,
+            mass,
+            elf,
+            report,
+        } => {
             use mre_host::plant::closed_loop::{RunSpec, SimRequest};
             let runs = current.iter().map(|c| RunSpec::parse(c)).collect::<Result<Vec<_>>>()?;
-            let sim = SimRequest { runs, effect, seed, impact_velocity_m_s: velocity, mass_kg: mass, coil_lag_s: None };
+            let sim = SimRequest {
+                runs,
+                effect,
+                seed,
+                impact_velocity_m_s: velocity,
+                mass_kg: mass,
+                coil_lag_s: None,
+            };
             let out = mre_host::pil::sim::run_pil(&mre_host::pil::sim::PilRequest { sim, elf }, &report)?;
             print!("{}", mre_host::plant::sim_report::summary_table(&out.comparison));
             let a = out.agreement;

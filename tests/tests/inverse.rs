@@ -79,3 +79,23 @@ proptest! {
         prop_assert!((back - target).abs() <= 0.05 + 1e-5 * target.abs(), "{back} vs {target}");
     }
 }
+
+proptest! {
+    /// Outside the stroke every entry shares, entries clamp x one by one; the
+    /// inverse must still invert the forward model there, and say it clamped.
+    #[test]
+    fn inverse_of_forward_holds_where_entries_clamp(
+        x_mm in 0.9f32..=1.6,
+        current_a in 0.0f32..=2.0,
+        compression in any::<bool>(),
+    ) {
+        let t = paper();
+        let branch = if compression { Branch::Compression } else { Branch::Extension };
+        let target = t.force_on_branch(x_mm, branch, current_a).force_n;
+        let r = t.current_for_branch(x_mm, branch, target);
+        prop_assert!(r.flags.contains(Flags::X_CLAMPED), "2 A's stroke ends at 0.8819 mm");
+        prop_assert!(!r.flags.intersects(Flags::SATURATED_HIGH | Flags::SATURATED_LOW));
+        let back = t.force_on_branch(x_mm, branch, r.current_a).force_n;
+        prop_assert!((back - target).abs() <= 0.05 + 1e-5 * target.abs(), "{back} vs {target}");
+    }
+}
