@@ -51,7 +51,7 @@ fn gsa_by_samples(problems: &[BranchProblem], params: &GsaParams) -> f64 {
                 |c| rmse_by_samples(x, f, c),
                 &b,
                 params,
-                &mut branch_rng(params.seed, i),
+                &mut branch_rng(params.seed, branch_stream(p.current_a, p.branch)),
                 || {},
             )
             .best_value
