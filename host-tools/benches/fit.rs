@@ -9,7 +9,7 @@ use mre_host::fit::bounds::data_bounds;
 use mre_host::fit::gsa::{minimize, GsaParams};
 use mre_host::fit::objective::rmse_by_samples;
 use mre_host::fit::problems::{branch_problems, BranchProblem};
-use mre_host::fit::{branch_rng, fit_branches, FitOptions, Method};
+use mre_host::fit::{branch_rng, branch_stream, fit_branches, FitOptions, Method};
 use rayon::prelude::*;
 use std::hint::black_box;
 
@@ -44,15 +44,14 @@ fn paper_ten_branches() -> Vec<BranchProblem> {
 fn gsa_by_samples(problems: &[BranchProblem], params: &GsaParams) -> f64 {
     problems
         .par_iter()
-        .enumerate()
-        .map(|(i, p)| {
+        .map(|p| {
             let (x, f) = (&p.samples.x_mm, &p.samples.force_n);
             let b = data_bounds(x, f).expect("bounds");
             minimize(
                 |c| rmse_by_samples(x, f, c),
                 &b,
                 params,
-                &mut branch_rng(params.seed, i),
+                &mut branch_rng(params.seed, branch_stream(p.current_a, p.branch)),
                 || {},
             )
             .best_value

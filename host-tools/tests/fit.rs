@@ -229,3 +229,33 @@ fn sweep_reports_an_index_at_or_above_the_optimum() {
     }
     assert_eq!(mre_host::fit::sweep::to_csv(&s).lines().count(), 5);
 }
+
+#[test]
+fn a_failed_fit_leaves_an_existing_model_file_untouched() {
+    let data = tempfile::tempdir().unwrap();
+    std::fs::write(
+        data.path().join("dataset.toml"),
+        "[[recording]]\nfile = \"a.csv\"\ncurrent_a = 0\n",
+    )
+    .unwrap();
+    std::fs::write(
+        data.path().join("a.csv"),
+        "time_s,displacement_mm,force_n\n0,0,1\n1,0,x\n",
+    )
+    .unwrap();
+    let out = tempfile::tempdir().unwrap();
+    let model = out.path().join("model.toml");
+    std::fs::write(&model, "previous contents").unwrap();
+    let err = mre_host::fit::run_fit(data.path(), &FitOptions::default(), &[], &model).unwrap_err();
+    assert!(
+        err.to_string()
+            .ends_with("line 3, column 3 (force_n): `x` is not a number"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read_to_string(&model).unwrap(), "previous contents");
+    assert_eq!(
+        std::fs::read_dir(out.path()).unwrap().count(),
+        1,
+        "no temporary file left behind"
+    );
+}

@@ -94,3 +94,42 @@ fn a_failed_plot_writes_nothing() {
     .is_err());
     assert_eq!(std::fs::read_dir(out.path()).unwrap().count(), 0);
 }
+
+#[test]
+fn whole_pipeline_on_a_synthetic_data_set() {
+    let data = tempfile::tempdir().unwrap();
+    synthetic_dataset(data.path());
+    let out = tempfile::tempdir().unwrap();
+    let model = out.path().join("model.toml");
+    let options = FitOptions {
+        gsa: mre_host::fit::gsa::GsaParams {
+            agents: 20,
+            iters: 20,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    mre_host::fit::run_fit(data.path(), &options, &[], &model).unwrap();
+    // The data follow the paper's 0 and 1 A quartics plus a ±20 N sine, so
+    // the fitted loops reproduce the recordings to about that (RMSE ≤ 20 N)…
+    let report =
+        mre_host::validate::run_validate(data.path(), model.to_str().unwrap(), &[], &out.path().join("report"))
+            .unwrap();
+    for r in report.recordings.iter().filter(|r| !r.interpolated) {
+        assert!(r.rmse_n < 20.0, "{}: {}", r.file, r.rmse_n);
+    }
+    // …and the 0.5 A recording is predicted by interpolation, not fitted.
+    let half = report.recordings.iter().find(|r| r.current_a == 0.5).unwrap();
+    assert!(half.interpolated && half.bracket.is_some());
+    assert!(out.path().join("report/report.md").is_file() && out.path().join("report/report.json").is_file());
+    let table = mre_host::tables::run_tables(&model, &out.path().join("generated_table.rs")).unwrap();
+    let src = std::fs::read_to_string(out.path().join("generated_table.rs")).unwrap();
+    assert!(src.contains(&format!("crc32: {:#010x},", table.crc32())));
+    let sweep_dir = out.path().join("sweep");
+    let problems =
+        mre_host::fit::problems::branch_problems(&mre_host::dataset::Dataset::load(data.path()).unwrap()).unwrap();
+    let s = mre_host::fit::sweep::sweep(&problems, &options, &[5, 10], &[5, 10]).unwrap();
+    mre_host::plot::sweep::render_sweep(&s, &options, &sweep_dir).unwrap();
+    assert!(sweep_dir.join("fig13_index_vs_iterations.png").is_file());
+    assert!(sweep_dir.join("fig14_index_vs_agents.svg").is_file());
+}

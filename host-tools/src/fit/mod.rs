@@ -108,12 +108,21 @@ impl BranchFit {
     }
 }
 
-/// Seeds are split per branch (ChaCha stream = branch index), so results do
-/// not depend on rayon's scheduling.
-pub fn branch_rng(seed: u64, index: usize) -> rand_chacha::ChaCha8Rng {
+/// One ChaCha stream per branch, so results depend neither on rayon's
+/// scheduling nor on which other branches are fitted (e.g. `--hold-out-current`).
+pub fn branch_rng(seed: u64, stream: u64) -> rand_chacha::ChaCha8Rng {
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    rng.set_stream(index as u64);
+    rng.set_stream(stream);
     rng
+}
+
+/// The stream of a (current, branch) pair: the current's bits, low bit = branch.
+pub fn branch_stream(current_a: f64, branch: Branch) -> u64 {
+    (current_a.to_bits() & !1)
+        | match branch {
+            Branch::Compression => 0,
+            Branch::Extension => 1,
+        }
 }
 
 /// Fits every branch in parallel (rayon).
@@ -129,8 +138,7 @@ pub fn fit_branches(problems: &[BranchProblem], options: &FitOptions) -> Result<
     };
     let fits = problems
         .par_iter()
-        .enumerate()
-        .map(|(index, p)| fit_one(index, p, options, bar.as_ref()))
+        .map(|p| fit_one(p, options, bar.as_ref()))
         .collect::<Result<Vec<_>>>();
     if let Some(bar) = bar {
         bar.finish_and_clear();
@@ -138,12 +146,7 @@ pub fn fit_branches(problems: &[BranchProblem], options: &FitOptions) -> Result<
     fits
 }
 
-fn fit_one(
-    index: usize,
-    p: &BranchProblem,
-    options: &FitOptions,
-    bar: Option<&indicatif::ProgressBar>,
-) -> Result<BranchFit> {
+fn fit_one(p: &BranchProblem, options: &FitOptions, bar: Option<&indicatif::ProgressBar>) -> Result<BranchFit> {
     let what = || format!("{} A, {} branch", p.current_a, branch_name(p.branch));
     let x = &p.samples.x_mm;
     let f = &p.samples.force_n;
@@ -162,7 +165,7 @@ fn fit_one(
         Method::Gsa | Method::Both => {
             let search_box = options.bounds.search_box(p.branch, x, f).with_context(what)?;
             let moments = BranchMoments::new(x, f);
-            let mut rng = branch_rng(options.gsa.seed, index);
+            let mut rng = branch_rng(options.gsa.seed, branch_stream(p.current_a, p.branch));
             let r = gsa::minimize(
                 |c| moments.rmse(c),
                 &search_box,
