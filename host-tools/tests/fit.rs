@@ -112,26 +112,32 @@ fn gsa_lands_within_ten_percent_of_the_optimum_at_damper_scale() {
 }
 
 #[test]
-fn gsa_at_paper_scale_improves_but_stays_far_from_the_optimum() {
-    // The published GSA moves an agent by at most ~G(t) ≤ G0 = 100 per
-    // iteration (Σ masses = 1, unit direction), so in a box 10⁴ wide (the
-    // paper's coefficients) it refines its best initial agents only. This is
-    // the gap `--method both` reports; here it must still improve and never
-    // beat the optimum.
+fn gsa_at_paper_scale_comes_near_the_optimum() {
+    // The paper's coefficients are ~10⁴ wide boxes next to ~10² ones. GSA runs
+    // on the box mapped to [−100, 100]⁵ (the scale its constants were tuned
+    // for), so it must improve on its initial agents, never beat the exact
+    // optimum, and, over several seeds, land within the stated factor.
     let (x, f) = synthetic(&PAPER_1A_C, 500, 20.0, 3);
     let optimum = fit_quartic(&x, &f).unwrap();
     let m = BranchMoments::new(&x, &f);
     let bounds = data_bounds(&x, &f).unwrap();
-    let r = minimize(
-        |c| m.rmse(c),
-        &bounds,
-        &GsaParams::default(),
-        &mut branch_rng(1, 0),
-        || {},
-    );
-    assert!(r.best_value < r.convergence[0]);
-    assert!(r.best_value > optimum.rmse_n);
+    for seed in 1..=5 {
+        let r = minimize(
+            |c| m.rmse(c),
+            &bounds,
+            &GsaParams::default(),
+            &mut branch_rng(seed, 0),
+            || {},
+        );
+        assert!(r.best_value < r.convergence[0]);
+        assert!(r.best_value >= optimum.rmse_n * (1.0 - 1e-9));
+        assert!(r.best_value < GSA_PAPER_SCALE_FACTOR * optimum.rmse_n, "seed {seed}");
+    }
 }
+
+/// Stated tolerance of GSA (N = T = 100) against the exact optimum at the
+/// paper's scale.
+const GSA_PAPER_SCALE_FACTOR: f64 = 20.0;
 
 #[test]
 fn gsa_is_reproducible_for_a_seed() {

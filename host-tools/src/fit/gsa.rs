@@ -17,6 +17,12 @@
 //! 7. bounds: a coordinate that left [lower, upper] is re-drawn uniformly
 //!    inside it (as Rashedi's reference code does); its velocity is kept.
 //!
+//! Coordinates: the algorithm runs on the search box mapped affinely onto
+//! [−100, 100]⁵, the range of Rashedi's benchmark functions for which G0 = 100
+//! and α = 20 were tuned; the objective sees the mapped-back coefficients. In
+//! raw coefficients (~10⁴ N/mm⁴ next to ~10 N) one G-sized step is negligible
+//! along some axes and huge along others, and the published constants stall.
+//!
 //! Agents start uniform in the box with zero velocity. Fitness that is not
 //! finite counts as the worst possible (f64::MAX). The result is the best
 //! agent ever evaluated; `convergence[t]` is the best-so-far after iteration t+1.
@@ -72,26 +78,32 @@ pub fn minimize(
     let n = params.agents.max(1);
     let t_max = params.iters.max(1);
     let eps = f64::EPSILON;
+    // Agent positions live in [−SPAN, SPAN]⁵; `to_box` maps them back.
+    const SPAN: f64 = 100.0;
+    let to_box = |u: &[f64; D]| -> [f64; D] {
+        std::array::from_fn(|d| bounds.lower[d] + (u[d] + SPAN) / (2.0 * SPAN) * (bounds.upper[d] - bounds.lower[d]))
+    };
     let mut x: Vec<[f64; D]> = (0..n)
-        .map(|_| std::array::from_fn(|d| bounds.lower[d] + rng.random::<f64>() * (bounds.upper[d] - bounds.lower[d])))
+        .map(|_| std::array::from_fn(|_| -SPAN + rng.random::<f64>() * 2.0 * SPAN))
         .collect();
     let mut v = vec![[0.0; D]; n];
     let mut fit = vec![0.0; n];
     let mut mass = vec![0.0; n];
     let mut order: Vec<usize> = (0..n).collect();
-    let mut best = x[0];
+    let mut best = to_box(&x[0]);
     let mut best_value = f64::INFINITY;
     let mut convergence = Vec::with_capacity(t_max);
     let mut evaluations = 0;
 
     for t in 1..=t_max {
         for (f, xi) in fit.iter_mut().zip(&x) {
-            let value = objective(xi);
+            let coeffs = to_box(xi);
+            let value = objective(&coeffs);
             evaluations += 1;
             *f = if value.is_finite() { value } else { f64::MAX };
             if *f < best_value {
                 best_value = *f;
-                best = *xi;
+                best = coeffs;
             }
         }
         convergence.push(best_value);
@@ -139,8 +151,8 @@ pub fn minimize(
         for (xi, vi) in x.iter_mut().zip(&v) {
             for d in 0..D {
                 xi[d] += vi[d];
-                if !(xi[d] >= bounds.lower[d] && xi[d] <= bounds.upper[d]) {
-                    xi[d] = bounds.lower[d] + rng.random::<f64>() * (bounds.upper[d] - bounds.lower[d]);
+                if !(-SPAN..=SPAN).contains(&xi[d]) {
+                    xi[d] = -SPAN + rng.random::<f64>() * 2.0 * SPAN;
                 }
             }
         }
