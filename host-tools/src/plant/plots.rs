@@ -1,22 +1,9 @@
 //! PNG plots of simulated impacts (force–time and force–displacement).
-//! Text uses the bundled DejaVu Sans, so no system fonts are needed.
+//! Rendered through `plot::chart::render_png` (bundled font, atomic write).
 use super::closed_loop::Comparison;
-use anyhow::{anyhow, Context, Result};
+use anyhow::{anyhow, Result};
 use plotters::prelude::*;
 use std::path::Path;
-use std::sync::Once;
-
-static FONT: Once = Once::new();
-
-/// Registers the bundled font as "sans-serif" (once per process).
-fn register_font() {
-    FONT.call_once(|| {
-        let bytes: &'static [u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
-        // The font is bundled and known good; if registration failed anyway,
-        // plotters reports the missing font when text is drawn.
-        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, bytes);
-    });
-}
 
 const SIZE: (u32, u32) = (1000, 640);
 const COLOURS: [RGBColor; 4] = [
@@ -26,32 +13,11 @@ const COLOURS: [RGBColor; 4] = [
     RGBColor(148, 103, 189),
 ];
 
-/// Renders into a temporary `.png` beside `path`, then renames it into place.
 fn png_atomic(
     path: &Path,
     draw: impl FnOnce(&DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>) -> Result<()>,
 ) -> Result<()> {
-    register_font();
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir)?;
-    let tmp = tempfile::Builder::new()
-        .prefix(".mre-")
-        .suffix(".png")
-        .tempfile_in(dir)?;
-    {
-        let root = BitMapBackend::new(tmp.path(), SIZE).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
-        draw(&root)?;
-        root.present()
-            .map_err(|e| anyhow!("cannot render {}: {e}", path.display()))?;
-    }
-    tmp.persist(path)
-        .map_err(|e| e.error)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    Ok(())
+    crate::plot::chart::render_png(path, SIZE, draw)
 }
 
 fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {

@@ -151,17 +151,41 @@ pub fn render(chart: &Chart, base: &Path) -> Result<()> {
     draw(SVGBackend::with_string(&mut svg, SIZE).into_drawing_area(), chart)?;
     let mut rgb = vec![0u8; (SIZE.0 * SIZE.1 * 3) as usize];
     draw(BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area(), chart)?;
+    crate::atomic_write::write_atomic(&with_suffix(base, "png"), &encode_png(&rgb, SIZE)?)?;
+    crate::atomic_write::write_atomic(&with_suffix(base, "svg"), svg.as_bytes())?;
+    Ok(())
+}
+
+/// For figures that don't fit [`Chart`]: `draw` paints a white bitmap of
+/// `size`, which is written to `path` as PNG atomically. Text uses the
+/// bundled font, as in [`render`].
+pub fn render_png(
+    path: &Path,
+    size: (u32, u32),
+    draw: impl FnOnce(&DrawingArea<BitMapBackend<'_>, Shift>) -> Result<()>,
+) -> Result<()> {
+    register_font()?;
+    let mut rgb = vec![0u8; (size.0 * size.1 * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
+        draw(&root)?;
+        root.present()
+            .map_err(|e| anyhow!("cannot render {}: {e}", path.display()))?;
+    }
+    crate::atomic_write::write_atomic(path, &encode_png(&rgb, size)?)
+}
+
+fn encode_png(rgb: &[u8], size: (u32, u32)) -> Result<Vec<u8>> {
     let mut png_bytes = Vec::new();
     {
-        let mut enc = png::Encoder::new(&mut png_bytes, SIZE.0, SIZE.1);
+        let mut enc = png::Encoder::new(&mut png_bytes, size.0, size.1);
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
         let mut w = enc.write_header()?;
-        w.write_image_data(&rgb)?;
+        w.write_image_data(rgb)?;
     }
-    crate::atomic_write::write_atomic(&with_suffix(base, "png"), &png_bytes)?;
-    crate::atomic_write::write_atomic(&with_suffix(base, "svg"), svg.as_bytes())?;
-    Ok(())
+    Ok(png_bytes)
 }
 
 /// `base` + `.ext` (not `with_extension`, which would eat "0.5" in a name).
