@@ -2,6 +2,7 @@
 //! function here; `main.rs` only parses arguments.
 pub mod atomic_write;
 pub mod dataset;
+pub mod diagnose;
 pub mod linalg;
 pub mod loops;
 pub mod table_file;

@@ -1,0 +1,1 @@
+//! `mre bench-diagnose`: blind cases with concealed effects, scored.

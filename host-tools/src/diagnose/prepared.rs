@@ -1,0 +1,219 @@
+//! Recordings in the form every diagnosis stage works on: f64 channels, a
+//! derived acceleration, the tabulated (fit) currents and the CV folds.
+use crate::dataset::{Dataset, Role, TagValue};
+use anyhow::{bail, Result};
+
+/// One recording, ready for analysis.
+#[derive(Clone, Debug)]
+pub struct Rec {
+    /// Index in `Dataset::recordings`.
+    pub index: usize,
+    pub file: String,
+    pub role: Role,
+    pub current_a: f64,
+    pub sequence: Option<f64>,
+    pub temperature_c: Option<f64>,
+    pub impact_velocity_m_s: Option<f64>,
+    pub time_s: Vec<f64>,
+    pub x_mm: Vec<f64>,
+    pub v_m_s: Vec<f64>,
+    /// Measured if the file had it, else the central difference of velocity.
+    pub a_m_s2: Vec<f64>,
+    pub force_n: Vec<f64>,
+    /// Cross-validation fold (fit recordings only).
+    pub fold: Option<usize>,
+    /// A label of the fold's group, for the report (e.g. `frequency_hz=1`).
+    pub group: String,
+}
+
+impl Rec {
+    pub fn len(&self) -> usize {
+        self.time_s.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.time_s.is_empty()
+    }
+
+    pub fn is_fit(&self) -> bool {
+        self.role == Role::Fit
+    }
+
+    pub fn max_abs_v_m_s(&self) -> f64 {
+        self.v_m_s.iter().fold(0.0, |m, v| m.max(v.abs()))
+    }
+
+    pub fn max_x_mm(&self) -> f64 {
+        self.x_mm.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// Median sample period.
+    pub fn dt_s(&self) -> f64 {
+        let mut d: Vec<f64> = self.time_s.windows(2).map(|w| w[1] - w[0]).collect();
+        if d.is_empty() {
+            return 0.0;
+        }
+        d.sort_by(f64::total_cmp);
+        d[d.len() / 2]
+    }
+}
+
+/// How recordings are split into cross-validation folds.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FoldPlan {
+    /// `k` folds, recordings of each current dealt round-robin in order of
+    /// peak velocity, so every fold keeps every current and a spread of speeds.
+    Stratified { k: usize },
+    /// One fold per distinct value of a tag (e.g. `frequency_hz`): whole
+    /// groups are held out.
+    ByTag(String),
+}
+
+/// The data set as the diagnosis sees it.
+#[derive(Clone, Debug)]
+pub struct Prepared {
+    pub recs: Vec<Rec>,
+    /// Distinct currents of the fit recordings, ascending: the baseline's table.
+    pub currents_a: Vec<f64>,
+    pub n_folds: usize,
+    /// Free drop: the acceleration is the drop mass's, `a = g − F/M`.
+    pub free_drop: bool,
+}
+
+impl Prepared {
+    pub fn fit_indices(&self) -> Vec<usize> {
+        (0..self.recs.len()).filter(|&i| self.recs[i].is_fit()).collect()
+    }
+
+    pub fn validate_indices(&self) -> Vec<usize> {
+        (0..self.recs.len()).filter(|&i| !self.recs[i].is_fit()).collect()
+    }
+
+    pub fn fold_members(&self, fold: usize) -> Vec<usize> {
+        (0..self.recs.len()).filter(|&i| self.recs[i].fold == Some(fold)).collect()
+    }
+
+    pub fn training_for(&self, fold: usize) -> Vec<usize> {
+        (0..self.recs.len())
+            .filter(|&i| self.recs[i].is_fit() && self.recs[i].fold != Some(fold))
+            .collect()
+    }
+}
+
+/// Converts the data set, treating recordings at `validate_currents_a` as
+/// `validate` whatever their role says (e.g. 0.5 A of a 0/0.5/1 A campaign).
+pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Result<Prepared> {
+    let mut recs = Vec::with_capacity(ds.recordings.len());
+    for (index, r) in ds.recordings.iter().enumerate() {
+        let s = &r.samples;
+        if s.len() < 8 {
+            bail!("{}: {} samples; the diagnosis needs at least 8", r.file, s.len());
+        }
+        let all = [&s.time_s, &s.x_mm, &s.v_m_s, &s.force_n];
+        if all.iter().any(|c| c.len() != s.len() || c.iter().any(|v| !v.is_finite())) {
+            bail!("{}: channels differ in length or hold NaN/infinite values", r.file);
+        }
+        let a_m_s2 = match &s.accel_m_s2 {
+            Some(a) if a.len() == s.len() && a.iter().all(|v| v.is_finite()) => a.clone(),
+            _ => differentiate(&s.time_s, &s.v_m_s),
+        };
+        let forced_validate = validate_currents_a.iter().any(|c| (c - r.current_a).abs() < 1e-9);
+        recs.push(Rec {
+            index,
+            file: r.file.clone(),
+            role: if forced_validate { Role::Validate } else { r.role },
+            current_a: r.current_a,
+            sequence: r.sequence.map(f64::from),
+            temperature_c: r.temperature_c,
+            impact_velocity_m_s: r.impact_velocity_m_s,
+            time_s: s.time_s.clone(),
+            x_mm: s.x_mm.clone(),
+            v_m_s: s.v_m_s.clone(),
+            a_m_s2,
+            force_n: s.force_n.clone(),
+            fold: None,
+            group: String::new(),
+        });
+    }
+    let mut currents_a: Vec<f64> = recs.iter().filter(|r| r.is_fit()).map(|r| r.current_a).collect();
+    currents_a.sort_by(f64::total_cmp);
+    currents_a.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    if currents_a.is_empty() {
+        bail!("the data set has no `fit` recordings to build the baseline from");
+    }
+    let n_folds = assign_folds(&mut recs, ds, plan)?;
+    let free_drop = ds
+        .recordings
+        .iter()
+        .all(|r| r.samples.accel_m_s2.is_none() && (r.mass_kg.is_some() || r.impact_velocity_m_s.is_some()));
+    Ok(Prepared {
+        recs,
+        currents_a,
+        n_folds,
+        free_drop,
+    })
+}
+
+fn assign_folds(recs: &mut [Rec], ds: &Dataset, plan: &FoldPlan) -> Result<usize> {
+    match plan {
+        FoldPlan::Stratified { k } => {
+            let k = (*k).max(2);
+            let mut currents: Vec<f64> = recs.iter().filter(|r| r.is_fit()).map(|r| r.current_a).collect();
+            currents.sort_by(f64::total_cmp);
+            currents.dedup();
+            let mut offset = 0;
+            for c in currents {
+                let mut members: Vec<usize> = (0..recs.len())
+                    .filter(|&i| recs[i].is_fit() && recs[i].current_a == c)
+                    .collect();
+                members.sort_by(|&a, &b| recs[a].max_abs_v_m_s().total_cmp(&recs[b].max_abs_v_m_s()));
+                for (j, &i) in members.iter().enumerate() {
+                    let fold = (j + offset) % k;
+                    recs[i].fold = Some(fold);
+                    recs[i].group = format!("fold {}", fold + 1);
+                }
+                offset += members.len();
+            }
+            Ok(k)
+        }
+        FoldPlan::ByTag(tag) => {
+            let mut labels: Vec<String> = Vec::new();
+            for r in recs.iter_mut().filter(|r| r.is_fit()) {
+                let label = match ds.recordings[r.index].tags.get(tag) {
+                    Some(TagValue::Number(n)) => format!("{tag}={n}"),
+                    Some(TagValue::Text(t)) => format!("{tag}={t}"),
+                    None => bail!("{}: no tag `{tag}` to group cross-validation folds by", r.file),
+                };
+                let fold = match labels.iter().position(|l| *l == label) {
+                    Some(p) => p,
+                    None => {
+                        labels.push(label.clone());
+                        labels.len() - 1
+                    }
+                };
+                r.fold = Some(fold);
+                r.group = label;
+            }
+            if labels.len() < 2 {
+                bail!("tag `{tag}` has fewer than 2 distinct values: nothing to hold out");
+            }
+            Ok(labels.len())
+        }
+    }
+}
+
+/// Central difference (one-sided at the ends).
+pub fn differentiate(t: &[f64], y: &[f64]) -> Vec<f64> {
+    let n = t.len();
+    (0..n)
+        .map(|i| {
+            let (a, b) = (i.saturating_sub(1), (i + 1).min(n - 1));
+            let dt = t[b] - t[a];
+            if dt > 0.0 {
+                (y[b] - y[a]) / dt
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
