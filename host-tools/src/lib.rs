@@ -5,4 +5,5 @@ pub mod dataset;
 pub mod diagnose;
 pub mod linalg;
 pub mod loops;
+pub mod plant;
 pub mod table_file;

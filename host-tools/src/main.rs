@@ -31,6 +31,23 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
+    /// Write a synthetic drop-impact data set with a concealed effect (key file beside it).
+    Synth {
+        /// none, viscous_damping, sensor_delay, stress_softening, end_stop, magnetic_saturation, or random.
+        #[arg(long, default_value = "random")]
+        effect: String,
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Data set folder to create.
+        #[arg(long)]
+        out: PathBuf,
+        /// Key file (effect + parameters, JSON); default `<out>.key.json` beside the folder.
+        #[arg(long)]
+        key: Option<PathBuf>,
+        /// Replace an existing non-empty folder.
+        #[arg(long)]
+        force: bool,
+    },
 }
 
 fn main() {
@@ -52,6 +69,22 @@ fn run(cli: Cli) -> Result<()> {
             let curve = mre_host::loops::model_loop(&table, current, points)?;
             mre_host::atomic_write::write_atomic_with(&out, |buf| mre_host::loops::write_loop_csv(buf, &curve))?;
             println!("wrote {} points at {current} A to {}", curve.len(), out.display());
+        }
+        Command::Synth {
+            effect,
+            seed,
+            out,
+            key,
+            force,
+        } => {
+            let output = mre_host::plant::synth::write_synth(&effect, seed, &out, key.as_deref(), force)?;
+            let key_path = key.unwrap_or_else(|| mre_host::plant::synth::default_key_path(&out));
+            println!(
+                "wrote {} recordings to {} (key: {})",
+                output.dataset.recordings.len(),
+                out.display(),
+                key_path.display()
+            );
         }
     }
     Ok(())

@@ -4,6 +4,15 @@
 //! Internal units: time s, displacement mm, velocity m/s, acceleration m/s²,
 //! force N, current A, temperature °C. Host analysis runs in f64 and converts
 //! to f32 only at the call into the core (which is what the board computes).
+pub mod branches;
+pub mod columns;
+pub mod error;
+pub mod read;
+pub mod velocity;
+
+pub use branches::{split_branches, split_pooled, BranchSamples};
+pub use error::DatasetError;
+
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -74,3 +83,6 @@ pub struct Dataset {
     pub root: PathBuf,
     pub recordings: Vec<Recording>,
 }
+
+// Writing data sets (`dataset.toml` + CSV files), atomically.
+pub mod write;

@@ -1,0 +1,106 @@
+//! Unit-carrying column names (`shared/spec/dataset-format.md`) and their
+//! conversion factors to the internal units.
+use super::error::DatasetError;
+
+/// What a column measures.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Quantity {
+    Time,
+    Displacement,
+    Velocity,
+    Acceleration,
+    Force,
+    Current,
+    Temperature,
+}
+
+impl Quantity {
+    fn describe(self) -> &'static str {
+        match self {
+            Quantity::Time => "time",
+            Quantity::Displacement => "displacement",
+            Quantity::Velocity => "velocity",
+            Quantity::Acceleration => "acceleration",
+            Quantity::Force => "force",
+            Quantity::Current => "current",
+            Quantity::Temperature => "temperature",
+        }
+    }
+}
+
+/// Accepted names, their quantity and the factor to the internal unit.
+const NAMES: &[(&str, Quantity, f64)] = &[
+    ("time_s", Quantity::Time, 1.0),
+    ("time_ms", Quantity::Time, 1e-3),
+    ("displacement_mm", Quantity::Displacement, 1.0),
+    ("displacement_m", Quantity::Displacement, 1e3),
+    ("velocity_m_s", Quantity::Velocity, 1.0),
+    ("velocity_mm_s", Quantity::Velocity, 1e-3),
+    ("acceleration_m_s2", Quantity::Acceleration, 1.0),
+    ("force_n", Quantity::Force, 1.0),
+    ("force_kn", Quantity::Force, 1e3),
+    ("current_a", Quantity::Current, 1.0),
+    ("temperature_c", Quantity::Temperature, 1.0),
+];
+
+/// A column: `None` for `ignore`, else its quantity and unit factor.
+pub type Column = Option<(Quantity, f64)>;
+
+fn accepted_for(q: Option<Quantity>) -> String {
+    let mut names: Vec<&str> = NAMES
+        .iter()
+        .filter(|(_, qq, _)| q.is_none_or(|q| q == *qq))
+        .map(|(n, _, _)| *n)
+        .collect();
+    if q.is_none() {
+        names.push("ignore");
+    }
+    names.join(", ")
+}
+
+/// Maps header names to columns. `path`/`line` locate the names (the data
+/// file's header row, or `columns` in dataset.toml).
+pub fn parse_header(names: &[String], path: &str, line: usize) -> Result<Vec<Column>, DatasetError> {
+    let mut layout: Vec<Column> = Vec::with_capacity(names.len());
+    for (i, name) in names.iter().enumerate() {
+        if name == "ignore" {
+            layout.push(None);
+            continue;
+        }
+        let Some(&(_, quantity, factor)) = NAMES.iter().find(|(n, _, _)| n == name) else {
+            return Err(DatasetError::UnknownColumn {
+                path: path.to_string(),
+                line,
+                column: i + 1,
+                name: name.clone(),
+                accepted: accepted_for(None),
+            });
+        };
+        if layout.iter().any(|c| matches!(c, Some((q, _)) if *q == quantity)) {
+            return Err(DatasetError::DuplicateColumn {
+                path: path.to_string(),
+                line,
+                column: i + 1,
+                name: name.clone(),
+                quantity: quantity.describe().to_string(),
+            });
+        }
+        layout.push(Some((quantity, factor)));
+    }
+    Ok(layout)
+}
+
+/// Time, displacement and force must be present.
+pub fn required_columns(layout: &[Column], path: &str, line: usize) -> Result<(), DatasetError> {
+    for q in [Quantity::Time, Quantity::Displacement, Quantity::Force] {
+        if !layout.iter().any(|c| matches!(c, Some((qq, _)) if *qq == q)) {
+            return Err(DatasetError::MissingColumn {
+                path: path.to_string(),
+                line,
+                quantity: q.describe().to_string(),
+                accepted: accepted_for(Some(q)),
+            });
+        }
+    }
+    Ok(())
+}

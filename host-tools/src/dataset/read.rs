@@ -1,0 +1,342 @@
+//! `Dataset::load`: reads `dataset.toml` and the recording files it lists
+//! (`shared/spec/dataset-format.md`, a contract). Every rejection is one
+//! [`DatasetError`] naming file, line and column.
+use super::columns::{parse_header, required_columns, Quantity};
+use super::error::DatasetError;
+use super::velocity::estimate_velocity_m_s;
+use super::{Dataset, Recording, Role, Samples, TagValue};
+use serde::Deserialize;
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+use toml::Spanned;
+
+/// A recording with fewer samples cannot be fitted (a quartic per branch needs
+/// 5 samples, and there are two branches).
+pub const MIN_SAMPLES: usize = 10;
+
+const TOP_KEYS: &[&str] = &["name", "defaults", "recording"];
+/// Keys a `[[recording]]` may set; `[defaults]` may set all but `file`.
+const RECORDING_KEYS: &[&str] = &[
+    "file",
+    "current_a",
+    "role",
+    "mass_kg",
+    "impact_velocity_m_s",
+    "sequence",
+    "temperature_c",
+    "tags",
+    "delimiter",
+    "columns",
+];
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+enum Delimiter {
+    #[serde(rename = ",")]
+    Comma,
+    Whitespace,
+}
+
+/// One `[[recording]]` or the `[defaults]` table (which may not set `file`).
+#[derive(Default, Deserialize)]
+struct Settings {
+    file: Option<Spanned<String>>,
+    current_a: Option<Spanned<f64>>,
+    role: Option<Role>,
+    mass_kg: Option<Spanned<f64>>,
+    impact_velocity_m_s: Option<Spanned<f64>>,
+    sequence: Option<u32>,
+    temperature_c: Option<Spanned<f64>>,
+    tags: Option<BTreeMap<String, TagValue>>,
+    delimiter: Option<Delimiter>,
+    columns: Option<Spanned<Vec<String>>>,
+}
+
+#[derive(Deserialize)]
+struct Manifest {
+    #[serde(default)]
+    name: String,
+    #[serde(default)]
+    defaults: Settings,
+    #[serde(default)]
+    recording: Vec<Settings>,
+}
+
+/// 1-based line of a byte offset.
+fn line_of(text: &str, offset: usize) -> usize {
+    text.as_bytes().iter().take(offset).filter(|&&b| b == b'\n').count() + 1
+}
+
+impl Dataset {
+    /// Loads the data set in folder `dir` (its `dataset.toml` and every listed file).
+    pub fn load(dir: &Path) -> Result<Dataset, DatasetError> {
+        let manifest_path = dir.join("dataset.toml");
+        let mpath = manifest_path.display().to_string();
+        let text = std::fs::read_to_string(&manifest_path).map_err(|e| DatasetError::Unreadable {
+            path: mpath.clone(),
+            reason: e.to_string(),
+        })?;
+        check_keys(&text, &mpath)?;
+        let manifest: Manifest = toml::from_str(&text).map_err(|e| DatasetError::Manifest {
+            path: mpath.clone(),
+            line: e.span().map_or(1, |s| line_of(&text, s.start)),
+            message: e.message().trim().to_string(),
+        })?;
+
+        let mut first_line_of_file: HashMap<String, usize> = HashMap::new();
+        let mut recordings = Vec::with_capacity(manifest.recording.len());
+        for (index, s) in manifest.recording.iter().enumerate() {
+            let Some(file_key) = &s.file else {
+                return Err(DatasetError::Manifest {
+                    path: mpath,
+                    line: 1,
+                    message: format!("[[recording]] #{} has no `file`", index + 1),
+                });
+            };
+            let line = line_of(&text, file_key.span().start);
+            let file = file_key.get_ref().clone();
+            if let Some(&first_line) = first_line_of_file.get(&file) {
+                return Err(DatasetError::DuplicateFile {
+                    path: mpath,
+                    line,
+                    file,
+                    first_line,
+                });
+            }
+            first_line_of_file.insert(file.clone(), line);
+            let d = &manifest.defaults;
+            let finite = |v: Option<&Spanned<f64>>, key: &str| -> Result<Option<f64>, DatasetError> {
+                match v {
+                    Some(sv) if !sv.get_ref().is_finite() => Err(DatasetError::NonFiniteSetting {
+                        path: mpath.clone(),
+                        line: line_of(&text, sv.span().start),
+                        key: key.to_string(),
+                        value: *sv.get_ref(),
+                    }),
+                    Some(sv) => Ok(Some(*sv.get_ref())),
+                    None => Ok(None),
+                }
+            };
+            let current_a = match finite(s.current_a.as_ref().or(d.current_a.as_ref()), "current_a")? {
+                Some(c) => c,
+                None => {
+                    return Err(DatasetError::Manifest {
+                        path: mpath,
+                        line,
+                        message: format!("recording `{file}` has no `current_a`"),
+                    })
+                }
+            };
+            let data_path = dir.join(&file);
+            if !data_path.is_file() {
+                return Err(DatasetError::FileAbsent {
+                    path: mpath,
+                    line,
+                    file,
+                });
+            }
+            let columns = s.columns.as_ref().or(d.columns.as_ref());
+            let delimiter = s.delimiter.or(d.delimiter).unwrap_or(Delimiter::Comma);
+            let (samples, velocity_estimated) = read_samples(&data_path, delimiter, columns, &mpath, &text)?;
+            recordings.push(Recording {
+                file,
+                current_a,
+                role: s.role.or(d.role).unwrap_or(Role::Fit),
+                mass_kg: finite(s.mass_kg.as_ref().or(d.mass_kg.as_ref()), "mass_kg")?,
+                impact_velocity_m_s: finite(
+                    s.impact_velocity_m_s.as_ref().or(d.impact_velocity_m_s.as_ref()),
+                    "impact_velocity_m_s",
+                )?,
+                sequence: s.sequence.or(d.sequence),
+                temperature_c: finite(s.temperature_c.as_ref().or(d.temperature_c.as_ref()), "temperature_c")?,
+                tags: s.tags.clone().or_else(|| d.tags.clone()).unwrap_or_default(),
+                samples,
+                velocity_estimated,
+            });
+        }
+        Ok(Dataset {
+            name: manifest.name,
+            root: dir.to_path_buf(),
+            recordings,
+        })
+    }
+}
+
+/// Rejects keys the format does not define, naming the key and its line.
+fn check_keys(text: &str, mpath: &str) -> Result<(), DatasetError> {
+    let doc = toml::de::DeTable::parse(text).map_err(|e| DatasetError::Manifest {
+        path: mpath.to_string(),
+        line: e.span().map_or(1, |s| line_of(text, s.start)),
+        message: e.message().trim().to_string(),
+    })?;
+    let unknown = |key: &Spanned<toml::de::DeString<'_>>, section: &str| DatasetError::UnknownKey {
+        path: mpath.to_string(),
+        line: line_of(text, key.span().start),
+        key: key.get_ref().to_string(),
+        section: section.to_string(),
+    };
+    for (key, value) in doc.get_ref() {
+        match key.get_ref().as_ref() {
+            "defaults" => {
+                if let Some(t) = value.get_ref().as_table() {
+                    for (k, _) in t {
+                        if k.get_ref() == "file" || !RECORDING_KEYS.contains(&k.get_ref().as_ref()) {
+                            return Err(unknown(k, "[defaults]"));
+                        }
+                    }
+                }
+            }
+            "recording" => {
+                if let Some(arr) = value.get_ref().as_array() {
+                    for item in arr.iter() {
+                        if let Some(t) = item.get_ref().as_table() {
+                            if !t.keys().any(|k| k.get_ref() == "file") {
+                                return Err(DatasetError::Manifest {
+                                    path: mpath.to_string(),
+                                    line: line_of(text, item.span().start),
+                                    message: "[[recording]] has no `file`".to_string(),
+                                });
+                            }
+                            for (k, _) in t {
+                                if !RECORDING_KEYS.contains(&k.get_ref().as_ref()) {
+                                    return Err(unknown(k, "[[recording]]"));
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            k if TOP_KEYS.contains(&k) => {}
+            _ => return Err(unknown(key, "the top level")),
+        }
+    }
+    Ok(())
+}
+
+/// Splits one line into fields.
+fn fields(line: &str, delimiter: Delimiter) -> Vec<&str> {
+    match delimiter {
+        Delimiter::Whitespace => line.split_whitespace().collect(),
+        Delimiter::Comma => line.split(',').map(str::trim).collect(),
+    }
+}
+
+fn read_samples(
+    path: &Path,
+    delimiter: Delimiter,
+    columns: Option<&Spanned<Vec<String>>>,
+    mpath: &str,
+    manifest_text: &str,
+) -> Result<(Samples, bool), DatasetError> {
+    let dpath = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| DatasetError::Unreadable {
+        path: dpath.clone(),
+        reason: e.to_string(),
+    })?;
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l))
+        .filter(|(_, l)| !l.trim().is_empty());
+
+    // Column names come from `columns` in dataset.toml, or from the header row.
+    let (names, name_path, name_line): (Vec<String>, &str, usize) = match columns {
+        Some(c) => (c.get_ref().clone(), mpath, line_of(manifest_text, c.span().start)),
+        None => match lines.next() {
+            Some((n, l)) => (fields(l, delimiter).iter().map(|s| s.to_string()).collect(), &dpath, n),
+            None => {
+                return Err(DatasetError::TooFewSamples {
+                    path: dpath,
+                    line: 1,
+                    count: 0,
+                    min: MIN_SAMPLES,
+                })
+            }
+        },
+    };
+    let layout = parse_header(&names, name_path, name_line)?;
+    required_columns(&layout, name_path, name_line)?;
+
+    let mut channels: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
+    let mut last_line = name_line;
+    let time_col = layout.iter().position(|c| matches!(c, Some((Quantity::Time, _))));
+    for (n, line) in lines {
+        last_line = n;
+        let f = fields(line, delimiter);
+        if f.len() != names.len() {
+            return Err(DatasetError::FieldCount {
+                path: dpath,
+                line: n,
+                found: f.len(),
+                expected: names.len(),
+            });
+        }
+        for (col, text) in f.iter().enumerate() {
+            let Some((quantity, scale)) = layout[col] else { continue };
+            let value: f64 = text.parse().map_err(|_| DatasetError::NotANumber {
+                path: dpath.clone(),
+                line: n,
+                column: col + 1,
+                name: names[col].clone(),
+                text: text.to_string(),
+            })?;
+            if !value.is_finite() {
+                return Err(DatasetError::NotFinite {
+                    path: dpath,
+                    line: n,
+                    column: col + 1,
+                    name: names[col].clone(),
+                    text: text.to_string(),
+                });
+            }
+            let value = value * scale;
+            if quantity == Quantity::Time && Some(col) == time_col {
+                if let Some(&previous_s) = channels[col].last() {
+                    if value <= previous_s {
+                        return Err(DatasetError::TimeNotIncreasing {
+                            path: dpath,
+                            line: n,
+                            column: col + 1,
+                            name: names[col].clone(),
+                            time_s: value,
+                            previous_s,
+                        });
+                    }
+                }
+            }
+            channels[col].push(value);
+        }
+    }
+    let count = time_col.map_or(0, |c| channels[c].len());
+    if count < MIN_SAMPLES {
+        return Err(DatasetError::TooFewSamples {
+            path: dpath,
+            line: last_line,
+            count,
+            min: MIN_SAMPLES,
+        });
+    }
+    let take = |q: Quantity, channels: &mut Vec<Vec<f64>>| -> Option<Vec<f64>> {
+        layout
+            .iter()
+            .position(|c| matches!(c, Some((qq, _)) if *qq == q))
+            .map(|i| std::mem::take(&mut channels[i]))
+    };
+    let time_s = take(Quantity::Time, &mut channels).unwrap_or_default();
+    let x_mm = take(Quantity::Displacement, &mut channels).unwrap_or_default();
+    let force_n = take(Quantity::Force, &mut channels).unwrap_or_default();
+    let (v_m_s, estimated) = match take(Quantity::Velocity, &mut channels) {
+        Some(v) => (v, false),
+        None => (estimate_velocity_m_s(&time_s, &x_mm), true),
+    };
+    let samples = Samples {
+        accel_m_s2: take(Quantity::Acceleration, &mut channels),
+        current_a: take(Quantity::Current, &mut channels),
+        temperature_c: take(Quantity::Temperature, &mut channels),
+        time_s,
+        x_mm,
+        v_m_s,
+        force_n,
+    };
+    Ok((samples, estimated))
+}

@@ -1,0 +1,180 @@
+//! Concealed effects (`shared/spec/effects.md`): physics the paper's model
+//! leaves out, added to the true law so `mre diagnose` has something to find.
+//! Each acts exactly through the spec's "usable model term".
+use anyhow::{bail, Result};
+use rand::Rng;
+use serde::Serialize;
+
+/// Names as in the spec's vocabulary (a contract).
+pub const EFFECT_NAMES: [&str; 6] = [
+    "none",
+    "viscous_damping",
+    "sensor_delay",
+    "stress_softening",
+    "end_stop",
+    "magnetic_saturation",
+];
+
+/// One concealed effect with its parameters.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "effect", content = "parameters", rename_all = "snake_case")]
+pub enum Effect {
+    None,
+    /// `+ c(I)·v` with `c(I) = c0·(1 + per_a·I)`, v in m/s.
+    ViscousDamping {
+        c0_n_s_per_m: f64,
+        increase_per_a: f64,
+    },
+    /// The force channel lags: `F_meas(t) = F(t − τ)`.
+    SensorDelay {
+        delay_s: f64,
+    },
+    /// `× (1 − Δ·(1 − e^{−(n−1)/n0}))`, n = the test's `sequence`.
+    StressSoftening {
+        depth: f64,
+        tests_n0: f64,
+    },
+    /// `+ k_e·max(0, x − x_e)²`, x in mm.
+    EndStop {
+        x_e_mm: f64,
+        k_e_n_per_mm2: f64,
+    },
+    /// The gain is interpolated between the knot currents linearly in
+    /// `tanh(I/I_s)` instead of in I (equal at the knots, higher between).
+    MagneticSaturation {
+        i_s_a: f64,
+    },
+}
+
+impl Effect {
+    pub fn name(&self) -> &'static str {
+        match self {
+            Effect::None => "none",
+            Effect::ViscousDamping { .. } => "viscous_damping",
+            Effect::SensorDelay { .. } => "sensor_delay",
+            Effect::StressSoftening { .. } => "stress_softening",
+            Effect::EndStop { .. } => "end_stop",
+            Effect::MagneticSaturation { .. } => "magnetic_saturation",
+        }
+    }
+
+    /// Current → the variable the gain is interpolated linearly in.
+    pub fn current_warp(&self) -> impl Fn(f64) -> f64 {
+        let i_s = match *self {
+            Effect::MagneticSaturation { i_s_a } => Some(i_s_a),
+            _ => None,
+        };
+        move |i: f64| match i_s {
+            Some(i_s) => (i / i_s).tanh(),
+            None => i,
+        }
+    }
+
+    /// Multiplier on the material force for the test at `sequence` (1 = first).
+    pub fn softening_factor(&self, sequence: u32) -> f64 {
+        match *self {
+            Effect::StressSoftening { depth, tests_n0 } => {
+                let n = f64::from(sequence.max(1));
+                1.0 - depth * (1.0 - (-(n - 1.0) / tests_n0).exp())
+            }
+            _ => 1.0,
+        }
+    }
+
+    /// Force added to the material force (N).
+    pub fn added_force_n(&self, x_mm: f64, v_m_s: f64, current_a: f64) -> f64 {
+        match *self {
+            Effect::ViscousDamping {
+                c0_n_s_per_m,
+                increase_per_a,
+            } => c0_n_s_per_m * (1.0 + increase_per_a * current_a.max(0.0)) * v_m_s,
+            Effect::EndStop { x_e_mm, k_e_n_per_mm2 } => {
+                let over = (x_mm - x_e_mm).max(0.0);
+                k_e_n_per_mm2 * over * over
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// Delay of the force channel (s).
+    pub fn force_delay_s(&self) -> f64 {
+        match *self {
+            Effect::SensorDelay { delay_s } => delay_s,
+            _ => 0.0,
+        }
+    }
+
+    /// Checks the parameters are finite and in a physical range.
+    pub fn validate(&self) -> Result<()> {
+        let ok = match *self {
+            Effect::None => true,
+            Effect::ViscousDamping {
+                c0_n_s_per_m,
+                increase_per_a,
+            } => c0_n_s_per_m >= 0.0 && increase_per_a >= 0.0 && increase_per_a.is_finite(),
+            Effect::SensorDelay { delay_s } => (0.0..0.01).contains(&delay_s),
+            Effect::StressSoftening { depth, tests_n0 } => (0.0..1.0).contains(&depth) && tests_n0 > 0.0,
+            Effect::EndStop { x_e_mm, k_e_n_per_mm2 } => x_e_mm >= 0.0 && k_e_n_per_mm2 >= 0.0,
+            Effect::MagneticSaturation { i_s_a } => i_s_a > 0.0,
+        };
+        let finite = serde_json::to_value(self)
+            .ok()
+            .and_then(|v| v.get("parameters").cloned())
+            .and_then(|p| p.as_object().cloned())
+            .is_none_or(|p| p.values().all(|v| v.as_f64().is_some_and(f64::is_finite)));
+        if !ok || !finite {
+            bail!("effect parameters out of range: {self:?}");
+        }
+        Ok(())
+    }
+}
+
+/// What a plant needs to size an effect so its signature is clear: the
+/// longest stroke and its peak force in the test plan, with no effect.
+#[derive(Clone, Copy, Debug)]
+pub struct EffectScale {
+    pub longest_stroke_mm: f64,
+    pub peak_force_at_longest_n: f64,
+}
+
+/// Draws plausible parameters for the effect `name`, each sized to leave a
+/// signature of several percent of the force where it acts.
+pub fn draw_effect(name: &str, rng: &mut impl Rng, scale: EffectScale) -> Result<Effect> {
+    Ok(match name {
+        "none" => Effect::None,
+        // 100–250 N·s/m at 0 A: at the impact speeds 1.4–2.24 m/s the
+        // velocity spread alone moves the force by 60–200 N (3–10 % of the
+        // 0 A peak) at the same displacement.
+        "viscous_damping" => Effect::ViscousDamping {
+            c0_n_s_per_m: rng.random_range(100.0..250.0),
+            increase_per_a: rng.random_range(0.2..0.6),
+        },
+        // 2–5 samples at 20 kHz: an ADC anti-alias filter's group delay.
+        "sensor_delay" => Effect::SensorDelay {
+            delay_s: rng.random_range(100.0e-6..250.0e-6),
+        },
+        // Mullins softening: 8–18 % over the campaign, mostly within 4–15 tests.
+        "stress_softening" => Effect::StressSoftening {
+            depth: rng.random_range(0.08..0.18),
+            tests_n0: rng.random_range(4.0..15.0),
+        },
+        // Engages over the last 30–45 % of the longest stroke and adds
+        // 40–80 % of that test's peak force at its full depth.
+        "end_stop" => {
+            let x_e_mm = scale.longest_stroke_mm * rng.random_range(0.55..0.7);
+            let over = scale.longest_stroke_mm - x_e_mm;
+            let added_n = scale.peak_force_at_longest_n * rng.random_range(0.4..0.8);
+            Effect::EndStop {
+                x_e_mm,
+                k_e_n_per_mm2: added_n / (over * over),
+            }
+        }
+        "magnetic_saturation" => Effect::MagneticSaturation {
+            i_s_a: rng.random_range(0.3..0.55),
+        },
+        other => bail!(
+            "unknown effect `{other}`; expected one of {} or `random`",
+            EFFECT_NAMES.join(", ")
+        ),
+    })
+}

@@ -1,0 +1,21 @@
+//! The drop-impact plant: the physical world the diagnosis, the closed-loop
+//! controller and the processor-in-the-loop runs are tested against.
+//!
+//! - [`law`]: the true force law (elastic backbone that stiffens, smooth
+//!   rate-independent hysteresis, field-dependent gain), calibrated to the
+//!   paper's Table 5 peaks. The physics and the calibration are in
+//!   `README.md` beside this file.
+//! - [`effects`]: concealed effects from `shared/spec/effects.md`.
+//! - [`measure`]: the instrument (sampling, noise, quantisation).
+//! - [`stepper`]: RK4 drop simulation, one control period at a time
+//!   ([`PlantStepper`]) or a whole impact ([`simulate`]).
+pub mod effects;
+pub mod law;
+pub mod measure;
+pub mod stepper;
+pub mod synth;
+
+pub use effects::{Effect, EFFECT_NAMES};
+pub use law::LawParams;
+pub use measure::MeasurementModel;
+pub use stepper::{simulate, CurrentSource, ImpactConfig, ImpactSummary, Plant, PlantStepper, Sample, Trajectory};

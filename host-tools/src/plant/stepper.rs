@@ -1,0 +1,447 @@
+//! The drop test: `m·ẍ = m·g − F(x, ẋ, z, I)` integrated by fixed-step RK4
+//! from first contact (x = 0, ẋ = impact velocity) until the mass leaves the
+//! damper (x back below 0 while moving out).
+//!
+//! [`PlantStepper`] advances one control period at a time with the coil
+//! command held (zero-order hold), so a controller — in process, or the real
+//! firmware over a serial link — closes the loop in lockstep. [`simulate`]
+//! runs a whole impact on top of it.
+use super::effects::Effect;
+use super::law::{hysteresis_rate_per_s, LawParams};
+use super::measure::MeasurementModel;
+use anyhow::{ensure, Result};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use serde::Serialize;
+
+/// The simulated world: true law, concealed effect, instrument.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Plant {
+    pub law: LawParams,
+    pub effect: Effect,
+    pub measurement: MeasurementModel,
+}
+
+impl Default for Plant {
+    fn default() -> Self {
+        Self::nominal()
+    }
+}
+
+impl Plant {
+    /// The calibrated law, no effect, the default instrument.
+    pub fn nominal() -> Self {
+        Self {
+            law: LawParams::nominal(),
+            effect: Effect::None,
+            measurement: MeasurementModel::default(),
+        }
+    }
+
+    pub fn with_effect(self, effect: Effect) -> Self {
+        Self { effect, ..self }
+    }
+
+    pub fn validate(&self) -> Result<()> {
+        self.law.validate()?;
+        self.effect.validate()?;
+        self.measurement.validate()
+    }
+
+    /// The true contact force on the mass (N, ≥ 0) at displacement `x_mm`,
+    /// velocity `v_m_s`, hysteresis state `z`, coil current `current_a`, in
+    /// the test at `sequence`.
+    pub fn force_n(&self, x_mm: f64, v_m_s: f64, z: f64, current_a: f64, sequence: u32) -> f64 {
+        if x_mm <= 0.0 {
+            return 0.0;
+        }
+        let law = &self.law;
+        let gain = law.gain(current_a, self.effect.current_warp());
+        let material = gain * law.backbone_n(x_mm) * (1.0 + law.loss_eta * z);
+        let force =
+            self.effect.softening_factor(sequence) * material + self.effect.added_force_n(x_mm, v_m_s, current_a);
+        force.max(0.0)
+    }
+}
+
+/// One drop and how it is integrated.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ImpactConfig {
+    pub mass_kg: f64,
+    pub impact_velocity_m_s: f64,
+    pub gravity_m_s2: f64,
+    /// RK4 step (s): 1 µs or finer.
+    pub step_s: f64,
+    /// Controller period (s): the command is held for this long.
+    pub control_period_s: f64,
+    /// Give up (and report no separation) after this long in contact.
+    pub max_duration_s: f64,
+    /// First-order coil time constant L/R (s); `None` = the current follows the command at once.
+    pub coil_lag_s: Option<f64>,
+    /// Coil current at contact (before the first command).
+    pub initial_current_a: f64,
+    /// Position of this test in the run order (1 = first), for history effects.
+    pub sequence: u32,
+    /// Seed of the measurement noise.
+    pub noise_seed: u64,
+}
+
+impl Default for ImpactConfig {
+    /// The paper's drop test (Table 2): 5.5 kg at 2.24 m/s; 10 kHz control.
+    fn default() -> Self {
+        Self {
+            mass_kg: 5.5,
+            impact_velocity_m_s: 2.24,
+            gravity_m_s2: 9.81,
+            step_s: 1.0e-6,
+            control_period_s: 1.0e-4,
+            max_duration_s: 0.5,
+            coil_lag_s: None,
+            initial_current_a: 0.0,
+            sequence: 1,
+            noise_seed: 0,
+        }
+    }
+}
+
+/// What the instrument recorded at one instant (x, v, force are measured
+/// values), with the coil command and the coil current.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Sample {
+    pub time_s: f64,
+    pub x_mm: f64,
+    pub v_m_s: f64,
+    pub force_n: f64,
+    /// Command held during the period that ended at this sample.
+    pub command_a: f64,
+    /// Coil current at this sample (the command after the coil lag).
+    pub current_a: f64,
+}
+
+/// The true (not measured) outcome of an impact.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ImpactSummary {
+    pub peak_force_n: f64,
+    /// Largest deceleration of the mass, `F/m − g` (m/s²).
+    pub peak_deceleration_m_s2: f64,
+    pub max_stroke_mm: f64,
+    /// Speed at which the mass leaves the damper (m/s, ≥ 0), if it did.
+    pub rebound_velocity_m_s: Option<f64>,
+    pub contact_time_s: f64,
+}
+
+/// A recorded impact.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Trajectory {
+    /// Measured samples on the instrument's grid, from contact to separation.
+    pub samples: Vec<Sample>,
+    pub summary: ImpactSummary,
+}
+
+/// Where the coil current comes from.
+pub enum CurrentSource<'a> {
+    /// Held for the whole impact (passive damper).
+    Constant(f64),
+    /// A command that varies with time since contact (s → A), applied every RK4 step.
+    Function(Box<dyn Fn(f64) -> f64 + 'a>),
+    /// A controller: sampled (measured) x in mm and v in m/s in, command in A
+    /// out, called once per control period; the command is held until the next call.
+    Controller(Box<dyn FnMut(f32, f32) -> f32 + 'a>),
+}
+
+/// Integrator state: displacement (m), velocity (m/s), hysteresis state.
+#[derive(Clone, Copy, Debug)]
+struct State {
+    x_m: f64,
+    v_m_s: f64,
+    z: f64,
+}
+
+/// Advances a drop one control period at a time (the lockstep API).
+pub struct PlantStepper {
+    plant: Plant,
+    cfg: ImpactConfig,
+    steps_per_period: u64,
+    steps_per_sample: u64,
+    step: u64,
+    state: State,
+    command_a: f64,
+    current_a: f64,
+    rng: ChaCha8Rng,
+    /// True force after every step (index = step), for the force channel's delay.
+    force_history_n: Vec<f64>,
+    samples: Vec<Sample>,
+    summary: ImpactSummary,
+    finished: bool,
+}
+
+/// `period / step` when it is a whole number.
+fn whole_steps(period_s: f64, step_s: f64, what: &str) -> Result<u64> {
+    let n = (period_s / step_s).round();
+    ensure!(
+        n >= 1.0 && ((n * step_s - period_s) / period_s).abs() < 1e-9,
+        "{what} ({period_s} s) must be a whole number of integration steps ({step_s} s)"
+    );
+    Ok(n as u64)
+}
+
+impl PlantStepper {
+    /// Starts a drop at first contact and records the first sample.
+    pub fn new(plant: &Plant, cfg: &ImpactConfig) -> Result<Self> {
+        plant.validate()?;
+        let finite = [
+            cfg.mass_kg,
+            cfg.impact_velocity_m_s,
+            cfg.gravity_m_s2,
+            cfg.step_s,
+            cfg.control_period_s,
+            cfg.max_duration_s,
+            cfg.initial_current_a,
+        ];
+        ensure!(
+            finite.iter().all(|v| v.is_finite()),
+            "impact settings must be finite: {cfg:?}"
+        );
+        ensure!(cfg.mass_kg > 0.0, "mass must be positive");
+        ensure!(
+            cfg.impact_velocity_m_s > 0.0,
+            "impact velocity must be positive (towards the damper)"
+        );
+        ensure!(
+            cfg.step_s > 0.0 && cfg.step_s <= 1.0e-6,
+            "RK4 step must be in (0, 1 µs]"
+        );
+        ensure!(cfg.max_duration_s > 0.0, "max duration must be positive");
+        if let Some(tau) = cfg.coil_lag_s {
+            ensure!(tau.is_finite() && tau > 0.0, "coil lag must be positive");
+        }
+        let steps_per_period = whole_steps(cfg.control_period_s, cfg.step_s, "control period")?;
+        let steps_per_sample = whole_steps(plant.measurement.sample_period_s, cfg.step_s, "sample period")?;
+        ensure!(
+            steps_per_period % steps_per_sample == 0,
+            "the control period must be a whole number of sample periods, so the controller sees recorded samples"
+        );
+        let mut stepper = Self {
+            plant: plant.clone(),
+            cfg: cfg.clone(),
+            steps_per_period,
+            steps_per_sample,
+            step: 0,
+            state: State {
+                x_m: 0.0,
+                v_m_s: cfg.impact_velocity_m_s,
+                z: 0.0,
+            },
+            command_a: cfg.initial_current_a,
+            current_a: cfg.initial_current_a,
+            rng: ChaCha8Rng::seed_from_u64(cfg.noise_seed),
+            force_history_n: vec![0.0],
+            samples: Vec::new(),
+            summary: ImpactSummary {
+                peak_force_n: 0.0,
+                peak_deceleration_m_s2: -cfg.gravity_m_s2,
+                max_stroke_mm: 0.0,
+                rebound_velocity_m_s: None,
+                contact_time_s: 0.0,
+            },
+            finished: false,
+        };
+        stepper.record_sample();
+        Ok(stepper)
+    }
+
+    pub fn config(&self) -> &ImpactConfig {
+        &self.cfg
+    }
+
+    pub fn plant(&self) -> &Plant {
+        &self.plant
+    }
+
+    /// True once the mass has left the damper (or the time limit was hit).
+    pub fn is_finished(&self) -> bool {
+        self.finished
+    }
+
+    /// Time since contact (s).
+    pub fn time_s(&self) -> f64 {
+        self.step as f64 * self.cfg.step_s
+    }
+
+    /// The latest recorded sample (at contact: the first one).
+    pub fn last_sample(&self) -> Sample {
+        self.samples.last().copied().unwrap_or(Sample {
+            time_s: 0.0,
+            x_mm: 0.0,
+            v_m_s: self.cfg.impact_velocity_m_s,
+            force_n: 0.0,
+            command_a: self.command_a,
+            current_a: self.current_a,
+        })
+    }
+
+    /// Holds `command_a` for one control period and returns the sample
+    /// measured at its end (what the controller sees next). After the impact
+    /// has finished it does nothing and returns the last sample.
+    pub fn step_period(&mut self, command_a: f32) -> Sample {
+        let command_a = f64::from(command_a);
+        self.advance(self.steps_per_period, |_| command_a);
+        self.last_sample()
+    }
+
+    /// Runs `steps` RK4 steps with the command given per step by `command`
+    /// (time since contact → A).
+    fn advance(&mut self, steps: u64, command: impl Fn(f64) -> f64) {
+        for _ in 0..steps {
+            if self.finished {
+                return;
+            }
+            self.command_a = command(self.time_s());
+            self.update_coil();
+            self.rk4_step();
+            self.step += 1;
+            self.after_step();
+        }
+    }
+
+    fn update_coil(&mut self) {
+        self.current_a = match self.cfg.coil_lag_s {
+            Some(tau) => self.current_a + (self.command_a - self.current_a) * (1.0 - (-self.cfg.step_s / tau).exp()),
+            None => self.command_a,
+        };
+    }
+
+    fn force_at(&self, s: State) -> f64 {
+        self.plant
+            .force_n(s.x_m * 1.0e3, s.v_m_s, s.z, self.current_a, self.cfg.sequence)
+    }
+
+    fn derivative(&self, s: State) -> State {
+        let force_n = self.force_at(s);
+        State {
+            x_m: s.v_m_s,
+            v_m_s: self.cfg.gravity_m_s2 - force_n / self.cfg.mass_kg,
+            z: hysteresis_rate_per_s(s.v_m_s, s.z, self.plant.law.turn_mm),
+        }
+    }
+
+    fn rk4_step(&mut self) {
+        let h = self.cfg.step_s;
+        let s = self.state;
+        let at = |d: State, k: f64| State {
+            x_m: s.x_m + k * d.x_m,
+            v_m_s: s.v_m_s + k * d.v_m_s,
+            z: s.z + k * d.z,
+        };
+        let k1 = self.derivative(s);
+        let k2 = self.derivative(at(k1, h / 2.0));
+        let k3 = self.derivative(at(k2, h / 2.0));
+        let k4 = self.derivative(at(k3, h));
+        let previous = self.state;
+        self.state = State {
+            x_m: s.x_m + h / 6.0 * (k1.x_m + 2.0 * k2.x_m + 2.0 * k3.x_m + k4.x_m),
+            v_m_s: s.v_m_s + h / 6.0 * (k1.v_m_s + 2.0 * k2.v_m_s + 2.0 * k3.v_m_s + k4.v_m_s),
+            z: s.z + h / 6.0 * (k1.z + 2.0 * k2.z + 2.0 * k3.z + k4.z),
+        };
+        if self.state.x_m < 0.0 && self.state.v_m_s < 0.0 {
+            // Separation: interpolate the speed to the instant x crosses 0.
+            let frac = previous.x_m / (previous.x_m - self.state.x_m);
+            let v_out = previous.v_m_s + frac * (self.state.v_m_s - previous.v_m_s);
+            self.summary.rebound_velocity_m_s = Some(-v_out);
+            self.summary.contact_time_s = (self.step as f64 + frac) * h;
+            self.finished = true;
+        }
+    }
+
+    fn after_step(&mut self) {
+        let force_n = self.force_at(self.state);
+        self.force_history_n.push(force_n);
+        let s = &mut self.summary;
+        s.peak_force_n = s.peak_force_n.max(force_n);
+        s.peak_deceleration_m_s2 = s
+            .peak_deceleration_m_s2
+            .max(force_n / self.cfg.mass_kg - self.cfg.gravity_m_s2);
+        s.max_stroke_mm = s.max_stroke_mm.max(self.state.x_m * 1.0e3);
+        let state_bad = !(self.state.x_m.is_finite() && self.state.v_m_s.is_finite() && self.state.z.is_finite());
+        if !self.finished && (self.time_s() >= self.cfg.max_duration_s || state_bad) {
+            self.summary.contact_time_s = self.time_s();
+            self.finished = true;
+        }
+        if !self.finished && self.step % self.steps_per_sample == 0 {
+            self.record_sample();
+        }
+    }
+
+    /// True force `delay_s` ago (0 before contact), interpolated between steps.
+    fn delayed_force_n(&self, delay_s: f64) -> f64 {
+        let at = self.step as f64 - delay_s / self.cfg.step_s;
+        if at < 0.0 {
+            return 0.0;
+        }
+        let i = at.floor() as usize;
+        let frac = at - at.floor();
+        let f0 = self.force_history_n.get(i).copied().unwrap_or(0.0);
+        let f1 = self.force_history_n.get(i + 1).copied().unwrap_or(f0);
+        f0 + frac * (f1 - f0)
+    }
+
+    fn record_sample(&mut self) {
+        let m = &self.plant.measurement;
+        let true_force_n = self.delayed_force_n(self.plant.effect.force_delay_s());
+        let (x_mm, v_m_s) = (self.state.x_m * 1.0e3, self.state.v_m_s);
+        let x_mm = MeasurementModel::read(x_mm, m.x_noise_mm, m.x_lsb_mm, &mut self.rng);
+        let v_m_s = MeasurementModel::read(v_m_s, m.v_noise_m_s, m.v_lsb_m_s, &mut self.rng);
+        let force_n = MeasurementModel::read(true_force_n, m.force_noise_n, m.force_lsb_n, &mut self.rng);
+        self.samples.push(Sample {
+            time_s: self.time_s(),
+            x_mm,
+            v_m_s,
+            force_n,
+            command_a: self.command_a,
+            current_a: self.current_a,
+        });
+    }
+
+    /// Ends the run and hands over what was recorded.
+    pub fn into_trajectory(self) -> Trajectory {
+        Trajectory {
+            samples: self.samples,
+            summary: self.summary,
+        }
+    }
+}
+
+/// Runs one whole impact with the coil current from `current`.
+pub fn simulate(plant: &Plant, cfg: &ImpactConfig, current: CurrentSource<'_>) -> Result<Trajectory> {
+    let mut stepper = PlantStepper::new(plant, cfg)?;
+    match current {
+        CurrentSource::Constant(current_a) => {
+            ensure!(current_a.is_finite(), "constant current must be finite");
+            while !stepper.is_finished() {
+                stepper.advance(stepper.steps_per_period, |_| current_a);
+            }
+        }
+        CurrentSource::Function(command) => {
+            while !stepper.is_finished() {
+                stepper.advance(stepper.steps_per_period, |t| {
+                    let c = command(t);
+                    if c.is_finite() {
+                        c
+                    } else {
+                        0.0
+                    }
+                });
+            }
+        }
+        CurrentSource::Controller(mut controller) => {
+            let mut sample = stepper.last_sample();
+            while !stepper.is_finished() {
+                let command_a = controller(sample.x_mm as f32, sample.v_m_s as f32);
+                // A controller that returns NaN gets 0 A (documented safe state).
+                let command_a = if command_a.is_finite() { command_a } else { 0.0 };
+                sample = stepper.step_period(command_a);
+            }
+        }
+    }
+    Ok(stepper.into_trajectory())
+}

@@ -1,0 +1,328 @@
+//! `mre synth`: a blind drop-impact data set from a randomised plant with one
+//! concealed effect (or none). The answer goes to a key file beside the
+//! folder, never inside it.
+//!
+//! Everything random is drawn from the seed through separate ChaCha8 streams
+//! (effect choice, base plant, effect parameters, test campaign), and every
+//! recording's noise has its own seed, so the output is byte-identical for a
+//! seed whatever the thread count.
+use super::effects::{draw_effect, Effect, EffectScale, EFFECT_NAMES};
+use super::law::LawParams;
+use super::measure::MeasurementModel;
+use super::stepper::{simulate, CurrentSource, ImpactConfig, Plant, Trajectory};
+use crate::atomic_write::write_atomic;
+use crate::dataset::write::{write_dataset, Precision, WriteOptions};
+use crate::dataset::{Dataset, Recording, Role, Samples};
+use anyhow::{ensure, Context, Result};
+use rand::seq::SliceRandom;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+use rayon::prelude::*;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// The test campaign.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SynthPlan {
+    pub fit_currents_a: Vec<f64>,
+    pub validate_currents_a: Vec<f64>,
+    /// Nominal impact velocities (drop heights).
+    pub velocities_m_s: Vec<f64>,
+    /// Tests per (current, velocity).
+    pub repeats: u32,
+    pub mass_kg: f64,
+}
+
+impl Default for SynthPlan {
+    /// 9 currents × 3 velocities × 2 repeats = 54 recordings.
+    fn default() -> Self {
+        Self {
+            fit_currents_a: vec![0.0, 0.5, 1.0, 1.5, 2.0],
+            validate_currents_a: vec![0.3, 0.7, 1.3, 1.7],
+            velocities_m_s: vec![1.4, 1.8, 2.24],
+            repeats: 2,
+            mass_kg: 5.5,
+        }
+    }
+}
+
+/// Decimal places written per column: below each channel's resolution.
+pub const SYNTH_PRECISION: Precision = Precision {
+    time_s: Some(5),
+    x_mm: Some(4),
+    v_m_s: Some(4),
+    force_n: Some(1),
+    accel_m_s2: None,
+    current_a: Some(3),
+    temperature_c: Some(2),
+};
+
+/// A synthesised data set with its (secret) answer.
+#[derive(Clone, Debug)]
+pub struct SynthOutput {
+    pub dataset: Dataset,
+    pub plant: Plant,
+    pub seed: u64,
+    /// The key file's content: effect, parameters, seed, base law, instrument.
+    pub key: serde_json::Value,
+}
+
+fn stream(seed: u64, id: u64) -> ChaCha8Rng {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(id);
+    rng
+}
+
+/// `random` → one of [`EFFECT_NAMES`] (`none` included) picked by the seed;
+/// any other name is checked and returned.
+pub fn resolve_effect_name(effect: &str, seed: u64) -> Result<&'static str> {
+    if effect == "random" {
+        let i = stream(seed, 1).random_range(0..EFFECT_NAMES.len());
+        return Ok(EFFECT_NAMES[i]);
+    }
+    EFFECT_NAMES.iter().copied().find(|n| *n == effect).with_context(|| {
+        format!(
+            "unknown effect `{effect}`; expected one of {} or `random`",
+            EFFECT_NAMES.join(", ")
+        )
+    })
+}
+
+/// The base plant for a seed: law parameters and noise varied around the
+/// calibrated values, so a diagnosis cannot pass by memorising one plant.
+pub fn draw_base_plant(seed: u64) -> Plant {
+    let mut rng = stream(seed, 2);
+    let nominal = LawParams::nominal();
+    let mut gain_knots = nominal.gain_knots;
+    for k in 1..gain_knots.len() {
+        gain_knots[k] *= rng.random_range(0.95..1.05);
+        gain_knots[k] = gain_knots[k].max(gain_knots[k - 1] * 1.005);
+    }
+    let law = LawParams {
+        k1_n_per_mm: nominal.k1_n_per_mm * rng.random_range(0.92..1.08),
+        k3_n_per_mm3: nominal.k3_n_per_mm3 * rng.random_range(0.85..1.15),
+        loss_eta: rng.random_range(0.42..0.58),
+        turn_mm: rng.random_range(0.2..0.45),
+        gain_knots,
+    };
+    let measurement = MeasurementModel {
+        force_noise_n: rng.random_range(3.0..15.0),
+        x_noise_mm: rng.random_range(0.003..0.015),
+        v_noise_m_s: rng.random_range(0.004..0.02),
+        ..MeasurementModel::default()
+    };
+    Plant {
+        law,
+        effect: Effect::None,
+        measurement,
+    }
+}
+
+/// Sizes effects against the longest-stroke test of the plan (lowest
+/// current, fastest drop) on the plant without any effect.
+fn effect_scale(base: &Plant, plan: &SynthPlan) -> Result<EffectScale> {
+    let lowest_a = plan
+        .fit_currents_a
+        .iter()
+        .chain(&plan.validate_currents_a)
+        .copied()
+        .fold(f64::INFINITY, f64::min);
+    let fastest = plan.velocities_m_s.iter().copied().fold(0.0, f64::max);
+    let cfg = ImpactConfig {
+        mass_kg: plan.mass_kg,
+        impact_velocity_m_s: fastest,
+        ..ImpactConfig::default()
+    };
+    let s = simulate(base, &cfg, CurrentSource::Constant(lowest_a))?.summary;
+    Ok(EffectScale {
+        longest_stroke_mm: s.max_stroke_mm,
+        peak_force_at_longest_n: s.peak_force_n,
+    })
+}
+
+/// The plant for (effect, seed): the seed's base plant plus the effect with
+/// parameters drawn from the seed.
+pub fn draw_plant(effect: &str, seed: u64, plan: &SynthPlan) -> Result<Plant> {
+    let name = resolve_effect_name(effect, seed)?;
+    let base = draw_base_plant(seed);
+    let scale = effect_scale(&base, plan)?;
+    let effect = draw_effect(name, &mut stream(seed, 3), scale)?;
+    Ok(base.with_effect(effect))
+}
+
+/// One planned test.
+struct Test {
+    current_a: f64,
+    role: Role,
+    nominal_velocity_m_s: f64,
+    repeat: u32,
+    sequence: u32,
+    actual_velocity_m_s: f64,
+    recorded_velocity_m_s: f64,
+    temperature_c: f64,
+    noise_seed: u64,
+}
+
+fn plan_tests(plan: &SynthPlan, seed: u64) -> Result<Vec<Test>> {
+    ensure!(plan.repeats >= 1, "at least one repeat");
+    ensure!(!plan.velocities_m_s.is_empty(), "at least one impact velocity");
+    let mut tests = Vec::new();
+    let roles = [(Role::Fit, &plan.fit_currents_a), (Role::Validate, &plan.validate_currents_a)];
+    for (role, currents) in roles {
+        for &current_a in currents.iter() {
+            for &v in &plan.velocities_m_s {
+                for repeat in 1..=plan.repeats {
+                    tests.push(Test {
+                        current_a,
+                        role,
+                        nominal_velocity_m_s: v,
+                        repeat,
+                        sequence: 0,
+                        actual_velocity_m_s: v,
+                        recorded_velocity_m_s: v,
+                        temperature_c: 0.0,
+                        noise_seed: 0,
+                    });
+                }
+            }
+        }
+    }
+    let mut rng = stream(seed, 4);
+    // Shuffled run order.
+    let mut order: Vec<usize> = (0..tests.len()).collect();
+    order.shuffle(&mut rng);
+    for (position, &i) in order.iter().enumerate() {
+        tests[i].sequence = position as u32 + 1;
+    }
+    // Drop-height scatter (0.5 %), light-gate error (3 mm/s), lab temperature
+    // drifting slowly over the campaign (it has no effect on the law).
+    let scatter = Normal::new(0.0, 0.005)?;
+    let gate = Normal::new(0.0, 0.003)?;
+    let drift = Normal::new(0.0, 0.05)?;
+    let mut temperature_by_sequence = Vec::with_capacity(tests.len());
+    let mut t: f64 = rng.random_range(21.0..25.0);
+    for _ in 0..tests.len() {
+        temperature_by_sequence.push(t);
+        t += drift.sample(&mut rng);
+    }
+    for test in &mut tests {
+        test.actual_velocity_m_s = test.nominal_velocity_m_s * (1.0 + scatter.sample(&mut rng));
+        test.recorded_velocity_m_s = ((test.actual_velocity_m_s + gate.sample(&mut rng)) * 1000.0).round() / 1000.0;
+        test.temperature_c = (temperature_by_sequence[test.sequence as usize - 1] * 10.0).round() / 10.0;
+        test.noise_seed = rng.random();
+    }
+    Ok(tests)
+}
+
+fn to_samples(t: &Trajectory) -> Samples {
+    Samples {
+        time_s: t.samples.iter().map(|s| s.time_s).collect(),
+        x_mm: t.samples.iter().map(|s| s.x_mm).collect(),
+        v_m_s: t.samples.iter().map(|s| s.v_m_s).collect(),
+        force_n: t.samples.iter().map(|s| s.force_n).collect(),
+        accel_m_s2: None,
+        current_a: None,
+        temperature_c: None,
+    }
+}
+
+/// Synthesises a whole data set in memory with the default plan.
+pub fn synthesize(effect: &str, seed: u64) -> Result<SynthOutput> {
+    synthesize_with_plan(effect, seed, &SynthPlan::default())
+}
+
+/// Synthesises a whole data set in memory (no disk).
+pub fn synthesize_with_plan(effect: &str, seed: u64, plan: &SynthPlan) -> Result<SynthOutput> {
+    let plant = draw_plant(effect, seed, plan)?;
+    let tests = plan_tests(plan, seed)?;
+    let recordings = tests
+        .par_iter()
+        .map(|test| {
+            let cfg = ImpactConfig {
+                mass_kg: plan.mass_kg,
+                impact_velocity_m_s: test.actual_velocity_m_s,
+                sequence: test.sequence,
+                noise_seed: test.noise_seed,
+                ..ImpactConfig::default()
+            };
+            let trajectory = simulate(&plant, &cfg, CurrentSource::Constant(test.current_a))?;
+            Ok(Recording {
+                file: format!(
+                    "i{:.1}_v{:.2}_r{}.csv",
+                    test.current_a, test.nominal_velocity_m_s, test.repeat
+                ),
+                current_a: test.current_a,
+                role: test.role,
+                mass_kg: Some(plan.mass_kg),
+                impact_velocity_m_s: Some(test.recorded_velocity_m_s),
+                sequence: Some(test.sequence),
+                temperature_c: Some(test.temperature_c),
+                tags: BTreeMap::new(),
+                samples: to_samples(&trajectory),
+                velocity_estimated: false,
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let dataset = Dataset {
+        name: format!("synthetic drop impact, {} kg, seed {seed}", plan.mass_kg),
+        root: PathBuf::new(),
+        recordings,
+    };
+    let key = key_json(&plant, seed)?;
+    Ok(SynthOutput {
+        dataset,
+        plant,
+        seed,
+        key,
+    })
+}
+
+fn key_json(plant: &Plant, seed: u64) -> Result<serde_json::Value> {
+    let effect = serde_json::to_value(&plant.effect)?;
+    let parameters = effect
+        .get("parameters")
+        .cloned()
+        .unwrap_or_else(|| serde_json::json!({}));
+    Ok(serde_json::json!({
+        "effect": plant.effect.name(),
+        "parameters": parameters,
+        "seed": seed,
+        "law": plant.law,
+        "measurement": plant.measurement,
+        "generator": "mre synth",
+    }))
+}
+
+/// Where the key goes by default: `<folder>.key.json` beside the folder.
+pub fn default_key_path(out: &Path) -> PathBuf {
+    let mut name = out.file_name().map(|n| n.to_os_string()).unwrap_or_else(|| "dataset".into());
+    name.push(".key.json");
+    out.with_file_name(name)
+}
+
+/// `mre synth`: writes the data set to `out` and its key to `key_path`
+/// (default [`default_key_path`]). The key may not be inside `out`.
+pub fn write_synth(effect: &str, seed: u64, out: &Path, key_path: Option<&Path>, force: bool) -> Result<SynthOutput> {
+    let key_path = key_path.map_or_else(|| default_key_path(out), Path::to_path_buf);
+    let inside = |p: &Path| -> bool {
+        let abs = |q: &Path| std::path::absolute(q).unwrap_or_else(|_| q.to_path_buf());
+        abs(p).starts_with(abs(out))
+    };
+    ensure!(
+        !inside(&key_path),
+        "the key file {} must not be inside the data set folder {} (the diagnosis must be blind)",
+        key_path.display(),
+        out.display()
+    );
+    let output = synthesize(effect, seed)?;
+    let options = WriteOptions {
+        force,
+        precision: SYNTH_PRECISION,
+    };
+    write_dataset(&output.dataset, out, &options)?;
+    let mut key_text = serde_json::to_string_pretty(&output.key)?;
+    key_text.push('\n');
+    write_atomic(&key_path, key_text.as_bytes())?;
+    Ok(output)
+}

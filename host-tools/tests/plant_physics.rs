@@ -1,0 +1,135 @@
+//! Physics checks of the drop-impact plant, with expected values from
+//! physics and from the paper (never from the simulator's own output).
+use mre_host::plant::{simulate, CurrentSource, Effect, ImpactConfig, LawParams, MeasurementModel, Plant, Trajectory};
+
+/// The paper's Table 5 measured peak forces (`shared/paper/table4.toml`).
+const TABLE5: [(f64, f64); 5] = [
+    (0.0, 2079.22),
+    (0.5, 5458.78),
+    (1.0, 6603.41),
+    (1.5, 7231.52),
+    (2.0, 6421.51),
+];
+
+fn passive(plant: &Plant, cfg: &ImpactConfig, current_a: f64) -> Trajectory {
+    simulate(plant, cfg, CurrentSource::Constant(current_a)).expect("simulation runs")
+}
+
+#[test]
+fn calibration_matches_table5_peaks_within_10_percent() {
+    let plant = Plant::nominal();
+    let cfg = ImpactConfig::default();
+    assert_eq!(
+        (cfg.mass_kg, cfg.impact_velocity_m_s),
+        (5.5, 2.24),
+        "the paper's drop test"
+    );
+    for (current_a, measured_n) in TABLE5 {
+        let peak = passive(&plant, &cfg, current_a).summary.peak_force_n;
+        let err = (peak - measured_n) / measured_n;
+        assert!(
+            err.abs() < 0.10,
+            "{current_a} A: simulated {peak:.0} N vs Table 5 {measured_n} N ({:.1} %)",
+            err * 100.0
+        );
+    }
+}
+
+#[test]
+fn elastic_law_returns_the_impact_speed() {
+    // No loss: gravity and the backbone are conservative, so the mass leaves
+    // x = 0 at the speed it arrived with.
+    let plant = Plant {
+        law: LawParams::nominal().elastic(),
+        ..Plant::nominal()
+    };
+    for (current_a, v0) in [(0.0, 2.24), (2.0, 2.24), (1.0, 1.2)] {
+        let cfg = ImpactConfig {
+            impact_velocity_m_s: v0,
+            ..ImpactConfig::default()
+        };
+        let s = passive(&plant, &cfg, current_a).summary;
+        let v_out = s.rebound_velocity_m_s.expect("the mass leaves the damper");
+        assert!(
+            (v_out - v0).abs() < 1e-6 * v0,
+            "{current_a} A: out {v_out} m/s vs in {v0} m/s"
+        );
+    }
+}
+
+#[test]
+fn elastic_peak_matches_energy_balance() {
+    // Linear spring only (k3 = 0), no gravity: ½·m·v² = ½·k·x², F = k·x.
+    let law = LawParams {
+        k3_n_per_mm3: 0.0,
+        ..LawParams::nominal().elastic()
+    };
+    let plant = Plant {
+        law,
+        ..Plant::nominal()
+    };
+    let cfg = ImpactConfig {
+        gravity_m_s2: 0.0,
+        ..ImpactConfig::default()
+    };
+    let k_n_per_m = 66.0e3;
+    let expected_x_m = cfg.impact_velocity_m_s * (cfg.mass_kg / k_n_per_m).sqrt();
+    let s = passive(&plant, &cfg, 0.0).summary;
+    assert!(
+        (s.max_stroke_mm - expected_x_m * 1e3).abs() < 1e-3,
+        "{} mm vs {} mm",
+        s.max_stroke_mm,
+        expected_x_m * 1e3
+    );
+    assert!((s.peak_force_n - k_n_per_m * expected_x_m).abs() < 0.1);
+    // Half a period of the mass-spring oscillator.
+    let expected_t = std::f64::consts::PI * (cfg.mass_kg / k_n_per_m).sqrt();
+    assert!((s.contact_time_s - expected_t).abs() < 2e-6);
+}
+
+#[test]
+fn loss_makes_the_rebound_slower_and_current_stiffens() {
+    let plant = Plant::nominal();
+    let cfg = ImpactConfig::default();
+    let soft = passive(&plant, &cfg, 0.0).summary;
+    let stiff = passive(&plant, &cfg, 2.0).summary;
+    assert!(soft.rebound_velocity_m_s.unwrap() < 0.9 * cfg.impact_velocity_m_s);
+    assert!(stiff.max_stroke_mm < 0.5 * soft.max_stroke_mm);
+    assert!(stiff.peak_force_n > 2.0 * soft.peak_force_n);
+}
+
+#[test]
+fn recordings_hold_measured_samples_on_the_instrument_grid() {
+    let plant = Plant::nominal();
+    let cfg = ImpactConfig::default();
+    let t = passive(&plant, &cfg, 1.0);
+    let dt = plant.measurement.sample_period_s;
+    for (i, s) in t.samples.iter().enumerate() {
+        assert!((s.time_s - i as f64 * dt).abs() < 1e-12);
+    }
+    // Quantisation: forces are whole ADC counts.
+    let lsb = MeasurementModel::default().force_lsb_n;
+    assert!(t
+        .samples
+        .iter()
+        .all(|s| ((s.force_n / lsb) - (s.force_n / lsb).round()).abs() < 1e-6));
+    // Noise: the recording differs from a perfect instrument's by about σ.
+    let ideal = Plant {
+        measurement: plant.measurement.ideal(),
+        ..Plant::nominal()
+    };
+    let clean = passive(&ideal, &cfg, 1.0);
+    let mean_abs_diff: f64 = t
+        .samples
+        .iter()
+        .zip(&clean.samples)
+        .map(|(a, b)| (a.force_n - b.force_n).abs())
+        .sum::<f64>()
+        / t.samples.len() as f64;
+    let sigma = plant.measurement.force_noise_n;
+    assert!(
+        mean_abs_diff > 0.5 * sigma && mean_abs_diff < 1.5 * sigma,
+        "mean |noise| {mean_abs_diff} N"
+    );
+    assert_eq!(Effect::None.name(), "none");
+}
