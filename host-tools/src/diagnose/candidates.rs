@@ -56,6 +56,24 @@ impl Effect {
     }
 }
 
+/// The reference model's turn-around memory at each searched length δ,
+/// as fractions of the largest stroke.
+pub fn memory_variants(prep: &Prepared) -> Vec<Terms> {
+    let fit = prep.fit_indices();
+    let span = fit
+        .iter()
+        .flat_map(|&i| prep.recs[i].x_mm.iter().copied())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)));
+    let span = (span.1 - span.0).max(1e-9);
+    [0.025]
+        .iter()
+        .map(|f| Terms {
+            memory_mm: Some(f * span),
+            ..Terms::default()
+        })
+        .collect()
+}
+
 /// Relative spread `(max − min)/max` of a per-recording quantity within each
 /// current's fit recordings; the largest over currents.
 fn spread_within_currents(prep: &Prepared, q: impl Fn(usize) -> f64) -> f64 {
@@ -173,7 +191,7 @@ pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
             let mut dts: Vec<f64> = fit.iter().map(|&i| prep.recs[i].dt_s()).collect();
             dts.sort_by(f64::total_cmp);
             let dt = dts[dts.len() / 2];
-            let steps = [0.25, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0, 24.0, 32.0];
+            let steps = [0.5, 1.0, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0];
             steps
                 .iter()
                 .flat_map(|s| [s * dt, -s * dt])
@@ -182,7 +200,7 @@ pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
         }
         Effect::StressSoftening => {
             if distinct_sequences(prep) >= 3 {
-                [1.0, 2.0, 3.0, 5.0, 8.0, 13.0, 21.0, 34.0, 55.0, 89.0]
+                [2.0, 4.0, 8.0, 16.0, 32.0, 64.0]
                     .iter()
                     .map(|&n0| with(&|t| t.softening = Some(SofteningLaw::Sequence { n0 })))
                     .collect()
@@ -201,7 +219,7 @@ pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
         }
         Effect::MagneticSaturation => {
             let imax = prep.currents_a[prep.currents_a.len() - 1].abs().max(1e-3);
-            [0.25, 0.35, 0.5, 0.7, 1.0, 1.5]
+            [0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5, 0.75, 1.0]
                 .iter()
                 .map(|f| with(&|t| t.saturation_i_a = Some(f * imax)))
                 .collect()

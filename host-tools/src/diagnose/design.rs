@@ -22,6 +22,60 @@ use nalgebra::{DMatrix, DVector};
 /// Powers of x in each branch quartic (x⁰..x⁴).
 pub const QUARTIC_TERMS: usize = 5;
 
+/// Relaxation lengths of the turn-around memory basis, as multiples of δ.
+pub const MEMORY_LENGTHS: [f64; 3] = [0.4, 1.0, 2.5];
+/// Powers of the turn-around displacement x_r scaling each basis function.
+pub const MEMORY_POWERS: usize = 3;
+/// Memory columns per current and direction of travel.
+pub const MEMORY_TERMS: usize = MEMORY_LENGTHS.len() * MEMORY_POWERS;
+
+/// Rate-independent hysteresis memory (Masing/Dahl type): after a reversal
+/// at `x_r`, the branch relaxes towards its steady curve over a length δ, so
+/// the unloading curve depends on where loading turned around, which the
+/// paper's single quartic per branch cannot represent.
+///
+/// Returns, per sample, the distance travelled since the last reversal and
+/// the reversal's sample index `(|x − x_r|, index)` (`None` before the first
+/// reversal), and the direction of travel (true = compressing). The model's
+/// columns, per current, are `e^{−|x − x_r|/(m·δ)}·x_r^p` over
+/// [`MEMORY_LENGTHS`] m and p < [`MEMORY_POWERS`]: a relaxation whose size
+/// follows the turn-around point, without committing to one length. Reversals are
+/// found on displacement with a dead band of δ/5, not on the sign of a noisy
+/// velocity, so noise at a turn-around does not create spurious reversals.
+pub fn memory_feature(x: &[f64], delta_mm: f64) -> (Vec<Option<(f64, f64)>>, Vec<bool>) {
+    let n = x.len();
+    let mut feature: Vec<Option<(f64, f64)>> = vec![None; n];
+    let mut compressing = vec![true; n];
+    let band = 0.2 * delta_mm;
+    let mut dir = true;
+    let mut ext_at = 0usize;
+    let mut anchor: Option<(usize, f64)> = None;
+    for t in 0..n {
+        let beyond = if dir { x[t] >= x[ext_at] } else { x[t] <= x[ext_at] };
+        if beyond {
+            ext_at = t;
+        } else if (x[t] - x[ext_at]).abs() > band {
+            // Reversal at the extreme: travel since then belongs to the new direction.
+            anchor = Some((ext_at, x[ext_at]));
+            dir = !dir;
+            let from = ext_at;
+            ext_at = t;
+            for s in from..t {
+                compressing[s] = dir;
+                if dir { if x[s] > x[ext_at] { ext_at = s; } } else if x[s] < x[ext_at] { ext_at = s; }
+            }
+            for s in from..t {
+                feature[s] = Some(((x[s] - x[from]).abs(), from as f64));
+            }
+        }
+        compressing[t] = dir;
+        if let Some((at, xr)) = anchor {
+            feature[t] = Some(((x[t] - xr).abs(), at as f64));
+        }
+    }
+    (feature, compressing)
+}
+
 /// Rate dependence `c(I)·φ(v)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Viscous {
@@ -59,6 +113,9 @@ pub struct Terms {
     /// Law and its fitted Δ (Δ is solved, not searched).
     pub softening: Option<SofteningLaw>,
     pub saturation_i_a: Option<f64>,
+    /// Turn-around memory length δ (mm): not a vocabulary effect but part of
+    /// the reference model (see [`memory_feature`]).
+    pub memory_mm: Option<f64>,
 }
 
 /// Global column layout of a [`Terms`] over a table of currents.
@@ -68,6 +125,7 @@ pub struct Layout {
     pub viscous_at: Option<usize>,
     pub end_stop_at: Option<usize>,
     pub inertia_at: Option<usize>,
+    pub memory_at: Option<usize>,
     pub n_cols: usize,
 }
 
@@ -82,17 +140,25 @@ impl Layout {
         let viscous_at = terms.viscous.map(|_| next(n_currents));
         let end_stop_at = terms.end_stop_x_mm.map(|_| next(1));
         let inertia_at = terms.inertia.then(|| next(1));
+        let memory_at = terms.memory_mm.map(|_| next(2 * MEMORY_TERMS * n_currents));
         Layout {
             n_currents,
             viscous_at,
             end_stop_at,
             inertia_at,
+            memory_at,
             n_cols: n,
         }
     }
 
     pub fn quartic_col(&self, current: usize, compression: bool, power: usize) -> usize {
         (current * 2 + usize::from(!compression)) * QUARTIC_TERMS + power
+    }
+
+    /// Memory column of current k, direction, basis function j.
+    pub fn memory_col(&self, compression: bool, j: usize, current: usize) -> Option<usize> {
+        self.memory_at
+            .map(|at| at + (current * 2 + usize::from(!compression)) * MEMORY_TERMS + j)
     }
 
     /// Number of linear coefficients the added terms bring.
@@ -237,7 +303,7 @@ impl Designs {
         let mut delta = 0.0;
         let mut sol = self.solve_scaled(prep, train, &|_| 1.0)?;
         // F = (1 − Δg)·Q: given Q, Δ is a 1-D least squares; given Δ, Q is linear.
-        for _ in 0..8 {
+        for _ in 0..6 {
             let (mut num, mut den) = (0.0, 0.0);
             for &i in train {
                 let q = self.recs[i].predict(&sol.beta);
@@ -251,7 +317,7 @@ impl Designs {
                 break;
             }
             let next = (num / den).clamp(-0.9, 0.9);
-            let converged = (next - delta).abs() < 1e-6;
+            let converged = (next - delta).abs() < 1e-4;
             delta = next;
             sol = self.solve_scaled(prep, train, &|i| 1.0 - delta * g[i])?;
             if converged {
@@ -290,6 +356,15 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
             cols.push(at + k);
         }
     }
+    for comp in [true, false] {
+        for j in 0..MEMORY_TERMS {
+            for &(k, w) in &weights {
+                if w != 0.0 {
+                    cols.extend(layout.memory_col(comp, j, k));
+                }
+            }
+        }
+    }
     cols.extend(layout.end_stop_at);
     cols.extend(layout.inertia_at);
     cols.sort_unstable();
@@ -298,18 +373,27 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
     let n = rec.len();
     let mut a = DMatrix::<f64>::zeros(n, cols.len());
     let (mut hx, mut hv, mut ha) = (0, 0, 0);
-    for t in 0..n {
-        let (x, v, acc) = match terms.delay_s {
-            Some(tau) => {
+    let (xs, vs, accs): (Vec<f64>, Vec<f64>, Vec<f64>) = match terms.delay_s {
+        Some(tau) => (0..n)
+            .map(|t| {
                 let ts = rec.time_s[t] - tau;
                 (
                     sample_at(&rec.time_s, &rec.x_mm, ts, &mut hx),
                     sample_at(&rec.time_s, &rec.v_m_s, ts, &mut hv),
                     sample_at(&rec.time_s, &rec.a_m_s2, ts, &mut ha),
                 )
-            }
-            None => (rec.x_mm[t], rec.v_m_s[t], rec.a_m_s2[t]),
-        };
+            })
+            .fold((vec![], vec![], vec![]), |(mut a, mut b, mut c), (x, v, acc)| {
+                a.push(x);
+                b.push(v);
+                c.push(acc);
+                (a, b, c)
+            }),
+        None => (rec.x_mm.clone(), rec.v_m_s.clone(), rec.a_m_s2.clone()),
+    };
+    let memory = terms.memory_mm.map(|d| memory_feature(&xs, d));
+    for t in 0..n {
+        let (x, v, acc) = (xs[t], vs[t], accs[t]);
         let comp = v > 0.0;
         for &(k, w) in &weights {
             if w == 0.0 {
@@ -328,6 +412,23 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
                 a[(t, local(at + k))] += w * phi;
             }
         }
+        if let (Some((m, dir)), Some(delta)) = (&memory, terms.memory_mm) {
+            if let Some((d, at)) = m[t] {
+                let x_r = xs[at as usize];
+                for (l, len) in MEMORY_LENGTHS.iter().enumerate() {
+                    let e = (-d / (len * delta)).exp();
+                    for &(k, w) in &weights {
+                        let mut xp = w * e;
+                        for p in 0..MEMORY_POWERS {
+                            if let (true, Some(c)) = (w != 0.0, layout.memory_col(dir[t], l * MEMORY_POWERS + p, k)) {
+                                a[(t, local(c))] += xp;
+                            }
+                            xp *= x_r;
+                        }
+                    }
+                }
+            }
+        }
         if let (Some(at), Some(xe)) = (layout.end_stop_at, terms.end_stop_x_mm) {
             let d = (x - xe).max(0.0);
             a[(t, local(at))] = d * d;
@@ -336,6 +437,14 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
             a[(t, local(at))] = acc;
         }
     }
+    // Keep only the columns this recording touches (e.g. no compression
+    // memory in a drop, which never reverses into compression).
+    let keep: Vec<usize> = (0..cols.len()).filter(|&c| a.column(c).iter().any(|v| *v != 0.0)).collect();
+    let (cols, a) = if keep.len() < cols.len() {
+        (keep.iter().map(|&c| cols[c]).collect::<Vec<_>>(), a.select_columns(&keep))
+    } else {
+        (cols, a)
+    };
     let (r_a, r_y) = if rec.is_fit() {
         let mut ay = DMatrix::<f64>::zeros(n, cols.len() + 1);
         ay.view_mut((0, 0), (n, cols.len())).copy_from(&a);

@@ -74,7 +74,7 @@ pub fn locate(prep: &Prepared, predicted: &[Vec<f64>]) -> Locate {
         let xmax = rec.max_x_mm().max(1e-12);
         let (t0, t1) = (rec.time_s[0], rec.time_s[n - 1]);
         let mut e_rec = 0.0;
-        for t in 0..n {
+        for t in (0..n).filter(|&t| rec.in_domain[t]) {
             let r = rec.force_n[t] - p[t];
             let e = r * r;
             e_rec += e;
@@ -92,7 +92,7 @@ pub fn locate(prep: &Prepared, predicted: &[Vec<f64>]) -> Locate {
             let dt = rec.time_s[b] - rec.time_s[a];
             shift.push(if dt > 0.0 { (p[b] - p[a]) / dt } else { 0.0 });
         }
-        worst.push((rec.file.clone(), (e_rec / n as f64).sqrt()));
+        worst.push((rec.file.clone(), (e_rec / rec.n_scored().max(1) as f64).sqrt()));
         per_rec.push((i, residual_scale(&rec.force_n, p)));
     }
     worst.sort_by(|a, b| b.1.total_cmp(&a.1));

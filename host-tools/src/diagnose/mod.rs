@@ -92,7 +92,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
     let loc = locate::locate(&prep, &baseline_pred);
     let selection = select::forward_select(&prep, &opts.thresholds)?;
     let mut findings = Vec::new();
-    let mut before = selection.baseline.clone();
+    let mut before = selection.reference.clone();
     for round in &selection.rounds {
         let Some(k) = round.accepted else { break };
         let c = &round.tested[k];
@@ -186,5 +186,66 @@ fn evidence_for(
         locate::describe(&loc),
         follows,
         locate::pearson(&res, &term)
+    )
+}
+
+/// Options from the CLI's flags.
+pub fn options_from_cli(
+    model: Option<&str>,
+    folds_by: Option<String>,
+    folds: usize,
+    validate_currents_a: Vec<f64>,
+    seed: u64,
+) -> Result<DiagnoseOptions> {
+    if validate_currents_a.iter().any(|c| !c.is_finite()) {
+        anyhow::bail!("--validate-current must be a finite current in A");
+    }
+    Ok(DiagnoseOptions {
+        model: model.map(crate::table_file::load_table).transpose()?,
+        folds: match folds_by {
+            Some(tag) => FoldPlan::ByTag(tag),
+            None => FoldPlan::Stratified { k: folds },
+        },
+        validate_currents_a,
+        thresholds: Thresholds {
+            seed,
+            ..Thresholds::default()
+        },
+        ..DiagnoseOptions::default()
+    })
+}
+
+/// `mre diagnose`: loads the data set, diagnoses it and writes every output.
+/// Nothing is written unless the diagnosis succeeds.
+pub fn run_to_files(
+    dataset_dir: &std::path::Path,
+    opts: &DiagnoseOptions,
+    report_dir: &std::path::Path,
+    json_path: &std::path::Path,
+    predictions_dir: &std::path::Path,
+) -> Result<report::ReportJson> {
+    let ds = Dataset::load(dataset_dir)?;
+    let d = diagnose(&ds, opts)?;
+    report::write_all(&d, report_dir, json_path, predictions_dir)
+}
+
+/// One line for the terminal: what was found.
+pub fn summary_line(r: &report::ReportJson) -> String {
+    if r.effects.is_empty() {
+        return format!(
+            "no missing physics found (baseline RMSE {:.3} N, NRMSE {:.4})",
+            r.baseline.rmse_n, r.baseline.nrmse
+        );
+    }
+    let names: Vec<String> = r
+        .effects
+        .iter()
+        .map(|e| format!("{} ({:.2}× held out)", e.name, e.heldout_improvement))
+        .collect();
+    format!(
+        "found: {}; RMSE {:.3} → {:.3} N",
+        names.join(", "),
+        r.baseline.rmse_n,
+        r.final_.rmse_n
     )
 }

@@ -24,6 +24,9 @@ pub struct Rec {
     pub fold: Option<usize>,
     /// A label of the fold's group, for the report (e.g. `frequency_hz=1`).
     pub group: String,
+    /// Samples inside the stroke the bracketing tabulated currents were fitted
+    /// on: only there is the model defined, so only there is it scored.
+    pub in_domain: Vec<bool>,
 }
 
 impl Rec {
@@ -33,6 +36,11 @@ impl Rec {
 
     pub fn is_empty(&self) -> bool {
         self.time_s.is_empty()
+    }
+
+    /// Samples scored (see `in_domain`).
+    pub fn n_scored(&self) -> usize {
+        self.in_domain.iter().filter(|b| **b).count()
     }
 
     pub fn is_fit(&self) -> bool {
@@ -133,6 +141,7 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
             force_n: s.force_n.clone(),
             fold: None,
             group: String::new(),
+            in_domain: vec![true; s.len()],
         });
     }
     let mut currents_a: Vec<f64> = recs.iter().filter(|r| r.is_fit()).map(|r| r.current_a).collect();
@@ -141,6 +150,7 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
     if currents_a.is_empty() {
         bail!("the data set has no `fit` recordings to build the baseline from");
     }
+    mark_domain(&mut recs, &currents_a);
     let n_folds = assign_folds(&mut recs, ds, plan)?;
     let free_drop = ds
         .recordings
@@ -199,6 +209,50 @@ fn assign_folds(recs: &mut [Rec], ds: &Dataset, plan: &FoldPlan) -> Result<usize
             }
             Ok(labels.len())
         }
+    }
+}
+
+/// Validate recordings are scored only within the stroke both bracketing
+/// tabulated currents were fitted on (where the core would not clamp x), on
+/// their loading stroke.
+fn mark_domain(recs: &mut [Rec], currents_a: &[f64]) {
+    let stroke: Vec<(f64, f64)> = currents_a
+        .iter()
+        .map(|&c| {
+            recs.iter()
+                .filter(|r| r.is_fit() && r.current_a == c)
+                .flat_map(|r| r.x_mm.iter().copied())
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)))
+        })
+        .collect();
+    for r in recs.iter_mut().filter(|r| !r.is_fit()) {
+        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        for (k, w) in super::design::current_weights(currents_a, r.current_a, None) {
+            if w > 0.0 {
+                // A 2 % margin so sensor noise at the ends is not "outside".
+                let margin = 0.02 * (stroke[k].1 - stroke[k].0);
+                lo = lo.max(stroke[k].0 - margin);
+                hi = hi.min(stroke[k].1 + margin);
+            }
+        }
+        // Scored on the loading stroke only, up to the first reversal or the
+        // first sample outside the fitted range: past a reversal the reference
+        // model's turn-around memory would be extrapolated between currents.
+        let mut left = false;
+        let mut peak = f64::NEG_INFINITY;
+        let band = 0.01 * (hi - lo).abs().max(1e-9);
+        let mut loading = false;
+        r.in_domain = r
+            .x_mm
+            .iter()
+            .zip(&r.v_m_s)
+            .map(|(&x, &v)| {
+                peak = peak.max(x);
+                loading |= v > 0.0;
+                left |= x < lo || x > hi || x < peak - band || (loading && v <= 0.0);
+                !left
+            })
+            .collect();
     }
 }
 

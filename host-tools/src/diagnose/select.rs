@@ -80,8 +80,14 @@ impl Scored {
     }
 }
 
-fn sse(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
+/// SSE over the samples where the model is defined.
+fn sse(a: &[f64], b: &[f64], mask: &[bool]) -> f64 {
+    a.iter()
+        .zip(b)
+        .zip(mask)
+        .filter(|(_, m)| **m)
+        .map(|((x, y), _)| (x - y) * (x - y))
+        .sum()
 }
 
 fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
@@ -91,7 +97,7 @@ fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
     let mut heldout_sse = vec![0.0; prep.recs.len()];
     let mut full_sse = vec![0.0; prep.recs.len()];
     for (i, rec) in prep.recs.iter().enumerate() {
-        full_sse[i] = sse(&d.predict(prep, i, &full), &rec.force_n);
+        full_sse[i] = sse(&d.predict(prep, i, &full), &rec.force_n, &rec.in_domain);
         if !rec.is_fit() {
             heldout_sse[i] = full_sse[i];
         }
@@ -101,7 +107,7 @@ fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
         let sol = d.solve(prep, &prep.training_for(f))?;
         fold_train_sse.push(sol.sse);
         for i in prep.fold_members(f) {
-            heldout_sse[i] = sse(&d.predict(prep, i, &sol), &prep.recs[i].force_n);
+            heldout_sse[i] = sse(&d.predict(prep, i, &sol), &prep.recs[i].force_n, &prep.recs[i].in_domain);
         }
     }
     let full_fit_sse = fit.iter().map(|&i| full_sse[i]).sum();
@@ -119,7 +125,10 @@ pub fn score(prep: &Prepared, variants: &[Terms]) -> Result<Scored> {
     if variants.is_empty() {
         bail!("no model variants to score");
     }
-    let evals: Vec<Option<VariantEval>> = variants.par_iter().map(|t| eval_variant(prep, t).ok()).collect();
+    let evals: Vec<Option<VariantEval>> = variants
+        .par_iter()
+        .map(|t| eval_variant(prep, t).map_err(|e| eprintln!("{t:?}: {e:#}")).ok())
+        .collect();
     let ok: Vec<usize> = (0..evals.len()).filter(|&v| evals[v].is_some()).collect();
     if ok.is_empty() {
         bail!("no variant could be fitted (too few recordings per current and branch?)");
@@ -156,7 +165,7 @@ pub fn score(prep: &Prepared, variants: &[Terms]) -> Result<Scored> {
         let val_sse = |v: usize| validate.iter().map(|&i| ev(v).full_sse[i]).sum::<f64>();
         chosen = *ok.iter().min_by(|&&a, &&b| val_sse(a).total_cmp(&val_sse(b))).expect("non-empty");
         insample_sse = val_sse(chosen);
-        insample_n = validate.iter().map(|&i| prep.recs[i].len()).sum();
+        insample_n = validate.iter().map(|&i| prep.recs[i].n_scored()).sum();
     } else {
         chosen = *ok
             .iter()
@@ -176,7 +185,7 @@ pub fn score(prep: &Prepared, variants: &[Terms]) -> Result<Scored> {
         terms,
         solution: ev(chosen).full.clone(),
         heldout_sse,
-        n: prep.recs.iter().map(|r| r.len()).collect(),
+        n: prep.recs.iter().map(|r| r.n_scored()).collect(),
         insample_sse,
         insample_n,
         n_params,
@@ -256,6 +265,9 @@ pub struct Round {
 #[derive(Clone, Debug)]
 pub struct Selection {
     pub baseline: Scored,
+    /// The turn-around memory test (reference = baseline + memory if accepted).
+    pub memory: Option<Comparison>,
+    pub reference: Scored,
     pub rounds: Vec<Round>,
     pub final_model: Scored,
     /// Effects the data cannot identify, with what would.
@@ -266,7 +278,18 @@ pub struct Selection {
 /// no candidate passes the test.
 pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
     let baseline = score(prep, &[Terms::default()])?;
-    let mut current = baseline.clone();
+    // The reference: the paper's model, plus turn-around memory if the data
+    // show it (a structural limit of one quartic per branch, not missing
+    // physics from the vocabulary). Candidates are tested against it.
+    let memory = score(prep, &candidates::memory_variants(prep))
+        .map_err(|e| eprintln!("memory: {e:#}"))
+        .ok()
+        .map(|after| compare(prep, &baseline, after, Effect::CoilLag, th));
+    let reference = match &memory {
+        Some(c) if c.accepted => c.scored.clone(),
+        _ => baseline.clone(),
+    };
+    let mut current = reference.clone();
     let mut rounds = Vec::new();
     let mut not_identifiable = Vec::new();
     let mut testable = Vec::new();
@@ -300,6 +323,8 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
     }
     Ok(Selection {
         baseline,
+        memory,
+        reference,
         rounds,
         final_model: current,
         not_identifiable,
