@@ -200,7 +200,7 @@ pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
         }
         Effect::StressSoftening => {
             if distinct_sequences(prep) >= 3 {
-                [2.0, 4.0, 8.0, 16.0, 32.0, 64.0]
+                [2.0, 4.0, 8.0, 16.0, 40.0]
                     .iter()
                     .map(|&n0| with(&|t| t.softening = Some(SofteningLaw::Sequence { n0 })))
                     .collect()

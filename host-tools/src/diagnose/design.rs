@@ -294,38 +294,41 @@ impl Designs {
         })
     }
 
-    /// Solves over `train`, alternating with the softening Δ if the model has one.
+    /// Solves over `train`. With softening, `F = (1 − Δ·g_r)·Q(x)`: for a
+    /// given Δ, Q is one scaled linear solve, so Δ is found by golden-section
+    /// search on the training SSE (alternating updates crawl, because Q's
+    /// scale and Δ are nearly interchangeable when most tests have softened).
     pub fn solve(&self, prep: &Prepared, train: &[usize]) -> Result<Solution> {
         let Some(law) = self.terms.softening else {
             return self.solve_scaled(prep, train, &|_| 1.0);
         };
         let g: Vec<f64> = prep.recs.iter().map(|r| law.covariate(r)).collect();
-        let mut delta = 0.0;
-        let mut sol = self.solve_scaled(prep, train, &|_| 1.0)?;
-        // F = (1 − Δg)·Q: given Q, Δ is a 1-D least squares; given Δ, Q is linear.
-        for _ in 0..6 {
-            let (mut num, mut den) = (0.0, 0.0);
-            for &i in train {
-                let q = self.recs[i].predict(&sol.beta);
-                for (f, q) in prep.recs[i].force_n.iter().zip(&q) {
-                    let z = -g[i] * q;
-                    num += (f - q) * z;
-                    den += z * z;
-                }
-            }
-            if den <= 0.0 {
-                break;
-            }
-            let next = (num / den).clamp(-0.9, 0.9);
-            let converged = (next - delta).abs() < 1e-4;
-            delta = next;
-            sol = self.solve_scaled(prep, train, &|i| 1.0 - delta * g[i])?;
-            if converged {
-                break;
+        let at = |delta: f64| {
+            self.solve_scaled(prep, train, &|i| 1.0 - delta * g[i]).map(|mut s| {
+                s.delta = delta;
+                s
+            })
+        };
+        let (mut lo, mut hi) = (-0.3, 0.6);
+        let phi = 0.5 * (5f64.sqrt() - 1.0);
+        let (mut a, mut b) = (hi - phi * (hi - lo), lo + phi * (hi - lo));
+        let (mut fa, mut fb) = (at(a)?, at(b)?);
+        for _ in 0..10 {
+            if fa.sse < fb.sse {
+                hi = b;
+                b = a;
+                fb = fa;
+                a = hi - phi * (hi - lo);
+                fa = at(a)?;
+            } else {
+                lo = a;
+                a = b;
+                fa = fb;
+                b = lo + phi * (hi - lo);
+                fb = at(b)?;
             }
         }
-        sol.delta = delta;
-        Ok(sol)
+        Ok(if fa.sse < fb.sse { fa } else { fb })
     }
 
     /// Predicted force of recording `i`.

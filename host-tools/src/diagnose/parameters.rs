@@ -88,7 +88,9 @@ pub fn with_intervals(
     let point = extract(prep, effect, terms, sol);
     let designs = Designs::build(prep, terms);
     let fit = prep.fit_indices();
-    let boot: Vec<Vec<(String, f64, String)>> = (0..resamples)
+    // Each softening fit is a 1-D search of solves: fewer resamples keep it quick.
+    let resamples_linear = if terms.softening.is_some() { resamples.div_ceil(4) } else { resamples };
+    let boot: Vec<Vec<(String, f64, String)>> = (0..resamples_linear)
         .into_par_iter()
         .filter_map(|b| {
             let mut rng = ChaCha8Rng::seed_from_u64(seed.wrapping_add(b as u64));

@@ -212,45 +212,74 @@ fn assign_folds(recs: &mut [Rec], ds: &Dataset, plan: &FoldPlan) -> Result<usize
     }
 }
 
-/// Validate recordings are scored only within the stroke both bracketing
-/// tabulated currents were fitted on (where the core would not clamp x), on
-/// their loading stroke.
+/// Reversal points of a recording: `(x_r, was_a_maximum)`.
+fn reversals(x: &[f64], band_mm: f64) -> Vec<(f64, bool)> {
+    let (feature, compressing) = super::design::memory_feature(x, band_mm * 5.0);
+    let mut out: Vec<(f64, bool)> = Vec::new();
+    let mut last: Option<usize> = None;
+    for t in 0..x.len() {
+        if let Some((_, at)) = feature[t] {
+            let at = at as usize;
+            if last != Some(at) {
+                last = Some(at);
+                out.push((x[at], !compressing[t]));
+            }
+        }
+    }
+    out
+}
+
+/// Validate recordings are scored only where the model is defined without
+/// extrapolation: within the stroke both bracketing tabulated currents were
+/// fitted on (where the core would not clamp x), and, after a reversal, only
+/// if the reversal point lies within the range of reversal points of those
+/// currents' fit recordings (the reference model's turn-around memory is
+/// fitted per current as a function of the reversal point).
 fn mark_domain(recs: &mut [Rec], currents_a: &[f64]) {
-    let stroke: Vec<(f64, f64)> = currents_a
+    let span = recs
+        .iter()
+        .filter(|r| r.is_fit())
+        .flat_map(|r| r.x_mm.iter().copied())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)));
+    let margin = 0.02 * (span.1 - span.0).max(1e-9);
+    let band = 0.5 * margin;
+    let range = |v: &mut dyn Iterator<Item = f64>| v.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)));
+    // Per current: stroke, range of maxima, range of minima.
+    let per_current: Vec<[(f64, f64); 3]> = currents_a
         .iter()
         .map(|&c| {
-            recs.iter()
-                .filter(|r| r.is_fit() && r.current_a == c)
-                .flat_map(|r| r.x_mm.iter().copied())
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)))
+            let fits: Vec<&Rec> = recs.iter().filter(|r| r.is_fit() && r.current_a == c).collect();
+            let stroke = range(&mut fits.iter().flat_map(|r| r.x_mm.iter().copied()));
+            let revs: Vec<(f64, bool)> = fits.iter().flat_map(|r| reversals(&r.x_mm, band)).collect();
+            let maxima = range(&mut revs.iter().filter(|r| r.1).map(|r| r.0));
+            let minima = range(&mut revs.iter().filter(|r| !r.1).map(|r| r.0));
+            [stroke, maxima, minima]
         })
         .collect();
     for r in recs.iter_mut().filter(|r| !r.is_fit()) {
-        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        let mut lim = [(f64::NEG_INFINITY, f64::INFINITY); 3];
         for (k, w) in super::design::current_weights(currents_a, r.current_a, None) {
             if w > 0.0 {
-                // A 2 % margin so sensor noise at the ends is not "outside".
-                let margin = 0.02 * (stroke[k].1 - stroke[k].0);
-                lo = lo.max(stroke[k].0 - margin);
-                hi = hi.min(stroke[k].1 + margin);
+                for (l, p) in lim.iter_mut().zip(&per_current[k]) {
+                    l.0 = l.0.max(p.0 - margin);
+                    l.1 = l.1.min(p.1 + margin);
+                }
             }
         }
-        // Scored on the loading stroke only, up to the first reversal or the
-        // first sample outside the fitted range: past a reversal the reference
-        // model's turn-around memory would be extrapolated between currents.
-        let mut left = false;
-        let mut peak = f64::NEG_INFINITY;
-        let band = 0.01 * (hi - lo).abs().max(1e-9);
-        let mut loading = false;
-        r.in_domain = r
-            .x_mm
-            .iter()
-            .zip(&r.v_m_s)
-            .map(|(&x, &v)| {
-                peak = peak.max(x);
-                loading |= v > 0.0;
-                left |= x < lo || x > hi || x < peak - band || (loading && v <= 0.0);
-                !left
+        let (feature, compressing) = super::design::memory_feature(&r.x_mm, band * 5.0);
+        r.in_domain = (0..r.len())
+            .map(|t| {
+                let x = r.x_mm[t];
+                let in_stroke = x >= lim[0].0 && x <= lim[0].1;
+                let memory_ok = match feature[t] {
+                    None => true,
+                    Some((_, at)) => {
+                        let x_r = r.x_mm[at as usize];
+                        let l = if compressing[t] { lim[2] } else { lim[1] };
+                        x_r >= l.0 && x_r <= l.1
+                    }
+                };
+                in_stroke && memory_ok
             })
             .collect();
     }
