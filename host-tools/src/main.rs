@@ -143,7 +143,18 @@ fn run(cli: Cli) -> Result<()> {
         Command::BenchDiagnose { cases, seed, json } => {
             let opts = mre_host::diagnose::DiagnoseOptions::default();
             let summary = mre_host::diagnose::bench::run_bench(cases, seed, &opts, |k, c| {
-                eprintln!("case {:>3} seed {}: truth {:<20} diagnosed {:?} ({:.2} s); first round {:?}", k + 1, c.seed, c.truth, c.found, c.seconds, c.first_round.iter().map(|(n, r)| format!("{n} {r:.3}")).collect::<Vec<_>>())
+                eprintln!(
+                    "case {:>3} seed {}: truth {:<20} diagnosed {:?} ({:.2} s); first round {:?}",
+                    k + 1,
+                    c.seed,
+                    c.truth,
+                    c.found,
+                    c.seconds,
+                    c.first_round
+                        .iter()
+                        .map(|(n, r)| format!("{n} {r:.3}"))
+                        .collect::<Vec<_>>()
+                )
             })?;
             print!("{}", mre_host::diagnose::bench::format_summary(&summary));
             if let Some(path) = json {

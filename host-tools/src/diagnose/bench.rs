@@ -60,7 +60,12 @@ pub fn run_case(seed: u64, opts: &DiagnoseOptions) -> Result<BenchCase> {
         .selection
         .rounds
         .first()
-        .map(|r| r.tested.iter().map(|c| (c.effect.name().to_string(), c.ratio)).collect())
+        .map(|r| {
+            r.tested
+                .iter()
+                .map(|c| (c.effect.name().to_string(), c.ratio))
+                .collect()
+        })
         .unwrap_or_default();
     Ok(BenchCase {
         first_round,
@@ -90,7 +95,11 @@ fn median(v: &mut [f64]) -> f64 {
 pub fn summarize(cases: Vec<BenchCase>) -> BenchSummary {
     let mut confusion: BTreeMap<String, BTreeMap<String, usize>> = BTreeMap::new();
     for c in &cases {
-        *confusion.entry(c.truth.clone()).or_default().entry(c.top1.clone()).or_default() += 1;
+        *confusion
+            .entry(c.truth.clone())
+            .or_default()
+            .entry(c.top1.clone())
+            .or_default() += 1;
     }
     let correct = cases.iter().filter(|c| c.top1 == c.truth).count();
     let none: Vec<&BenchCase> = cases.iter().filter(|c| c.truth == "none").collect();
@@ -109,7 +118,11 @@ pub fn summarize(cases: Vec<BenchCase>) -> BenchSummary {
     let mut secs: Vec<f64> = cases.iter().map(|c| c.seconds).collect();
     BenchSummary {
         top1_accuracy: correct as f64 / cases.len().max(1) as f64,
-        false_positive_rate_none: if none.is_empty() { 0.0 } else { fp as f64 / none.len() as f64 },
+        false_positive_rate_none: if none.is_empty() {
+            0.0
+        } else {
+            fp as f64 / none.len() as f64
+        },
         median_improvement,
         median_seconds: median(&mut secs),
         confusion,

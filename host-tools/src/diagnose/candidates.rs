@@ -96,14 +96,22 @@ fn spread_within_currents(prep: &Prepared, q: impl Fn(usize) -> f64) -> f64 {
 }
 
 fn distinct_sequences(prep: &Prepared) -> usize {
-    let mut s: Vec<f64> = prep.fit_indices().iter().filter_map(|&i| prep.recs[i].sequence).collect();
+    let mut s: Vec<f64> = prep
+        .fit_indices()
+        .iter()
+        .filter_map(|&i| prep.recs[i].sequence)
+        .collect();
     s.sort_by(f64::total_cmp);
     s.dedup();
     s.len()
 }
 
 fn temperature_span_c(prep: &Prepared) -> f64 {
-    let t: Vec<f64> = prep.fit_indices().iter().filter_map(|&i| prep.recs[i].temperature_c).collect();
+    let t: Vec<f64> = prep
+        .fit_indices()
+        .iter()
+        .filter_map(|&i| prep.recs[i].temperature_c)
+        .collect();
     t.iter().copied().fold(f64::NEG_INFINITY, f64::max) - t.iter().copied().fold(f64::INFINITY, f64::min)
 }
 
@@ -123,10 +131,12 @@ pub fn identifiable(prep: &Prepared, effect: Effect) -> Result<(), String> {
             if spread_within_currents(prep, |i| prep.recs[i].max_abs_v_m_s()) >= 0.15 {
                 Ok(())
             } else {
-                Err("recordings at one current with different velocities (impact velocities, or sinusoid \
+                Err(
+                    "recordings at one current with different velocities (impact velocities, or sinusoid \
                      amplitude × frequency): along one trajectory v is a function of x and the branch \
                      quartics absorb it"
-                    .into())
+                        .into(),
+                )
             }
         }
         Effect::SensorDelay => Ok(()),
@@ -153,10 +163,12 @@ pub fn identifiable(prep: &Prepared, effect: Effect) -> Result<(), String> {
         }
         Effect::Inertia => {
             if prep.free_drop {
-                Err("a test whose acceleration is not proportional to the measured force (shaker or MTS \
+                Err(
+                    "a test whose acceleration is not proportional to the measured force (shaker or MTS \
                      test, or a measured acceleration channel): in a free drop a = g − F/M, a pure scale the \
                      fit absorbs"
-                    .into())
+                        .into(),
+                )
             } else {
                 Ok(())
             }
@@ -211,7 +223,10 @@ pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
             }
         }
         Effect::EndStop => {
-            let xmax = fit.iter().map(|&i| prep.recs[i].max_x_mm()).fold(f64::NEG_INFINITY, f64::max);
+            let xmax = fit
+                .iter()
+                .map(|&i| prep.recs[i].max_x_mm())
+                .fold(f64::NEG_INFINITY, f64::max);
             [0.3, 0.4, 0.5, 0.6, 0.7, 0.75, 0.8, 0.85, 0.9, 0.94]
                 .iter()
                 .map(|f| with(&|t| t.end_stop_x_mm = Some(f * xmax)))

@@ -62,7 +62,13 @@ pub fn memory_feature(x: &[f64], delta_mm: f64) -> (Vec<Option<(f64, f64)>>, Vec
             ext_at = t;
             for s in from..t {
                 compressing[s] = dir;
-                if dir { if x[s] > x[ext_at] { ext_at = s; } } else if x[s] < x[ext_at] { ext_at = s; }
+                if dir {
+                    if x[s] > x[ext_at] {
+                        ext_at = s;
+                    }
+                } else if x[s] < x[ext_at] {
+                    ext_at = s;
+                }
             }
             for s in from..t {
                 feature[s] = Some(((x[s] - x[from]).abs(), from as f64));
@@ -260,14 +266,19 @@ impl Designs {
 
     /// Solves over `train` with fixed per-recording scales (1 if `None`).
     pub fn solve_scaled(&self, prep: &Prepared, train: &[usize], scale: &dyn Fn(usize) -> f64) -> Result<Solution> {
-        let rows: usize = train.iter().map(|&i| self.recs[i].r_a.as_ref().map_or(0, |r| r.nrows())).sum();
+        let rows: usize = train
+            .iter()
+            .map(|&i| self.recs[i].r_a.as_ref().map_or(0, |r| r.nrows()))
+            .sum();
         let p = self.layout.n_cols;
         let mut a = DMatrix::<f64>::zeros(rows, p);
         let mut y = DVector::<f64>::zeros(rows);
         let mut at = 0;
         for &i in train {
             let d = &self.recs[i];
-            let (Some(ra), Some(ry)) = (&d.r_a, &d.r_y) else { continue };
+            let (Some(ra), Some(ry)) = (&d.r_a, &d.r_y) else {
+                continue;
+            };
             let s = scale(i);
             for row in 0..ra.nrows() {
                 for (lc, &gc) in d.cols.iter().enumerate() {
@@ -442,9 +453,14 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
     }
     // Keep only the columns this recording touches (e.g. no compression
     // memory in a drop, which never reverses into compression).
-    let keep: Vec<usize> = (0..cols.len()).filter(|&c| a.column(c).iter().any(|v| *v != 0.0)).collect();
+    let keep: Vec<usize> = (0..cols.len())
+        .filter(|&c| a.column(c).iter().any(|v| *v != 0.0))
+        .collect();
     let (cols, a) = if keep.len() < cols.len() {
-        (keep.iter().map(|&c| cols[c]).collect::<Vec<_>>(), a.select_columns(&keep))
+        (
+            keep.iter().map(|&c| cols[c]).collect::<Vec<_>>(),
+            a.select_columns(&keep),
+        )
     } else {
         (cols, a)
     };

@@ -78,7 +78,9 @@ pub struct Diagnosis {
 /// In-sample predictions of a scored model for every recording.
 pub fn predictions(prep: &Prepared, scored: &Scored) -> Vec<Vec<f64>> {
     let d = Designs::build(prep, &scored.terms);
-    (0..prep.recs.len()).map(|i| d.predict(prep, i, &scored.solution)).collect()
+    (0..prep.recs.len())
+        .map(|i| d.predict(prep, i, &scored.solution))
+        .collect()
 }
 
 /// Runs the whole diagnosis on a loaded data set.

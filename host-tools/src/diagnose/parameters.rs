@@ -89,13 +89,20 @@ pub fn with_intervals(
     let designs = Designs::build(prep, terms);
     let fit = prep.fit_indices();
     // Each softening fit is a 1-D search of solves: fewer resamples keep it quick.
-    let resamples_linear = if terms.softening.is_some() { resamples.div_ceil(4) } else { resamples };
+    let resamples_linear = if terms.softening.is_some() {
+        resamples.div_ceil(4)
+    } else {
+        resamples
+    };
     let boot: Vec<Vec<(String, f64, String)>> = (0..resamples_linear)
         .into_par_iter()
         .filter_map(|b| {
             let mut rng = ChaCha8Rng::seed_from_u64(seed.wrapping_add(b as u64));
             let train: Vec<usize> = (0..fit.len()).map(|_| fit[rng.random_range(0..fit.len())]).collect();
-            designs.solve(prep, &train).ok().map(|s| extract(prep, effect, terms, &s))
+            designs
+                .solve(prep, &train)
+                .ok()
+                .map(|s| extract(prep, effect, terms, &s))
         })
         .collect();
     // Searched parameter: which variant wins on resampled recordings.
@@ -123,7 +130,12 @@ pub fn with_intervals(
         let from_linear: Vec<f64> = boot.iter().filter_map(|p| p.get(k).map(|q| q.1)).collect();
         let from_search: Vec<f64> = searched
             .iter()
-            .filter_map(|t| extract(prep, effect, t, sol).into_iter().find(|q| &q.0 == name).map(|q| q.1))
+            .filter_map(|t| {
+                extract(prep, effect, t, sol)
+                    .into_iter()
+                    .find(|q| &q.0 == name)
+                    .map(|q| q.1)
+            })
             .collect();
         let is_searched = matches!(name.as_str(), "tau_s" | "x_e_mm" | "v0_m_s" | "n0" | "i_s_a");
         let mut samples = if is_searched { from_search } else { from_linear };

@@ -109,7 +109,11 @@ fn scatter_by_current(
             continue;
         }
         chart
-            .draw_series(series.iter().map(|&(x, y)| Circle::new((x, y), radius, color.mix(0.6).filled())))
+            .draw_series(
+                series
+                    .iter()
+                    .map(|&(x, y)| Circle::new((x, y), radius, color.mix(0.6).filled())),
+            )
             .map_err(|e| anyhow!("{e}"))?
             .label(format!("{c} A"))
             .legend(move |(x, y)| Circle::new((x, y), 4, color.filled()));
@@ -189,10 +193,34 @@ pub fn residual_covariates(d: &Diagnosis, path: &Path) -> Result<()> {
         let p = root.split_evenly((2, 2));
         let y = "measured − model force (N)";
         scatter_by_current(&p[0], d, "Residual vs velocity", "velocity v (m/s)", y, &vel, 1)?;
-        scatter_by_current(&p[1], d, "Residual vs acceleration", "acceleration a (m/s²)", y, &acc, 1)?;
+        scatter_by_current(
+            &p[1],
+            d,
+            "Residual vs acceleration",
+            "acceleration a (m/s²)",
+            y,
+            &acc,
+            1,
+        )?;
         let ys = "residual scale Σr·F̂/ΣF̂² (%)";
-        scatter_by_current(&p[2], d, "Per recording: residual scale vs run order", seq_label, ys, &seq, 4)?;
-        scatter_by_current(&p[3], d, "Per recording: residual scale vs peak velocity", "peak |v| (m/s)", ys, &peak, 4)
+        scatter_by_current(
+            &p[2],
+            d,
+            "Per recording: residual scale vs run order",
+            seq_label,
+            ys,
+            &seq,
+            4,
+        )?;
+        scatter_by_current(
+            &p[3],
+            d,
+            "Per recording: residual scale vs peak velocity",
+            "peak |v| (m/s)",
+            ys,
+            &peak,
+            4,
+        )
     })
 }
 
@@ -204,7 +232,12 @@ pub fn loops_worst(d: &Diagnosis, path: &Path) -> Result<()> {
         .iter()
         .enumerate()
         .map(|(i, r)| {
-            let se: f64 = r.force_n.iter().zip(&d.baseline_pred[i]).map(|(f, p)| (f - p) * (f - p)).sum();
+            let se: f64 = r
+                .force_n
+                .iter()
+                .zip(&d.baseline_pred[i])
+                .map(|(f, p)| (f - p) * (f - p))
+                .sum();
             (i, se / r.len() as f64)
         })
         .collect();
@@ -243,7 +276,10 @@ pub fn loops_worst(d: &Diagnosis, path: &Path) -> Result<()> {
             ];
             for (name, y, color) in series {
                 chart
-                    .draw_series(LineSeries::new(idx.iter().map(|&t| (r.x_mm[t], y[t])), color.stroke_width(2)))
+                    .draw_series(LineSeries::new(
+                        idx.iter().map(|&t| (r.x_mm[t], y[t])),
+                        color.stroke_width(2),
+                    ))
                     .map_err(|e| anyhow!("{e}"))?
                     .label(name)
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(3)));

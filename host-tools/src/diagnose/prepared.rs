@@ -98,7 +98,9 @@ impl Prepared {
     }
 
     pub fn fold_members(&self, fold: usize) -> Vec<usize> {
-        (0..self.recs.len()).filter(|&i| self.recs[i].fold == Some(fold)).collect()
+        (0..self.recs.len())
+            .filter(|&i| self.recs[i].fold == Some(fold))
+            .collect()
     }
 
     pub fn training_for(&self, fold: usize) -> Vec<usize> {
@@ -118,7 +120,10 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
             bail!("{}: {} samples; the diagnosis needs at least 8", r.file, s.len());
         }
         let all = [&s.time_s, &s.x_mm, &s.v_m_s, &s.force_n];
-        if all.iter().any(|c| c.len() != s.len() || c.iter().any(|v| !v.is_finite())) {
+        if all
+            .iter()
+            .any(|c| c.len() != s.len() || c.iter().any(|v| !v.is_finite()))
+        {
             bail!("{}: channels differ in length or hold NaN/infinite values", r.file);
         }
         let a_m_s2 = match &s.accel_m_s2 {
@@ -243,7 +248,8 @@ fn mark_domain(recs: &mut [Rec], currents_a: &[f64]) {
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)));
     let margin = 0.02 * (span.1 - span.0).max(1e-9);
     let band = 0.5 * margin;
-    let range = |v: &mut dyn Iterator<Item = f64>| v.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)));
+    let range =
+        |v: &mut dyn Iterator<Item = f64>| v.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)));
     // Per current: stroke, range of maxima, range of minima.
     let per_current: Vec<[(f64, f64); 3]> = currents_a
         .iter()

@@ -93,9 +93,18 @@ pub fn report_json(d: &Diagnosis) -> ReportJson {
 pub fn predictions_file_name(recording_file: &str) -> String {
     let stem: String = recording_file
         .chars()
-        .map(|c| if c.is_ascii_alphanumeric() || c == '.' || c == '-' || c == '_' { c } else { '_' })
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '.' || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
         .collect();
-    let stem = stem.strip_suffix(".csv").or_else(|| stem.strip_suffix(".txt")).unwrap_or(&stem);
+    let stem = stem
+        .strip_suffix(".csv")
+        .or_else(|| stem.strip_suffix(".txt"))
+        .unwrap_or(&stem);
     format!("{stem}.predictions.csv")
 }
 
@@ -164,7 +173,10 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
     );
     let _ = writeln!(s, "## Result\n");
     if json.effects.is_empty() {
-        let _ = writeln!(s, "**No missing physics found.** No candidate improved the held-out fit significantly.\n");
+        let _ = writeln!(
+            s,
+            "**No missing physics found.** No candidate improved the held-out fit significantly.\n"
+        );
     }
     for (k, (e, f)) in json.effects.iter().zip(&d.findings).enumerate() {
         let _ = writeln!(
@@ -206,15 +218,16 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
     for (n, r) in &l.recording_correlations {
         let _ = writeln!(s, "| {n} (per recording, residual scale) | {r:+.3} |");
     }
-    let _ = writeln!(s, "\n![residual map](residual_map.png)\n\n![residual vs covariates](residual_covariates.png)\n");
+    let _ = writeln!(
+        s,
+        "\n![residual map](residual_map.png)\n\n![residual vs covariates](residual_covariates.png)\n"
+    );
     let _ = writeln!(s, "## Candidates tested (forward selection)\n");
     let _ = writeln!(
         s,
         "Accept only if held-out RMSE ratio ≥ {:.2}, its 95 % bootstrap lower bound (resampling recordings) \
          ≥ {:.2}, and ΔBIC < {:.0}.\n",
-        d.thresholds.min_ratio,
-        d.thresholds.min_ratio_lo,
-        d.thresholds.max_delta_bic
+        d.thresholds.min_ratio, d.thresholds.min_ratio_lo, d.thresholds.max_delta_bic
     );
     if let Some(m) = &d.selection.memory {
         let _ = writeln!(
@@ -231,10 +244,17 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
             m.ratio_ci95[1],
             m.delta_bic,
             if m.accepted { "included" } else { "not included" },
-            m.scored.terms.memory_mm.map(|d| format!(" (δ = {d:.3} mm)")).unwrap_or_default()
+            m.scored
+                .terms
+                .memory_mm
+                .map(|d| format!(" (δ = {d:.3} mm)"))
+                .unwrap_or_default()
         );
     }
-    let _ = writeln!(s, "| round | candidate | held-out RMSE before → after (N) | ratio | 95 % CI | ΔBIC | accepted |");
+    let _ = writeln!(
+        s,
+        "| round | candidate | held-out RMSE before → after (N) | ratio | 95 % CI | ΔBIC | accepted |"
+    );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|");
     for (k, r) in d.selection.rounds.iter().enumerate() {
         for (j, c) in r.tested.iter().enumerate() {
@@ -273,7 +293,10 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
             peak_error(&r.force_n, &d.final_pred[i])
         );
     }
-    let _ = writeln!(s, "\n## Loops of the worst recordings, before and after\n\n![loops](loops_worst.png)");
+    let _ = writeln!(
+        s,
+        "\n## Loops of the worst recordings, before and after\n\n![loops](loops_worst.png)"
+    );
     s
 }
 

@@ -107,7 +107,11 @@ fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
         let sol = d.solve(prep, &prep.training_for(f))?;
         fold_train_sse.push(sol.sse);
         for i in prep.fold_members(f) {
-            heldout_sse[i] = sse(&d.predict(prep, i, &sol), &prep.recs[i].force_n, &prep.recs[i].in_domain);
+            heldout_sse[i] = sse(
+                &d.predict(prep, i, &sol),
+                &prep.recs[i].force_n,
+                &prep.recs[i].in_domain,
+            );
         }
     }
     let full_fit_sse = fit.iter().map(|&i| full_sse[i]).sum();
@@ -156,14 +160,23 @@ pub fn score(prep: &Prepared, variants: &[Terms]) -> Result<Scored> {
             let best = *ok
                 .iter()
                 .min_by(|&&a, &&b| {
-                    let s = |v: usize| validate.iter().filter(|&&i| i != j).map(|&i| ev(v).full_sse[i]).sum::<f64>();
+                    let s = |v: usize| {
+                        validate
+                            .iter()
+                            .filter(|&&i| i != j)
+                            .map(|&i| ev(v).full_sse[i])
+                            .sum::<f64>()
+                    };
                     s(a).total_cmp(&s(b))
                 })
                 .expect("non-empty");
             heldout_sse[j] = ev(best).full_sse[j];
         }
         let val_sse = |v: usize| validate.iter().map(|&i| ev(v).full_sse[i]).sum::<f64>();
-        chosen = *ok.iter().min_by(|&&a, &&b| val_sse(a).total_cmp(&val_sse(b))).expect("non-empty");
+        chosen = *ok
+            .iter()
+            .min_by(|&&a, &&b| val_sse(a).total_cmp(&val_sse(b)))
+            .expect("non-empty");
         insample_sse = val_sse(chosen);
         insample_n = validate.iter().map(|&i| prep.recs[i].n_scored()).sum();
     } else {
@@ -300,7 +313,11 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
         }
     }
     loop {
-        let todo: Vec<Effect> = testable.iter().copied().filter(|e| !e.present_in(&current.terms)).collect();
+        let todo: Vec<Effect> = testable
+            .iter()
+            .copied()
+            .filter(|e| !e.present_in(&current.terms))
+            .collect();
         if todo.is_empty() {
             break;
         }
