@@ -86,6 +86,32 @@ enum Command {
         #[arg(long)]
         json: Option<PathBuf>,
     },
+    /// Simulate the drop test: passive 0 A, passive 2 A and the core's impact law in the loop.
+    Sim {
+        /// passive:<A> or controlled (repeatable); default: passive:0, passive:2 and controlled.
+        #[arg(long = "current")]
+        current: Vec<String>,
+        /// Include the controlled run (the core's ImpactLaw in the loop).
+        #[arg(long)]
+        controlled: bool,
+        /// Concealed effect on the plant: none, a vocabulary name, or random.
+        #[arg(long, default_value = "none")]
+        effect: String,
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Impact velocity (m/s).
+        #[arg(long, default_value_t = 2.24)]
+        velocity: f64,
+        /// Drop mass (kg).
+        #[arg(long, default_value_t = 5.5)]
+        mass: f64,
+        /// Coil time constant L/R (ms); default: the current follows the command at once.
+        #[arg(long)]
+        coil_lag_ms: Option<f64>,
+        /// Folder for CSV, summary and plots.
+        #[arg(long)]
+        report: PathBuf,
+    },
 }
 
 fn main() {
@@ -160,6 +186,36 @@ fn run(cli: Cli) -> Result<()> {
             if let Some(path) = json {
                 mre_host::atomic_write::write_atomic(&path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
             }
+        }
+        Command::Sim {
+            current,
+            controlled,
+            effect,
+            seed,
+            velocity,
+            mass,
+            coil_lag_ms,
+            report,
+        } => {
+            use mre_host::plant::closed_loop::{run_sim, RunSpec, SimRequest, DEFAULT_RUNS};
+            let mut runs = current.iter().map(|c| RunSpec::parse(c)).collect::<Result<Vec<_>>>()?;
+            if controlled && !runs.is_empty() && !runs.contains(&RunSpec::Controlled) {
+                runs.push(RunSpec::Controlled);
+            }
+            if runs.is_empty() {
+                runs = DEFAULT_RUNS.to_vec();
+            }
+            let request = SimRequest {
+                runs,
+                effect,
+                seed,
+                impact_velocity_m_s: velocity,
+                mass_kg: mass,
+                coil_lag_s: coil_lag_ms.map(|ms| ms * 1e-3),
+            };
+            let cmp = run_sim(&request, &report)?;
+            print!("{}", mre_host::plant::sim_report::summary_table(&cmp));
+            println!("report: {}", report.join("summary.md").display());
         }
     }
     Ok(())

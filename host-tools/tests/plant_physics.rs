@@ -25,8 +25,15 @@ fn calibration_matches_table5_peaks_within_10_percent() {
         "the paper's drop test"
     );
     for (current_a, measured_n) in TABLE5 {
-        let peak = passive(&plant, &cfg, current_a).summary.peak_force_n;
+        let s = passive(&plant, &cfg, current_a).summary;
+        let peak = s.peak_force_n;
         let err = (peak - measured_n) / measured_n;
+        eprintln!(
+            "| {current_a} | {measured_n} | {peak:.0} | {:+.1} | {:.2} | {:.2} |",
+            err * 100.0,
+            s.max_stroke_mm,
+            s.rebound_velocity_m_s.unwrap_or(f64::NAN)
+        );
         assert!(
             err.abs() < 0.10,
             "{current_a} A: simulated {peak:.0} N vs Table 5 {measured_n} N ({:.1} %)",
@@ -132,4 +139,75 @@ fn recordings_hold_measured_samples_on_the_instrument_grid() {
         "mean |noise| {mean_abs_diff} N"
     );
     assert_eq!(Effect::None.name(), "none");
+}
+
+#[test]
+fn coil_lag_is_first_order_and_commands_are_held() {
+    let plant = Plant::nominal();
+    let cfg = ImpactConfig {
+        coil_lag_s: Some(1.0e-3),
+        ..ImpactConfig::default()
+    };
+    let t = simulate(&plant, &cfg, CurrentSource::Function(Box::new(|_| 2.0))).unwrap();
+    // I(t) = 2·(1 − e^{−t/τ}) from 0 A at contact.
+    for s in t.samples.iter().filter(|s| s.time_s > 0.0).take(60) {
+        let expected = 2.0 * (1.0 - (-s.time_s / 1.0e-3).exp());
+        assert!(
+            (s.current_a - expected).abs() < 2e-3,
+            "t = {}: {} vs {expected}",
+            s.time_s,
+            s.current_a
+        );
+        assert_eq!(s.command_a, 2.0);
+    }
+    // A time-varying command reaches the coil at once without lag.
+    let step = |t: f64| if t < 1.0e-3 { 0.0 } else { 1.0 };
+    let t = simulate(
+        &plant,
+        &ImpactConfig::default(),
+        CurrentSource::Function(Box::new(step)),
+    )
+    .unwrap();
+    assert!(t
+        .samples
+        .iter()
+        .all(|s| s.current_a == if s.time_s <= 1.0e-3 { 0.0 } else { 1.0 }));
+}
+
+#[test]
+fn bad_settings_are_refused_with_a_clear_error() {
+    let plant = Plant::nominal();
+    let bad = [
+        ImpactConfig {
+            impact_velocity_m_s: f64::NAN,
+            ..ImpactConfig::default()
+        },
+        ImpactConfig {
+            step_s: 1.0e-5,
+            ..ImpactConfig::default()
+        },
+        ImpactConfig {
+            control_period_s: 1.25e-4,
+            ..ImpactConfig::default()
+        },
+        ImpactConfig {
+            mass_kg: -1.0,
+            ..ImpactConfig::default()
+        },
+    ];
+    for cfg in bad {
+        let err = simulate(&plant, &cfg, CurrentSource::Constant(1.0)).unwrap_err();
+        assert!(!format!("{err:#}").is_empty());
+    }
+    let mut broken = Plant::nominal();
+    broken.law.loss_eta = 1.5;
+    assert!(simulate(&broken, &ImpactConfig::default(), CurrentSource::Constant(1.0)).is_err());
+    // A controller that returns NaN gets 0 A (documented safe state), never a panic.
+    let t = simulate(
+        &plant,
+        &ImpactConfig::default(),
+        CurrentSource::Controller(Box::new(|_, _| f32::NAN)),
+    )
+    .unwrap();
+    assert!(t.samples.iter().all(|s| s.command_a == 0.0));
 }

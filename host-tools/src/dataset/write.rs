@@ -78,6 +78,13 @@ fn check_target(dir: &Path, force: bool) -> Result<()> {
 
 /// Moves the finished staging folder to `dir`, replacing what was there.
 fn publish(staging: tempfile::TempDir, dir: &Path) -> Result<()> {
+    // The staging folder is private (0700); the data set is an ordinary folder.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(0o755))
+            .with_context(|| format!("cannot set permissions on {}", staging.path().display()))?;
+    }
     let staged = staging.keep();
     let result = (|| {
         if dir.exists() {
@@ -93,7 +100,8 @@ fn publish(staging: tempfile::TempDir, dir: &Path) -> Result<()> {
             std::fs::remove_dir_all(&aside).ok();
             Ok(())
         } else {
-            std::fs::rename(&staged, dir).with_context(|| format!("cannot move the new data set into {}", dir.display()))
+            std::fs::rename(&staged, dir)
+                .with_context(|| format!("cannot move the new data set into {}", dir.display()))
         }
     })();
     if result.is_err() {
@@ -157,7 +165,11 @@ pub fn dataset_toml(dataset: &Dataset) -> Result<String> {
             }
         }
         if let Some(v) = rec.impact_velocity_m_s {
-            writeln!(out, "impact_velocity_m_s = {}", toml_float(v, &what("impact_velocity_m_s"))?)?;
+            writeln!(
+                out,
+                "impact_velocity_m_s = {}",
+                toml_float(v, &what("impact_velocity_m_s"))?
+            )?;
         }
         if let Some(n) = rec.sequence {
             writeln!(out, "sequence = {n}")?;
@@ -188,8 +200,16 @@ fn check_files(dataset: &Dataset) -> Result<()> {
         let inside = !rec.file.is_empty()
             && path.components().all(|c| matches!(c, Component::Normal(_)))
             && path.file_name().is_some_and(|n| n != "dataset.toml");
-        ensure!(inside, "recording file `{}` must be a relative path inside the data set folder", rec.file);
-        ensure!(seen.insert(rec.file.as_str()), "recording file `{}` is listed twice", rec.file);
+        ensure!(
+            inside,
+            "recording file `{}` must be a relative path inside the data set folder",
+            rec.file
+        );
+        ensure!(
+            seen.insert(rec.file.as_str()),
+            "recording file `{}` is listed twice",
+            rec.file
+        );
     }
     Ok(())
 }

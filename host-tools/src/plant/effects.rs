@@ -142,28 +142,33 @@ pub struct EffectScale {
 pub fn draw_effect(name: &str, rng: &mut impl Rng, scale: EffectScale) -> Result<Effect> {
     Ok(match name {
         "none" => Effect::None,
-        // 100–250 N·s/m at 0 A: at the impact speeds 1.4–2.24 m/s the
-        // velocity spread alone moves the force by 60–200 N (3–10 % of the
+        // 200–400 N·s/m at 0 A: at the impact speeds 1.4–2.24 m/s the
+        // velocity spread alone moves the force by 170–340 N (8–16 % of the
         // 0 A peak) at the same displacement.
         "viscous_damping" => Effect::ViscousDamping {
-            c0_n_s_per_m: rng.random_range(100.0..250.0),
+            c0_n_s_per_m: rng.random_range(200.0..400.0),
             increase_per_a: rng.random_range(0.2..0.6),
         },
-        // 2–5 samples at 20 kHz: an ADC anti-alias filter's group delay.
+        // 3–6 samples at 20 kHz: the group delay of a ~1 kHz anti-alias
+        // filter on the load cell channel.
         "sensor_delay" => Effect::SensorDelay {
-            delay_s: rng.random_range(100.0e-6..250.0e-6),
+            delay_s: rng.random_range(150.0e-6..300.0e-6),
         },
-        // Mullins softening: 8–18 % over the campaign, mostly within 4–15 tests.
+        // Mullins softening of a filled elastomer: 15–30 % over the
+        // campaign, most of it within the first 3–10 tests.
         "stress_softening" => Effect::StressSoftening {
-            depth: rng.random_range(0.08..0.18),
-            tests_n0: rng.random_range(4.0..15.0),
+            depth: rng.random_range(0.15..0.3),
+            tests_n0: rng.random_range(3.0..10.0),
         },
-        // Engages over the last 30–45 % of the longest stroke and adds
-        // 40–80 % of that test's peak force at its full depth.
+        // A hard stop near the end of the longest stroke: it engages over
+        // the last 15–25 % of it and would add 1–2× that test's peak force
+        // at full depth. Sharp enough that no per-current quartic follows it
+        // (a softer, wider stop is absorbed by the quartics: along one
+        // current every test follows the same F(x), stop included).
         "end_stop" => {
-            let x_e_mm = scale.longest_stroke_mm * rng.random_range(0.55..0.7);
+            let x_e_mm = scale.longest_stroke_mm * rng.random_range(0.75..0.85);
             let over = scale.longest_stroke_mm - x_e_mm;
-            let added_n = scale.peak_force_at_longest_n * rng.random_range(0.4..0.8);
+            let added_n = scale.peak_force_at_longest_n * rng.random_range(1.0..2.0);
             Effect::EndStop {
                 x_e_mm,
                 k_e_n_per_mm2: added_n / (over * over),

@@ -26,7 +26,7 @@ impl Default for MeasurementModel {
             sample_period_s: 50.0e-6,
             force_noise_n: 8.0,
             x_noise_mm: 0.008,
-            v_noise_m_s: 0.01,
+            v_noise_m_s: 0.002,
             force_lsb_n: 50_000.0 / 65_536.0,
             x_lsb_mm: 50.0 / 65_536.0,
             v_lsb_m_s: 20.0 / 65_536.0,

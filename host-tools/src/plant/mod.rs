@@ -9,9 +9,12 @@
 //! - [`measure`]: the instrument (sampling, noise, quantisation).
 //! - [`stepper`]: RK4 drop simulation, one control period at a time
 //!   ([`PlantStepper`]) or a whole impact ([`simulate`]).
+pub mod closed_loop;
 pub mod effects;
 pub mod law;
 pub mod measure;
+pub mod plots;
+pub mod sim_report;
 pub mod stepper;
 pub mod synth;
 

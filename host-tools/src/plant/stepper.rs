@@ -1,4 +1,4 @@
-//! The drop test: `m·ẍ = m·g − F(x, ẋ, z, I)` integrated by fixed-step RK4
+//! The drop test: `m·ẍ = m·g − F(x, ẋ, I)` integrated by fixed-step RK4
 //! from first contact (x = 0, ẋ = impact velocity) until the mass leaves the
 //! damper (x back below 0 while moving out).
 //!
@@ -7,7 +7,7 @@
 //! firmware over a serial link — closes the loop in lockstep. [`simulate`]
 //! runs a whole impact on top of it.
 use super::effects::Effect;
-use super::law::{hysteresis_rate_per_s, LawParams};
+use super::law::LawParams;
 use super::measure::MeasurementModel;
 use anyhow::{ensure, Result};
 use rand::SeedableRng;
@@ -49,15 +49,14 @@ impl Plant {
     }
 
     /// The true contact force on the mass (N, ≥ 0) at displacement `x_mm`,
-    /// velocity `v_m_s`, hysteresis state `z`, coil current `current_a`, in
-    /// the test at `sequence`.
-    pub fn force_n(&self, x_mm: f64, v_m_s: f64, z: f64, current_a: f64, sequence: u32) -> f64 {
+    /// velocity `v_m_s`, coil current `current_a`, in the test at `sequence`.
+    pub fn force_n(&self, x_mm: f64, v_m_s: f64, current_a: f64, sequence: u32) -> f64 {
         if x_mm <= 0.0 {
             return 0.0;
         }
         let law = &self.law;
         let gain = law.gain(current_a, self.effect.current_warp());
-        let material = gain * law.backbone_n(x_mm) * (1.0 + law.loss_eta * z);
+        let material = gain * law.backbone_n(x_mm) * (1.0 + law.loss_eta * law.loss_direction(v_m_s));
         let force =
             self.effect.softening_factor(sequence) * material + self.effect.added_force_n(x_mm, v_m_s, current_a);
         force.max(0.0)
@@ -149,12 +148,11 @@ pub enum CurrentSource<'a> {
     Controller(Box<dyn FnMut(f32, f32) -> f32 + 'a>),
 }
 
-/// Integrator state: displacement (m), velocity (m/s), hysteresis state.
+/// Integrator state: displacement (m), velocity (m/s).
 #[derive(Clone, Copy, Debug)]
 struct State {
     x_m: f64,
     v_m_s: f64,
-    z: f64,
 }
 
 /// Advances a drop one control period at a time (the lockstep API).
@@ -164,6 +162,8 @@ pub struct PlantStepper {
     steps_per_period: u64,
     steps_per_sample: u64,
     step: u64,
+    /// Step index of the next recorded sample.
+    next_sample_step: u64,
     state: State,
     command_a: f64,
     current_a: f64,
@@ -227,10 +227,10 @@ impl PlantStepper {
             steps_per_period,
             steps_per_sample,
             step: 0,
+            next_sample_step: 0,
             state: State {
                 x_m: 0.0,
                 v_m_s: cfg.impact_velocity_m_s,
-                z: 0.0,
             },
             command_a: cfg.initial_current_a,
             current_a: cfg.initial_current_a,
@@ -313,7 +313,7 @@ impl PlantStepper {
 
     fn force_at(&self, s: State) -> f64 {
         self.plant
-            .force_n(s.x_m * 1.0e3, s.v_m_s, s.z, self.current_a, self.cfg.sequence)
+            .force_n(s.x_m * 1.0e3, s.v_m_s, self.current_a, self.cfg.sequence)
     }
 
     fn derivative(&self, s: State) -> State {
@@ -321,7 +321,6 @@ impl PlantStepper {
         State {
             x_m: s.v_m_s,
             v_m_s: self.cfg.gravity_m_s2 - force_n / self.cfg.mass_kg,
-            z: hysteresis_rate_per_s(s.v_m_s, s.z, self.plant.law.turn_mm),
         }
     }
 
@@ -331,7 +330,6 @@ impl PlantStepper {
         let at = |d: State, k: f64| State {
             x_m: s.x_m + k * d.x_m,
             v_m_s: s.v_m_s + k * d.v_m_s,
-            z: s.z + k * d.z,
         };
         let k1 = self.derivative(s);
         let k2 = self.derivative(at(k1, h / 2.0));
@@ -341,7 +339,6 @@ impl PlantStepper {
         self.state = State {
             x_m: s.x_m + h / 6.0 * (k1.x_m + 2.0 * k2.x_m + 2.0 * k3.x_m + k4.x_m),
             v_m_s: s.v_m_s + h / 6.0 * (k1.v_m_s + 2.0 * k2.v_m_s + 2.0 * k3.v_m_s + k4.v_m_s),
-            z: s.z + h / 6.0 * (k1.z + 2.0 * k2.z + 2.0 * k3.z + k4.z),
         };
         if self.state.x_m < 0.0 && self.state.v_m_s < 0.0 {
             // Separation: interpolate the speed to the instant x crosses 0.
@@ -362,12 +359,12 @@ impl PlantStepper {
             .peak_deceleration_m_s2
             .max(force_n / self.cfg.mass_kg - self.cfg.gravity_m_s2);
         s.max_stroke_mm = s.max_stroke_mm.max(self.state.x_m * 1.0e3);
-        let state_bad = !(self.state.x_m.is_finite() && self.state.v_m_s.is_finite() && self.state.z.is_finite());
+        let state_bad = !(self.state.x_m.is_finite() && self.state.v_m_s.is_finite());
         if !self.finished && (self.time_s() >= self.cfg.max_duration_s || state_bad) {
             self.summary.contact_time_s = self.time_s();
             self.finished = true;
         }
-        if !self.finished && self.step % self.steps_per_sample == 0 {
+        if !self.finished && self.step >= self.next_sample_step {
             self.record_sample();
         }
     }
@@ -386,6 +383,7 @@ impl PlantStepper {
     }
 
     fn record_sample(&mut self) {
+        self.next_sample_step = self.step + self.steps_per_sample;
         let m = &self.plant.measurement;
         let true_force_n = self.delayed_force_n(self.plant.effect.force_delay_s());
         let (x_mm, v_m_s) = (self.state.x_m * 1.0e3, self.state.v_m_s);

@@ -103,13 +103,13 @@ pub fn draw_base_plant(seed: u64) -> Plant {
         k1_n_per_mm: nominal.k1_n_per_mm * rng.random_range(0.92..1.08),
         k3_n_per_mm3: nominal.k3_n_per_mm3 * rng.random_range(0.85..1.15),
         loss_eta: rng.random_range(0.42..0.58),
-        turn_mm: rng.random_range(0.2..0.45),
+        turn_velocity_m_s: rng.random_range(0.002..0.005),
         gain_knots,
     };
     let measurement = MeasurementModel {
         force_noise_n: rng.random_range(3.0..15.0),
         x_noise_mm: rng.random_range(0.003..0.015),
-        v_noise_m_s: rng.random_range(0.004..0.02),
+        v_noise_m_s: rng.random_range(0.001..0.004),
         ..MeasurementModel::default()
     };
     Plant {
@@ -121,7 +121,7 @@ pub fn draw_base_plant(seed: u64) -> Plant {
 
 /// Sizes effects against the longest-stroke test of the plan (lowest
 /// current, fastest drop) on the plant without any effect.
-fn effect_scale(base: &Plant, plan: &SynthPlan) -> Result<EffectScale> {
+pub fn effect_scale(base: &Plant, plan: &SynthPlan) -> Result<EffectScale> {
     let lowest_a = plan
         .fit_currents_a
         .iter()
@@ -168,7 +168,10 @@ fn plan_tests(plan: &SynthPlan, seed: u64) -> Result<Vec<Test>> {
     ensure!(plan.repeats >= 1, "at least one repeat");
     ensure!(!plan.velocities_m_s.is_empty(), "at least one impact velocity");
     let mut tests = Vec::new();
-    let roles = [(Role::Fit, &plan.fit_currents_a), (Role::Validate, &plan.validate_currents_a)];
+    let roles = [
+        (Role::Fit, &plan.fit_currents_a),
+        (Role::Validate, &plan.validate_currents_a),
+    ];
     for (role, currents) in roles {
         for &current_a in currents.iter() {
             for &v in &plan.velocities_m_s {
@@ -296,7 +299,10 @@ fn key_json(plant: &Plant, seed: u64) -> Result<serde_json::Value> {
 
 /// Where the key goes by default: `<folder>.key.json` beside the folder.
 pub fn default_key_path(out: &Path) -> PathBuf {
-    let mut name = out.file_name().map(|n| n.to_os_string()).unwrap_or_else(|| "dataset".into());
+    let mut name = out
+        .file_name()
+        .map(|n| n.to_os_string())
+        .unwrap_or_else(|| "dataset".into());
     name.push(".key.json");
     out.with_file_name(name)
 }

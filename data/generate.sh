@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Regenerates the bundled drop-impact data sets, byte for byte.
+#
+#   bash data/generate.sh
+#
+# Each set is `mre synth` output: 54 drop tests (fit currents 0/0.5/1/1.5/2 A,
+# validate currents 0.3/0.7/1.3/1.7 A, impact velocities 1.4/1.8/2.24 m/s,
+# 2 repeats, shuffled run order) of a 5.5 kg mass. drop-none has no concealed
+# effect; each other set has the one effect its name says. The answers (effect
+# parameters, base law, instrument) are in data/keys/, outside the sets, so a
+# diagnosis run on a set stays blind. `tests/plant_bundled_data.rs` checks the
+# committed files still match this script.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+MRE=${MRE:-"cargo run --quiet -p host-tools --bin mre --"}
+
+gen() {
+  local effect=$1 seed=$2
+  $MRE synth --effect "$effect" --seed "$seed" --out "data/drop-$effect" --key "data/keys/drop-$effect.json" --force
+}
+
+gen none 101
+gen viscous_damping 102
+gen sensor_delay 103
+gen stress_softening 104
+gen end_stop 105
+gen magnetic_saturation 106

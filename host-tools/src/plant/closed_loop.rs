@@ -1,0 +1,321 @@
+//! `mre sim`: the drop test with the core's impact-mitigation law in the loop
+//! (in process), compared with the passive damper at 0 A and 2 A.
+//!
+//! The controller needs a table that describes *this* plant, so one is fitted
+//! here the way a user would: passive drops at each tabulated current, hard
+//! enough to use the whole usable stroke, and one least-squares quartic per
+//! current and branch (`mre_host::linalg::solve`), sealed into a core
+//! [`Table`].
+use super::law::GAIN_KNOT_CURRENTS_A;
+use super::stepper::{simulate, CurrentSource, ImpactConfig, ImpactSummary, Plant, Trajectory};
+use crate::linalg::solve;
+use anyhow::{bail, Context, Result};
+use mre_core::law::{ImpactLaw, LawConfig};
+use mre_core::{CurrentEntry, Quartic, Table};
+use nalgebra::{DMatrix, DVector};
+use serde::Serialize;
+
+/// Stroke the damper may use (mm): the elastomer's rated compression. The
+/// passive 0 A drop at 2.24 m/s needs about 16 mm, more than this, which is
+/// why a soft passive setting is not an option.
+pub const USABLE_STROKE_MM: f64 = 12.0;
+
+/// Which current a run uses.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub enum RunSpec {
+    /// A constant current (A).
+    Passive(f64),
+    /// The core's `ImpactLaw` in the loop.
+    Controlled,
+}
+
+impl RunSpec {
+    /// `passive:<A>` or `controlled`.
+    pub fn parse(text: &str) -> Result<Self> {
+        if text == "controlled" {
+            return Ok(RunSpec::Controlled);
+        }
+        if let Some(a) = text.strip_prefix("passive:") {
+            let current_a: f64 = a
+                .parse()
+                .with_context(|| format!("`{text}`: `{a}` is not a current in A"))?;
+            if !(0.0..=2.0).contains(&current_a) {
+                bail!("`{text}`: passive current must be within 0–2 A");
+            }
+            return Ok(RunSpec::Passive(current_a));
+        }
+        bail!("`{text}`: expected passive:<A> (e.g. passive:0, passive:2) or controlled")
+    }
+
+    pub fn label(&self) -> String {
+        match self {
+            RunSpec::Passive(a) => format!("passive {a} A"),
+            RunSpec::Controlled => "controlled".to_owned(),
+        }
+    }
+
+    /// File-name stem for this run's outputs.
+    pub fn slug(&self) -> String {
+        match self {
+            RunSpec::Passive(a) => format!("passive-{a}a"),
+            RunSpec::Controlled => "controlled".to_owned(),
+        }
+    }
+}
+
+/// Settings of a comparison.
+#[derive(Clone, Debug)]
+pub struct SimSetup {
+    pub plant: Plant,
+    pub impact: ImpactConfig,
+    pub usable_stroke_mm: f64,
+}
+
+impl Default for SimSetup {
+    fn default() -> Self {
+        Self {
+            plant: Plant::nominal(),
+            impact: ImpactConfig::default(),
+            usable_stroke_mm: USABLE_STROKE_MM,
+        }
+    }
+}
+
+/// One run's outcome.
+#[derive(Clone, Debug, Serialize)]
+pub struct RunResult {
+    pub spec: RunSpec,
+    pub label: String,
+    pub summary: ImpactSummary,
+    pub usable_stroke_mm: f64,
+    pub within_stroke: bool,
+    #[serde(skip)]
+    pub trajectory: Trajectory,
+}
+
+/// All runs, and the controlled run's gain over the best passive run that
+/// stays within the stroke.
+#[derive(Clone, Debug, Serialize)]
+pub struct Comparison {
+    pub runs: Vec<RunResult>,
+    /// `(label of the passive reference, reduction of peak force in %)`.
+    pub controlled_vs_passive: Option<(String, f64)>,
+}
+
+/// Impact speed at which a passive drop at `current_a` just uses `stroke_mm`.
+fn velocity_for_stroke(plant: &Plant, impact: &ImpactConfig, current_a: f64, stroke_mm: f64) -> Result<f64> {
+    let stroke_at = |v: f64| -> Result<f64> {
+        let cfg = ImpactConfig {
+            impact_velocity_m_s: v,
+            ..impact.clone()
+        };
+        Ok(simulate(plant, &cfg, CurrentSource::Constant(current_a))?
+            .summary
+            .max_stroke_mm)
+    };
+    let (mut lo, mut hi): (f64, f64) = (0.05, 50.0);
+    if stroke_at(hi)? < stroke_mm {
+        bail!("{current_a} A: even {hi} m/s does not reach {stroke_mm} mm");
+    }
+    for _ in 0..30 {
+        let mid: f64 = (lo * hi).sqrt();
+        if stroke_at(mid)? < stroke_mm {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok(hi)
+}
+
+/// Least-squares quartic `F(x)` (highest power first, as the core stores it).
+fn fit_quartic(points: &[(f64, f64)]) -> Result<Quartic> {
+    let a = DMatrix::from_fn(points.len(), 5, |r, c| points[r].0.powi(4 - c as i32));
+    let y = DVector::from_iterator(points.len(), points.iter().map(|p| p.1));
+    let fit = solve(&a, &y)?;
+    let mut coeffs = [0f32; 5];
+    for (dst, src) in coeffs.iter_mut().zip(&fit.coeffs) {
+        *dst = *src as f32;
+    }
+    Ok(Quartic::new(coeffs))
+}
+
+/// The controller's table for `plant`: at each tabulated current a passive
+/// drop that just covers 110 % of the usable stroke, sampled at 100 kHz with
+/// the plant's instrument, split into branches by the measured velocity's
+/// sign, one quartic per branch.
+pub fn fit_controller_table(plant: &Plant, impact: &ImpactConfig, usable_stroke_mm: f64) -> Result<Table> {
+    let mut fine = plant.clone();
+    fine.measurement.sample_period_s = 10.0e-6;
+    let cover_mm = 1.1 * usable_stroke_mm;
+    let mut entries = Vec::new();
+    for (k, &current_a) in GAIN_KNOT_CURRENTS_A.iter().enumerate() {
+        let v = velocity_for_stroke(&fine, impact, current_a, cover_mm)?;
+        let cfg = ImpactConfig {
+            impact_velocity_m_s: v,
+            noise_seed: impact.noise_seed.wrapping_add(1000 + k as u64),
+            ..impact.clone()
+        };
+        let t = simulate(&fine, &cfg, CurrentSource::Constant(current_a))?;
+        let branch = |loading: bool| -> Vec<(f64, f64)> {
+            t.samples
+                .iter()
+                .filter(|s| (s.v_m_s > 0.0) == loading)
+                .map(|s| (s.x_mm, s.force_n))
+                .collect()
+        };
+        let x_max_mm = t.samples.iter().map(|s| s.x_mm).fold(0.0, f64::max);
+        entries.push(CurrentEntry {
+            current_a: current_a as f32,
+            compression: fit_quartic(&branch(true))?,
+            extension: fit_quartic(&branch(false))?,
+            x_min_mm: 0.0,
+            x_max_mm: x_max_mm as f32,
+        });
+    }
+    Table::new(&entries).map_err(|e| anyhow::anyhow!("fitted table rejected: {e}"))
+}
+
+/// The core law's settings for this plant and drop.
+pub fn law_config(setup: &SimSetup) -> LawConfig {
+    LawConfig {
+        mass_kg: setup.impact.mass_kg as f32,
+        stroke_max_mm: setup.usable_stroke_mm as f32,
+        gravity_m_s2: setup.impact.gravity_m_s2 as f32,
+        period_s: setup.impact.control_period_s as f32,
+        ..LawConfig::default()
+    }
+}
+
+/// Runs the drop with the core's `ImpactLaw` and `table` in the loop.
+pub fn run_controlled(setup: &SimSetup, table: &Table) -> Result<Trajectory> {
+    let mut law = ImpactLaw::new(law_config(setup)).map_err(|e| anyhow::anyhow!("law configuration: {e:?}"))?;
+    let controller = move |x_mm: f32, v_m_s: f32| law.step(table, x_mm, v_m_s).current_a;
+    simulate(
+        &setup.plant,
+        &setup.impact,
+        CurrentSource::Controller(Box::new(controller)),
+    )
+}
+
+/// Runs every spec and compares them.
+pub fn run_comparison(setup: &SimSetup, specs: &[RunSpec]) -> Result<Comparison> {
+    let table = if specs.contains(&RunSpec::Controlled) {
+        Some(fit_controller_table(
+            &setup.plant,
+            &setup.impact,
+            setup.usable_stroke_mm,
+        )?)
+    } else {
+        None
+    };
+    let mut runs = Vec::new();
+    for &spec in specs {
+        let trajectory = match (spec, &table) {
+            (RunSpec::Passive(a), _) => {
+                // A passive damper's coil is energised before the impact.
+                let impact = ImpactConfig {
+                    initial_current_a: a,
+                    ..setup.impact.clone()
+                };
+                simulate(&setup.plant, &impact, CurrentSource::Constant(a))?
+            }
+            (RunSpec::Controlled, Some(table)) => run_controlled(setup, table)?,
+            (RunSpec::Controlled, None) => bail!("internal: no table for the controlled run"),
+        };
+        let summary = trajectory.summary;
+        runs.push(RunResult {
+            spec,
+            label: spec.label(),
+            summary,
+            usable_stroke_mm: setup.usable_stroke_mm,
+            within_stroke: summary.max_stroke_mm <= setup.usable_stroke_mm,
+            trajectory,
+        });
+    }
+    let controlled = runs.iter().find(|r| r.spec == RunSpec::Controlled);
+    let reference = runs
+        .iter()
+        .filter(|r| matches!(r.spec, RunSpec::Passive(_)) && r.within_stroke)
+        .min_by(|a, b| a.summary.peak_force_n.total_cmp(&b.summary.peak_force_n));
+    let controlled_vs_passive = match (controlled, reference) {
+        (Some(c), Some(p)) => Some((
+            p.label.clone(),
+            100.0 * (1.0 - c.summary.peak_force_n / p.summary.peak_force_n),
+        )),
+        _ => None,
+    };
+    Ok(Comparison {
+        runs,
+        controlled_vs_passive,
+    })
+}
+
+/// What `mre sim` was asked for.
+#[derive(Clone, Debug)]
+pub struct SimRequest {
+    /// Runs; empty = passive 0 A, passive 2 A and controlled.
+    pub runs: Vec<RunSpec>,
+    /// Concealed effect on the plant (`none`, a vocabulary name, or `random`).
+    pub effect: String,
+    /// Seeds the effect's parameters and the measurement noise.
+    pub seed: u64,
+    pub impact_velocity_m_s: f64,
+    pub mass_kg: f64,
+    pub coil_lag_s: Option<f64>,
+}
+
+impl Default for SimRequest {
+    fn default() -> Self {
+        Self {
+            runs: Vec::new(),
+            effect: "none".to_owned(),
+            seed: 0,
+            impact_velocity_m_s: 2.24,
+            mass_kg: 5.5,
+            coil_lag_s: None,
+        }
+    }
+}
+
+/// The default comparison.
+pub const DEFAULT_RUNS: [RunSpec; 3] = [RunSpec::Passive(0.0), RunSpec::Passive(2.0), RunSpec::Controlled];
+
+/// The calibrated plant with the requested effect (parameters drawn from the
+/// seed, sized as `mre synth` sizes them), and the drop.
+pub fn setup_for(request: &SimRequest) -> Result<SimSetup> {
+    use super::effects::draw_effect;
+    use super::synth::{effect_scale, resolve_effect_name, SynthPlan};
+    use rand::SeedableRng;
+    let name = resolve_effect_name(&request.effect, request.seed)?;
+    let base = Plant::nominal();
+    let scale = effect_scale(&base, &SynthPlan::default())?;
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(request.seed);
+    rng.set_stream(3);
+    let plant = base.with_effect(draw_effect(name, &mut rng, scale)?);
+    let impact = ImpactConfig {
+        mass_kg: request.mass_kg,
+        impact_velocity_m_s: request.impact_velocity_m_s,
+        coil_lag_s: request.coil_lag_s,
+        noise_seed: request.seed,
+        ..ImpactConfig::default()
+    };
+    Ok(SimSetup {
+        plant,
+        impact,
+        usable_stroke_mm: USABLE_STROKE_MM,
+    })
+}
+
+/// `mre sim`: runs the comparison and writes the report into `report_dir`.
+pub fn run_sim(request: &SimRequest, report_dir: &std::path::Path) -> Result<Comparison> {
+    let setup = setup_for(request)?;
+    let runs = if request.runs.is_empty() {
+        DEFAULT_RUNS.to_vec()
+    } else {
+        request.runs.clone()
+    };
+    let cmp = run_comparison(&setup, &runs)?;
+    super::sim_report::write_sim_report(&cmp, report_dir)?;
+    Ok(cmp)
+}
