@@ -11,6 +11,7 @@
 
 pub mod estimate;
 pub mod flags;
+pub mod generated_table;
 pub mod inverse;
 pub mod law;
 pub mod math;

@@ -3,7 +3,11 @@
 pub mod atomic_write;
 pub mod dataset;
 pub mod diagnose;
+pub mod fit;
 pub mod linalg;
 pub mod loops;
 pub mod plant;
+pub mod plot;
 pub mod table_file;
+pub mod tables;
+pub mod validate;

@@ -112,6 +112,86 @@ enum Command {
         #[arg(long)]
         report: PathBuf,
     },
+    /// Fit the per-current branch quartics to a data set (GSA, least squares, or both).
+    Fit {
+        /// Data set folder (holding dataset.toml).
+        dataset: PathBuf,
+        /// gsa, lsq, or both (table gets the lsq optimum; GSA's gap is reported).
+        #[arg(long, default_value = "both")]
+        method: mre_host::fit::Method,
+        /// GSA agents N.
+        #[arg(long, default_value_t = 100)]
+        agents: usize,
+        /// GSA iterations T.
+        #[arg(long, default_value_t = 100)]
+        iters: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// GSA search box: `data` (around a cheap estimate) or `paper` (Table 3).
+        #[arg(long, default_value = "data")]
+        bounds: mre_host::fit::bounds::BoundsChoice,
+        /// Treat recordings at these currents as `validate` (held out of the fit).
+        #[arg(long, value_delimiter = ',')]
+        hold_out_current: Vec<f64>,
+        /// Model file to write (TOML; also a table file for --table).
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Compare a model with every recording of a data set; write report.md and report.json.
+    Validate {
+        dataset: PathBuf,
+        /// `paper` or a model/table file.
+        #[arg(long)]
+        model: String,
+        /// Folder for report.md and report.json.
+        #[arg(long)]
+        report: PathBuf,
+        /// Treat recordings at these currents as `validate` (as given to `fit`).
+        #[arg(long, value_delimiter = ',')]
+        hold_out_current: Vec<f64>,
+    },
+    /// Draw the paper's figures (PNG + SVG): loops per current, all currents, interpolated, bracket, convergence.
+    Plot {
+        dataset: PathBuf,
+        /// Model file from `mre fit` (or any table file; then no convergence plot).
+        #[arg(long)]
+        model: PathBuf,
+        /// Output folder.
+        #[arg(long)]
+        out: PathBuf,
+        /// Currents to draw interpolated loops at (default: midpoints and validate currents).
+        #[arg(long, value_delimiter = ',')]
+        interpolate: Vec<f64>,
+        /// Treat recordings at these currents as `validate` (as given to `fit`).
+        #[arg(long, value_delimiter = ',')]
+        hold_out_current: Vec<f64>,
+    },
+    /// GSA performance index against iterations and agents (the paper's Figs. 13/14).
+    Sweep {
+        dataset: PathBuf,
+        /// Agents for the iteration sweep.
+        #[arg(long, default_value_t = 100)]
+        agents: usize,
+        /// Iterations for the agent sweep.
+        #[arg(long, default_value_t = 100)]
+        iters: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        #[arg(long, default_value = "data")]
+        bounds: mre_host::fit::bounds::BoundsChoice,
+        #[arg(long, value_delimiter = ',')]
+        hold_out_current: Vec<f64>,
+        /// Output folder (sweep.csv and the figures).
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Generate the firmware's flash table (Rust source with CRC) from a model file.
+    Tables {
+        /// Model file from `mre fit` (or any table file).
+        model: PathBuf,
+        #[arg(long, default_value = mre_host::tables::DEFAULT_OUT)]
+        out: PathBuf,
+    },
 }
 
 fn main() {
@@ -119,6 +199,12 @@ fn main() {
         eprintln!("error: {e:#}");
         std::process::exit(1);
     }
+}
+
+/// Progress bars only on an interactive terminal, never in CI.
+fn show_progress() -> bool {
+    use std::io::IsTerminal;
+    std::io::stderr().is_terminal() && std::env::var_os("CI").is_none()
 }
 
 fn run(cli: Cli) -> Result<()> {
@@ -216,6 +302,93 @@ fn run(cli: Cli) -> Result<()> {
             let cmp = run_sim(&request, &report)?;
             print!("{}", mre_host::plant::sim_report::summary_table(&cmp));
             println!("report: {}", report.join("summary.md").display());
+        }
+        Command::Fit {
+            dataset,
+            method,
+            agents,
+            iters,
+            seed,
+            bounds,
+            hold_out_current,
+            out,
+        } => {
+            let options = mre_host::fit::FitOptions {
+                method,
+                gsa: mre_host::fit::gsa::GsaParams {
+                    agents,
+                    iters,
+                    seed,
+                    ..Default::default()
+                },
+                bounds,
+                progress: show_progress(),
+            };
+            let run = mre_host::fit::run_fit(&dataset, &options, &hold_out_current, &out)?;
+            print!("{}", mre_host::fit::summary_markdown(&run.fits));
+            println!(
+                "fitted {} branches in {:.3} ms; wrote {}",
+                run.fits.len(),
+                run.fit_seconds * 1e3,
+                out.display()
+            );
+        }
+        Command::Validate {
+            dataset,
+            model,
+            report,
+            hold_out_current,
+        } => {
+            let r = mre_host::validate::run_validate(&dataset, &model, &hold_out_current, &report)?;
+            print!("{}", mre_host::validate::report::markdown(&r));
+            println!("\nwrote {}/report.md and report.json", report.display());
+        }
+        Command::Plot {
+            dataset,
+            model,
+            out,
+            interpolate,
+            hold_out_current,
+        } => {
+            let options = mre_host::plot::PlotOptions {
+                interpolated_a: interpolate,
+            };
+            let files = mre_host::plot::run_plot(&dataset, &model, &hold_out_current, &options, &out)?;
+            for f in files {
+                println!("wrote {}.png and .svg", f.display());
+            }
+        }
+        Command::Sweep {
+            dataset,
+            agents,
+            iters,
+            seed,
+            bounds,
+            hold_out_current,
+            out,
+        } => {
+            let base = mre_host::fit::FitOptions {
+                gsa: mre_host::fit::gsa::GsaParams {
+                    agents,
+                    iters,
+                    seed,
+                    ..Default::default()
+                },
+                bounds,
+                ..Default::default()
+            };
+            let s = mre_host::fit::sweep::run_sweep(&dataset, &base, &hold_out_current, &out)?;
+            print!("{}", mre_host::fit::sweep::to_csv(&s));
+            println!("wrote {}/sweep.csv and the Fig. 13/14 plots", out.display());
+        }
+        Command::Tables { model, out } => {
+            let table = mre_host::tables::run_tables(&model, &out)?;
+            println!(
+                "wrote {} entries (CRC-32 {:#010x}) to {}",
+                table.entries().len(),
+                table.crc32(),
+                out.display()
+            );
         }
     }
     Ok(())

@@ -7,6 +7,7 @@
 pub mod branches;
 pub mod columns;
 pub mod error;
+pub mod hash;
 pub mod read;
 pub mod velocity;
 

@@ -1,0 +1,212 @@
+//! `mre validate`: how well a table reproduces each recording.
+//!
+//! The model force is the core's (`Table::force`, the board's f32 arithmetic):
+//! branch by the sign of v, linear interpolation in current between entries.
+//! Per recording:
+//! - RMSE (N) over all samples;
+//! - NRMSE = RMSE / (max F − min F) of the *measured* force (its range);
+//! - peak force: largest |F| measured and largest |F| modelled;
+//! - the point of largest error (the paper's Tables 5/6): the sample where
+//!   |F_meas − F_model| is largest, with both forces there and the error in %
+//!   of the measured force, `|F_meas − F_model| / |F_meas| · 100`.
+//!
+//! Recordings whose current is not a table entry are predicted by
+//! interpolation (never fitted: `fit` only uses `role = "fit"`). For those,
+//! the Fig. 12 bracket check: is the interpolated loop between its
+//! neighbours' loops (model, on a grid over the shared stroke), and which
+//! fraction of the measured samples lies between the neighbours' loops?
+pub mod report;
+
+use crate::dataset::{Dataset, Recording, Role};
+use crate::loops::fitted_stroke_mm;
+use mre_core::model::Branch;
+use mre_core::table::Table;
+use mre_core::Flags;
+use serde::Serialize;
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LargestError {
+    pub sample: usize,
+    pub time_s: f64,
+    pub x_mm: f64,
+    pub measured_n: f64,
+    pub model_n: f64,
+    /// |measured − model| / |measured| · 100.
+    pub error_pct: f64,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Bracket {
+    pub lower_current_a: f64,
+    pub upper_current_a: f64,
+    /// Fraction of grid points (both branches) where the interpolated model
+    /// lies between the two neighbours' models.
+    pub model_between: f64,
+    /// Fraction of measured samples lying between the neighbours' models.
+    pub measured_between: f64,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RecordingReport {
+    pub file: String,
+    pub current_a: f64,
+    pub role: Role,
+    /// True when the current is not a table entry (predicted by interpolation).
+    pub interpolated: bool,
+    pub samples: usize,
+    pub rmse_n: f64,
+    /// RMSE / measured force range.
+    pub nrmse: f64,
+    pub peak_measured_n: f64,
+    pub peak_model_n: f64,
+    pub largest_error: LargestError,
+    /// Fraction of samples outside the table's fitted stroke (x clamped).
+    pub x_clamped_fraction: f64,
+    pub velocity_estimated: bool,
+    pub bracket: Option<Bracket>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ValidationReport {
+    pub dataset: String,
+    pub model: String,
+    pub nrmse_normaliser: String,
+    pub recordings: Vec<RecordingReport>,
+}
+
+/// The model's force for every sample of a recording (N), and whether x was clamped.
+pub fn model_forces(table: &Table, rec: &Recording) -> (Vec<f64>, Vec<bool>) {
+    let s = &rec.samples;
+    s.x_mm
+        .iter()
+        .zip(&s.v_m_s)
+        .map(|(&x, &v)| {
+            let r = table.force(x as f32, v as f32, rec.current_a as f32);
+            (r.force_n as f64, r.flags.contains(Flags::X_CLAMPED))
+        })
+        .unzip()
+}
+
+/// Validates every recording of `ds` against `table`.
+pub fn validate(ds: &Dataset, table: &Table, model_label: &str) -> ValidationReport {
+    ValidationReport {
+        dataset: ds.name.clone(),
+        model: model_label.to_string(),
+        nrmse_normaliser: "measured force range (max F − min F) of the recording".to_string(),
+        recordings: ds.recordings.iter().map(|r| validate_recording(table, r)).collect(),
+    }
+}
+
+pub fn validate_recording(table: &Table, rec: &Recording) -> RecordingReport {
+    let (model, clamped) = model_forces(table, rec);
+    let measured = &rec.samples.force_n;
+    let n = measured.len().max(1) as f64;
+    let sse: f64 = measured.iter().zip(&model).map(|(m, p)| (m - p).powi(2)).sum();
+    let rmse_n = (sse / n).sqrt();
+    let (lo, hi) = crate::fit::poly::min_max(measured);
+    let range = hi - lo;
+    let peak = |v: &[f64]| v.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let worst = measured
+        .iter()
+        .zip(&model)
+        .enumerate()
+        .max_by(|a, b| (a.1 .0 - a.1 .1).abs().total_cmp(&(b.1 .0 - b.1 .1).abs()))
+        .map_or(0, |(i, _)| i);
+    let measured_n = measured.get(worst).copied().unwrap_or(0.0);
+    let model_n = model.get(worst).copied().unwrap_or(0.0);
+    let interpolated = !table.entries().iter().any(|e| e.current_a == rec.current_a as f32);
+    RecordingReport {
+        file: rec.file.clone(),
+        current_a: rec.current_a,
+        role: rec.role,
+        interpolated,
+        samples: measured.len(),
+        rmse_n,
+        nrmse: if range > 0.0 { rmse_n / range } else { f64::NAN },
+        peak_measured_n: peak(measured),
+        peak_model_n: peak(&model),
+        largest_error: LargestError {
+            sample: worst,
+            time_s: rec.samples.time_s.get(worst).copied().unwrap_or(0.0),
+            x_mm: rec.samples.x_mm.get(worst).copied().unwrap_or(0.0),
+            measured_n,
+            model_n,
+            error_pct: if measured_n != 0.0 {
+                (measured_n - model_n).abs() / measured_n.abs() * 100.0
+            } else {
+                f64::NAN
+            },
+        },
+        x_clamped_fraction: clamped.iter().filter(|&&c| c).count() as f64 / n,
+        velocity_estimated: rec.velocity_estimated,
+        bracket: if interpolated { bracket(table, rec) } else { None },
+    }
+}
+
+/// The tabulated currents just below and above `current_a`, if it lies strictly inside.
+pub fn neighbours(table: &Table, current_a: f64) -> Option<(f32, f32)> {
+    let c = current_a as f32;
+    let e = table.entries();
+    e.windows(2)
+        .find(|w| w[0].current_a < c && c < w[1].current_a)
+        .map(|w| (w[0].current_a, w[1].current_a))
+}
+
+fn between(f: f64, a: f64, b: f64, tol: f64) -> bool {
+    f >= a.min(b) - tol && f <= a.max(b) + tol
+}
+
+/// The Fig. 12 check for one interpolated recording.
+pub fn bracket(table: &Table, rec: &Recording) -> Option<Bracket> {
+    let (lo, hi) = neighbours(table, rec.current_a)?;
+    let c = rec.current_a as f32;
+    let (x0, x1) = fitted_stroke_mm(table, c);
+    let mut inside = 0usize;
+    let mut total = 0usize;
+    const GRID: usize = 201;
+    for i in 0..GRID {
+        let x = x0 + (x1 - x0) * i as f32 / (GRID - 1) as f32;
+        for b in [Branch::Compression, Branch::Extension] {
+            let f = table.force_on_branch(x, b, c).force_n as f64;
+            let fl = table.force_on_branch(x, b, lo).force_n as f64;
+            let fh = table.force_on_branch(x, b, hi).force_n as f64;
+            // f32 rounding of the interpolation: allow 1e-4 of the force scale.
+            let tol = 1e-4 * fl.abs().max(fh.abs()).max(1.0);
+            inside += usize::from(between(f, fl, fh, tol));
+            total += 1;
+        }
+    }
+    let s = &rec.samples;
+    let measured_inside = s
+        .x_mm
+        .iter()
+        .zip(&s.v_m_s)
+        .zip(&s.force_n)
+        .filter(|((&x, &v), &f)| {
+            let fl = table.force(x as f32, v as f32, lo).force_n as f64;
+            let fh = table.force(x as f32, v as f32, hi).force_n as f64;
+            between(f, fl, fh, 0.0)
+        })
+        .count();
+    Some(Bracket {
+        lower_current_a: lo as f64,
+        upper_current_a: hi as f64,
+        model_between: inside as f64 / total.max(1) as f64,
+        measured_between: measured_inside as f64 / s.len().max(1) as f64,
+    })
+}
+
+/// `mre validate DATASET --model MODEL --report DIR`.
+pub fn run_validate(
+    dataset_dir: &std::path::Path,
+    model: &str,
+    hold_out_a: &[f64],
+    report_dir: &std::path::Path,
+) -> anyhow::Result<ValidationReport> {
+    let mut ds = Dataset::load(dataset_dir)?;
+    crate::fit::problems::hold_out(&mut ds, hold_out_a);
+    let table = crate::table_file::load_table(model)?;
+    let report = validate(&ds, &table, model);
+    report::write(report_dir, &report)?;
+    Ok(report)
+}
