@@ -16,3 +16,6 @@ echo "wrote $OUT/report/report.md and report.json"
 "$MRE" sweep "$DATA" --hold-out-current 0.5 --out "$OUT/sweep" | tail -1
 # The flash table from the committed full model (all three currents):
 "$MRE" tables models/mr-damper-mts.toml --out "$OUT/generated_table.rs"
+# Diagnosis on a bundled drop-impact set with a concealed effect (answer in data/keys/):
+"$MRE" diagnose data/drop-end_stop --report "$OUT/diagnose" --json "$OUT/diagnose/report.json" --predictions "$OUT/diagnose/predictions"
+echo "diagnosis report: $OUT/diagnose/report.md"

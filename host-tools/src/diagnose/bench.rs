@@ -63,7 +63,7 @@ pub fn run_case(seed: u64, opts: &DiagnoseOptions) -> Result<BenchCase> {
         .map(|r| {
             r.tested
                 .iter()
-                .map(|c| (c.effect.name().to_string(), c.ratio))
+                .filter_map(|c| c.effect.map(|e| (e.name().to_string(), c.ratio)))
                 .collect()
         })
         .unwrap_or_default();

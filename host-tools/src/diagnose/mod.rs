@@ -98,12 +98,13 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
     for round in &selection.rounds {
         let Some(k) = round.accepted else { break };
         let c = &round.tested[k];
+        let Some(effect) = c.effect else { break };
         let pred_before = predictions(&prep, &before);
         let pred_after = predictions(&prep, &c.scored);
-        let evidence = evidence_for(&prep, c.effect, &pred_before, &pred_after, c);
+        let evidence = evidence_for(&prep, effect, &pred_before, &pred_after, c);
         let params = parameters::with_intervals(
             &prep,
-            c.effect,
+            effect,
             &selection.final_model.terms,
             &selection.final_model.solution,
             &c.scored.variant_sse,
@@ -111,7 +112,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
             opts.thresholds.seed,
         );
         findings.push(Finding {
-            effect: c.effect,
+            effect,
             parameters: params,
             evidence,
             rmse_n_before: c.rmse_before_n,

@@ -48,13 +48,18 @@ fn range(vals: impl Iterator<Item = f64>) -> (f64, f64) {
 }
 
 fn current_color(d: &Diagnosis, current_a: f64) -> RGBColor {
-    const PALETTE: [RGBColor; 6] = [
+    // Ten distinct colours (tab10), so nine currents never share one.
+    const PALETTE: [RGBColor; 10] = [
         RGBColor(31, 119, 180),
         RGBColor(255, 127, 14),
         RGBColor(44, 160, 44),
         RGBColor(214, 39, 40),
         RGBColor(148, 103, 189),
         RGBColor(140, 86, 75),
+        RGBColor(227, 119, 194),
+        RGBColor(127, 127, 127),
+        RGBColor(188, 189, 34),
+        RGBColor(23, 190, 207),
     ];
     let mut cs: Vec<f64> = d.prep.recs.iter().map(|r| r.current_a).collect();
     cs.sort_by(f64::total_cmp);

@@ -262,7 +262,7 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
                 s,
                 "| {} | {} | {:.3} → {:.3} | {:.3} | {:.3}–{:.3} | {:.0} | {} |",
                 k + 1,
-                c.effect.name(),
+                c.effect.map_or("turn-around memory", |e| e.name()),
                 c.rmse_before_n,
                 c.rmse_after_n,
                 c.ratio,

@@ -209,7 +209,9 @@ pub fn score(prep: &Prepared, variants: &[Terms]) -> Result<Scored> {
 /// The out-of-sample comparison of a candidate against the current model.
 #[derive(Clone, Debug)]
 pub struct Comparison {
-    pub effect: Effect,
+    /// The vocabulary effect tested; `None` for the reference model's
+    /// turn-around memory (not a vocabulary effect).
+    pub effect: Option<Effect>,
     pub rmse_before_n: f64,
     pub rmse_after_n: f64,
     /// `rmse_before / rmse_after` on held-out data.
@@ -221,7 +223,7 @@ pub struct Comparison {
     pub scored: Scored,
 }
 
-pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Effect, th: &Thresholds) -> Comparison {
+pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<Effect>, th: &Thresholds) -> Comparison {
     let n_total: usize = before.n.iter().sum();
     let rmse_before_n = (before.heldout_sse.iter().sum::<f64>() / n_total as f64).sqrt();
     let rmse_after_n = (after.heldout_sse.iter().sum::<f64>() / n_total as f64).sqrt();
@@ -297,7 +299,7 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
     let memory = score(prep, &candidates::memory_variants(prep))
         .map_err(|e| eprintln!("memory: {e:#}"))
         .ok()
-        .map(|after| compare(prep, &baseline, after, Effect::CoilLag, th));
+        .map(|after| compare(prep, &baseline, after, None, th));
     let reference = match &memory {
         Some(c) if c.accepted => c.scored.clone(),
         _ => baseline.clone(),
@@ -325,7 +327,7 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
         for e in todo {
             let variants = candidates::variants(prep, &current.terms, e);
             if let Ok(after) = score(prep, &variants) {
-                tested.push(compare(prep, &current, after, e, th));
+                tested.push(compare(prep, &current, after, Some(e), th));
             }
         }
         let accepted = (0..tested.len())
