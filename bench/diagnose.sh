@@ -16,28 +16,27 @@ fi
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
-now() { date +%s.%N; }
+# Wall time and CPU time (user + sys) of one command, in seconds.
+timed() { /usr/bin/time -f '%e %U %S' -o "$out/time" "$@" >/dev/null; awk '{printf "%s %s\n", $1, $2 + $3}' "$out/time"; }
 median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
 
-printf '| data set | recordings | samples | diagnose median (s) | fit --method lsq median (s) | diagnose / fit | found |\n'
-printf '|---|---|---|---|---|---|---|\n'
+printf '| data set | recordings | samples | diagnose wall median (s) | diagnose CPU median (s) | fit --method lsq wall median (s) | diagnose / fit (wall) | found |\n'
+printf '|---|---|---|---|---|---|---|---|\n'
 for set in data/drop-*/; do
   set=${set%/}
   name=$(basename "$set")
-  d_times=() f_times=()
+  d_wall=() d_cpu=() f_wall=()
   for _ in $(seq "$RUNS"); do
-    t0=$(now)
-    "$MRE" diagnose "$set" --report "$out/rep" --json "$out/r.json" --predictions "$out/pred" >"$out/stdout"
-    t1=$(now)
-    "$MRE" fit "$set" --method lsq --out "$out/model.toml" >/dev/null
-    t2=$(now)
-    d_times+=("$(echo "$t1 - $t0" | bc -l)")
-    f_times+=("$(echo "$t2 - $t1" | bc -l)")
+    read -r w c < <(timed "$MRE" diagnose "$set" --report "$out/rep" --json "$out/r.json" --predictions "$out/pred")
+    d_wall+=("$w") d_cpu+=("$c")
+    read -r w _ < <(timed "$MRE" fit "$set" --method lsq --out "$out/model.toml")
+    f_wall+=("$w")
   done
-  d=$(printf '%s\n' "${d_times[@]}" | median)
-  f=$(printf '%s\n' "${f_times[@]}" | median)
+  d=$(printf '%s\n' "${d_wall[@]}" | median)
+  dc=$(printf '%s\n' "${d_cpu[@]}" | median)
+  f=$(printf '%s\n' "${f_wall[@]}" | median)
   recs=$(grep -c '^\[\[recording\]\]' "$set/dataset.toml")
   samples=$(cat "$set"/*.csv | wc -l)
   found=$(python3 -c "import json,sys; print(', '.join(e['name'] for e in json.load(open(sys.argv[1]))['effects']) or 'none')" "$out/r.json")
-  printf '| %s | %s | %s | %.2f | %.2f | %.1f | %s |\n' "$name" "$recs" "$samples" "$d" "$f" "$(echo "$d / $f" | bc -l)" "$found"
+  printf '| %s | %s | %s | %.2f | %.2f | %.2f | %.0f | %s |\n' "$name" "$recs" "$samples" "$d" "$dc" "$f" "$(echo "$d / $f" | bc -l)" "$found"
 done

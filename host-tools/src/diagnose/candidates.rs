@@ -203,10 +203,13 @@ pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
             let mut dts: Vec<f64> = fit.iter().map(|&i| prep.recs[i].dt_s()).collect();
             dts.sort_by(f64::total_cmp);
             let dt = dts[dts.len() / 2];
-            let steps = [0.5, 1.0, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0];
-            steps
-                .iter()
-                .flat_map(|s| [s * dt, -s * dt])
+            // Finer where delays are common (a few samples of filter group
+            // delay), and both signs: a DAQ offset can lead as well as lag.
+            let lags = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0, 12.0];
+            let leads = [1.0, 2.0, 4.0, 8.0];
+            lags.iter()
+                .map(|s| s * dt)
+                .chain(leads.iter().map(|s| -s * dt))
                 .map(|tau| with(&|t| t.delay_s = Some(tau)))
                 .collect()
         }

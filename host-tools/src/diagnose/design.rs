@@ -25,7 +25,7 @@ pub const QUARTIC_TERMS: usize = 5;
 /// Relaxation lengths of the turn-around memory basis, as multiples of δ.
 pub const MEMORY_LENGTHS: [f64; 3] = [0.4, 1.0, 2.5];
 /// Powers of the turn-around displacement x_r scaling each basis function.
-pub const MEMORY_POWERS: usize = 3;
+pub const MEMORY_POWERS: usize = 2;
 /// Memory columns per current and direction of travel.
 pub const MEMORY_TERMS: usize = MEMORY_LENGTHS.len() * MEMORY_POWERS;
 
@@ -310,6 +310,12 @@ impl Designs {
     /// search on the training SSE (alternating updates crawl, because Q's
     /// scale and Δ are nearly interchangeable when most tests have softened).
     pub fn solve(&self, prep: &Prepared, train: &[usize]) -> Result<Solution> {
+        self.solve_in(prep, train, (-0.3, 0.6), 10)
+    }
+
+    /// As [`Designs::solve`], searching Δ within `bracket` only (e.g. near
+    /// the full-data Δ when refitting a cross-validation fold).
+    pub fn solve_in(&self, prep: &Prepared, train: &[usize], bracket: (f64, f64), iterations: usize) -> Result<Solution> {
         let Some(law) = self.terms.softening else {
             return self.solve_scaled(prep, train, &|_| 1.0);
         };
@@ -320,11 +326,11 @@ impl Designs {
                 s
             })
         };
-        let (mut lo, mut hi) = (-0.3, 0.6);
+        let (mut lo, mut hi) = bracket;
         let phi = 0.5 * (5f64.sqrt() - 1.0);
         let (mut a, mut b) = (hi - phi * (hi - lo), lo + phi * (hi - lo));
         let (mut fa, mut fb) = (at(a)?, at(b)?);
-        for _ in 0..10 {
+        for _ in 0..iterations {
             if fa.sse < fb.sse {
                 hi = b;
                 b = a;

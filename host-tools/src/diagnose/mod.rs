@@ -42,7 +42,7 @@ impl Default for DiagnoseOptions {
             folds: FoldPlan::Stratified { k: 5 },
             validate_currents_a: Vec::new(),
             thresholds: Thresholds::default(),
-            parameter_resamples: 100,
+            parameter_resamples: 60,
         }
     }
 }

@@ -104,7 +104,9 @@ fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
     }
     let mut fold_train_sse = Vec::with_capacity(prep.n_folds);
     for f in 0..prep.n_folds {
-        let sol = d.solve(prep, &prep.training_for(f))?;
+        // Δ is searched on the fold's own training data, near the full-data Δ.
+        let bracket = (full.delta - 0.08, full.delta + 0.08);
+        let sol = d.solve_in(prep, &prep.training_for(f), bracket, 6)?;
         fold_train_sse.push(sol.sse);
         for i in prep.fold_members(f) {
             heldout_sse[i] = sse(
