@@ -98,7 +98,16 @@ pub fn with_intervals(
         .into_par_iter()
         .filter_map(|b| {
             let mut rng = ChaCha8Rng::seed_from_u64(seed.wrapping_add(b as u64));
-            let train: Vec<usize> = (0..fit.len()).map(|_| fit[rng.random_range(0..fit.len())]).collect();
+            // Resampled within each current, so every resample keeps every
+            // tabulated current (a missing one would zero its coefficients).
+            let train: Vec<usize> = prep
+                .currents_a
+                .iter()
+                .flat_map(|&c| {
+                    let group: Vec<usize> = fit.iter().copied().filter(|&i| prep.recs[i].current_a == c).collect();
+                    (0..group.len()).map(|_| group[rng.random_range(0..group.len())]).collect::<Vec<_>>()
+                })
+                .collect();
             designs
                 .solve(prep, &train)
                 .ok()
