@@ -194,7 +194,7 @@ pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
         Effect::ViscousDamping => {
             let vmax = fit.iter().map(|&i| prep.recs[i].max_abs_v_m_s()).fold(0.0, f64::max);
             let mut out = vec![with(&|t| t.viscous = Some(Viscous::Linear))];
-            for f in [0.02, 0.05, 0.15, 0.4] {
+            for f in [0.05, 0.15, 0.4] {
                 out.push(with(&|t| t.viscous = Some(Viscous::Saturating { v0_m_s: f * vmax })));
             }
             out
