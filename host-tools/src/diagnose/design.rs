@@ -315,7 +315,13 @@ impl Designs {
 
     /// As [`Designs::solve`], searching Δ within `bracket` only (e.g. near
     /// the full-data Δ when refitting a cross-validation fold).
-    pub fn solve_in(&self, prep: &Prepared, train: &[usize], bracket: (f64, f64), iterations: usize) -> Result<Solution> {
+    pub fn solve_in(
+        &self,
+        prep: &Prepared,
+        train: &[usize],
+        bracket: (f64, f64),
+        iterations: usize,
+    ) -> Result<Solution> {
         let Some(law) = self.terms.softening else {
             return self.solve_scaled(prep, train, &|_| 1.0);
         };

@@ -105,7 +105,9 @@ pub fn with_intervals(
                 .iter()
                 .flat_map(|&c| {
                     let group: Vec<usize> = fit.iter().copied().filter(|&i| prep.recs[i].current_a == c).collect();
-                    (0..group.len()).map(|_| group[rng.random_range(0..group.len())]).collect::<Vec<_>>()
+                    (0..group.len())
+                        .map(|_| group[rng.random_range(0..group.len())])
+                        .collect::<Vec<_>>()
                 })
                 .collect();
             designs
