@@ -77,3 +77,14 @@ fn the_baseline_reproduces_the_generating_law_through_the_core() {
         }
     }
 }
+
+#[test]
+fn stress_softening_is_found_with_its_depth() {
+    // n0 = 4 is on the searched grid; Δ is solved, so it should come back close.
+    let added = Added::Softening { delta: 0.15, n0: 4.0 };
+    let d = diagnose(&dataset(added, 6), &DiagnoseOptions::default()).expect("diagnosis");
+    assert_eq!(names(&d).first(), Some(&"stress_softening"));
+    let p = &d.findings[0].parameters;
+    assert!((p["delta"].value - 0.15).abs() < 0.02, "delta {}", p["delta"].value);
+    assert_eq!(p["n0"].value, 4.0);
+}

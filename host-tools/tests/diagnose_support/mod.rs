@@ -22,6 +22,11 @@ pub enum Added {
     Delay {
         tau_s: f64,
     },
+    /// `× (1 − Δ·(1 − e^{−(n−1)/n0}))` with n the test's `sequence`.
+    Softening {
+        delta: f64,
+        n0: f64,
+    },
 }
 
 pub const SAMPLE_PERIOD_S: f64 = 1.0e-4;
@@ -66,6 +71,10 @@ pub fn dataset(added: Added, seed: u64) -> Dataset {
                     let mut f = law_n(xf, vf > 0.0, current_a);
                     if let Added::Viscous { c_n_s_per_m } = added {
                         f += c_n_s_per_m * v;
+                    }
+                    if let Added::Softening { delta, n0 } = added {
+                        let n = f64::from(order[n]);
+                        f *= 1.0 - delta * (1.0 - (-(n - 1.0) / n0).exp());
                     }
                     s.time_s.push(t);
                     s.x_mm.push(x);
