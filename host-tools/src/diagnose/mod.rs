@@ -147,7 +147,7 @@ fn signature_of(effect: Effect) -> &'static str {
         Effect::ViscousDamping => "velocity",
         Effect::SensorDelay => "model force rate dF/dt (time shift)",
         Effect::StressSoftening => "sequence",
-        Effect::EndStop => "displacement beyond 80 % of stroke",
+        Effect::EndStop => "displacement beyond 80 % of the largest stroke",
         Effect::MagneticSaturation => "current_a",
         Effect::Inertia => "acceleration",
         Effect::CoilLag => "current_a",
@@ -163,12 +163,24 @@ fn evidence_for(
 ) -> String {
     let loc = locate::locate(prep, pred_before);
     let (mut res, mut term) = (Vec::new(), Vec::new());
+    // Where the added term acts: recordings ranked by the RMS change it makes.
+    let mut acts: Vec<(f64, &str, f64)> = Vec::new();
     for (i, r) in prep.recs.iter().enumerate() {
+        let mut e = 0.0;
         for t in 0..r.len() {
             res.push(r.force_n[t] - pred_before[i][t]);
-            term.push(pred_after[i][t] - pred_before[i][t]);
+            let d = pred_after[i][t] - pred_before[i][t];
+            term.push(d);
+            e += d * d;
         }
+        acts.push(((e / r.len().max(1) as f64).sqrt(), r.file.as_str(), r.current_a));
     }
+    acts.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let acts_on: Vec<String> = acts
+        .iter()
+        .take(3)
+        .map(|(rms, f, c)| format!("{f} ({c} A, {rms:.0} N RMS)"))
+        .collect();
     let sig = signature_of(effect);
     let follows = loc
         .sample_correlations
@@ -179,7 +191,7 @@ fn evidence_for(
         .unwrap_or_default();
     format!(
         "held-out RMSE {:.3} → {:.3} N ({:.2}×, 95 % bootstrap over recordings {:.2}–{:.2}×), ΔBIC {:.0}; \
-         residual before: {}{}; the added term explains the residual with r = {:.2}",
+         residual before: {}{}; the added term acts most on {} and explains the residual with r = {:.2}",
         c.rmse_before_n,
         c.rmse_after_n,
         c.ratio,
@@ -188,6 +200,7 @@ fn evidence_for(
         c.delta_bic,
         locate::describe(&loc),
         follows,
+        acts_on.join(", "),
         locate::pearson(&res, &term)
     )
 }
