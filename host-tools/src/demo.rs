@@ -7,8 +7,9 @@
 //! 2. The same on the bundled drop-impact set without hidden physics
 //!    (`data/drop-none`), with its intermediate currents predicted by
 //!    interpolation, and its flash table generated.
-//! 3. The closed-loop drop test: passive 0 A, passive 2 A, controlled by the core.
-//! 4. The same with the firmware in QEMU closing the loop (`mre pil`), when
+//! 3. A blind diagnosis of the bundled drop tests with a concealed effect.
+//! 4. The closed-loop drop test: passive 0 A, passive 2 A, controlled by the core.
+//! 5. The same with the firmware in QEMU closing the loop (`mre pil`), when
 //!    `qemu-system-arm` is installed; otherwise it says how to install it.
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
@@ -91,6 +92,32 @@ fn closed_loop(out: &Path, seed: u64) -> Result<DemoStep> {
     })
 }
 
+/// Blind diagnosis of a bundled drop-test set with a concealed effect; the
+/// answer key (kept outside the set) is read only afterwards, to compare.
+fn diagnosis(data: &Path, out: &Path, seed: u64) -> Result<DemoStep> {
+    const SET: &str = "drop-viscous_damping";
+    let dir = out.join("diagnose");
+    let opts = crate::diagnose::options_from_cli(None, None, 5, vec![], seed)?;
+    let found = crate::diagnose::run_to_files(
+        &data.join(SET),
+        &opts,
+        &dir,
+        &dir.join("report.json"),
+        &dir.join("predictions"),
+    )?;
+    let key_path = data.join("keys").join(format!("{SET}.json"));
+    let truth = std::fs::read_to_string(&key_path)
+        .ok()
+        .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok())
+        .and_then(|key| key.get("effect").and_then(|e| e.as_str()).map(str::to_owned))
+        .unwrap_or_else(|| "unknown (no key file)".into());
+    Ok(DemoStep {
+        title: format!("diagnosis of data/{SET} (blind)"),
+        headline: format!("{}; answer key: {truth}", crate::diagnose::summary_line(&found)),
+        report: dir.join("report.md"),
+    })
+}
+
 fn processor_in_the_loop(out: &Path, seed: u64) -> Result<DemoStep> {
     use crate::pil::qemu::{qemu_binary, workspace_root, INSTALL_HINT};
     let title = "closed-loop drop test, firmware in QEMU (PIL)".to_string();
@@ -145,6 +172,7 @@ pub fn run_demo(options: &DemoOptions) -> Result<Vec<DemoStep>> {
             &[],
             "paper workflow on drop tests (intermediate currents predicted by interpolation)",
         )?,
+        diagnosis(data, out, options.seed)?,
         closed_loop(out, options.seed)?,
         processor_in_the_loop(out, options.seed)?,
     ];

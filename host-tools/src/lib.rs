@@ -3,6 +3,7 @@
 pub mod atomic_write;
 pub mod dataset;
 pub mod demo;
+pub mod diagnose;
 pub mod fit;
 pub mod linalg;
 pub mod loops;

@@ -139,6 +139,44 @@ enum Command {
         #[arg(long)]
         force: bool,
     },
+    /// Locate model-vs-recording mismatch, name the missing physics, model it, show the fit improve.
+    Diagnose {
+        /// Data set folder (dataset.toml + recordings).
+        dataset: PathBuf,
+        /// Baseline table TOML (default: fit the paper's model by least squares).
+        #[arg(long)]
+        model: Option<String>,
+        /// Folder for report.md and its plots.
+        #[arg(long)]
+        report: PathBuf,
+        /// report.json path.
+        #[arg(long)]
+        json: PathBuf,
+        /// Folder for one predictions CSV per recording.
+        #[arg(long)]
+        predictions: PathBuf,
+        /// Hold out whole groups: one cross-validation fold per value of this tag (e.g. frequency_hz).
+        #[arg(long)]
+        folds_by: Option<String>,
+        /// Number of stratified cross-validation folds (when --folds-by is not given).
+        #[arg(long, default_value_t = 5)]
+        folds: usize,
+        /// Treat recordings at this current (A) as `validate`; repeatable.
+        #[arg(long)]
+        validate_current: Vec<f64>,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+    },
+    /// Blind benchmark of `diagnose` on `mre synth --effect random` cases.
+    BenchDiagnose {
+        #[arg(long, default_value_t = 60)]
+        cases: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Also write every case and the summary as JSON.
+        #[arg(long)]
+        json: Option<PathBuf>,
+    },
     /// Simulate the drop test: passive 0 A, passive 2 A and the core's impact law in the loop.
     Sim {
         /// passive:<A> or controlled (repeatable); default: passive:0, passive:2 and controlled.
@@ -335,6 +373,43 @@ fn run(cli: Cli) -> Result<()> {
                 out.display(),
                 key_path.display()
             );
+        }
+        Command::Diagnose {
+            dataset,
+            model,
+            report,
+            json,
+            predictions,
+            folds_by,
+            folds,
+            validate_current,
+            seed,
+        } => {
+            let opts = mre_host::diagnose::options_from_cli(model.as_deref(), folds_by, folds, validate_current, seed)?;
+            let out = mre_host::diagnose::run_to_files(&dataset, &opts, &report, &json, &predictions)?;
+            println!("{}", mre_host::diagnose::summary_line(&out));
+            println!("report: {}", report.join("report.md").display());
+        }
+        Command::BenchDiagnose { cases, seed, json } => {
+            let opts = mre_host::diagnose::DiagnoseOptions::default();
+            let summary = mre_host::diagnose::bench::run_bench(cases, seed, &opts, |k, c| {
+                eprintln!(
+                    "case {:>3} seed {}: truth {:<20} diagnosed {:?} ({:.2} s); first round {:?}",
+                    k + 1,
+                    c.seed,
+                    c.truth,
+                    c.found,
+                    c.seconds,
+                    c.first_round
+                        .iter()
+                        .map(|(n, r)| format!("{n} {r:.3}"))
+                        .collect::<Vec<_>>()
+                )
+            })?;
+            print!("{}", mre_host::diagnose::bench::format_summary(&summary));
+            if let Some(path) = json {
+                mre_host::atomic_write::write_atomic(&path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
+            }
         }
         Command::Sim {
             current,

@@ -1,0 +1,248 @@
+//! One candidate model term per vocabulary effect (`shared/spec/effects.md`):
+//! whether this data set can identify it, and the variants to search.
+use super::design::{SofteningLaw, Terms, Viscous};
+use super::prepared::Prepared;
+
+/// The missing-physics vocabulary. Names are a contract.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Effect {
+    ViscousDamping,
+    SensorDelay,
+    StressSoftening,
+    EndStop,
+    MagneticSaturation,
+    Inertia,
+    CoilLag,
+}
+
+impl Effect {
+    pub const ALL: [Effect; 7] = [
+        Effect::ViscousDamping,
+        Effect::SensorDelay,
+        Effect::StressSoftening,
+        Effect::EndStop,
+        Effect::MagneticSaturation,
+        Effect::Inertia,
+        Effect::CoilLag,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Effect::ViscousDamping => "viscous_damping",
+            Effect::SensorDelay => "sensor_delay",
+            Effect::StressSoftening => "stress_softening",
+            Effect::EndStop => "end_stop",
+            Effect::MagneticSaturation => "magnetic_saturation",
+            Effect::Inertia => "inertia",
+            Effect::CoilLag => "coil_lag",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Effect> {
+        Effect::ALL.into_iter().find(|e| e.name() == name)
+    }
+
+    /// Is the term already in the model?
+    pub fn present_in(self, t: &Terms) -> bool {
+        match self {
+            Effect::ViscousDamping => t.viscous.is_some(),
+            Effect::SensorDelay => t.delay_s.is_some(),
+            Effect::StressSoftening => t.softening.is_some(),
+            Effect::EndStop => t.end_stop_x_mm.is_some(),
+            Effect::MagneticSaturation => t.saturation_i_a.is_some(),
+            Effect::Inertia => t.inertia,
+            Effect::CoilLag => false,
+        }
+    }
+}
+
+/// The reference model's turn-around memory at each searched length δ,
+/// as fractions of the largest stroke.
+pub fn memory_variants(prep: &Prepared) -> Vec<Terms> {
+    let fit = prep.fit_indices();
+    let span = fit
+        .iter()
+        .flat_map(|&i| prep.recs[i].x_mm.iter().copied())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)));
+    let span = (span.1 - span.0).max(1e-9);
+    [0.025]
+        .iter()
+        .map(|f| Terms {
+            memory_mm: Some(f * span),
+            ..Terms::default()
+        })
+        .collect()
+}
+
+/// Relative spread `(max − min)/max` of a per-recording quantity within each
+/// current's fit recordings; the largest over currents.
+fn spread_within_currents(prep: &Prepared, q: impl Fn(usize) -> f64) -> f64 {
+    let mut best: f64 = 0.0;
+    for &c in &prep.currents_a {
+        let vals: Vec<f64> = prep
+            .fit_indices()
+            .into_iter()
+            .filter(|&i| prep.recs[i].current_a == c)
+            .map(&q)
+            .collect();
+        let (lo, hi) = vals
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
+        if vals.len() >= 2 && hi > 0.0 {
+            best = best.max((hi - lo) / hi);
+        }
+    }
+    best
+}
+
+fn distinct_sequences(prep: &Prepared) -> usize {
+    let mut s: Vec<f64> = prep
+        .fit_indices()
+        .iter()
+        .filter_map(|&i| prep.recs[i].sequence)
+        .collect();
+    s.sort_by(f64::total_cmp);
+    s.dedup();
+    s.len()
+}
+
+fn temperature_span_c(prep: &Prepared) -> f64 {
+    let t: Vec<f64> = prep
+        .fit_indices()
+        .iter()
+        .filter_map(|&i| prep.recs[i].temperature_c)
+        .collect();
+    t.iter().copied().fold(f64::NEG_INFINITY, f64::max) - t.iter().copied().fold(f64::INFINITY, f64::min)
+}
+
+fn intermediate_validate_count(prep: &Prepared) -> usize {
+    let (lo, hi) = (prep.currents_a[0], prep.currents_a[prep.currents_a.len() - 1]);
+    prep.validate_indices()
+        .iter()
+        .filter(|&&i| prep.recs[i].current_a > lo + 1e-9 && prep.recs[i].current_a < hi - 1e-9)
+        .count()
+}
+
+/// `Err(needs)` when this data set cannot separate the effect from the
+/// baseline, with the test that would.
+pub fn identifiable(prep: &Prepared, effect: Effect) -> Result<(), String> {
+    match effect {
+        Effect::ViscousDamping => {
+            if spread_within_currents(prep, |i| prep.recs[i].max_abs_v_m_s()) >= 0.15 {
+                Ok(())
+            } else {
+                Err(
+                    "recordings at one current with different velocities (impact velocities, or sinusoid \
+                     amplitude × frequency): along one trajectory v is a function of x and the branch \
+                     quartics absorb it"
+                        .into(),
+                )
+            }
+        }
+        Effect::SensorDelay => Ok(()),
+        Effect::StressSoftening => {
+            if distinct_sequences(prep) >= 3 || temperature_span_c(prep) >= 2.0 {
+                Ok(())
+            } else {
+                Err("repeated tests with their run order recorded (`sequence`), or temperature records".into())
+            }
+        }
+        Effect::EndStop => {
+            if spread_within_currents(prep, |i| prep.recs[i].max_x_mm()) >= 0.1 {
+                Ok(())
+            } else {
+                Err("recordings at one current that reach different maximum strokes".into())
+            }
+        }
+        Effect::MagneticSaturation => {
+            if prep.currents_a.len() >= 2 && intermediate_validate_count(prep) >= 2 {
+                Ok(())
+            } else {
+                Err("at least two `validate` recordings at currents between the tabulated (fit) currents".into())
+            }
+        }
+        Effect::Inertia => {
+            if prep.free_drop {
+                Err(
+                    "a test whose acceleration is not proportional to the measured force (shaker or MTS \
+                     test, or a measured acceleration channel): in a free drop a = g − F/M, a pure scale the \
+                     fit absorbs"
+                        .into(),
+                )
+            } else {
+                Ok(())
+            }
+        }
+        Effect::CoilLag => Err(
+            "recordings in which the commanded current changes during the test (controlled impacts), \
+             with the command recorded per sample; every recording here holds one current"
+                .into(),
+        ),
+    }
+}
+
+/// The model `base + effect` at every searched value of the effect's
+/// nonlinear parameter (one variant when it has none).
+pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
+    let fit = prep.fit_indices();
+    let with = |f: &dyn Fn(&mut Terms)| {
+        let mut t = *base;
+        f(&mut t);
+        t
+    };
+    match effect {
+        Effect::ViscousDamping => {
+            let vmax = fit.iter().map(|&i| prep.recs[i].max_abs_v_m_s()).fold(0.0, f64::max);
+            let mut out = vec![with(&|t| t.viscous = Some(Viscous::Linear))];
+            for f in [0.05, 0.15, 0.4] {
+                out.push(with(&|t| t.viscous = Some(Viscous::Saturating { v0_m_s: f * vmax })));
+            }
+            out
+        }
+        Effect::SensorDelay => {
+            let mut dts: Vec<f64> = fit.iter().map(|&i| prep.recs[i].dt_s()).collect();
+            dts.sort_by(f64::total_cmp);
+            let dt = dts[dts.len() / 2];
+            // Finer where delays are common (a few samples of filter group
+            // delay), and both signs: a DAQ offset can lead as well as lag.
+            let lags = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0, 12.0];
+            let leads = [1.0, 2.0, 4.0, 8.0];
+            lags.iter()
+                .map(|s| s * dt)
+                .chain(leads.iter().map(|s| -s * dt))
+                .map(|tau| with(&|t| t.delay_s = Some(tau)))
+                .collect()
+        }
+        Effect::StressSoftening => {
+            if distinct_sequences(prep) >= 3 {
+                [2.0, 4.0, 8.0, 16.0, 40.0]
+                    .iter()
+                    .map(|&n0| with(&|t| t.softening = Some(SofteningLaw::Sequence { n0 })))
+                    .collect()
+            } else {
+                let t: Vec<f64> = fit.iter().filter_map(|&i| prep.recs[i].temperature_c).collect();
+                let t_ref_c = t.iter().sum::<f64>() / t.len().max(1) as f64;
+                vec![with(&|t| t.softening = Some(SofteningLaw::Temperature { t_ref_c }))]
+            }
+        }
+        Effect::EndStop => {
+            let xmax = fit
+                .iter()
+                .map(|&i| prep.recs[i].max_x_mm())
+                .fold(f64::NEG_INFINITY, f64::max);
+            [0.3, 0.4, 0.5, 0.6, 0.7, 0.75, 0.8, 0.85, 0.9, 0.94]
+                .iter()
+                .map(|f| with(&|t| t.end_stop_x_mm = Some(f * xmax)))
+                .collect()
+        }
+        Effect::MagneticSaturation => {
+            let imax = prep.currents_a[prep.currents_a.len() - 1].abs().max(1e-3);
+            [0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5, 0.75, 1.0]
+                .iter()
+                .map(|f| with(&|t| t.saturation_i_a = Some(f * imax)))
+                .collect()
+        }
+        Effect::Inertia => vec![with(&|t| t.inertia = true)],
+        Effect::CoilLag => Vec::new(),
+    }
+}

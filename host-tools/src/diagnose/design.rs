@@ -1,0 +1,490 @@
+//! The augmented model and its least-squares design.
+//!
+//! `F(t) = s_r · [ Σ_k w_k(I) · Q_{k,branch}(x(t−τ)) + Σ_k w_k(I)·c_k·φ(v(t−τ))
+//!               + k_e·max(0, x(t−τ) − x_e)² + m_s·a(t−τ) ]`
+//!
+//! `w_k` are the hat weights of linear interpolation between tabulated
+//! currents (on `tanh(I/I_s)` under magnetic saturation); a fit recording sits
+//! on one tabulated current, so only validate recordings are interpolated.
+//! `s_r = 1 − Δ·g_r` is the per-recording softening factor. Every term but the
+//! grid-searched `τ, v0, x_e, I_s, n0` is linear, so each fit is one QR solve.
+//!
+//! Speed: each recording's rows are compressed once into the R factor of the
+//! QR of `[A_r | y_r]` (on its non-zero columns only). Stacking the R factors
+//! of any set of recordings gives the same least-squares problem as stacking
+//! their rows, so cross-validation folds and bootstrap resamples cost a small
+//! solve each, and a constant row scale `s_r` just scales `R_A`.
+use super::prepared::{Prepared, Rec};
+use crate::linalg;
+use anyhow::Result;
+use nalgebra::{DMatrix, DVector};
+
+/// Powers of x in each branch quartic (x⁰..x⁴).
+pub const QUARTIC_TERMS: usize = 5;
+
+/// Relaxation lengths of the turn-around memory basis, as multiples of δ.
+pub const MEMORY_LENGTHS: [f64; 3] = [0.4, 1.0, 2.5];
+/// Powers of the turn-around displacement x_r scaling each basis function.
+pub const MEMORY_POWERS: usize = 2;
+/// Memory columns per current and direction of travel.
+pub const MEMORY_TERMS: usize = MEMORY_LENGTHS.len() * MEMORY_POWERS;
+
+/// Rate-independent hysteresis memory (Masing/Dahl type): after a reversal
+/// at `x_r`, the branch relaxes towards its steady curve over a length δ, so
+/// the unloading curve depends on where loading turned around, which the
+/// paper's single quartic per branch cannot represent.
+///
+/// Returns, per sample, the distance travelled since the last reversal and
+/// the reversal's sample index `(|x − x_r|, index)` (`None` before the first
+/// reversal), and the direction of travel (true = compressing). The model's
+/// columns, per current, are `e^{−|x − x_r|/(m·δ)}·x_r^p` over
+/// [`MEMORY_LENGTHS`] m and p < [`MEMORY_POWERS`]: a relaxation whose size
+/// follows the turn-around point, without committing to one length. Reversals are
+/// found on displacement with a dead band of δ/5, not on the sign of a noisy
+/// velocity, so noise at a turn-around does not create spurious reversals.
+pub fn memory_feature(x: &[f64], delta_mm: f64) -> (Vec<Option<(f64, f64)>>, Vec<bool>) {
+    let n = x.len();
+    let mut feature: Vec<Option<(f64, f64)>> = vec![None; n];
+    let mut compressing = vec![true; n];
+    let band = 0.2 * delta_mm;
+    let mut dir = true;
+    let mut ext_at = 0usize;
+    let mut anchor: Option<(usize, f64)> = None;
+    for t in 0..n {
+        let beyond = if dir { x[t] >= x[ext_at] } else { x[t] <= x[ext_at] };
+        if beyond {
+            ext_at = t;
+        } else if (x[t] - x[ext_at]).abs() > band {
+            // Reversal at the extreme: travel since then belongs to the new direction.
+            anchor = Some((ext_at, x[ext_at]));
+            dir = !dir;
+            let from = ext_at;
+            ext_at = t;
+            for s in from..t {
+                compressing[s] = dir;
+                if dir {
+                    if x[s] > x[ext_at] {
+                        ext_at = s;
+                    }
+                } else if x[s] < x[ext_at] {
+                    ext_at = s;
+                }
+            }
+            for s in from..t {
+                feature[s] = Some(((x[s] - x[from]).abs(), from as f64));
+            }
+        }
+        compressing[t] = dir;
+        if let Some((at, xr)) = anchor {
+            feature[t] = Some(((x[t] - xr).abs(), at as f64));
+        }
+    }
+    (feature, compressing)
+}
+
+/// Rate dependence `c(I)·φ(v)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Viscous {
+    /// `φ(v) = v`.
+    Linear,
+    /// `φ(v) = v0·tanh(v/v0)`.
+    Saturating { v0_m_s: f64 },
+}
+
+/// Softening covariate per recording.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SofteningLaw {
+    /// `g = 1 − e^{−(n−1)/n0}` with n the recording's `sequence`.
+    Sequence { n0: f64 },
+    /// `g = T − T_ref` (°C): a linear drift with temperature.
+    Temperature { t_ref_c: f64 },
+}
+
+impl SofteningLaw {
+    pub fn covariate(&self, rec: &Rec) -> f64 {
+        match *self {
+            SofteningLaw::Sequence { n0 } => rec.sequence.map_or(0.0, |n| 1.0 - (-(n - 1.0) / n0).exp()),
+            SofteningLaw::Temperature { t_ref_c } => rec.temperature_c.map_or(0.0, |t| t - t_ref_c),
+        }
+    }
+}
+
+/// Which missing-physics terms the model carries (an empty set = the paper's model).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Terms {
+    pub delay_s: Option<f64>,
+    pub viscous: Option<Viscous>,
+    pub end_stop_x_mm: Option<f64>,
+    pub inertia: bool,
+    /// Law and its fitted Δ (Δ is solved, not searched).
+    pub softening: Option<SofteningLaw>,
+    pub saturation_i_a: Option<f64>,
+    /// Turn-around memory length δ (mm): not a vocabulary effect but part of
+    /// the reference model (see [`memory_feature`]).
+    pub memory_mm: Option<f64>,
+}
+
+/// Global column layout of a [`Terms`] over a table of currents.
+#[derive(Clone, Debug)]
+pub struct Layout {
+    pub n_currents: usize,
+    pub viscous_at: Option<usize>,
+    pub end_stop_at: Option<usize>,
+    pub inertia_at: Option<usize>,
+    pub memory_at: Option<usize>,
+    pub n_cols: usize,
+}
+
+impl Layout {
+    pub fn new(n_currents: usize, terms: &Terms) -> Self {
+        let mut n = n_currents * 2 * QUARTIC_TERMS;
+        let mut next = |w: usize| {
+            let at = n;
+            n += w;
+            at
+        };
+        let viscous_at = terms.viscous.map(|_| next(n_currents));
+        let end_stop_at = terms.end_stop_x_mm.map(|_| next(1));
+        let inertia_at = terms.inertia.then(|| next(1));
+        let memory_at = terms.memory_mm.map(|_| next(2 * MEMORY_TERMS * n_currents));
+        Layout {
+            n_currents,
+            viscous_at,
+            end_stop_at,
+            inertia_at,
+            memory_at,
+            n_cols: n,
+        }
+    }
+
+    pub fn quartic_col(&self, current: usize, compression: bool, power: usize) -> usize {
+        (current * 2 + usize::from(!compression)) * QUARTIC_TERMS + power
+    }
+
+    /// Memory column of current k, direction, basis function j.
+    pub fn memory_col(&self, compression: bool, j: usize, current: usize) -> Option<usize> {
+        self.memory_at
+            .map(|at| at + (current * 2 + usize::from(!compression)) * MEMORY_TERMS + j)
+    }
+
+    /// Number of linear coefficients the added terms bring.
+    pub fn extra_cols(&self) -> usize {
+        self.n_cols - self.n_currents * 2 * QUARTIC_TERMS
+    }
+}
+
+/// Hat weights `(index, weight)` of `current_a` over `currents_a`, linear in
+/// I or in `tanh(I/I_s)`; clamped to the table's range like the core.
+pub fn current_weights(currents_a: &[f64], current_a: f64, saturation_i_a: Option<f64>) -> [(usize, f64); 2] {
+    let u = |i: f64| saturation_i_a.map_or(i, |s| (i / s).tanh());
+    let last = currents_a.len() - 1;
+    if current_a <= currents_a[0] {
+        return [(0, 1.0), (0, 0.0)];
+    }
+    if current_a >= currents_a[last] {
+        return [(last, 1.0), (last, 0.0)];
+    }
+    for k in 0..last {
+        let (lo, hi) = (currents_a[k], currents_a[k + 1]);
+        if current_a < hi {
+            if (current_a - lo).abs() < 1e-12 {
+                return [(k, 1.0), (k, 0.0)];
+            }
+            let t = (u(current_a) - u(lo)) / (u(hi) - u(lo));
+            return [(k, 1.0 - t), (k + 1, t)];
+        }
+    }
+    [(last, 1.0), (last, 0.0)]
+}
+
+/// Linear interpolation of a recording's channel at time `t` (clamped).
+fn sample_at(time_s: &[f64], y: &[f64], t: f64, hint: &mut usize) -> f64 {
+    let n = time_s.len();
+    if t <= time_s[0] {
+        return y[0];
+    }
+    if t >= time_s[n - 1] {
+        return y[n - 1];
+    }
+    while *hint + 1 < n && time_s[*hint + 1] < t {
+        *hint += 1;
+    }
+    while *hint > 0 && time_s[*hint] > t {
+        *hint -= 1;
+    }
+    let (t0, t1) = (time_s[*hint], time_s[*hint + 1]);
+    let f = (t - t0) / (t1 - t0);
+    y[*hint] + f * (y[*hint + 1] - y[*hint])
+}
+
+/// One recording's design on its non-zero columns.
+#[derive(Clone, Debug)]
+pub struct RecDesign {
+    /// Global column of each local column.
+    pub cols: Vec<usize>,
+    pub a: DMatrix<f64>,
+    /// Compressed `[R_A | r_y]` (fit recordings only).
+    pub r_a: Option<DMatrix<f64>>,
+    pub r_y: Option<DVector<f64>>,
+}
+
+impl RecDesign {
+    /// `A_r · β` (before the softening scale).
+    pub fn predict(&self, beta: &[f64]) -> Vec<f64> {
+        let b = DVector::from_iterator(self.cols.len(), self.cols.iter().map(|&c| beta[c]));
+        (&self.a * b).iter().copied().collect()
+    }
+}
+
+/// The designs of every recording under one [`Terms`].
+#[derive(Clone, Debug)]
+pub struct Designs {
+    pub terms: Terms,
+    pub layout: Layout,
+    pub recs: Vec<RecDesign>,
+}
+
+/// A least-squares solution over some training recordings.
+#[derive(Clone, Debug)]
+pub struct Solution {
+    pub beta: Vec<f64>,
+    /// Softening Δ (0 when the model has no softening).
+    pub delta: f64,
+    pub sse: f64,
+}
+
+impl Designs {
+    pub fn build(prep: &Prepared, terms: &Terms) -> Designs {
+        let layout = Layout::new(prep.currents_a.len(), terms);
+        let recs = prep.recs.iter().map(|r| design_for(prep, r, terms, &layout)).collect();
+        Designs {
+            terms: *terms,
+            layout,
+            recs,
+        }
+    }
+
+    /// Solves over `train` with fixed per-recording scales (1 if `None`).
+    pub fn solve_scaled(&self, prep: &Prepared, train: &[usize], scale: &dyn Fn(usize) -> f64) -> Result<Solution> {
+        let rows: usize = train
+            .iter()
+            .map(|&i| self.recs[i].r_a.as_ref().map_or(0, |r| r.nrows()))
+            .sum();
+        let p = self.layout.n_cols;
+        let mut a = DMatrix::<f64>::zeros(rows, p);
+        let mut y = DVector::<f64>::zeros(rows);
+        let mut at = 0;
+        for &i in train {
+            let d = &self.recs[i];
+            let (Some(ra), Some(ry)) = (&d.r_a, &d.r_y) else {
+                continue;
+            };
+            let s = scale(i);
+            for row in 0..ra.nrows() {
+                for (lc, &gc) in d.cols.iter().enumerate() {
+                    a[(at + row, gc)] = s * ra[(row, lc)];
+                }
+                y[at + row] = ry[row];
+            }
+            at += ra.nrows();
+        }
+        let _ = prep;
+        // Columns no training recording touches (e.g. an end stop nobody
+        // reached) are left out and get a zero coefficient.
+        let used: Vec<usize> = (0..p).filter(|&c| a.column(c).iter().any(|v| *v != 0.0)).collect();
+        let a_used = a.select_columns(&used);
+        let ls = linalg::solve(&a_used, &y)?;
+        let mut beta = vec![0.0; p];
+        for (k, &c) in used.iter().enumerate() {
+            beta[c] = ls.coeffs[k];
+        }
+        Ok(Solution {
+            beta,
+            delta: 0.0,
+            sse: ls.sse,
+        })
+    }
+
+    /// Solves over `train`. With softening, `F = (1 − Δ·g_r)·Q(x)`: for a
+    /// given Δ, Q is one scaled linear solve, so Δ is found by golden-section
+    /// search on the training SSE (alternating updates crawl, because Q's
+    /// scale and Δ are nearly interchangeable when most tests have softened).
+    pub fn solve(&self, prep: &Prepared, train: &[usize]) -> Result<Solution> {
+        self.solve_in(prep, train, (-0.3, 0.6), 10)
+    }
+
+    /// As [`Designs::solve`], searching Δ within `bracket` only (e.g. near
+    /// the full-data Δ when refitting a cross-validation fold).
+    pub fn solve_in(
+        &self,
+        prep: &Prepared,
+        train: &[usize],
+        bracket: (f64, f64),
+        iterations: usize,
+    ) -> Result<Solution> {
+        let Some(law) = self.terms.softening else {
+            return self.solve_scaled(prep, train, &|_| 1.0);
+        };
+        let g: Vec<f64> = prep.recs.iter().map(|r| law.covariate(r)).collect();
+        let at = |delta: f64| {
+            self.solve_scaled(prep, train, &|i| 1.0 - delta * g[i]).map(|mut s| {
+                s.delta = delta;
+                s
+            })
+        };
+        let (mut lo, mut hi) = bracket;
+        let phi = 0.5 * (5f64.sqrt() - 1.0);
+        let (mut a, mut b) = (hi - phi * (hi - lo), lo + phi * (hi - lo));
+        let (mut fa, mut fb) = (at(a)?, at(b)?);
+        for _ in 0..iterations {
+            if fa.sse < fb.sse {
+                hi = b;
+                b = a;
+                fb = fa;
+                a = hi - phi * (hi - lo);
+                fa = at(a)?;
+            } else {
+                lo = a;
+                a = b;
+                fa = fb;
+                b = lo + phi * (hi - lo);
+                fb = at(b)?;
+            }
+        }
+        Ok(if fa.sse < fb.sse { fa } else { fb })
+    }
+
+    /// Predicted force of recording `i`.
+    pub fn predict(&self, prep: &Prepared, i: usize, sol: &Solution) -> Vec<f64> {
+        let s = match self.terms.softening {
+            Some(law) => 1.0 - sol.delta * law.covariate(&prep.recs[i]),
+            None => 1.0,
+        };
+        let mut p = self.recs[i].predict(&sol.beta);
+        p.iter_mut().for_each(|v| *v *= s);
+        p
+    }
+}
+
+fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> RecDesign {
+    let weights = current_weights(&prep.currents_a, rec.current_a, terms.saturation_i_a);
+    let mut cols: Vec<usize> = Vec::new();
+    for &(k, w) in &weights {
+        if w == 0.0 {
+            continue;
+        }
+        for comp in [true, false] {
+            for p in 0..QUARTIC_TERMS {
+                cols.push(layout.quartic_col(k, comp, p));
+            }
+        }
+        if let Some(at) = layout.viscous_at {
+            cols.push(at + k);
+        }
+    }
+    for comp in [true, false] {
+        for j in 0..MEMORY_TERMS {
+            for &(k, w) in &weights {
+                if w != 0.0 {
+                    cols.extend(layout.memory_col(comp, j, k));
+                }
+            }
+        }
+    }
+    cols.extend(layout.end_stop_at);
+    cols.extend(layout.inertia_at);
+    cols.sort_unstable();
+    cols.dedup();
+    let local = |c: usize| cols.binary_search(&c).unwrap_or(0);
+    let n = rec.len();
+    let mut a = DMatrix::<f64>::zeros(n, cols.len());
+    let (mut hx, mut hv, mut ha) = (0, 0, 0);
+    let (xs, vs, accs): (Vec<f64>, Vec<f64>, Vec<f64>) = match terms.delay_s {
+        Some(tau) => (0..n)
+            .map(|t| {
+                let ts = rec.time_s[t] - tau;
+                (
+                    sample_at(&rec.time_s, &rec.x_mm, ts, &mut hx),
+                    sample_at(&rec.time_s, &rec.v_m_s, ts, &mut hv),
+                    sample_at(&rec.time_s, &rec.a_m_s2, ts, &mut ha),
+                )
+            })
+            .fold((vec![], vec![], vec![]), |(mut a, mut b, mut c), (x, v, acc)| {
+                a.push(x);
+                b.push(v);
+                c.push(acc);
+                (a, b, c)
+            }),
+        None => (rec.x_mm.clone(), rec.v_m_s.clone(), rec.a_m_s2.clone()),
+    };
+    let memory = terms.memory_mm.map(|d| memory_feature(&xs, d));
+    for t in 0..n {
+        let (x, v, acc) = (xs[t], vs[t], accs[t]);
+        let comp = v > 0.0;
+        for &(k, w) in &weights {
+            if w == 0.0 {
+                continue;
+            }
+            let mut xp = w;
+            for p in 0..QUARTIC_TERMS {
+                a[(t, local(layout.quartic_col(k, comp, p)))] += xp;
+                xp *= x;
+            }
+            if let (Some(at), Some(visc)) = (layout.viscous_at, terms.viscous) {
+                let phi = match visc {
+                    Viscous::Linear => v,
+                    Viscous::Saturating { v0_m_s } => v0_m_s * (v / v0_m_s).tanh(),
+                };
+                a[(t, local(at + k))] += w * phi;
+            }
+        }
+        if let (Some((m, dir)), Some(delta)) = (&memory, terms.memory_mm) {
+            if let Some((d, at)) = m[t] {
+                let x_r = xs[at as usize];
+                for (l, len) in MEMORY_LENGTHS.iter().enumerate() {
+                    let e = (-d / (len * delta)).exp();
+                    for &(k, w) in &weights {
+                        let mut xp = w * e;
+                        for p in 0..MEMORY_POWERS {
+                            if let (true, Some(c)) = (w != 0.0, layout.memory_col(dir[t], l * MEMORY_POWERS + p, k)) {
+                                a[(t, local(c))] += xp;
+                            }
+                            xp *= x_r;
+                        }
+                    }
+                }
+            }
+        }
+        if let (Some(at), Some(xe)) = (layout.end_stop_at, terms.end_stop_x_mm) {
+            let d = (x - xe).max(0.0);
+            a[(t, local(at))] = d * d;
+        }
+        if let Some(at) = layout.inertia_at {
+            a[(t, local(at))] = acc;
+        }
+    }
+    // Keep only the columns this recording touches (e.g. no compression
+    // memory in a drop, which never reverses into compression).
+    let keep: Vec<usize> = (0..cols.len())
+        .filter(|&c| a.column(c).iter().any(|v| *v != 0.0))
+        .collect();
+    let (cols, a) = if keep.len() < cols.len() {
+        (
+            keep.iter().map(|&c| cols[c]).collect::<Vec<_>>(),
+            a.select_columns(&keep),
+        )
+    } else {
+        (cols, a)
+    };
+    let (r_a, r_y) = if rec.is_fit() {
+        let mut ay = DMatrix::<f64>::zeros(n, cols.len() + 1);
+        ay.view_mut((0, 0), (n, cols.len())).copy_from(&a);
+        ay.set_column(cols.len(), &DVector::from_column_slice(&rec.force_n));
+        let r = ay.qr().r();
+        let c = cols.len();
+        (Some(r.columns(0, c).into_owned()), Some(r.column(c).into_owned()))
+    } else {
+        (None, None)
+    };
+    RecDesign { cols, a, r_a, r_y }
+}

@@ -1,0 +1,267 @@
+//! `mre diagnose`: locate the model-vs-recording mismatch, name the missing
+//! physics from the vocabulary (`shared/spec/effects.md`), model it, and show
+//! the out-of-sample fit improve.
+//!
+//! Stages: [`baseline`] → [`locate`] → [`candidates`] scored by [`select`]
+//! (forward selection on held-out data) → [`report`].
+pub mod baseline;
+pub mod bench;
+pub mod candidates;
+pub mod design;
+pub mod locate;
+pub mod parameters;
+pub mod plots;
+pub mod prepared;
+pub mod report;
+pub mod select;
+
+use crate::dataset::Dataset;
+use anyhow::Result;
+use candidates::Effect;
+use design::Designs;
+use mre_core::table::Table;
+use prepared::{FoldPlan, Prepared};
+use select::{Scored, Selection, Thresholds};
+
+#[derive(Clone, Debug)]
+pub struct DiagnoseOptions {
+    /// Use this table as the baseline instead of fitting one.
+    pub model: Option<Table>,
+    pub folds: FoldPlan,
+    /// Treat recordings at these currents as `validate` (held out).
+    pub validate_currents_a: Vec<f64>,
+    pub thresholds: Thresholds,
+    /// Bootstrap resamples for parameter intervals.
+    pub parameter_resamples: usize,
+}
+
+impl Default for DiagnoseOptions {
+    fn default() -> Self {
+        DiagnoseOptions {
+            model: None,
+            folds: FoldPlan::Stratified { k: 5 },
+            validate_currents_a: Vec::new(),
+            thresholds: Thresholds::default(),
+            parameter_resamples: 60,
+        }
+    }
+}
+
+/// An accepted effect with its evidence.
+#[derive(Clone, Debug)]
+pub struct Finding {
+    pub effect: Effect,
+    pub parameters: std::collections::BTreeMap<String, parameters::Param>,
+    pub evidence: String,
+    pub rmse_n_before: f64,
+    pub rmse_n_after: f64,
+    pub heldout_improvement: f64,
+    pub ratio_ci95: [f64; 2],
+    pub delta_bic: f64,
+}
+
+/// Everything the diagnosis found, for the report writers.
+#[derive(Clone, Debug)]
+pub struct Diagnosis {
+    pub prep: Prepared,
+    pub baseline_table: Table,
+    /// Whether the baseline table was given (`--model`) rather than fitted.
+    pub baseline_given: bool,
+    pub locate: locate::Locate,
+    pub selection: Selection,
+    pub findings: Vec<Finding>,
+    pub baseline_pred: Vec<Vec<f64>>,
+    pub final_pred: Vec<Vec<f64>>,
+    pub thresholds: Thresholds,
+}
+
+/// In-sample predictions of a scored model for every recording.
+pub fn predictions(prep: &Prepared, scored: &Scored) -> Vec<Vec<f64>> {
+    let d = Designs::build(prep, &scored.terms);
+    (0..prep.recs.len())
+        .map(|i| d.predict(prep, i, &scored.solution))
+        .collect()
+}
+
+/// Runs the whole diagnosis on a loaded data set.
+pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
+    let prep = prepared::prepare(ds, &opts.folds, &opts.validate_currents_a)?;
+    let (baseline_table, baseline_given) = match &opts.model {
+        Some(t) => (*t, true),
+        None => (baseline::fit_table(&prep)?, false),
+    };
+    let baseline_pred = baseline::predict_all(&prep, &baseline_table);
+    let loc = locate::locate(&prep, &baseline_pred);
+    let selection = select::forward_select(&prep, &opts.thresholds)?;
+    let mut findings = Vec::new();
+    let mut before = selection.reference.clone();
+    for round in &selection.rounds {
+        let Some(k) = round.accepted else { break };
+        let c = &round.tested[k];
+        let Some(effect) = c.effect else { break };
+        let pred_before = predictions(&prep, &before);
+        let pred_after = predictions(&prep, &c.scored);
+        let evidence = evidence_for(&prep, effect, &pred_before, &pred_after, c);
+        let params = parameters::with_intervals(
+            &prep,
+            effect,
+            &selection.final_model.terms,
+            &selection.final_model.solution,
+            &c.scored.variant_sse,
+            opts.parameter_resamples,
+            opts.thresholds.seed,
+        );
+        findings.push(Finding {
+            effect,
+            parameters: params,
+            evidence,
+            rmse_n_before: c.rmse_before_n,
+            rmse_n_after: c.rmse_after_n,
+            heldout_improvement: c.ratio,
+            ratio_ci95: c.ratio_ci95,
+            delta_bic: c.delta_bic,
+        });
+        before = c.scored.clone();
+    }
+    let final_pred = if findings.is_empty() {
+        baseline_pred.clone()
+    } else {
+        predictions(&prep, &selection.final_model)
+    };
+    Ok(Diagnosis {
+        prep,
+        baseline_table,
+        baseline_given,
+        locate: loc,
+        selection,
+        findings,
+        baseline_pred,
+        final_pred,
+        thresholds: opts.thresholds,
+    })
+}
+
+/// The covariate an effect's signature follows, as named by [`locate`].
+fn signature_of(effect: Effect) -> &'static str {
+    match effect {
+        Effect::ViscousDamping => "velocity",
+        Effect::SensorDelay => "model force rate dF/dt (time shift)",
+        Effect::StressSoftening => "sequence",
+        Effect::EndStop => "displacement beyond 80 % of the largest stroke",
+        Effect::MagneticSaturation => "current_a",
+        Effect::Inertia => "acceleration",
+        Effect::CoilLag => "current_a",
+    }
+}
+
+fn evidence_for(
+    prep: &Prepared,
+    effect: Effect,
+    pred_before: &[Vec<f64>],
+    pred_after: &[Vec<f64>],
+    c: &select::Comparison,
+) -> String {
+    let loc = locate::locate(prep, pred_before);
+    let (mut res, mut term) = (Vec::new(), Vec::new());
+    // Where the added term acts: recordings ranked by the RMS change it makes.
+    let mut acts: Vec<(f64, &str, f64)> = Vec::new();
+    for (i, r) in prep.recs.iter().enumerate() {
+        let mut e = 0.0;
+        for t in 0..r.len() {
+            res.push(r.force_n[t] - pred_before[i][t]);
+            let d = pred_after[i][t] - pred_before[i][t];
+            term.push(d);
+            e += d * d;
+        }
+        acts.push(((e / r.len().max(1) as f64).sqrt(), r.file.as_str(), r.current_a));
+    }
+    acts.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let acts_on: Vec<String> = acts
+        .iter()
+        .take(3)
+        .map(|(rms, f, c)| format!("{f} ({c} A, {rms:.0} N RMS)"))
+        .collect();
+    let sig = signature_of(effect);
+    let follows = loc
+        .sample_correlations
+        .iter()
+        .chain(&loc.recording_correlations)
+        .find(|(n, _)| n == sig || (effect == Effect::StressSoftening && n == "temperature_c"))
+        .map(|(n, r)| format!("; residual correlates with {n} (r = {r:+.2})"))
+        .unwrap_or_default();
+    format!(
+        "held-out RMSE {:.3} → {:.3} N ({:.2}×, 95 % bootstrap over recordings {:.2}–{:.2}×), ΔBIC {:.0}; \
+         residual before: {}{}; the added term acts most on {} and explains the residual with r = {:.2}",
+        c.rmse_before_n,
+        c.rmse_after_n,
+        c.ratio,
+        c.ratio_ci95[0],
+        c.ratio_ci95[1],
+        c.delta_bic,
+        locate::describe(&loc),
+        follows,
+        acts_on.join(", "),
+        locate::pearson(&res, &term)
+    )
+}
+
+/// Options from the CLI's flags.
+pub fn options_from_cli(
+    model: Option<&str>,
+    folds_by: Option<String>,
+    folds: usize,
+    validate_currents_a: Vec<f64>,
+    seed: u64,
+) -> Result<DiagnoseOptions> {
+    if validate_currents_a.iter().any(|c| !c.is_finite()) {
+        anyhow::bail!("--validate-current must be a finite current in A");
+    }
+    Ok(DiagnoseOptions {
+        model: model.map(crate::table_file::load_table).transpose()?,
+        folds: match folds_by {
+            Some(tag) => FoldPlan::ByTag(tag),
+            None => FoldPlan::Stratified { k: folds },
+        },
+        validate_currents_a,
+        thresholds: Thresholds {
+            seed,
+            ..Thresholds::default()
+        },
+        ..DiagnoseOptions::default()
+    })
+}
+
+/// `mre diagnose`: loads the data set, diagnoses it and writes every output.
+/// Nothing is written unless the diagnosis succeeds.
+pub fn run_to_files(
+    dataset_dir: &std::path::Path,
+    opts: &DiagnoseOptions,
+    report_dir: &std::path::Path,
+    json_path: &std::path::Path,
+    predictions_dir: &std::path::Path,
+) -> Result<report::ReportJson> {
+    let ds = Dataset::load(dataset_dir)?;
+    let d = diagnose(&ds, opts)?;
+    report::write_all(&d, report_dir, json_path, predictions_dir)
+}
+
+/// One line for the terminal: what was found.
+pub fn summary_line(r: &report::ReportJson) -> String {
+    if r.effects.is_empty() {
+        return format!(
+            "no missing physics found (baseline RMSE {:.3} N, NRMSE {:.4})",
+            r.baseline.rmse_n, r.baseline.nrmse
+        );
+    }
+    let names: Vec<String> = r
+        .effects
+        .iter()
+        .map(|e| format!("{} ({:.2}× held out)", e.name, e.heldout_improvement))
+        .collect();
+    format!(
+        "found: {}; RMSE {:.3} → {:.3} N",
+        names.join(", "),
+        r.baseline.rmse_n,
+        r.final_.rmse_n
+    )
+}

@@ -1,0 +1,168 @@
+//! Effect parameters with units and 95 % bootstrap intervals over recordings.
+use super::candidates::Effect;
+use super::design::{Designs, Layout, SofteningLaw, Solution, Terms, Viscous};
+use super::prepared::Prepared;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+use std::collections::BTreeMap;
+
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Param {
+    pub value: f64,
+    pub unit: String,
+    /// 95 % bootstrap interval (resampling recordings).
+    pub ci95: [f64; 2],
+}
+
+/// `(name, value, unit)` of an effect's parameters in a fitted model.
+pub fn extract(prep: &Prepared, effect: Effect, terms: &Terms, sol: &Solution) -> Vec<(String, f64, String)> {
+    let layout = Layout::new(prep.currents_a.len(), terms);
+    let mut out = Vec::new();
+    let mut push = |n: String, v: f64, u: &str| out.push((n, v, u.to_string()));
+    match effect {
+        Effect::ViscousDamping => {
+            if let (Some(at), Some(visc)) = (layout.viscous_at, terms.viscous) {
+                for (k, c) in prep.currents_a.iter().enumerate() {
+                    push(format!("c_at_{c}a_n_s_per_m"), sol.beta[at + k], "N·s/m");
+                }
+                if let Viscous::Saturating { v0_m_s } = visc {
+                    push("v0_m_s".into(), v0_m_s, "m/s");
+                }
+            }
+        }
+        Effect::SensorDelay => {
+            if let Some(tau) = terms.delay_s {
+                push("tau_s".into(), tau, "s");
+            }
+        }
+        Effect::StressSoftening => match terms.softening {
+            Some(SofteningLaw::Sequence { n0 }) => {
+                push("delta".into(), sol.delta, "1");
+                push("n0".into(), n0, "tests");
+            }
+            Some(SofteningLaw::Temperature { .. }) => {
+                push("beta_per_c".into(), -sol.delta, "1/°C");
+            }
+            None => {}
+        },
+        Effect::EndStop => {
+            if let (Some(at), Some(xe)) = (layout.end_stop_at, terms.end_stop_x_mm) {
+                push("k_e_n_per_mm2".into(), sol.beta[at], "N/mm²");
+                push("x_e_mm".into(), xe, "mm");
+            }
+        }
+        Effect::MagneticSaturation => {
+            if let Some(is) = terms.saturation_i_a {
+                push("i_s_a".into(), is, "A");
+            }
+        }
+        Effect::Inertia => {
+            if let Some(at) = layout.inertia_at {
+                push("m_s_kg".into(), sol.beta[at], "kg");
+            }
+        }
+        Effect::CoilLag => {}
+    }
+    out
+}
+
+fn percentile(v: &mut [f64], p: f64) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[((p * (v.len() - 1) as f64).round() as usize).min(v.len() - 1)]
+}
+
+/// Parameters of `effect` in the final model, with bootstrap intervals:
+/// linear ones by refitting on resampled fit recordings; the searched one
+/// (τ, x_e, v0, n0, I_s) by re-choosing, on resampled recordings, among the
+/// variants scored when the effect was accepted (`variant_sse`).
+pub fn with_intervals(
+    prep: &Prepared,
+    effect: Effect,
+    terms: &Terms,
+    sol: &Solution,
+    variant_sse: &[(Terms, Vec<f64>)],
+    resamples: usize,
+    seed: u64,
+) -> BTreeMap<String, Param> {
+    let point = extract(prep, effect, terms, sol);
+    let designs = Designs::build(prep, terms);
+    let fit = prep.fit_indices();
+    // Each softening fit is a 1-D search of solves: fewer resamples keep it quick.
+    let resamples_linear = if terms.softening.is_some() {
+        resamples.div_ceil(4)
+    } else {
+        resamples
+    };
+    let boot: Vec<Vec<(String, f64, String)>> = (0..resamples_linear)
+        .into_par_iter()
+        .filter_map(|b| {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed.wrapping_add(b as u64));
+            // Resampled within each current, so every resample keeps every
+            // tabulated current (a missing one would zero its coefficients).
+            let train: Vec<usize> = prep
+                .currents_a
+                .iter()
+                .flat_map(|&c| {
+                    let group: Vec<usize> = fit.iter().copied().filter(|&i| prep.recs[i].current_a == c).collect();
+                    (0..group.len())
+                        .map(|_| group[rng.random_range(0..group.len())])
+                        .collect::<Vec<_>>()
+                })
+                .collect();
+            designs
+                .solve(prep, &train)
+                .ok()
+                .map(|s| extract(prep, effect, terms, &s))
+        })
+        .collect();
+    // Searched parameter: which variant wins on resampled recordings.
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
+    let m = prep.recs.len();
+    let searched: Vec<Terms> = if variant_sse.len() > 1 {
+        (0..resamples.max(200))
+            .map(|_| {
+                let idx: Vec<usize> = (0..m).map(|_| rng.random_range(0..m)).collect();
+                let best = variant_sse
+                    .iter()
+                    .min_by(|a, b| {
+                        let s = |v: &Vec<f64>| idx.iter().map(|&i| v[i]).sum::<f64>();
+                        s(&a.1).total_cmp(&s(&b.1))
+                    })
+                    .expect("non-empty");
+                best.0
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let mut out = BTreeMap::new();
+    for (k, (name, value, unit)) in point.iter().enumerate() {
+        let from_linear: Vec<f64> = boot.iter().filter_map(|p| p.get(k).map(|q| q.1)).collect();
+        let from_search: Vec<f64> = searched
+            .iter()
+            .filter_map(|t| {
+                extract(prep, effect, t, sol)
+                    .into_iter()
+                    .find(|q| &q.0 == name)
+                    .map(|q| q.1)
+            })
+            .collect();
+        let is_searched = matches!(name.as_str(), "tau_s" | "x_e_mm" | "v0_m_s" | "n0" | "i_s_a");
+        let mut samples = if is_searched { from_search } else { from_linear };
+        let ci95 = if samples.is_empty() {
+            [*value, *value]
+        } else {
+            [percentile(&mut samples, 0.025), percentile(&mut samples, 0.975)]
+        };
+        out.insert(
+            name.clone(),
+            Param {
+                value: *value,
+                unit: unit.clone(),
+                ci95,
+            },
+        );
+    }
+    out
+}

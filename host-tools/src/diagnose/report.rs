@@ -1,0 +1,315 @@
+//! Outputs: `report.json` (a contract scripts read), one predictions CSV per
+//! recording, and a readable `report.md` with plots.
+use super::parameters::Param;
+use super::{plots, Diagnosis};
+use crate::atomic_write::{write_atomic, write_atomic_with};
+use anyhow::{Context, Result};
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Metrics {
+    pub rmse_n: f64,
+    /// RMSE over the range of measured force.
+    pub nrmse: f64,
+}
+
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct EffectEntry {
+    pub name: String,
+    pub parameters: BTreeMap<String, Param>,
+    pub evidence: String,
+    pub rmse_n_before: f64,
+    pub rmse_n_after: f64,
+    pub heldout_improvement: f64,
+}
+
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct NotIdentifiable {
+    pub name: String,
+    pub needs: String,
+}
+
+/// `report.json`, exactly the contract of issue 5.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct ReportJson {
+    pub baseline: Metrics,
+    pub effects: Vec<EffectEntry>,
+    pub not_identifiable: Vec<NotIdentifiable>,
+    #[serde(rename = "final")]
+    pub final_: Metrics,
+}
+
+/// RMSE over every scored sample of every recording (validate recordings
+/// only within the fitted stroke), and RMSE / force range.
+pub fn metrics(d: &Diagnosis, pred: &[Vec<f64>]) -> Metrics {
+    let (mut se, mut n) = (0.0, 0usize);
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (r, p) in d.prep.recs.iter().zip(pred) {
+        for ((f, q), _) in r.force_n.iter().zip(p).zip(&r.in_domain).filter(|(_, m)| **m) {
+            se += (f - q) * (f - q);
+            lo = lo.min(*f);
+            hi = hi.max(*f);
+        }
+        n += r.n_scored();
+    }
+    let rmse_n = (se / n.max(1) as f64).sqrt();
+    Metrics {
+        rmse_n,
+        nrmse: if hi > lo { rmse_n / (hi - lo) } else { 0.0 },
+    }
+}
+
+pub fn report_json(d: &Diagnosis) -> ReportJson {
+    ReportJson {
+        baseline: metrics(d, &d.baseline_pred),
+        effects: d
+            .findings
+            .iter()
+            .map(|f| EffectEntry {
+                name: f.effect.name().to_string(),
+                parameters: f.parameters.clone(),
+                evidence: f.evidence.clone(),
+                rmse_n_before: f.rmse_n_before,
+                rmse_n_after: f.rmse_n_after,
+                heldout_improvement: f.heldout_improvement,
+            })
+            .collect(),
+        not_identifiable: d
+            .selection
+            .not_identifiable
+            .iter()
+            .map(|(e, needs)| NotIdentifiable {
+                name: e.name().to_string(),
+                needs: needs.clone(),
+            })
+            .collect(),
+        final_: metrics(d, &d.final_pred),
+    }
+}
+
+/// A file name for a recording's predictions (its path, flattened).
+pub fn predictions_file_name(recording_file: &str) -> String {
+    let stem: String = recording_file
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '.' || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    let stem = stem
+        .strip_suffix(".csv")
+        .or_else(|| stem.strip_suffix(".txt"))
+        .unwrap_or(&stem);
+    format!("{stem}.predictions.csv")
+}
+
+/// Writes `time_s,force_measured_n,force_baseline_n,force_final_n` per recording.
+pub fn write_predictions(d: &Diagnosis, dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    for (i, r) in d.prep.recs.iter().enumerate() {
+        let path = dir.join(predictions_file_name(&r.file));
+        write_atomic_with(&path, |buf| {
+            let mut w = csv::Writer::from_writer(buf);
+            w.write_record(["time_s", "force_measured_n", "force_baseline_n", "force_final_n"])?;
+            for t in 0..r.len() {
+                w.write_record([
+                    r.time_s[t].to_string(),
+                    r.force_n[t].to_string(),
+                    d.baseline_pred[i][t].to_string(),
+                    d.final_pred[i][t].to_string(),
+                ])?;
+            }
+            w.flush()?;
+            Ok(())
+        })?;
+    }
+    Ok(())
+}
+
+fn rec_rmse(f: &[f64], p: &[f64]) -> f64 {
+    (f.iter().zip(p).map(|(a, b)| (a - b) * (a - b)).sum::<f64>() / f.len().max(1) as f64).sqrt()
+}
+
+fn peak_error(f: &[f64], p: &[f64]) -> f64 {
+    let fmax = f.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let pmax = p.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    pmax - fmax
+}
+
+/// The human-readable report.
+pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "# Diagnosis report\n");
+    let p = &d.prep;
+    let _ = writeln!(
+        s,
+        "{} recordings ({} fit, {} validate), tabulated currents {:?} A, {} cross-validation folds.\n",
+        p.recs.len(),
+        p.fit_indices().len(),
+        p.validate_indices().len(),
+        p.currents_a,
+        p.n_folds
+    );
+    let _ = writeln!(
+        s,
+        "Baseline: {} (predicted through the core's `force_on_branch`). Baseline RMSE {:.3} N \
+         (NRMSE {:.4}); final RMSE {:.3} N (NRMSE {:.4}). These two are over all recordings: \
+         in-sample for fit recordings, predicted for validate ones. Every improvement below is \
+         held out.\n",
+        if d.baseline_given {
+            "the given model"
+        } else {
+            "the paper's model, least squares on the fit recordings"
+        },
+        json.baseline.rmse_n,
+        json.baseline.nrmse,
+        json.final_.rmse_n,
+        json.final_.nrmse
+    );
+    let _ = writeln!(s, "## Result\n");
+    if json.effects.is_empty() {
+        let _ = writeln!(
+            s,
+            "**No missing physics found.** No candidate improved the held-out fit significantly.\n"
+        );
+    }
+    for (k, (e, f)) in json.effects.iter().zip(&d.findings).enumerate() {
+        let _ = writeln!(
+            s,
+            "{}. **{}**: held-out RMSE {:.3} → {:.3} N ({:.2}×, 95 % CI {:.2}–{:.2}×, ΔBIC {:.0})",
+            k + 1,
+            e.name,
+            e.rmse_n_before,
+            e.rmse_n_after,
+            e.heldout_improvement,
+            f.ratio_ci95[0],
+            f.ratio_ci95[1],
+            f.delta_bic
+        );
+        for (n, p) in &e.parameters {
+            let _ = writeln!(
+                s,
+                "   - `{n}` = {:.6} {} (95 % bootstrap {:.6} … {:.6})",
+                p.value, p.unit, p.ci95[0], p.ci95[1]
+            );
+        }
+        let _ = writeln!(s, "   - evidence: {}", e.evidence);
+    }
+    let _ = writeln!(s, "\n## Where the baseline misses\n");
+    let l = &d.locate;
+    let _ = writeln!(s, "{}.\n", super::locate::describe(l));
+    let _ = writeln!(
+        s,
+        "| where | shares of residual energy |\n|---|---|\n| branch (compression, extension) | {:.2}, {:.2} |",
+        l.branch_share[0], l.branch_share[1]
+    );
+    let fmt5 = |a: &[f64; 5]| a.iter().map(|v| format!("{v:.2}")).collect::<Vec<_>>().join(", ");
+    let _ = writeln!(s, "| stroke fifths (0→max) | {} |", fmt5(&l.stroke_share));
+    let _ = writeln!(s, "| time fifths (start→end) | {} |\n", fmt5(&l.time_share));
+    let _ = writeln!(s, "| covariate | correlation with residual |\n|---|---|");
+    for (n, r) in &l.sample_correlations {
+        let _ = writeln!(s, "| {n} (per sample) | {r:+.3} |");
+    }
+    for (n, r) in &l.recording_correlations {
+        let _ = writeln!(s, "| {n} (per recording, residual scale) | {r:+.3} |");
+    }
+    let _ = writeln!(
+        s,
+        "\n![residual map](residual_map.png)\n\n![residual vs covariates](residual_covariates.png)\n"
+    );
+    let _ = writeln!(s, "## Candidates tested (forward selection)\n");
+    let _ = writeln!(
+        s,
+        "Accept only if held-out RMSE ratio ≥ {:.2}, its 95 % bootstrap lower bound (resampling recordings) \
+         ≥ {:.2}, and ΔBIC < {:.0}.\n",
+        d.thresholds.min_ratio, d.thresholds.min_ratio_lo, d.thresholds.max_delta_bic
+    );
+    if let Some(m) = &d.selection.memory {
+        let _ = writeln!(
+            s,
+            "Reference model: the paper's branch quartics cannot make the unloading curve depend on where \
+             loading turned around (rate-independent hysteresis memory). That term, `e^(−|x − x_r|/δ)·(cubic \
+             in x)` per current and branch after each reversal at x_r, was tested first: held-out RMSE {:.3} → \
+             {:.3} N ({:.3}×, 95 % CI {:.3}–{:.3}, ΔBIC {:.0}): **{}**{}. It is not a vocabulary effect; \
+             candidates are tested against this reference.\n",
+            m.rmse_before_n,
+            m.rmse_after_n,
+            m.ratio,
+            m.ratio_ci95[0],
+            m.ratio_ci95[1],
+            m.delta_bic,
+            if m.accepted { "included" } else { "not included" },
+            m.scored
+                .terms
+                .memory_mm
+                .map(|d| format!(" (δ = {d:.3} mm)"))
+                .unwrap_or_default()
+        );
+    }
+    let _ = writeln!(
+        s,
+        "| round | candidate | held-out RMSE before → after (N) | ratio | 95 % CI | ΔBIC | accepted |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+    for (k, r) in d.selection.rounds.iter().enumerate() {
+        for (j, c) in r.tested.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {:.3} → {:.3} | {:.3} | {:.3}–{:.3} | {:.0} | {} |",
+                k + 1,
+                c.effect.map_or("turn-around memory", |e| e.name()),
+                c.rmse_before_n,
+                c.rmse_after_n,
+                c.ratio,
+                c.ratio_ci95[0],
+                c.ratio_ci95[1],
+                c.delta_bic,
+                if r.accepted == Some(j) { "**yes**" } else { "no" }
+            );
+        }
+    }
+    let _ = writeln!(s, "\n## Not identifiable from this data set\n");
+    for n in &json.not_identifiable {
+        let _ = writeln!(s, "- `{}`: needs {}", n.name, n.needs);
+    }
+    let _ = writeln!(s, "\n## Before / after per recording\n");
+    let _ = writeln!(s, "| recording | role | current (A) | RMSE before (N) | RMSE after (N) | peak error before (N) | peak error after (N) |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+    for (i, r) in p.recs.iter().enumerate() {
+        let _ = writeln!(
+            s,
+            "| {} | {:?} | {} | {:.3} | {:.3} | {:+.3} | {:+.3} |",
+            r.file,
+            r.role,
+            r.current_a,
+            rec_rmse(&r.force_n, &d.baseline_pred[i]),
+            rec_rmse(&r.force_n, &d.final_pred[i]),
+            peak_error(&r.force_n, &d.baseline_pred[i]),
+            peak_error(&r.force_n, &d.final_pred[i])
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\n## Loops of the worst recordings, before and after\n\n![loops](loops_worst.png)"
+    );
+    s
+}
+
+/// Writes every output; `report_dir` gets `report.md` and its PNGs.
+pub fn write_all(d: &Diagnosis, report_dir: &Path, json_path: &Path, predictions_dir: &Path) -> Result<ReportJson> {
+    let json = report_json(d);
+    std::fs::create_dir_all(report_dir).with_context(|| format!("creating {}", report_dir.display()))?;
+    plots::residual_map(d, &report_dir.join("residual_map.png"))?;
+    plots::residual_covariates(d, &report_dir.join("residual_covariates.png"))?;
+    plots::loops_worst(d, &report_dir.join("loops_worst.png"))?;
+    write_predictions(d, predictions_dir)?;
+    write_atomic(&report_dir.join("report.md"), report_markdown(d, &json).as_bytes())?;
+    let text = serde_json::to_string_pretty(&json)?;
+    write_atomic(json_path, text.as_bytes())?;
+    Ok(json)
+}

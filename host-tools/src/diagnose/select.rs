@@ -1,0 +1,353 @@
+//! Forward selection scored out of sample.
+//!
+//! Every model (the baseline, or the current model plus one candidate) is
+//! scored by grouped cross-validation over fit recordings: each fold's
+//! recordings are predicted by a model fitted without them, with the
+//! candidate's nonlinear parameter chosen inside the training folds. Validate
+//! recordings are never fitted; for a candidate that only changes how
+//! validate currents are predicted (magnetic saturation) its parameter is
+//! chosen leave-one-validate-recording-out. A candidate is accepted only if
+//! (1) held-out RMSE improves by at least `min_ratio`, (2) the 95 % bootstrap
+//! interval of that ratio over recordings stays above `min_ratio_lo`, and
+//! (3) the Bayesian information criterion of the in-sample fit drops.
+use super::candidates::{self, Effect};
+use super::design::{Designs, Solution, Terms};
+use super::prepared::Prepared;
+use anyhow::{bail, Result};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+
+/// Acceptance thresholds.
+#[derive(Clone, Copy, Debug)]
+pub struct Thresholds {
+    /// Minimum held-out RMSE ratio before/after.
+    pub min_ratio: f64,
+    /// Minimum lower end of the 95 % bootstrap interval of that ratio.
+    pub min_ratio_lo: f64,
+    /// ΔBIC must be below this.
+    pub max_delta_bic: f64,
+    pub bootstrap_resamples: usize,
+    pub seed: u64,
+}
+
+impl Default for Thresholds {
+    fn default() -> Self {
+        Thresholds {
+            min_ratio: 1.10,
+            min_ratio_lo: 1.03,
+            max_delta_bic: -10.0,
+            bootstrap_resamples: 1000,
+            seed: 1,
+        }
+    }
+}
+
+/// One variant's fits: the full-data fit and each fold's.
+struct VariantEval {
+    full: Solution,
+    /// Training SSE of each fold's fit.
+    fold_train_sse: Vec<f64>,
+    /// Per recording: held-out SSE (fit recordings from their fold's fit,
+    /// validate recordings from the full fit).
+    heldout_sse: Vec<f64>,
+    /// Per recording SSE under the full fit (for the parameter bootstrap).
+    full_sse: Vec<f64>,
+    full_fit_sse: f64,
+}
+
+/// A model scored out of sample.
+#[derive(Clone, Debug)]
+pub struct Scored {
+    /// The variant chosen on all data.
+    pub terms: Terms,
+    pub solution: Solution,
+    /// Held-out SSE and sample count per recording.
+    pub heldout_sse: Vec<f64>,
+    pub n: Vec<usize>,
+    /// In-sample SSE over fit recordings (or validate ones, for saturation).
+    pub insample_sse: f64,
+    pub insample_n: usize,
+    /// Number of parameters (linear + searched).
+    pub n_params: usize,
+    /// For each variant: its terms and per-recording SSE under its full fit.
+    pub variant_sse: Vec<(Terms, Vec<f64>)>,
+}
+
+impl Scored {
+    pub fn heldout_rmse_n(&self) -> f64 {
+        (self.heldout_sse.iter().sum::<f64>() / self.n.iter().sum::<usize>().max(1) as f64).sqrt()
+    }
+}
+
+/// SSE over the samples where the model is defined.
+fn sse(a: &[f64], b: &[f64], mask: &[bool]) -> f64 {
+    a.iter()
+        .zip(b)
+        .zip(mask)
+        .filter(|(_, m)| **m)
+        .map(|((x, y), _)| (x - y) * (x - y))
+        .sum()
+}
+
+fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
+    let d = Designs::build(prep, terms);
+    let fit = prep.fit_indices();
+    let full = d.solve(prep, &fit)?;
+    let mut heldout_sse = vec![0.0; prep.recs.len()];
+    let mut full_sse = vec![0.0; prep.recs.len()];
+    for (i, rec) in prep.recs.iter().enumerate() {
+        full_sse[i] = sse(&d.predict(prep, i, &full), &rec.force_n, &rec.in_domain);
+        if !rec.is_fit() {
+            heldout_sse[i] = full_sse[i];
+        }
+    }
+    let mut fold_train_sse = Vec::with_capacity(prep.n_folds);
+    for f in 0..prep.n_folds {
+        // Δ is searched on the fold's own training data, near the full-data Δ.
+        let bracket = (full.delta - 0.08, full.delta + 0.08);
+        let sol = d.solve_in(prep, &prep.training_for(f), bracket, 6)?;
+        fold_train_sse.push(sol.sse);
+        for i in prep.fold_members(f) {
+            heldout_sse[i] = sse(
+                &d.predict(prep, i, &sol),
+                &prep.recs[i].force_n,
+                &prep.recs[i].in_domain,
+            );
+        }
+    }
+    let full_fit_sse = fit.iter().map(|&i| full_sse[i]).sum();
+    Ok(VariantEval {
+        full,
+        fold_train_sse,
+        heldout_sse,
+        full_sse,
+        full_fit_sse,
+    })
+}
+
+/// Scores the best of `variants` out of sample (see the module docs).
+pub fn score(prep: &Prepared, variants: &[Terms]) -> Result<Scored> {
+    if variants.is_empty() {
+        bail!("no model variants to score");
+    }
+    let evals: Vec<Option<VariantEval>> = variants
+        .par_iter()
+        .map(|t| eval_variant(prep, t).map_err(|e| eprintln!("{t:?}: {e:#}")).ok())
+        .collect();
+    let ok: Vec<usize> = (0..evals.len()).filter(|&v| evals[v].is_some()).collect();
+    if ok.is_empty() {
+        bail!("no variant could be fitted (too few recordings per current and branch?)");
+    }
+    let ev = |v: usize| evals[v].as_ref().expect("filtered to fitted variants");
+    let mut heldout_sse = vec![0.0; prep.recs.len()];
+    for f in 0..prep.n_folds {
+        let best = *ok
+            .iter()
+            .min_by(|&&a, &&b| ev(a).fold_train_sse[f].total_cmp(&ev(b).fold_train_sse[f]))
+            .expect("non-empty");
+        for i in prep.fold_members(f) {
+            heldout_sse[i] = ev(best).heldout_sse[i];
+        }
+    }
+    let validate = prep.validate_indices();
+    let fit_ties = ok
+        .iter()
+        .all(|&v| (ev(v).full_fit_sse - ev(ok[0]).full_fit_sse).abs() <= 1e-9 * ev(ok[0]).full_fit_sse.max(1e-300));
+    let chosen;
+    let (insample_sse, insample_n);
+    if fit_ties && ok.len() > 1 && validate.len() >= 2 {
+        // Only validate predictions differ: choose leave-one-validate-recording-out.
+        for &j in &validate {
+            let best = *ok
+                .iter()
+                .min_by(|&&a, &&b| {
+                    let s = |v: usize| {
+                        validate
+                            .iter()
+                            .filter(|&&i| i != j)
+                            .map(|&i| ev(v).full_sse[i])
+                            .sum::<f64>()
+                    };
+                    s(a).total_cmp(&s(b))
+                })
+                .expect("non-empty");
+            heldout_sse[j] = ev(best).full_sse[j];
+        }
+        let val_sse = |v: usize| validate.iter().map(|&i| ev(v).full_sse[i]).sum::<f64>();
+        chosen = *ok
+            .iter()
+            .min_by(|&&a, &&b| val_sse(a).total_cmp(&val_sse(b)))
+            .expect("non-empty");
+        insample_sse = val_sse(chosen);
+        insample_n = validate.iter().map(|&i| prep.recs[i].n_scored()).sum();
+    } else {
+        chosen = *ok
+            .iter()
+            .min_by(|&&a, &&b| ev(a).full_fit_sse.total_cmp(&ev(b).full_fit_sse))
+            .expect("non-empty");
+        for &i in &validate {
+            heldout_sse[i] = ev(chosen).full_sse[i];
+        }
+        insample_sse = ev(chosen).full_fit_sse;
+        insample_n = prep.fit_indices().iter().map(|&i| prep.recs[i].len()).sum();
+    }
+    let terms = variants[chosen];
+    let searched = usize::from(ok.len() > 1);
+    let layout = super::design::Layout::new(prep.currents_a.len(), &terms);
+    let n_params = layout.n_cols + searched + usize::from(terms.softening.is_some());
+    Ok(Scored {
+        terms,
+        solution: ev(chosen).full.clone(),
+        heldout_sse,
+        n: prep.recs.iter().map(|r| r.n_scored()).collect(),
+        insample_sse,
+        insample_n,
+        n_params,
+        variant_sse: ok.iter().map(|&v| (variants[v], ev(v).full_sse.clone())).collect(),
+    })
+}
+
+/// The out-of-sample comparison of a candidate against the current model.
+#[derive(Clone, Debug)]
+pub struct Comparison {
+    /// The vocabulary effect tested; `None` for the reference model's
+    /// turn-around memory (not a vocabulary effect).
+    pub effect: Option<Effect>,
+    pub rmse_before_n: f64,
+    pub rmse_after_n: f64,
+    /// `rmse_before / rmse_after` on held-out data.
+    pub ratio: f64,
+    /// 95 % percentile bootstrap interval of the ratio, resampling recordings.
+    pub ratio_ci95: [f64; 2],
+    pub delta_bic: f64,
+    pub accepted: bool,
+    pub scored: Scored,
+}
+
+pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<Effect>, th: &Thresholds) -> Comparison {
+    let n_total: usize = before.n.iter().sum();
+    let rmse_before_n = (before.heldout_sse.iter().sum::<f64>() / n_total as f64).sqrt();
+    let rmse_after_n = (after.heldout_sse.iter().sum::<f64>() / n_total as f64).sqrt();
+    let ratio = rmse_before_n / rmse_after_n.max(1e-300);
+    let m = prep.recs.len();
+    let mut rng = ChaCha8Rng::seed_from_u64(th.seed);
+    let mut ratios: Vec<f64> = (0..th.bootstrap_resamples)
+        .map(|_| {
+            let (mut b, mut a) = (0.0, 0.0);
+            for _ in 0..m {
+                let i = rng.random_range(0..m);
+                b += before.heldout_sse[i];
+                a += after.heldout_sse[i];
+            }
+            (b / a.max(1e-300)).sqrt()
+        })
+        .collect();
+    ratios.sort_by(f64::total_cmp);
+    let pct = |p: f64| ratios[((p * (ratios.len() - 1) as f64).round() as usize).min(ratios.len() - 1)];
+    let ratio_ci95 = [pct(0.025), pct(0.975)];
+    // BIC on the in-sample fit: n·ln(SSE/n) + k·ln(n). For saturation the
+    // in-sample data are the validate recordings, before and after.
+    let (n_b, sse_b) = if after.insample_n == before.insample_n {
+        (before.insample_n, before.insample_sse)
+    } else {
+        let v = prep.validate_indices();
+        (after.insample_n, v.iter().map(|&i| before.heldout_sse[i]).sum())
+    };
+    let bic = |sse: f64, n: usize, k: usize| n as f64 * (sse / n as f64).max(1e-300).ln() + k as f64 * (n as f64).ln();
+    let k_added = after.n_params.saturating_sub(before.n_params).max(1);
+    let delta_bic = bic(after.insample_sse, after.insample_n, k_added) - bic(sse_b, n_b, 0);
+    let accepted = ratio >= th.min_ratio && ratio_ci95[0] >= th.min_ratio_lo && delta_bic < th.max_delta_bic;
+    Comparison {
+        effect,
+        rmse_before_n,
+        rmse_after_n,
+        ratio,
+        ratio_ci95,
+        delta_bic,
+        accepted,
+        scored: after,
+    }
+}
+
+/// One round of forward selection: every candidate tested on the current model.
+#[derive(Clone, Debug)]
+pub struct Round {
+    pub tested: Vec<Comparison>,
+    /// Index into `tested` of the accepted candidate, if any.
+    pub accepted: Option<usize>,
+}
+
+/// The result of forward selection.
+#[derive(Clone, Debug)]
+pub struct Selection {
+    pub baseline: Scored,
+    /// The turn-around memory test (reference = baseline + memory if accepted).
+    pub memory: Option<Comparison>,
+    pub reference: Scored,
+    pub rounds: Vec<Round>,
+    pub final_model: Scored,
+    /// Effects the data cannot identify, with what would.
+    pub not_identifiable: Vec<(Effect, String)>,
+}
+
+/// Adds effects one at a time, the best-scoring significant one first, until
+/// no candidate passes the test.
+pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
+    let baseline = score(prep, &[Terms::default()])?;
+    // The reference: the paper's model, plus turn-around memory if the data
+    // show it (a structural limit of one quartic per branch, not missing
+    // physics from the vocabulary). Candidates are tested against it.
+    let memory = score(prep, &candidates::memory_variants(prep))
+        .map_err(|e| eprintln!("memory: {e:#}"))
+        .ok()
+        .map(|after| compare(prep, &baseline, after, None, th));
+    let reference = match &memory {
+        Some(c) if c.accepted => c.scored.clone(),
+        _ => baseline.clone(),
+    };
+    let mut current = reference.clone();
+    let mut rounds = Vec::new();
+    let mut not_identifiable = Vec::new();
+    let mut testable = Vec::new();
+    for e in Effect::ALL {
+        match candidates::identifiable(prep, e) {
+            Ok(()) => testable.push(e),
+            Err(needs) => not_identifiable.push((e, needs)),
+        }
+    }
+    loop {
+        let todo: Vec<Effect> = testable
+            .iter()
+            .copied()
+            .filter(|e| !e.present_in(&current.terms))
+            .collect();
+        if todo.is_empty() {
+            break;
+        }
+        let mut tested = Vec::new();
+        for e in todo {
+            let variants = candidates::variants(prep, &current.terms, e);
+            if let Ok(after) = score(prep, &variants) {
+                tested.push(compare(prep, &current, after, Some(e), th));
+            }
+        }
+        let accepted = (0..tested.len())
+            .filter(|&i| tested[i].accepted)
+            .max_by(|&a, &b| tested[a].ratio.total_cmp(&tested[b].ratio));
+        let next = accepted.map(|i| tested[i].scored.clone());
+        rounds.push(Round { tested, accepted });
+        match next {
+            Some(s) => current = s,
+            None => break,
+        }
+    }
+    Ok(Selection {
+        baseline,
+        memory,
+        reference,
+        rounds,
+        final_model: current,
+        not_identifiable,
+    })
+}

@@ -1,0 +1,105 @@
+//! Small synthetic data sets with a known generating law, for the diagnosis
+//! tests. The law is inside the paper's model structure (a function of
+//! displacement, branch and current only), so any added term is the only
+//! thing missing.
+#![allow(dead_code)]
+use mre_host::dataset::{Dataset, Recording, Role, Samples};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// What is added to the law.
+#[derive(Clone, Copy, Debug)]
+pub enum Added {
+    None,
+    /// `+ c·v` (N·s/m).
+    Viscous {
+        c_n_s_per_m: f64,
+    },
+    /// `F_meas(t) = F(t − τ)`.
+    Delay {
+        tau_s: f64,
+    },
+    /// `× (1 − Δ·(1 − e^{−(n−1)/n0}))` with n the test's `sequence`.
+    Softening {
+        delta: f64,
+        n0: f64,
+    },
+}
+
+pub const SAMPLE_PERIOD_S: f64 = 1.0e-4;
+const SAMPLES: usize = 240;
+
+/// The law: stiffness grows with current; unloading carries 60 % of loading.
+pub fn law_n(x_mm: f64, compressing: bool, current_a: f64) -> f64 {
+    let k = 100.0 * (1.0 + 2.0 * current_a);
+    let f = k * (x_mm + 0.05 * x_mm * x_mm);
+    if compressing {
+        f
+    } else {
+        0.6 * f
+    }
+}
+
+/// A half-sine stroke of amplitude `x_max_mm` over the recording.
+fn kinematics(x_max_mm: f64, t: f64) -> (f64, f64) {
+    let period = SAMPLES as f64 * SAMPLE_PERIOD_S;
+    let w = std::f64::consts::PI / period;
+    (x_max_mm * (w * t).sin(), x_max_mm * w * (w * t).cos() / 1000.0)
+}
+
+/// 3 currents × 3 strokes (speeds) × 2 repeats, shuffled run order in `sequence`.
+pub fn dataset(added: Added, seed: u64) -> Dataset {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let noise = Normal::new(0.0, 1.0).expect("valid");
+    let mut recordings = Vec::new();
+    let order = [7, 3, 12, 1, 16, 9, 5, 18, 2, 14, 11, 6, 17, 4, 10, 15, 8, 13];
+    let mut n = 0;
+    for current_a in [0.0, 0.5, 1.0] {
+        for x_max_mm in [2.0, 3.0, 4.0] {
+            for repeat in 1..=2 {
+                let mut s = Samples::default();
+                for i in 0..SAMPLES {
+                    let t = i as f64 * SAMPLE_PERIOD_S;
+                    let (x, v) = kinematics(x_max_mm, t);
+                    let (xf, vf) = match added {
+                        Added::Delay { tau_s } => kinematics(x_max_mm, (t - tau_s).max(0.0)),
+                        _ => (x, v),
+                    };
+                    let mut f = law_n(xf, vf > 0.0, current_a);
+                    if let Added::Viscous { c_n_s_per_m } = added {
+                        f += c_n_s_per_m * v;
+                    }
+                    if let Added::Softening { delta, n0 } = added {
+                        let n = f64::from(order[n]);
+                        f *= 1.0 - delta * (1.0 - (-(n - 1.0) / n0).exp());
+                    }
+                    s.time_s.push(t);
+                    s.x_mm.push(x);
+                    s.v_m_s.push(v);
+                    s.force_n.push(f + noise.sample(&mut rng));
+                }
+                recordings.push(Recording {
+                    file: format!("i{current_a}_x{x_max_mm}_r{repeat}.csv"),
+                    current_a,
+                    role: Role::Fit,
+                    mass_kg: None,
+                    impact_velocity_m_s: None,
+                    sequence: Some(order[n]),
+                    temperature_c: None,
+                    tags: BTreeMap::new(),
+                    samples: s,
+                    velocity_estimated: false,
+                });
+                n += 1;
+            }
+        }
+    }
+    Dataset {
+        name: "diagnose test".into(),
+        root: PathBuf::new(),
+        recordings,
+    }
+}
