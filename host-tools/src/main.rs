@@ -49,17 +49,8 @@ enum Command {
         /// gsa, lsq, or both (table gets the lsq optimum; GSA's gap is reported).
         #[arg(long, default_value = "both")]
         method: mre_host::fit::Method,
-        /// GSA agents N.
-        #[arg(long, default_value_t = 100)]
-        agents: usize,
-        /// GSA iterations T.
-        #[arg(long, default_value_t = 100)]
-        iters: usize,
-        #[arg(long, default_value_t = 1)]
-        seed: u64,
-        /// GSA search box: `data` (around a cheap estimate) or `paper` (Table 3).
-        #[arg(long, default_value = "data")]
-        bounds: mre_host::fit::bounds::BoundsChoice,
+        #[command(flatten)]
+        gsa: GsaArgs,
         /// Treat recordings at these currents as `validate` (held out of the fit).
         #[arg(long, value_delimiter = ',')]
         hold_out_current: Vec<f64>,
@@ -99,16 +90,9 @@ enum Command {
     /// GSA performance index against iterations and agents (the paper's Figs. 13/14).
     Sweep {
         dataset: PathBuf,
-        /// Agents for the iteration sweep.
-        #[arg(long, default_value_t = 100)]
-        agents: usize,
-        /// Iterations for the agent sweep.
-        #[arg(long, default_value_t = 100)]
-        iters: usize,
-        #[arg(long, default_value_t = 1)]
-        seed: u64,
-        #[arg(long, default_value = "data")]
-        bounds: mre_host::fit::bounds::BoundsChoice,
+        /// `--agents` is held for the iteration sweep, `--iters` for the agent sweep.
+        #[command(flatten)]
+        gsa: GsaArgs,
         #[arg(long, value_delimiter = ',')]
         hold_out_current: Vec<f64>,
         /// Output folder (sweep.csv and the figures).
@@ -229,6 +213,38 @@ enum Command {
     },
 }
 
+/// GSA settings shared by `fit` and `sweep`.
+#[derive(clap::Args)]
+struct GsaArgs {
+    /// GSA agents N.
+    #[arg(long, default_value_t = 100)]
+    agents: usize,
+    /// GSA iterations T.
+    #[arg(long, default_value_t = 100)]
+    iters: usize,
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// GSA search box: `data` (around a cheap estimate) or `paper` (Table 3).
+    #[arg(long, default_value = "data")]
+    bounds: mre_host::fit::bounds::BoundsChoice,
+}
+
+impl GsaArgs {
+    fn options(&self, method: mre_host::fit::Method, progress: bool) -> mre_host::fit::FitOptions {
+        mre_host::fit::FitOptions {
+            method,
+            gsa: mre_host::fit::gsa::GsaParams {
+                agents: self.agents,
+                iters: self.iters,
+                seed: self.seed,
+                ..Default::default()
+            },
+            bounds: self.bounds.clone(),
+            progress,
+        }
+    }
+}
+
 fn main() {
     if let Err(e) = run(Cli::parse()) {
         eprintln!("error: {e:#}");
@@ -274,24 +290,11 @@ fn run(cli: Cli) -> Result<()> {
         Command::Fit {
             dataset,
             method,
-            agents,
-            iters,
-            seed,
-            bounds,
+            gsa,
             hold_out_current,
             out,
         } => {
-            let options = mre_host::fit::FitOptions {
-                method,
-                gsa: mre_host::fit::gsa::GsaParams {
-                    agents,
-                    iters,
-                    seed,
-                    ..Default::default()
-                },
-                bounds,
-                progress: show_progress(),
-            };
+            let options = gsa.options(method, show_progress());
             let run = mre_host::fit::run_fit(&dataset, &options, &hold_out_current, &out)?;
             print!("{}", mre_host::fit::summary_markdown(&run.fits));
             println!(
@@ -328,23 +331,11 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Sweep {
             dataset,
-            agents,
-            iters,
-            seed,
-            bounds,
+            gsa,
             hold_out_current,
             out,
         } => {
-            let base = mre_host::fit::FitOptions {
-                gsa: mre_host::fit::gsa::GsaParams {
-                    agents,
-                    iters,
-                    seed,
-                    ..Default::default()
-                },
-                bounds,
-                ..Default::default()
-            };
+            let base = gsa.options(mre_host::fit::FitOptions::default().method, false);
             let s = mre_host::fit::sweep::run_sweep(&dataset, &base, &hold_out_current, &out)?;
             print!("{}", mre_host::fit::sweep::to_csv(&s));
             println!("wrote {}/sweep.csv and the Fig. 13/14 plots", out.display());

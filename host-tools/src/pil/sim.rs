@@ -6,7 +6,8 @@
 use super::link::PilLink;
 use super::qemu::{qemu_binary, Qemu, INSTALL_HINT};
 use crate::plant::closed_loop::{
-    fit_controller_table, law_config, setup_for, Comparison, RunResult, RunSpec, SimRequest, SimSetup, DEFAULT_RUNS,
+    fit_controller_table, law_config, run_passive, setup_for, Comparison, RunResult, RunSpec, SimRequest, SimSetup,
+    DEFAULT_RUNS,
 };
 use crate::plant::stepper::{simulate, CurrentSource, Trajectory};
 use anyhow::{anyhow, bail, Context, Result};
@@ -175,39 +176,13 @@ pub fn run_pil(request: &PilRequest, report_dir: &Path) -> Result<PilOutcome> {
 
     let mut runs = Vec::new();
     for &spec in &specs {
-        let trajectory = match spec {
-            RunSpec::Passive(a) => simulate(&setup.plant, &setup.impact, CurrentSource::Constant(a))?,
-            RunSpec::Controlled => firmware.clone(),
+        let (trajectory, label) = match spec {
+            RunSpec::Passive(a) => (run_passive(&setup, a)?, spec.label()),
+            RunSpec::Controlled => (firmware.clone(), "controlled (firmware in QEMU)".to_owned()),
         };
-        let summary = trajectory.summary;
-        runs.push(RunResult {
-            spec,
-            label: match spec {
-                RunSpec::Controlled => "controlled (firmware in QEMU)".to_owned(),
-                _ => spec.label(),
-            },
-            summary,
-            usable_stroke_mm: setup.usable_stroke_mm,
-            within_stroke: summary.max_stroke_mm <= setup.usable_stroke_mm,
-            trajectory,
-        });
+        runs.push(RunResult::new(spec, label, &setup, trajectory));
     }
-    let controlled = runs.iter().find(|r| r.spec == RunSpec::Controlled);
-    let reference = runs
-        .iter()
-        .filter(|r| matches!(r.spec, RunSpec::Passive(_)) && r.within_stroke)
-        .min_by(|a, b| a.summary.peak_force_n.total_cmp(&b.summary.peak_force_n));
-    let controlled_vs_passive = match (controlled, reference) {
-        (Some(c), Some(p)) => Some((
-            p.label.clone(),
-            100.0 * (1.0 - c.summary.peak_force_n / p.summary.peak_force_n),
-        )),
-        _ => None,
-    };
-    let comparison = Comparison {
-        runs,
-        controlled_vs_passive,
-    };
+    let comparison = Comparison::from_runs(runs);
     crate::plant::sim_report::write_sim_report(&comparison, report_dir)?;
     let json = serde_json::json!({ "firmware_vs_in_process": agreement, "firmware_vs_mre_sim": agreement_with_sim });
     crate::atomic_write::write_atomic_with(&report_dir.join("pil.json"), |buf| {

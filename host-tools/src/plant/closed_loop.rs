@@ -212,43 +212,60 @@ pub fn run_comparison(setup: &SimSetup, specs: &[RunSpec]) -> Result<Comparison>
     let mut runs = Vec::new();
     for &spec in specs {
         let trajectory = match (spec, &table) {
-            (RunSpec::Passive(a), _) => {
-                // A passive damper's coil is energised before the impact.
-                let impact = ImpactConfig {
-                    initial_current_a: a,
-                    ..setup.impact.clone()
-                };
-                simulate(&setup.plant, &impact, CurrentSource::Constant(a))?
-            }
+            (RunSpec::Passive(a), _) => run_passive(setup, a)?,
             (RunSpec::Controlled, Some(table)) => run_controlled(setup, table)?,
             (RunSpec::Controlled, None) => bail!("internal: no table for the controlled run"),
         };
+        runs.push(RunResult::new(spec, spec.label(), setup, trajectory));
+    }
+    Ok(Comparison::from_runs(runs))
+}
+
+/// A passive drop at constant current. A passive damper's coil is energised
+/// before the impact.
+pub fn run_passive(setup: &SimSetup, current_a: f64) -> Result<Trajectory> {
+    let impact = ImpactConfig {
+        initial_current_a: current_a,
+        ..setup.impact.clone()
+    };
+    simulate(&setup.plant, &impact, CurrentSource::Constant(current_a))
+}
+
+impl RunResult {
+    pub fn new(spec: RunSpec, label: String, setup: &SimSetup, trajectory: Trajectory) -> Self {
         let summary = trajectory.summary;
-        runs.push(RunResult {
+        RunResult {
             spec,
-            label: spec.label(),
+            label,
             summary,
             usable_stroke_mm: setup.usable_stroke_mm,
             within_stroke: summary.max_stroke_mm <= setup.usable_stroke_mm,
             trajectory,
-        });
+        }
     }
-    let controlled = runs.iter().find(|r| r.spec == RunSpec::Controlled);
-    let reference = runs
-        .iter()
-        .filter(|r| matches!(r.spec, RunSpec::Passive(_)) && r.within_stroke)
-        .min_by(|a, b| a.summary.peak_force_n.total_cmp(&b.summary.peak_force_n));
-    let controlled_vs_passive = match (controlled, reference) {
-        (Some(c), Some(p)) => Some((
-            p.label.clone(),
-            100.0 * (1.0 - c.summary.peak_force_n / p.summary.peak_force_n),
-        )),
-        _ => None,
-    };
-    Ok(Comparison {
-        runs,
-        controlled_vs_passive,
-    })
+}
+
+impl Comparison {
+    /// Compares the controlled run with the lowest-peak passive run that
+    /// stays within the stroke.
+    pub fn from_runs(runs: Vec<RunResult>) -> Self {
+        let controlled = runs.iter().find(|r| r.spec == RunSpec::Controlled);
+        let reference = runs
+            .iter()
+            .filter(|r| matches!(r.spec, RunSpec::Passive(_)) && r.within_stroke)
+            .min_by(|a, b| a.summary.peak_force_n.total_cmp(&b.summary.peak_force_n));
+        let controlled_vs_passive = match (controlled, reference) {
+            (Some(c), Some(p)) => Some((
+                p.label.clone(),
+                100.0 * (1.0 - c.summary.peak_force_n / p.summary.peak_force_n),
+            )),
+            _ => None,
+        };
+        Comparison {
+            runs,
+            controlled_vs_passive,
+        }
+    }
 }
 
 /// What `mre sim` was asked for.
