@@ -163,23 +163,11 @@ enum Command {
     },
     /// Simulate the drop test: passive 0 A, passive 2 A and the core's impact law in the loop.
     Sim {
-        /// passive:<A> or controlled (repeatable); default: passive:0, passive:2 and controlled.
-        #[arg(long = "current")]
-        current: Vec<String>,
+        #[command(flatten)]
+        drop: DropArgs,
         /// Include the controlled run (the core's ImpactLaw in the loop).
         #[arg(long)]
         controlled: bool,
-        /// Concealed effect on the plant: none, a vocabulary name, or random.
-        #[arg(long, default_value = "none")]
-        effect: String,
-        #[arg(long, default_value_t = 0)]
-        seed: u64,
-        /// Impact velocity (m/s).
-        #[arg(long, default_value_t = 2.24)]
-        velocity: f64,
-        /// Drop mass (kg).
-        #[arg(long, default_value_t = 5.5)]
-        mass: f64,
         /// Coil time constant L/R (ms); default: the current follows the command at once.
         #[arg(long)]
         coil_lag_ms: Option<f64>,
@@ -190,20 +178,8 @@ enum Command {
     /// Processor-in-the-loop: the drop comparison with the controlled run
     /// closed through the firmware in QEMU (`cargo fw-pil` image).
     Pil {
-        /// passive:<A> or controlled (repeatable); default: passive:0, passive:2 and controlled.
-        #[arg(long = "current")]
-        current: Vec<String>,
-        /// Concealed effect on the plant: none, a vocabulary name, or random.
-        #[arg(long, default_value = "none")]
-        effect: String,
-        #[arg(long, default_value_t = 0)]
-        seed: u64,
-        /// Impact velocity (m/s).
-        #[arg(long, default_value_t = 2.24)]
-        velocity: f64,
-        /// Drop mass (kg).
-        #[arg(long, default_value_t = 5.5)]
-        mass: f64,
+        #[command(flatten)]
+        drop: DropArgs,
         /// The PIL firmware image; default: build it with `cargo fw-pil`.
         #[arg(long)]
         elf: Option<PathBuf>,
@@ -242,6 +218,43 @@ impl GsaArgs {
             bounds: self.bounds.clone(),
             progress,
         }
+    }
+}
+
+/// The simulated drop test, shared by `sim` and `pil`.
+#[derive(clap::Args)]
+struct DropArgs {
+    /// passive:<A> or controlled (repeatable); default: passive:0, passive:2 and controlled.
+    #[arg(long = "current")]
+    current: Vec<String>,
+    /// Concealed effect on the plant: none, a vocabulary name, or random.
+    #[arg(long, default_value = "none")]
+    effect: String,
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Impact velocity (m/s).
+    #[arg(long, default_value_t = 2.24)]
+    velocity: f64,
+    /// Drop mass (kg).
+    #[arg(long, default_value_t = 5.5)]
+    mass: f64,
+}
+
+impl DropArgs {
+    fn request(self, coil_lag_s: Option<f64>) -> Result<mre_host::plant::closed_loop::SimRequest> {
+        use mre_host::plant::closed_loop::RunSpec;
+        Ok(mre_host::plant::closed_loop::SimRequest {
+            runs: self
+                .current
+                .iter()
+                .map(|c| RunSpec::parse(c))
+                .collect::<Result<Vec<_>>>()?,
+            effect: self.effect,
+            seed: self.seed,
+            impact_velocity_m_s: self.velocity,
+            mass_kg: self.mass,
+            coil_lag_s,
+        })
     }
 }
 
@@ -403,54 +416,25 @@ fn run(cli: Cli) -> Result<()> {
             }
         }
         Command::Sim {
-            current,
+            drop,
             controlled,
-            effect,
-            seed,
-            velocity,
-            mass,
             coil_lag_ms,
             report,
         } => {
-            use mre_host::plant::closed_loop::{run_sim, RunSpec, SimRequest, DEFAULT_RUNS};
-            let mut runs = current.iter().map(|c| RunSpec::parse(c)).collect::<Result<Vec<_>>>()?;
-            if controlled && !runs.is_empty() && !runs.contains(&RunSpec::Controlled) {
-                runs.push(RunSpec::Controlled);
+            use mre_host::plant::closed_loop::{run_sim, RunSpec, DEFAULT_RUNS};
+            let mut request = drop.request(coil_lag_ms.map(|ms| ms * 1e-3))?;
+            if controlled && !request.runs.is_empty() && !request.runs.contains(&RunSpec::Controlled) {
+                request.runs.push(RunSpec::Controlled);
             }
-            if runs.is_empty() {
-                runs = DEFAULT_RUNS.to_vec();
+            if request.runs.is_empty() {
+                request.runs = DEFAULT_RUNS.to_vec();
             }
-            let request = SimRequest {
-                runs,
-                effect,
-                seed,
-                impact_velocity_m_s: velocity,
-                mass_kg: mass,
-                coil_lag_s: coil_lag_ms.map(|ms| ms * 1e-3),
-            };
             let cmp = run_sim(&request, &report)?;
             print!("{}", mre_host::plant::sim_report::summary_table(&cmp));
             println!("report: {}", report.join("summary.md").display());
         }
-        Command::Pil {
-            current,
-            effect,
-            seed,
-            velocity,
-            mass,
-            elf,
-            report,
-        } => {
-            use mre_host::plant::closed_loop::{RunSpec, SimRequest};
-            let runs = current.iter().map(|c| RunSpec::parse(c)).collect::<Result<Vec<_>>>()?;
-            let sim = SimRequest {
-                runs,
-                effect,
-                seed,
-                impact_velocity_m_s: velocity,
-                mass_kg: mass,
-                coil_lag_s: None,
-            };
+        Command::Pil { drop, elf, report } => {
+            let sim = drop.request(None)?;
             let out = mre_host::pil::sim::run_pil(&mre_host::pil::sim::PilRequest { sim, elf }, &report)?;
             print!("{}", mre_host::plant::sim_report::summary_table(&out.comparison));
             let a = out.agreement;
