@@ -1,6 +1,6 @@
 //! `mre diagnose` end to end on small data sets with a known generating law.
 mod diagnose_support;
-use diagnose_support::{dataset, law_n, Added, SAMPLE_PERIOD_S};
+use diagnose_support::{dataset, dataset_with_steps, law_n, Added, SAMPLE_PERIOD_S};
 use mre_host::diagnose::{diagnose, report, DiagnoseOptions};
 
 fn names(d: &mre_host::diagnose::Diagnosis) -> Vec<&'static str> {
@@ -87,4 +87,30 @@ fn stress_softening_is_found_with_its_depth() {
     let p = &d.findings[0].parameters;
     assert!((p["delta"].value - 0.15).abs() < 0.02, "delta {}", p["delta"].value);
     assert_eq!(p["n0"].value, 4.0);
+}
+
+#[test]
+fn coil_lag_is_found_with_its_time_constant_on_controlled_impacts() {
+    // 0.6 ms = 6 samples: off the √2 grid (5.66, 8), so the refinement matters.
+    let tau = 6.0 * SAMPLE_PERIOD_S;
+    let d = diagnose(&dataset_with_steps(Added::CoilLag { tau_s: tau }, 7), &DiagnoseOptions::default())
+        .expect("diagnosis");
+    assert_eq!(names(&d), vec!["coil_lag"]);
+    let p = &d.findings[0].parameters["time_constant_s"];
+    assert!((p.value - tau).abs() < 0.1 * tau, "tau {} vs {tau}", p.value);
+    assert!(p.ci95[0] <= p.value && p.value <= p.ci95[1]);
+    assert!(d.findings[0].heldout_improvement > 2.0, "{}", d.findings[0].heldout_improvement);
+    // Only the controlled impacts change: the per-recording table shows their steps.
+    let md = report::report_markdown(&d, &report::report_json(&d));
+    assert!(md.contains("| step0_i0-1.csv | Validate | 0→1 |"), "{md}");
+}
+
+#[test]
+fn controlled_impacts_without_a_lag_are_explained_by_the_recorded_current() {
+    let d = diagnose(&dataset_with_steps(Added::None, 8), &DiagnoseOptions::default()).expect("diagnosis");
+    assert!(d.findings.is_empty(), "invented {:?}", names(&d));
+    let j = report::report_json(&d);
+    // coil_lag was testable here, and the baseline interpolates at each sample's current.
+    assert!(j.not_identifiable.iter().all(|n| n.name != "coil_lag"));
+    assert!(j.baseline.rmse_n < 1.5, "baseline RMSE {}", j.baseline.rmse_n);
 }

@@ -119,3 +119,24 @@ fn report_files_hold_the_same_numbers() {
     let md = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
     assert!(md.contains(&format!("| {:.2} |", rmse)));
 }
+
+#[test]
+fn a_recorded_current_column_is_followed_sample_by_sample() {
+    // A controlled loop: the force was made at 0.5 A for the first half and
+    // 1.5 A for the second, and the per-sample `current_a` column says so.
+    // Predicted at the header's 0.5 A throughout, the second half would be wrong.
+    let table = Table::paper().unwrap();
+    let low = recording(&table, 0.5, 1.0, Role::Validate);
+    let high = recording(&table, 1.5, 1.0, Role::Validate);
+    let mut rec = low.clone();
+    let half = rec.samples.force_n.len() / 2;
+    rec.samples.force_n[half..].copy_from_slice(&high.samples.force_n[half..]);
+    let n = rec.samples.force_n.len();
+    rec.samples.current_a = Some((0..n).map(|i| if i < half { 0.5 } else { 1.5 }).collect());
+    let r = validate_recording(&table, &rec);
+    assert!(r.rmse_n < 1e-3, "rmse {}", r.rmse_n);
+    // The same recording without the column is predicted at 0.5 A: the
+    // second half's error is the 0.5 A vs 1.5 A force difference, not zero.
+    rec.samples.current_a = None;
+    assert!(validate_recording(&table, &rec).rmse_n > 1.0);
+}

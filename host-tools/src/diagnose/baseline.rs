@@ -45,17 +45,17 @@ pub fn fit_table(prep: &Prepared) -> Result<Table> {
     table_from_solution(prep, &sol)
 }
 
-/// Every recording predicted by `table` (branch from the sign of velocity).
+/// Every recording predicted by `table` (branch from the sign of velocity,
+/// at the recorded current of each sample).
 pub fn predict_all(prep: &Prepared, table: &Table) -> Vec<Vec<f64>> {
     prep.recs
         .iter()
         .map(|r| {
-            r.x_mm
-                .iter()
-                .zip(&r.v_m_s)
-                .map(|(&x, &v)| {
+            (0..r.len())
+                .map(|t| {
+                    let (x, v) = (r.x_mm[t], r.v_m_s[t]);
                     table
-                        .force_on_branch(x as f32, Branch::from_velocity(v as f32), r.current_a as f32)
+                        .force_on_branch(x as f32, Branch::from_velocity(v as f32), r.current_at(t) as f32)
                         .force_n as f64
                 })
                 .collect()

@@ -51,7 +51,7 @@ impl Effect {
             Effect::EndStop => t.end_stop_x_mm.is_some(),
             Effect::MagneticSaturation => t.saturation_i_a.is_some(),
             Effect::Inertia => t.inertia,
-            Effect::CoilLag => false,
+            Effect::CoilLag => t.coil_lag_s.is_some(),
         }
     }
 }
@@ -173,12 +173,66 @@ pub fn identifiable(prep: &Prepared, effect: Effect) -> Result<(), String> {
                 Ok(())
             }
         }
-        Effect::CoilLag => Err(
-            "recordings in which the commanded current changes during the test (controlled impacts), \
-             with the command recorded per sample; every recording here holds one current"
-                .into(),
-        ),
+        Effect::CoilLag => {
+            let n = stepped_validate_count(prep);
+            if n >= 2 {
+                Ok(())
+            } else {
+                Err(format!(
+                    "at least two `validate` recordings in which the coil current changes during the test \
+                     (controlled impacts), with the command recorded per sample (`current_a` column); this \
+                     data set has {n}"
+                ))
+            }
+        }
     }
+}
+
+/// Validate recordings whose recorded current moves by at least a tenth of
+/// the table's current span during the test.
+fn stepped_validate_count(prep: &Prepared) -> usize {
+    let span = prep.currents_a[prep.currents_a.len() - 1] - prep.currents_a[0];
+    prep.validate_indices()
+        .iter()
+        .filter(|&&i| span > 0.0 && prep.recs[i].current_change_a() >= 0.1 * span)
+        .count()
+}
+
+/// Extra variants around the grid's best, `best`, where the grid is too
+/// coarse for the effect: a filter's group delay is rarely a whole number of
+/// samples, and the residual of a half-sample error follows stiffness ×
+/// velocity, which a rate term would then pick up as spurious damping; the
+/// coil time constant's √2 grid is refined to 2^(1/8) steps.
+pub fn refinements(prep: &Prepared, best: &Terms, effect: Effect) -> Vec<Terms> {
+    match (effect, best.delay_s) {
+        (Effect::SensorDelay, Some(tau)) => {
+            let dt = median_dt_s(prep);
+            [-0.5, -0.25, 0.25, 0.5]
+                .iter()
+                .map(|f| Terms {
+                    delay_s: Some(tau + f * dt),
+                    ..*best
+                })
+                .collect()
+        }
+        (Effect::CoilLag, _) => match best.coil_lag_s {
+            Some(tau) => [-0.25, -0.125, 0.125, 0.25]
+                .iter()
+                .map(|e| Terms {
+                    coil_lag_s: Some(tau * 2f64.powf(*e)),
+                    ..*best
+                })
+                .collect(),
+            None => Vec::new(),
+        },
+        _ => Vec::new(),
+    }
+}
+
+fn median_dt_s(prep: &Prepared) -> f64 {
+    let mut dts: Vec<f64> = prep.fit_indices().iter().map(|&i| prep.recs[i].dt_s()).collect();
+    dts.sort_by(f64::total_cmp);
+    dts.get(dts.len() / 2).copied().unwrap_or(0.0)
 }
 
 /// The model `base + effect` at every searched value of the effect's
@@ -200,9 +254,7 @@ pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
             out
         }
         Effect::SensorDelay => {
-            let mut dts: Vec<f64> = fit.iter().map(|&i| prep.recs[i].dt_s()).collect();
-            dts.sort_by(f64::total_cmp);
-            let dt = dts[dts.len() / 2];
+            let dt = median_dt_s(prep);
             // Finer where delays are common (a few samples of filter group
             // delay), and both signs: a DAQ offset can lead as well as lag.
             let lags = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0, 12.0];
@@ -243,6 +295,14 @@ pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
                 .collect()
         }
         Effect::Inertia => vec![with(&|t| t.inertia = true)],
-        Effect::CoilLag => Vec::new(),
+        // From one sample period to about 90 (√2 steps): an L/R from well
+        // under the sampling time to longer than an impact.
+        Effect::CoilLag => {
+            let dt = median_dt_s(prep);
+            (0..14)
+                .map(|k| dt * 2f64.powf(0.5 * k as f64))
+                .map(|tau| with(&|t| t.coil_lag_s = Some(tau)))
+                .collect()
+        }
     }
 }

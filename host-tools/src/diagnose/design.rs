@@ -119,6 +119,9 @@ pub struct Terms {
     /// Law and its fitted Δ (Δ is solved, not searched).
     pub softening: Option<SofteningLaw>,
     pub saturation_i_a: Option<f64>,
+    /// Coil time constant L/R (s): the material sees the recorded current
+    /// through a first-order lag (see [`effective_current_a`]).
+    pub coil_lag_s: Option<f64>,
     /// Turn-around memory length δ (mm): not a vocabulary effect but part of
     /// the reference model (see [`memory_feature`]).
     pub memory_mm: Option<f64>,
@@ -195,6 +198,30 @@ pub fn current_weights(currents_a: &[f64], current_a: f64, saturation_i_a: Optio
         }
     }
     [(last, 1.0), (last, 0.0)]
+}
+
+/// The current the material responds to at each sample: the recorded
+/// current, or, with a coil lag τ, that current through a first-order lag
+/// started in steady state (the coil is energised before contact). Between
+/// samples the recorded value is taken to switch at mid-interval, so the
+/// sampling does not bias τ by half a sample.
+pub fn effective_current_a(rec: &Rec, coil_lag_s: Option<f64>) -> Vec<f64> {
+    let n = rec.len();
+    let recorded: Vec<f64> = (0..n).map(|t| rec.current_at(t)).collect();
+    let Some(tau) = coil_lag_s.filter(|tau| *tau > 0.0) else {
+        return recorded;
+    };
+    let mut out = Vec::with_capacity(n);
+    let mut i_eff = recorded.first().copied().unwrap_or(rec.current_a);
+    for t in 0..n {
+        if t > 0 {
+            let half = (-(rec.time_s[t] - rec.time_s[t - 1]).max(0.0) / (2.0 * tau)).exp();
+            i_eff = recorded[t - 1] + (i_eff - recorded[t - 1]) * half;
+            i_eff = recorded[t] + (i_eff - recorded[t]) * half;
+        }
+        out.push(i_eff);
+    }
+    out
 }
 
 /// Linear interpolation of a recording's channel at time `t` (clamped).
@@ -367,12 +394,23 @@ impl Designs {
 }
 
 fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> RecDesign {
-    let weights = current_weights(&prep.currents_a, rec.current_a, terms.saturation_i_a);
+    // Interpolation weights per sample: one set for a held current, one per
+    // sample when the recorded current changes during the test.
+    let weights_at: Vec<[(usize, f64); 2]> = match rec.current_trace_a {
+        Some(_) => effective_current_a(rec, terms.coil_lag_s)
+            .into_iter()
+            .map(|i| current_weights(&prep.currents_a, i, terms.saturation_i_a))
+            .collect(),
+        None => vec![current_weights(&prep.currents_a, rec.current_a, terms.saturation_i_a)],
+    };
+    let mut touched: Vec<usize> = weights_at
+        .iter()
+        .flat_map(|ws| ws.iter().filter(|(_, w)| *w != 0.0).map(|(k, _)| *k))
+        .collect();
+    touched.sort_unstable();
+    touched.dedup();
     let mut cols: Vec<usize> = Vec::new();
-    for &(k, w) in &weights {
-        if w == 0.0 {
-            continue;
-        }
+    for &k in &touched {
         for comp in [true, false] {
             for p in 0..QUARTIC_TERMS {
                 cols.push(layout.quartic_col(k, comp, p));
@@ -384,10 +422,8 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
     }
     for comp in [true, false] {
         for j in 0..MEMORY_TERMS {
-            for &(k, w) in &weights {
-                if w != 0.0 {
-                    cols.extend(layout.memory_col(comp, j, k));
-                }
+            for &k in &touched {
+                cols.extend(layout.memory_col(comp, j, k));
             }
         }
     }
@@ -421,7 +457,8 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
     for t in 0..n {
         let (x, v, acc) = (xs[t], vs[t], accs[t]);
         let comp = v > 0.0;
-        for &(k, w) in &weights {
+        let weights = &weights_at[t.min(weights_at.len() - 1)];
+        for &(k, w) in weights {
             if w == 0.0 {
                 continue;
             }
@@ -443,7 +480,7 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
                 let x_r = xs[at as usize];
                 for (l, len) in MEMORY_LENGTHS.iter().enumerate() {
                     let e = (-d / (len * delta)).exp();
-                    for &(k, w) in &weights {
+                    for &(k, w) in weights {
                         let mut xp = w * e;
                         for p in 0..MEMORY_POWERS {
                             if let (true, Some(c)) = (w != 0.0, layout.memory_col(dir[t], l * MEMORY_POWERS + p, k)) {
@@ -477,9 +514,15 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
         (cols, a)
     };
     let (r_a, r_y) = if rec.is_fit() {
-        let mut ay = DMatrix::<f64>::zeros(n, cols.len() + 1);
-        ay.view_mut((0, 0), (n, cols.len())).copy_from(&a);
-        ay.set_column(cols.len(), &DVector::from_column_slice(&rec.force_n));
+        // Only the samples where the model is defined are fitted.
+        let rows: Vec<usize> = (0..n).filter(|&t| rec.in_domain[t]).collect();
+        let mut ay = DMatrix::<f64>::zeros(rows.len(), cols.len() + 1);
+        ay.view_mut((0, 0), (rows.len(), cols.len()))
+            .copy_from(&a.select_rows(&rows));
+        ay.set_column(
+            cols.len(),
+            &DVector::from_iterator(rows.len(), rows.iter().map(|&t| rec.force_n[t])),
+        );
         let r = ay.qr().r();
         let c = cols.len();
         (Some(r.columns(0, c).into_owned()), Some(r.column(c).into_owned()))

@@ -5,6 +5,12 @@ use super::prepared::Prepared;
 /// Number of equal bins along the stroke and along each recording's time.
 pub const BINS: usize = 5;
 
+/// Time constant, in sample periods, of the probe lag behind the coil-lag
+/// covariate [`CURRENT_NOT_FOLLOWED`].
+const LAG_PROBE_SAMPLES: f64 = 8.0;
+/// The coil-lag signature's name in the report.
+pub const CURRENT_NOT_FOLLOWED: &str = "current change not yet followed (I − I lagged 8 samples)";
+
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Locate {
     /// Recordings by residual RMS, worst first: (file, RMS N).
@@ -67,6 +73,7 @@ pub fn locate(prep: &Prepared, predicted: &[Vec<f64>]) -> Locate {
     let mut worst: Vec<(String, f64)> = Vec::new();
     let (mut branch, mut stroke, mut time) = ([0.0; 2], [0.0; BINS], [0.0; BINS]);
     let (mut res, mut vel, mut acc, mut beyond, mut shift) = (vec![], vec![], vec![], vec![], vec![]);
+    let mut unfollowed = vec![];
     let mut per_rec: Vec<(usize, f64)> = Vec::new();
     // An end stop engages at one displacement for every test: threshold on the
     // largest stroke in the data set, not on each test's own.
@@ -77,6 +84,9 @@ pub fn locate(prep: &Prepared, predicted: &[Vec<f64>]) -> Locate {
         let xmax = rec.max_x_mm().max(1e-12);
         let (t0, t1) = (rec.time_s[0], rec.time_s[n - 1]);
         let mut e_rec = 0.0;
+        // A coil lag leaves −(∂F/∂I)·(I − I_eff) behind: large just after
+        // the recorded current changes, until the coil catches up.
+        let lagged = super::design::effective_current_a(rec, Some(LAG_PROBE_SAMPLES * rec.dt_s()));
         for t in (0..n).filter(|&t| rec.in_domain[t]) {
             let r = rec.force_n[t] - p[t];
             let e = r * r;
@@ -94,6 +104,7 @@ pub fn locate(prep: &Prepared, predicted: &[Vec<f64>]) -> Locate {
             let (a, b) = (t.saturating_sub(1), (t + 1).min(n - 1));
             let dt = rec.time_s[b] - rec.time_s[a];
             shift.push(if dt > 0.0 { (p[b] - p[a]) / dt } else { 0.0 });
+            unfollowed.push(rec.current_at(t) - lagged[t]);
         }
         worst.push((rec.file.clone(), (e_rec / rec.n_scored().max(1) as f64).sqrt()));
         per_rec.push((i, residual_scale(&rec.force_n, p)));
@@ -107,6 +118,7 @@ pub fn locate(prep: &Prepared, predicted: &[Vec<f64>]) -> Locate {
             pearson(&res, &beyond),
         ),
         ("model force rate dF/dt (time shift)".to_string(), pearson(&res, &shift)),
+        (CURRENT_NOT_FOLLOWED.to_string(), pearson(&res, &unfollowed)),
     ];
     let cov = |name: &str, f: &dyn Fn(usize) -> Option<f64>| -> Option<(String, f64)> {
         let pairs: Vec<(f64, f64)> = per_rec.iter().filter_map(|&(i, s)| f(i).map(|c| (c, s))).collect();

@@ -150,7 +150,7 @@ fn signature_of(effect: Effect) -> &'static str {
         Effect::EndStop => "displacement beyond 80 % of the largest stroke",
         Effect::MagneticSaturation => "current_a",
         Effect::Inertia => "acceleration",
-        Effect::CoilLag => "current_a",
+        Effect::CoilLag => locate::CURRENT_NOT_FOLLOWED,
     }
 }
 

@@ -62,7 +62,11 @@ pub fn extract(prep: &Prepared, effect: Effect, terms: &Terms, sol: &Solution) -
                 push("m_s_kg".into(), sol.beta[at], "kg");
             }
         }
-        Effect::CoilLag => {}
+        Effect::CoilLag => {
+            if let Some(tau) = terms.coil_lag_s {
+                push("time_constant_s".into(), tau, "s");
+            }
+        }
     }
     out
 }
@@ -74,7 +78,7 @@ fn percentile(v: &mut [f64], p: f64) -> f64 {
 
 /// Parameters of `effect` in the final model, with bootstrap intervals:
 /// linear ones by refitting on resampled fit recordings; the searched one
-/// (τ, x_e, v0, n0, I_s) by re-choosing, on resampled recordings, among the
+/// (τ, x_e, v0, n0, I_s, coil τ) by re-choosing, on resampled recordings, among the
 /// variants scored when the effect was accepted (`variant_sse`).
 pub fn with_intervals(
     prep: &Prepared,
@@ -148,7 +152,7 @@ pub fn with_intervals(
                     .map(|q| q.1)
             })
             .collect();
-        let is_searched = matches!(name.as_str(), "tau_s" | "x_e_mm" | "v0_m_s" | "n0" | "i_s_a");
+        let is_searched = matches!(name.as_str(), "tau_s" | "x_e_mm" | "v0_m_s" | "n0" | "i_s_a" | "time_constant_s");
         let mut samples = if is_searched { from_search } else { from_linear };
         let ci95 = if samples.is_empty() {
             [*value, *value]

@@ -20,13 +20,23 @@ pub struct Rec {
     /// Measured if the file had it, else the central difference of velocity.
     pub a_m_s2: Vec<f64>,
     pub force_n: Vec<f64>,
+    /// The per-sample coil current (the file's `current_a` column) of a
+    /// validate recording, when it has one: a controlled impact whose command
+    /// changes during the test. Fit recordings hold their tabulated current.
+    pub current_trace_a: Option<Vec<f64>>,
     /// Cross-validation fold (fit recordings only).
     pub fold: Option<usize>,
     /// A label of the fold's group, for the report (e.g. `frequency_hz=1`).
     pub group: String,
-    /// Samples inside the stroke the bracketing tabulated currents were fitted
-    /// on: only there is the model defined, so only there is it scored.
+    /// Samples where the model is defined, the only ones fitted and scored:
+    /// the branch is clear (|v| beyond the velocity noise, see
+    /// [`BRANCH_AMBIGUITY_SIGMAS`]) and, for validate recordings, x lies inside
+    /// the stroke the bracketing tabulated currents were fitted on.
     pub in_domain: Vec<bool>,
+    /// Velocity channel noise (m/s), estimated from the recording itself.
+    pub velocity_noise_m_s: f64,
+    /// Samples left out because their branch is ambiguous.
+    pub n_branch_ambiguous: usize,
 }
 
 impl Rec {
@@ -45,6 +55,24 @@ impl Rec {
 
     pub fn is_fit(&self) -> bool {
         self.role == Role::Fit
+    }
+
+    /// The recorded coil current at sample `t`.
+    pub fn current_at(&self, t: usize) -> f64 {
+        self.current_trace_a
+            .as_ref()
+            .and_then(|c| c.get(t).copied())
+            .unwrap_or(self.current_a)
+    }
+
+    /// How far the recorded current moves during the test (A; 0 when held).
+    pub fn current_change_a(&self) -> f64 {
+        self.current_trace_a.as_ref().map_or(0.0, |c| {
+            let (lo, hi) = c
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
+            hi - lo
+        })
     }
 
     pub fn max_abs_v_m_s(&self) -> f64 {
@@ -131,10 +159,20 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
             _ => differentiate(&s.time_s, &s.v_m_s),
         };
         let forced_validate = validate_currents_a.iter().any(|c| (c - r.current_a).abs() < 1e-9);
+        let role = if forced_validate { Role::Validate } else { r.role };
+        let current_trace_a = match &s.current_a {
+            Some(c) if role == Role::Validate => {
+                if c.len() != s.len() || c.iter().any(|v| !v.is_finite()) {
+                    bail!("{}: the `current_a` column differs in length or holds NaN/infinite values", r.file);
+                }
+                Some(c.clone())
+            }
+            _ => None,
+        };
         recs.push(Rec {
             index,
             file: r.file.clone(),
-            role: if forced_validate { Role::Validate } else { r.role },
+            role,
             current_a: r.current_a,
             sequence: r.sequence.map(f64::from),
             temperature_c: r.temperature_c,
@@ -144,9 +182,12 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
             v_m_s: s.v_m_s.clone(),
             a_m_s2,
             force_n: s.force_n.clone(),
+            current_trace_a,
             fold: None,
             group: String::new(),
             in_domain: vec![true; s.len()],
+            velocity_noise_m_s: velocity_noise_m_s(&s.v_m_s),
+            n_branch_ambiguous: 0,
         });
     }
     let mut currents_a: Vec<f64> = recs.iter().filter(|r| r.is_fit()).map(|r| r.current_a).collect();
@@ -156,6 +197,7 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
         bail!("the data set has no `fit` recordings to build the baseline from");
     }
     mark_domain(&mut recs, &currents_a);
+    recs.iter_mut().for_each(mark_branch_ambiguous);
     let n_folds = assign_folds(&mut recs, ds, plan)?;
     let free_drop = ds
         .recordings
@@ -262,9 +304,10 @@ fn mark_domain(recs: &mut [Rec], currents_a: &[f64]) {
             [stroke, maxima, minima]
         })
         .collect();
-    for r in recs.iter_mut().filter(|r| !r.is_fit()) {
+    // Limits of the tabulated currents bracketing `current_a`.
+    let limits = |current_a: f64| {
         let mut lim = [(f64::NEG_INFINITY, f64::INFINITY); 3];
-        for (k, w) in super::design::current_weights(currents_a, r.current_a, None) {
+        for (k, w) in super::design::current_weights(currents_a, current_a, None) {
             if w > 0.0 {
                 for (l, p) in lim.iter_mut().zip(&per_current[k]) {
                     l.0 = l.0.max(p.0 - margin);
@@ -272,9 +315,13 @@ fn mark_domain(recs: &mut [Rec], currents_a: &[f64]) {
                 }
             }
         }
+        lim
+    };
+    for r in recs.iter_mut().filter(|r| !r.is_fit()) {
         let (feature, compressing) = super::design::memory_feature(&r.x_mm, band * 5.0);
         r.in_domain = (0..r.len())
             .map(|t| {
+                let lim = limits(r.current_at(t));
                 let x = r.x_mm[t];
                 let in_stroke = x >= lim[0].0 && x <= lim[0].1;
                 let memory_ok = match feature[t] {
@@ -289,6 +336,43 @@ fn mark_domain(recs: &mut [Rec], currents_a: &[f64]) {
             })
             .collect();
     }
+}
+
+/// A sample's branch counts as ambiguous when its speed is within this many
+/// standard deviations of the velocity noise (two-sided ≈ 95 %).
+pub const BRANCH_AMBIGUITY_SIGMAS: f64 = 2.0;
+
+/// The paper's model switches branch on the sign of velocity, and the two
+/// branches differ by the whole hysteresis band. At a turn-around the sample
+/// nearest v = 0 falls on either branch by chance (velocity noise), so one
+/// sample can carry an error of thousands of newtons that says nothing about
+/// missing physics and would swamp every per-recording RMSE. Those samples,
+/// |v| < 2σ_v (typically one per turn-around in a drop test), are neither
+/// fitted nor scored; the report counts them.
+fn mark_branch_ambiguous(r: &mut Rec) {
+    let limit = BRANCH_AMBIGUITY_SIGMAS * r.velocity_noise_m_s;
+    let mut n = 0;
+    for (keep, v) in r.in_domain.iter_mut().zip(&r.v_m_s) {
+        if v.abs() < limit {
+            n += usize::from(*keep);
+            *keep = false;
+        }
+    }
+    r.n_branch_ambiguous = n;
+}
+
+/// White-noise standard deviation of a channel sampled fast enough that its
+/// signal is smooth: the second difference of white noise has σ·√6, that of a
+/// smooth signal is small, and the median absolute value (scaled by 1.4826
+/// for a Gaussian) ignores the few samples where the signal bends sharply.
+pub fn velocity_noise_m_s(v: &[f64]) -> f64 {
+    let mut d2: Vec<f64> = v.windows(3).map(|w| (w[2] - 2.0 * w[1] + w[0]).abs()).collect();
+    if d2.is_empty() {
+        return 0.0;
+    }
+    let mid = d2.len() / 2;
+    let (_, median, _) = d2.select_nth_unstable_by(mid, f64::total_cmp);
+    1.4826 * *median / 6f64.sqrt()
 }
 
 /// Central difference (one-sided at the ends).

@@ -131,8 +131,25 @@ pub fn write_predictions(d: &Diagnosis, dir: &Path) -> Result<()> {
     Ok(())
 }
 
-fn rec_rmse(f: &[f64], p: &[f64]) -> f64 {
-    (f.iter().zip(p).map(|(a, b)| (a - b) * (a - b)).sum::<f64>() / f.len().max(1) as f64).sqrt()
+/// The held current, or `first→last` when it changes during the test.
+fn current_label(r: &super::prepared::Rec) -> String {
+    match &r.current_trace_a {
+        Some(c) if r.current_change_a() > 0.0 => {
+            format!("{}→{}", c.first().copied().unwrap_or(0.0), c.last().copied().unwrap_or(0.0))
+        }
+        _ => format!("{}", r.current_a),
+    }
+}
+
+/// RMSE over the samples where the model is defined (`mask`).
+fn rec_rmse(f: &[f64], p: &[f64], mask: &[bool]) -> f64 {
+    let (sse, n) = f
+        .iter()
+        .zip(p)
+        .zip(mask)
+        .filter(|(_, m)| **m)
+        .fold((0.0, 0usize), |(s, n), ((a, b), _)| (s + (a - b) * (a - b), n + 1));
+    (sse / n.max(1) as f64).sqrt()
 }
 
 fn peak_error(f: &[f64], p: &[f64]) -> f64 {
@@ -146,6 +163,12 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "# Diagnosis report\n");
     let p = &d.prep;
+    let n_total: usize = p.recs.iter().map(|r| r.len()).sum();
+    let n_scored: usize = p.recs.iter().map(|r| r.n_scored()).sum();
+    let n_ambiguous: usize = p.recs.iter().map(|r| r.n_branch_ambiguous).sum();
+    let mut noise: Vec<f64> = p.recs.iter().map(|r| r.velocity_noise_m_s).collect();
+    noise.sort_by(f64::total_cmp);
+    let median_noise_m_s = noise.get(noise.len() / 2).copied().unwrap_or(0.0);
     let _ = writeln!(
         s,
         "{} recordings ({} fit, {} validate), tabulated currents {:?} A, {} cross-validation folds.\n",
@@ -160,7 +183,11 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
         "Baseline: {} (predicted through the core's `force_on_branch`). Baseline RMSE {:.3} N \
          (NRMSE {:.4}); final RMSE {:.3} N (NRMSE {:.4}). These two are over all recordings: \
          in-sample for fit recordings, predicted for validate ones. Every improvement below is \
-         held out.\n",
+         held out.\n\n\
+         Scored samples: {} of {}. Left out: {} whose branch is ambiguous (|v| < {}σ of the \
+         velocity noise, median σ = {:.2} mm/s: the paper's model picks a branch by the sign of v, \
+         and at a turn-around that sign is chance), and {} of validate recordings outside the \
+         stroke or turn-around range the bracketing currents were fitted on.\n",
         if d.baseline_given {
             "the given model"
         } else {
@@ -169,7 +196,13 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
         json.baseline.rmse_n,
         json.baseline.nrmse,
         json.final_.rmse_n,
-        json.final_.nrmse
+        json.final_.nrmse,
+        n_scored,
+        n_total,
+        n_ambiguous,
+        crate::diagnose::prepared::BRANCH_AMBIGUITY_SIGMAS,
+        1e3 * median_noise_m_s,
+        n_total - n_scored - n_ambiguous,
     );
     let _ = writeln!(s, "## Result\n");
     if json.effects.is_empty() {
@@ -286,9 +319,9 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
             "| {} | {:?} | {} | {:.3} | {:.3} | {:+.3} | {:+.3} |",
             r.file,
             r.role,
-            r.current_a,
-            rec_rmse(&r.force_n, &d.baseline_pred[i]),
-            rec_rmse(&r.force_n, &d.final_pred[i]),
+            current_label(r),
+            rec_rmse(&r.force_n, &d.baseline_pred[i], &r.in_domain),
+            rec_rmse(&r.force_n, &d.final_pred[i], &r.in_domain),
             peak_error(&r.force_n, &d.baseline_pred[i]),
             peak_error(&r.force_n, &d.final_pred[i])
         );

@@ -128,13 +128,31 @@ fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
 
 /// Scores the best of `variants` out of sample (see the module docs).
 pub fn score(prep: &Prepared, variants: &[Terms]) -> Result<Scored> {
+    score_refined(prep, variants.to_vec(), &|_| Vec::new())
+}
+
+/// As [`score`], then adds the variants `refine` proposes around the grid's
+/// best full-data fit (e.g. fractional delays between grid samples) and
+/// chooses among all of them, again inside the training folds.
+pub fn score_refined(prep: &Prepared, mut variants: Vec<Terms>, refine: &dyn Fn(&Terms) -> Vec<Terms>) -> Result<Scored> {
     if variants.is_empty() {
         bail!("no model variants to score");
     }
-    let evals: Vec<Option<VariantEval>> = variants
-        .par_iter()
-        .map(|t| eval_variant(prep, t).map_err(|e| eprintln!("{t:?}: {e:#}")).ok())
-        .collect();
+    let evaluate = |vs: &[Terms]| -> Vec<Option<VariantEval>> {
+        vs.par_iter()
+            .map(|t| eval_variant(prep, t).map_err(|e| eprintln!("{t:?}: {e:#}")).ok())
+            .collect()
+    };
+    let mut evals = evaluate(&variants);
+    let grid_best = (0..evals.len())
+        .filter_map(|v| evals[v].as_ref().map(|e| (v, e.full_fit_sse)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(v, _)| variants[v]);
+    if let Some(best) = grid_best {
+        let extra: Vec<Terms> = refine(&best).into_iter().filter(|t| !variants.contains(t)).collect();
+        evals.extend(evaluate(&extra));
+        variants.extend(extra);
+    }
     let ok: Vec<usize> = (0..evals.len()).filter(|&v| evals[v].is_some()).collect();
     if ok.is_empty() {
         bail!("no variant could be fitted (too few recordings per current and branch?)");
@@ -190,7 +208,7 @@ pub fn score(prep: &Prepared, variants: &[Terms]) -> Result<Scored> {
             heldout_sse[i] = ev(chosen).full_sse[i];
         }
         insample_sse = ev(chosen).full_fit_sse;
-        insample_n = prep.fit_indices().iter().map(|&i| prep.recs[i].len()).sum();
+        insample_n = prep.fit_indices().iter().map(|&i| prep.recs[i].n_scored()).sum();
     }
     let terms = variants[chosen];
     let searched = usize::from(ok.len() > 1);
@@ -328,7 +346,8 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
         let mut tested = Vec::new();
         for e in todo {
             let variants = candidates::variants(prep, &current.terms, e);
-            if let Ok(after) = score(prep, &variants) {
+            let refine = |best: &Terms| candidates::refinements(prep, best, e);
+            if let Ok(after) = score_refined(prep, variants, &refine) {
                 tested.push(compare(prep, &current, after, Some(e), th));
             }
         }

@@ -74,14 +74,23 @@ pub struct ValidationReport {
     pub recordings: Vec<RecordingReport>,
 }
 
-/// The model's force for every sample of a recording (N), and whether x was clamped.
+/// The model's force for every sample of a recording (N), and whether x was
+/// clamped. The current is the recording's per-sample `current_a` column when
+/// it has one (a controlled impact), else the current it held.
 pub fn model_forces(table: &Table, rec: &Recording) -> (Vec<f64>, Vec<bool>) {
     let s = &rec.samples;
+    let current_at = |t: usize| {
+        s.current_a
+            .as_ref()
+            .and_then(|c| c.get(t).copied())
+            .unwrap_or(rec.current_a)
+    };
     s.x_mm
         .iter()
         .zip(&s.v_m_s)
-        .map(|(&x, &v)| {
-            let r = table.force(x as f32, v as f32, rec.current_a as f32);
+        .enumerate()
+        .map(|(t, (&x, &v))| {
+            let r = table.force(x as f32, v as f32, current_at(t) as f32);
             (r.force_n as f64, r.flags.contains(Flags::X_CLAMPED))
         })
         .unzip()

@@ -27,6 +27,78 @@ pub enum Added {
         delta: f64,
         n0: f64,
     },
+    /// The material sees the coil command through a first-order lag τ.
+    CoilLag {
+        tau_s: f64,
+    },
+}
+
+/// Controlled impacts added by [`dataset_with_steps`]: (from, to) command in A.
+pub const STEPS_A: [(f64, f64); 4] = [(0.0, 1.0), (1.0, 0.0), (0.25, 0.75), (0.75, 0.25)];
+/// The command switches half a sample before this sample (so the recorded
+/// value changes at it): a third of the way into the stroke.
+pub const STEP_SAMPLE: usize = 80;
+
+/// The coil current after a command step at `t_step` from `from` to `to`,
+/// through a first-order lag `tau_s` (0 = none): the closed form.
+pub fn lagged_step_a(from: f64, to: f64, t: f64, t_step: f64, tau_s: f64) -> f64 {
+    if t < t_step {
+        from
+    } else if tau_s <= 0.0 {
+        to
+    } else {
+        to + (from - to) * (-(t - t_step) / tau_s).exp()
+    }
+}
+
+/// [`dataset`] plus four `validate` controlled impacts (3 mm stroke) whose
+/// command steps between currents mid-stroke ([`STEPS_A`]), recorded per
+/// sample in the `current_a` column. Only `Added::CoilLag` changes them.
+pub fn dataset_with_steps(added: Added, seed: u64) -> Dataset {
+    let mut ds = dataset(
+        match added {
+            Added::CoilLag { .. } => Added::None,
+            other => other,
+        },
+        seed,
+    );
+    let tau_s = match added {
+        Added::CoilLag { tau_s } => tau_s,
+        _ => 0.0,
+    };
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x57e9);
+    let noise = Normal::new(0.0, 1.0).expect("valid");
+    let t_step = (STEP_SAMPLE as f64 - 0.5) * SAMPLE_PERIOD_S;
+    for (k, &(from, to)) in STEPS_A.iter().enumerate() {
+        let mut s = Samples::default();
+        let mut command = Vec::new();
+        for i in 0..SAMPLES {
+            let t = i as f64 * SAMPLE_PERIOD_S;
+            let (x, v) = kinematics(3.0, t);
+            // The law is linear in current, so the law at the coil's current
+            // is what the paper's interpolation gives at that current.
+            let current = lagged_step_a(from, to, t, t_step, tau_s);
+            s.time_s.push(t);
+            s.x_mm.push(x);
+            s.v_m_s.push(v);
+            s.force_n.push(law_n(x, v > 0.0, current) + noise.sample(&mut rng));
+            command.push(if i >= STEP_SAMPLE { to } else { from });
+        }
+        s.current_a = Some(command);
+        ds.recordings.push(Recording {
+            file: format!("step{k}_i{from}-{to}.csv"),
+            current_a: from,
+            role: Role::Validate,
+            mass_kg: None,
+            impact_velocity_m_s: None,
+            sequence: Some(19 + k as u32),
+            temperature_c: None,
+            tags: BTreeMap::new(),
+            samples: s,
+            velocity_estimated: false,
+        });
+    }
+    ds
 }
 
 pub const SAMPLE_PERIOD_S: f64 = 1.0e-4;
