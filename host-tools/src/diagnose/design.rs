@@ -456,7 +456,13 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
     let memory = terms.memory_mm.map(|d| memory_feature(&xs, d));
     for t in 0..n {
         let (x, v, acc) = (xs[t], vs[t], accs[t]);
-        let comp = v > 0.0;
+        // With the memory term, the branch is the direction of travel it
+        // uses (from displacement): taken from the sign of v instead, the two
+        // disagree for a few samples at each turn-around and the model spikes.
+        let comp = match &memory {
+            Some((_, dir)) => dir[t],
+            None => v > 0.0,
+        };
         let weights = &weights_at[t.min(weights_at.len() - 1)];
         for &(k, w) in weights {
             if w == 0.0 {
