@@ -215,6 +215,16 @@ pub fn refinements(prep: &Prepared, best: &Terms, effect: Effect) -> Vec<Terms> 
                 })
                 .collect()
         }
+        (Effect::StressSoftening, _) => match best.softening {
+            Some(SofteningLaw::Sequence { n0 }) => [-0.5, -0.25, 0.25, 0.5]
+                .iter()
+                .map(|e| Terms {
+                    softening: Some(SofteningLaw::Sequence { n0: n0 * 2f64.powf(*e) }),
+                    ..*best
+                })
+                .collect(),
+            _ => Vec::new(),
+        },
         (Effect::CoilLag, _) => match best.coil_lag_s {
             Some(tau) => [-0.25, -0.125, 0.125, 0.25]
                 .iter()
