@@ -198,9 +198,10 @@ pub fn draw_effect(name: &str, rng: &mut impl Rng, scale: EffectScale) -> Result
         },
         // 0.2–0.8 ms: a small coil (a few mH, a few Ω) on a current-regulated
         // driver. Compression lasts 2.6–12 ms (2 A to 0 A): even 0.2 ms
-        // (4 samples at 20 kHz) leaves 0.5–2.7 kN of force error just after
-        // a step, and at 0.8 ms the current is at 90 % (2.3τ) before the
-        // shortest compression ends. Only a changing command shows it.
+        // (4 samples at 20 kHz) leaves 0.15–3 kN of force error in the first
+        // sample after a step, and at 0.8 ms the current is at 90 % (2.3τ)
+        // before the shortest compression ends. Only a changing command
+        // shows it.
         "coil_lag" => Effect::CoilLag {
             time_constant_s: rng.random_range(COIL_LAG_RANGE_S),
         },
