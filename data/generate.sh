@@ -3,10 +3,13 @@
 #
 #   bash data/generate.sh
 #
-# Each set is `mre synth` output: 54 drop tests (fit currents 0/0.5/1/1.5/2 A,
-# validate currents 0.3/0.7/1.3/1.7 A, impact velocities 1.4/1.8/2.24 m/s,
-# 2 repeats, shuffled run order) of a 5.5 kg mass. drop-none has no concealed
-# effect; each other set has the one effect its name says. The answers (effect
+# Each set is `mre synth` output: 60 drop tests of a 5.5 kg mass in a shuffled
+# run order: 54 at constant current (fit currents 0/0.5/1/1.5/2 A, validate
+# currents 0.3/0.7/1.3/1.7 A, impact velocities 1.4/1.8/2.24 m/s, 2 repeats)
+# and 6 controlled impacts (validate), whose coil command steps 0.8 ms after
+# contact (step_i<from>-<to>_v<velocity>.csv, command in the current_a column).
+# Every set has the same plan. drop-none has no concealed effect; each other
+# set has the one effect its name says. The answers (effect
 # parameters, base law, instrument) are in data/keys/, outside the sets, so a
 # diagnosis run on a set stays blind. `tests/plant_bundled_data.rs` checks the
 # committed files still match this script.
@@ -25,3 +28,4 @@ gen sensor_delay 103
 gen stress_softening 104
 gen end_stop 105
 gen magnetic_saturation 106
+gen coil_lag 107

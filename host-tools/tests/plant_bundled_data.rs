@@ -3,13 +3,14 @@
 use mre_host::plant::synth::write_synth;
 use std::path::{Path, PathBuf};
 
-const BUNDLED: [(&str, u64); 6] = [
+const BUNDLED: [(&str, u64); 7] = [
     ("none", 101),
     ("viscous_damping", 102),
     ("sensor_delay", 103),
     ("stress_softening", 104),
     ("end_stop", 105),
     ("magnetic_saturation", 106),
+    ("coil_lag", 107),
 ];
 
 fn data_dir() -> PathBuf {

@@ -1,5 +1,6 @@
 //! Physics checks of the drop-impact plant, with expected values from
 //! physics and from the paper (never from the simulator's own output).
+use mre_host::plant::synth::step_command;
 use mre_host::plant::{simulate, CurrentSource, Effect, ImpactConfig, LawParams, MeasurementModel, Plant, Trajectory};
 
 /// The paper's Table 5 measured peak forces (`shared/paper/table4.toml`).
@@ -172,6 +173,114 @@ fn coil_lag_is_first_order_and_commands_are_held() {
         .samples
         .iter()
         .all(|s| s.current_a == if s.time_s <= 1.0e-3 { 0.0 } else { 1.0 }));
+}
+
+/// The nominal law by hand (README): G(I)·(k1·x + k3·x³)·(1 + η·tanh(v/v_t)),
+/// G linear between the knots 1, 10.15, 15.13, 16.33, 16.83 at 0…2 A.
+fn nominal_force_by_hand(x_mm: f64, v_m_s: f64, current_a: f64) -> f64 {
+    let knots = [1.0, 10.15, 15.13, 16.33, 16.83];
+    let pos = (current_a.clamp(0.0, 2.0) / 0.5).min(3.999_999);
+    let k = pos.floor() as usize;
+    let gain = knots[k] + (pos - k as f64) * (knots[k + 1] - knots[k]);
+    gain * (66.0 * x_mm + 0.080 * x_mm.powi(3)) * (1.0 + 0.5 * (v_m_s / 0.003).tanh())
+}
+
+/// A perfect instrument: the samples are the true state and force.
+fn ideal_nominal() -> Plant {
+    Plant {
+        measurement: MeasurementModel::default().ideal(),
+        ..Plant::nominal()
+    }
+}
+
+#[test]
+fn coil_lag_after_a_command_step_is_first_order_and_drives_the_force() {
+    // Coil energised at 0 A before contact, command 0 → 2 A at 0.8 ms:
+    // I(t) = 2·(1 − e^{−(t − 0.8 ms)/τ}) after the step, and the force is
+    // the law at that lagging current.
+    let plant = ideal_nominal();
+    let (tau, step_at) = (0.5e-3, 0.8e-3);
+    let cfg = ImpactConfig {
+        coil_lag_s: Some(tau),
+        initial_current_a: 0.0,
+        ..ImpactConfig::default()
+    };
+    let command = step_command(0.0, 2.0, step_at, cfg.step_s);
+    let t = simulate(&plant, &cfg, CurrentSource::Function(Box::new(command))).unwrap();
+    let after = |dt: f64| {
+        t.samples
+            .iter()
+            .find(|s| (s.time_s - step_at - dt).abs() < 1e-9)
+            .unwrap()
+    };
+    // At τ, 2τ, 3τ: 63.2 %, 86.5 %, 95.0 % of the way.
+    for (dt, fraction) in [(tau, 0.632_120_6), (2.0 * tau, 0.864_664_7), (3.0 * tau, 0.950_212_9)] {
+        let s = after(dt);
+        assert!(
+            (s.current_a - 2.0 * fraction).abs() < 1e-6,
+            "{} s: {} A",
+            s.time_s,
+            s.current_a
+        );
+    }
+    for s in &t.samples {
+        if s.time_s <= step_at + 1e-9 {
+            assert_eq!((s.command_a, s.current_a), (0.0, 0.0), "no transient before the step");
+        } else {
+            let expected = 2.0 * (1.0 - (-(s.time_s - step_at) / tau).exp());
+            assert_eq!(s.command_a, 2.0);
+            assert!((s.current_a - expected).abs() < 1e-9, "{} s", s.time_s);
+        }
+        if s.x_mm > 0.0 && s.v_m_s > 0.05 {
+            let law = nominal_force_by_hand(s.x_mm, s.v_m_s, s.current_a);
+            assert!((s.force_n - law).abs() < 1e-6 * law.max(1.0), "{} s", s.time_s);
+        }
+    }
+    // Right after the step the force is still far below the 2 A law.
+    let s = after(0.05e-3);
+    assert!(s.force_n < 0.3 * nominal_force_by_hand(s.x_mm, s.v_m_s, 2.0));
+}
+
+#[test]
+fn without_lag_the_force_after_a_step_is_the_law_at_the_new_current() {
+    let plant = ideal_nominal();
+    let step_at = 0.8e-3;
+    for (from, to) in [(0.0, 2.0), (2.0, 0.0), (0.5, 1.5), (2.0, 1.0)] {
+        let cfg = ImpactConfig {
+            initial_current_a: from,
+            ..ImpactConfig::default()
+        };
+        let command = step_command(from, to, step_at, cfg.step_s);
+        let t = simulate(&plant, &cfg, CurrentSource::Function(Box::new(command))).unwrap();
+        let k = t.samples.iter().position(|s| s.time_s > step_at + 1e-9).unwrap();
+        assert!((t.samples[k].time_s - step_at - 0.05e-3).abs() < 1e-9);
+        for s in &t.samples[k - 3..k + 3] {
+            let i = if s.time_s <= step_at + 1e-9 { from } else { to };
+            assert_eq!((s.command_a, s.current_a), (i, i));
+            let law = nominal_force_by_hand(s.x_mm, s.v_m_s, i);
+            assert!((s.force_n - law).abs() < 1e-6 * law, "{from}→{to} at {} s", s.time_s);
+        }
+    }
+}
+
+#[test]
+fn a_coil_energised_before_contact_hides_its_lag_at_constant_current() {
+    for current_a in [0.0, 0.7, 2.0] {
+        let cfg = ImpactConfig {
+            initial_current_a: current_a,
+            ..ImpactConfig::default()
+        };
+        let lagging = ImpactConfig {
+            coil_lag_s: Some(0.8e-3),
+            ..cfg.clone()
+        };
+        let plant = Plant::nominal();
+        assert_eq!(
+            passive(&plant, &cfg, current_a),
+            passive(&plant, &lagging, current_a),
+            "{current_a} A"
+        );
+    }
 }
 
 #[test]

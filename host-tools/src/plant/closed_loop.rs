@@ -313,7 +313,8 @@ pub fn setup_for(request: &SimRequest) -> Result<SimSetup> {
     let impact = ImpactConfig {
         mass_kg: request.mass_kg,
         impact_velocity_m_s: request.impact_velocity_m_s,
-        coil_lag_s: request.coil_lag_s,
+        // `--coil-lag-ms` wins over a `coil_lag` effect's drawn τ.
+        coil_lag_s: request.coil_lag_s.or(plant.effect.coil_lag_s()),
         noise_seed: request.seed,
         ..ImpactConfig::default()
     };

@@ -5,14 +5,18 @@ use anyhow::{bail, Result};
 use rand::Rng;
 use serde::Serialize;
 
+/// Range of the drawn coil time constant (s); see [`draw_effect`].
+pub const COIL_LAG_RANGE_S: std::ops::Range<f64> = 0.2e-3..0.8e-3;
+
 /// Names as in the spec's vocabulary (a contract).
-pub const EFFECT_NAMES: [&str; 6] = [
+pub const EFFECT_NAMES: [&str; 7] = [
     "none",
     "viscous_damping",
     "sensor_delay",
     "stress_softening",
     "end_stop",
     "magnetic_saturation",
+    "coil_lag",
 ];
 
 /// One concealed effect with its parameters.
@@ -44,6 +48,11 @@ pub enum Effect {
     MagneticSaturation {
         i_s_a: f64,
     },
+    /// The coil current follows its command through `τ·İ + I = I_cmd`
+    /// (applied as `ImpactConfig::coil_lag_s`).
+    CoilLag {
+        time_constant_s: f64,
+    },
 }
 
 impl Effect {
@@ -55,6 +64,15 @@ impl Effect {
             Effect::StressSoftening { .. } => "stress_softening",
             Effect::EndStop { .. } => "end_stop",
             Effect::MagneticSaturation { .. } => "magnetic_saturation",
+            Effect::CoilLag { .. } => "coil_lag",
+        }
+    }
+
+    /// The coil's L/R time constant (s), if this effect adds one.
+    pub fn coil_lag_s(&self) -> Option<f64> {
+        match *self {
+            Effect::CoilLag { time_constant_s } => Some(time_constant_s),
+            _ => None,
         }
     }
 
@@ -116,6 +134,7 @@ impl Effect {
             Effect::StressSoftening { depth, tests_n0 } => (0.0..1.0).contains(&depth) && tests_n0 > 0.0,
             Effect::EndStop { x_e_mm, k_e_n_per_mm2 } => x_e_mm >= 0.0 && k_e_n_per_mm2 >= 0.0,
             Effect::MagneticSaturation { i_s_a } => i_s_a > 0.0,
+            Effect::CoilLag { time_constant_s } => time_constant_s > 0.0 && time_constant_s < 0.01,
         };
         let finite = serde_json::to_value(self)
             .ok()
@@ -176,6 +195,15 @@ pub fn draw_effect(name: &str, rng: &mut impl Rng, scale: EffectScale) -> Result
         }
         "magnetic_saturation" => Effect::MagneticSaturation {
             i_s_a: rng.random_range(0.3..0.55),
+        },
+        // 0.2–0.8 ms: a small coil (a few mH, a few Ω) on a current-regulated
+        // driver. Compression lasts 2.6–12 ms (2 A to 0 A): even 0.2 ms
+        // (4 samples at 20 kHz) leaves 0.15–3 kN of force error in the first
+        // sample after a step, and at 0.8 ms the current is at 90 % (2.3τ)
+        // before the shortest compression ends. Only a changing command
+        // shows it.
+        "coil_lag" => Effect::CoilLag {
+            time_constant_s: rng.random_range(COIL_LAG_RANGE_S),
         },
         other => bail!(
             "unknown effect `{other}`; expected one of {} or `random`",

@@ -12,7 +12,7 @@ use super::measure::MeasurementModel;
 use super::stepper::{simulate, CurrentSource, ImpactConfig, Plant, Trajectory};
 use crate::atomic_write::write_atomic;
 use crate::dataset::write::{write_dataset, Precision, WriteOptions};
-use crate::dataset::{Dataset, Recording, Role, Samples};
+use crate::dataset::{Dataset, Recording, Role, Samples, TagValue};
 use anyhow::{ensure, Context, Result};
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
@@ -21,6 +21,17 @@ use rand_distr::{Distribution, Normal};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+
+/// A controlled impact: the coil command steps from `from_a` to `to_a`
+/// during compression, so a lagging coil shows (the only tests that reveal
+/// `coil_lag`; every campaign has them, so the plan never gives the effect away).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ControlledImpact {
+    pub from_a: f64,
+    pub to_a: f64,
+    /// Nominal impact velocity (drop height).
+    pub velocity_m_s: f64,
+}
 
 /// The test campaign.
 #[derive(Clone, Debug, PartialEq)]
@@ -32,17 +43,42 @@ pub struct SynthPlan {
     /// Tests per (current, velocity).
     pub repeats: u32,
     pub mass_kg: f64,
+    /// Step-command tests (role `validate`), one each.
+    pub controlled: Vec<ControlledImpact>,
+    /// Time after contact at which the controlled impacts' command steps (s).
+    pub step_at_s: f64,
 }
 
 impl Default for SynthPlan {
-    /// 9 currents × 3 velocities × 2 repeats = 54 recordings.
+    /// 9 currents × 3 velocities × 2 repeats = 54 constant-current recordings,
+    /// plus 6 controlled impacts = 60.
     fn default() -> Self {
+        let step = |from_a, to_a, velocity_m_s| ControlledImpact {
+            from_a,
+            to_a,
+            velocity_m_s,
+        };
         Self {
             fit_currents_a: vec![0.0, 0.5, 1.0, 1.5, 2.0],
             validate_currents_a: vec![0.3, 0.7, 1.3, 1.7],
             velocities_m_s: vec![1.4, 1.8, 2.24],
             repeats: 2,
             mass_kg: 5.5,
+            // Up and down steps, large and small, between tabulated currents
+            // (so the paper's interpolation is exact at each command).
+            controlled: vec![
+                step(0.0, 2.0, 2.24),
+                step(2.0, 0.0, 2.24),
+                step(0.5, 1.5, 1.8),
+                step(1.5, 0.5, 1.8),
+                step(0.0, 1.0, 1.4),
+                step(2.0, 1.0, 1.4),
+            ],
+            // 0.8 ms after contact the mass has slowed by < 15 % (x 1.1–1.8
+            // mm), and at least 1.8 ms of compression follow at the new command:
+            // the shortest compression of any plant synth draws is 2.65 ms
+            // (2 A, stiffest law).
+            step_at_s: 0.8e-3,
         }
     }
 }
@@ -154,6 +190,8 @@ pub fn draw_plant(effect: &str, seed: u64, plan: &SynthPlan) -> Result<Plant> {
 /// One planned test.
 struct Test {
     current_a: f64,
+    /// Controlled impacts: the command after the step.
+    step_to_a: Option<f64>,
     role: Role,
     nominal_velocity_m_s: f64,
     repeat: u32,
@@ -164,9 +202,43 @@ struct Test {
     noise_seed: u64,
 }
 
+impl Test {
+    fn new(current_a: f64, step_to_a: Option<f64>, role: Role, nominal_velocity_m_s: f64, repeat: u32) -> Self {
+        Self {
+            current_a,
+            step_to_a,
+            role,
+            nominal_velocity_m_s,
+            repeat,
+            sequence: 0,
+            actual_velocity_m_s: nominal_velocity_m_s,
+            recorded_velocity_m_s: nominal_velocity_m_s,
+            temperature_c: 0.0,
+            noise_seed: 0,
+        }
+    }
+
+    fn file_name(&self) -> String {
+        match self.step_to_a {
+            Some(to_a) => format!(
+                "step_i{:.1}-{:.1}_v{:.2}.csv",
+                self.current_a, to_a, self.nominal_velocity_m_s
+            ),
+            None => format!(
+                "i{:.1}_v{:.2}_r{}.csv",
+                self.current_a, self.nominal_velocity_m_s, self.repeat
+            ),
+        }
+    }
+}
+
 fn plan_tests(plan: &SynthPlan, seed: u64) -> Result<Vec<Test>> {
     ensure!(plan.repeats >= 1, "at least one repeat");
     ensure!(!plan.velocities_m_s.is_empty(), "at least one impact velocity");
+    ensure!(
+        plan.step_at_s.is_finite() && plan.step_at_s > 0.0,
+        "the controlled impacts' step time must be positive"
+    );
     let mut tests = Vec::new();
     let roles = [
         (Role::Fit, &plan.fit_currents_a),
@@ -176,20 +248,13 @@ fn plan_tests(plan: &SynthPlan, seed: u64) -> Result<Vec<Test>> {
         for &current_a in currents.iter() {
             for &v in &plan.velocities_m_s {
                 for repeat in 1..=plan.repeats {
-                    tests.push(Test {
-                        current_a,
-                        role,
-                        nominal_velocity_m_s: v,
-                        repeat,
-                        sequence: 0,
-                        actual_velocity_m_s: v,
-                        recorded_velocity_m_s: v,
-                        temperature_c: 0.0,
-                        noise_seed: 0,
-                    });
+                    tests.push(Test::new(current_a, None, role, v, repeat));
                 }
             }
         }
+    }
+    for c in &plan.controlled {
+        tests.push(Test::new(c.from_a, Some(c.to_a), Role::Validate, c.velocity_m_s, 1));
     }
     let mut rng = stream(seed, 4);
     // Shuffled run order.
@@ -218,16 +283,27 @@ fn plan_tests(plan: &SynthPlan, seed: u64) -> Result<Vec<Test>> {
     Ok(tests)
 }
 
-fn to_samples(t: &Trajectory) -> Samples {
+/// `command_per_sample`: write the coil command as the `current_a` column.
+fn to_samples(t: &Trajectory, command_per_sample: bool) -> Samples {
     Samples {
         time_s: t.samples.iter().map(|s| s.time_s).collect(),
         x_mm: t.samples.iter().map(|s| s.x_mm).collect(),
         v_m_s: t.samples.iter().map(|s| s.v_m_s).collect(),
         force_n: t.samples.iter().map(|s| s.force_n).collect(),
         accel_m_s2: None,
-        current_a: None,
+        // The command (what the rig logs), not the coil current, so a lag
+        // stays concealed.
+        current_a: command_per_sample.then(|| t.samples.iter().map(|s| s.command_a).collect()),
         temperature_c: None,
     }
+}
+
+/// The controlled impacts' command: `from_a` until `step_at_s` after
+/// contact, then `to_a`. The switch is decided at integration-step
+/// resolution (half a step of tolerance), so it falls exactly on `step_at_s`
+/// whatever the rounding of the step times.
+pub fn step_command(from_a: f64, to_a: f64, step_at_s: f64, step_s: f64) -> impl Fn(f64) -> f64 {
+    move |t: f64| if t < step_at_s - 0.5 * step_s { from_a } else { to_a }
 }
 
 /// Synthesises a whole data set in memory with the default plan.
@@ -242,27 +318,39 @@ pub fn synthesize_with_plan(effect: &str, seed: u64, plan: &SynthPlan) -> Result
     let recordings = tests
         .par_iter()
         .map(|test| {
+            // The coil is energised at the initial command before contact,
+            // so a constant-current test has no transient even with a lag.
             let cfg = ImpactConfig {
                 mass_kg: plan.mass_kg,
                 impact_velocity_m_s: test.actual_velocity_m_s,
+                coil_lag_s: plant.effect.coil_lag_s(),
+                initial_current_a: test.current_a,
                 sequence: test.sequence,
                 noise_seed: test.noise_seed,
                 ..ImpactConfig::default()
             };
-            let trajectory = simulate(&plant, &cfg, CurrentSource::Constant(test.current_a))?;
+            let source = match test.step_to_a {
+                Some(to_a) => {
+                    CurrentSource::Function(Box::new(step_command(test.current_a, to_a, plan.step_at_s, cfg.step_s)))
+                }
+                None => CurrentSource::Constant(test.current_a),
+            };
+            let trajectory = simulate(&plant, &cfg, source)?;
+            let mut tags = BTreeMap::new();
+            if test.step_to_a.is_some() {
+                let ms = (plan.step_at_s * 1.0e6).round() / 1.0e3;
+                tags.insert("step_at_ms".to_owned(), TagValue::Number(ms));
+            }
             Ok(Recording {
-                file: format!(
-                    "i{:.1}_v{:.2}_r{}.csv",
-                    test.current_a, test.nominal_velocity_m_s, test.repeat
-                ),
+                file: test.file_name(),
                 current_a: test.current_a,
                 role: test.role,
                 mass_kg: Some(plan.mass_kg),
                 impact_velocity_m_s: Some(test.recorded_velocity_m_s),
                 sequence: Some(test.sequence),
                 temperature_c: Some(test.temperature_c),
-                tags: BTreeMap::new(),
-                samples: to_samples(&trajectory),
+                tags,
+                samples: to_samples(&trajectory, test.step_to_a.is_some()),
                 velocity_estimated: false,
             })
         })
