@@ -82,6 +82,29 @@ pub fn memory_feature(x: &[f64], delta_mm: f64) -> (Vec<Option<(f64, f64)>>, Vec
     (feature, compressing)
 }
 
+/// [`memory_feature`] for the model's own branches: a reversal is where the
+/// sign of v changes (the quartic's branch switch), anchored at x there.
+/// Using the same direction as the quartic matters: where a displacement-
+/// based direction and the sign of v disagree (a few samples at each
+/// turn-around when v leads or lags x, or under a sensor delay), the memory
+/// term of one branch would be added to the quartic of the other, and the
+/// model would spike. Noise flips of the sign near a turn-around only move
+/// the anchor within the noise of the extreme, and those samples are not
+/// scored (their branch is chance).
+pub fn memory_feature_on_branches(x: &[f64], v: &[f64]) -> (Vec<Option<(f64, f64)>>, Vec<bool>) {
+    let compressing: Vec<bool> = v.iter().map(|v| *v > 0.0).collect();
+    let mut anchor: Option<usize> = None;
+    let feature = (0..x.len())
+        .map(|t| {
+            if t > 0 && compressing[t] != compressing[t - 1] {
+                anchor = Some(t);
+            }
+            anchor.map(|a| ((x[t] - x[a]).abs(), a as f64))
+        })
+        .collect();
+    (feature, compressing)
+}
+
 /// Rate dependence `c(I)·φ(v)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Viscous {
@@ -225,7 +248,7 @@ pub fn effective_current_a(rec: &Rec, coil_lag_s: Option<f64>) -> Vec<f64> {
 }
 
 /// Linear interpolation of a recording's channel at time `t` (clamped).
-fn sample_at(time_s: &[f64], y: &[f64], t: f64, hint: &mut usize) -> f64 {
+pub fn sample_at(time_s: &[f64], y: &[f64], t: f64, hint: &mut usize) -> f64 {
     let n = time_s.len();
     if t <= time_s[0] {
         return y[0];
@@ -253,6 +276,8 @@ pub struct RecDesign {
     /// Compressed `[R_A | r_y]` (fit recordings only).
     pub r_a: Option<DMatrix<f64>>,
     pub r_y: Option<DVector<f64>>,
+    /// Samples fitted and scored under these terms ([`Rec::scored_mask`]).
+    pub mask: Vec<bool>,
 }
 
 impl RecDesign {
@@ -396,11 +421,19 @@ impl Designs {
 fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> RecDesign {
     // Interpolation weights per sample: one set for a held current, one per
     // sample when the recorded current changes during the test.
+    // A delayed force channel shows the current of τ ago too.
     let weights_at: Vec<[(usize, f64); 2]> = match rec.current_trace_a {
-        Some(_) => effective_current_a(rec, terms.coil_lag_s)
-            .into_iter()
-            .map(|i| current_weights(&prep.currents_a, i, terms.saturation_i_a))
-            .collect(),
+        Some(_) => {
+            let current = effective_current_a(rec, terms.coil_lag_s);
+            let mut hint = 0;
+            (0..rec.len())
+                .map(|t| match terms.delay_s {
+                    Some(tau) => sample_at(&rec.time_s, &current, rec.time_s[t] - tau, &mut hint),
+                    None => current[t],
+                })
+                .map(|i| current_weights(&prep.currents_a, i, terms.saturation_i_a))
+                .collect()
+        }
         None => vec![current_weights(&prep.currents_a, rec.current_a, terms.saturation_i_a)],
     };
     let mut touched: Vec<usize> = weights_at
@@ -453,16 +486,10 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
             }),
         None => (rec.x_mm.clone(), rec.v_m_s.clone(), rec.a_m_s2.clone()),
     };
-    let memory = terms.memory_mm.map(|d| memory_feature(&xs, d));
+    let memory = terms.memory_mm.map(|_| memory_feature_on_branches(&xs, &vs));
     for t in 0..n {
         let (x, v, acc) = (xs[t], vs[t], accs[t]);
-        // With the memory term, the branch is the direction of travel it
-        // uses (from displacement): taken from the sign of v instead, the two
-        // disagree for a few samples at each turn-around and the model spikes.
-        let comp = match &memory {
-            Some((_, dir)) => dir[t],
-            None => v > 0.0,
-        };
+        let comp = v > 0.0;
         let weights = &weights_at[t.min(weights_at.len() - 1)];
         for &(k, w) in weights {
             if w == 0.0 {
@@ -519,9 +546,10 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
     } else {
         (cols, a)
     };
+    let mask = rec.scored_mask(terms.delay_s);
     let (r_a, r_y) = if rec.is_fit() {
         // Only the samples where the model is defined are fitted.
-        let rows: Vec<usize> = (0..n).filter(|&t| rec.in_domain[t]).collect();
+        let rows: Vec<usize> = (0..n).filter(|&t| mask[t]).collect();
         let mut ay = DMatrix::<f64>::zeros(rows.len(), cols.len() + 1);
         ay.view_mut((0, 0), (rows.len(), cols.len()))
             .copy_from(&a.select_rows(&rows));
@@ -535,5 +563,11 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
     } else {
         (None, None)
     };
-    RecDesign { cols, a, r_a, r_y }
+    RecDesign {
+        cols,
+        a,
+        r_a,
+        r_y,
+        mask,
+    }
 }

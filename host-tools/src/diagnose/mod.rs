@@ -72,6 +72,9 @@ pub struct Diagnosis {
     pub findings: Vec<Finding>,
     pub baseline_pred: Vec<Vec<f64>>,
     pub final_pred: Vec<Vec<f64>>,
+    /// Samples the baseline and final metrics are computed on: those both
+    /// models score.
+    pub scored_mask: Vec<Vec<bool>>,
     pub thresholds: Thresholds,
 }
 
@@ -128,6 +131,12 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
     } else {
         predictions(&prep, &selection.final_model)
     };
+    let scored_mask = prep
+        .recs
+        .iter()
+        .zip(&selection.final_model.mask)
+        .map(|(r, m)| r.in_domain.iter().zip(m).map(|(a, b)| *a && *b).collect())
+        .collect();
     Ok(Diagnosis {
         prep,
         baseline_table,
@@ -137,6 +146,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
         findings,
         baseline_pred,
         final_pred,
+        scored_mask,
         thresholds: opts.thresholds,
     })
 }

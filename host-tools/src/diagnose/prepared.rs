@@ -33,6 +33,9 @@ pub struct Rec {
     /// [`BRANCH_AMBIGUITY_SIGMAS`]) and, for validate recordings, x lies inside
     /// the stroke the bracketing tabulated currents were fitted on.
     pub in_domain: Vec<bool>,
+    /// Validate recordings: x inside the fitted stroke (and turn-around range);
+    /// `in_domain` is this and a clear branch at v(t).
+    pub in_range: Vec<bool>,
     /// Velocity channel noise (m/s), estimated from the recording itself.
     pub velocity_noise_m_s: f64,
     /// Samples left out because their branch is ambiguous.
@@ -63,6 +66,23 @@ impl Rec {
             .as_ref()
             .and_then(|c| c.get(t).copied())
             .unwrap_or(self.current_a)
+    }
+
+    /// The samples a model is fitted and scored on: inside the range, with a
+    /// clear branch for the velocity the model reads, v(t − τ) under a sensor
+    /// delay τ (see [`BRANCH_AMBIGUITY_SIGMAS`]).
+    pub fn scored_mask(&self, delay_s: Option<f64>) -> Vec<bool> {
+        let Some(tau) = delay_s else {
+            return self.in_domain.clone();
+        };
+        let limit = BRANCH_AMBIGUITY_SIGMAS * self.velocity_noise_m_s;
+        let mut hint = 0;
+        (0..self.len())
+            .map(|t| {
+                let v = super::design::sample_at(&self.time_s, &self.v_m_s, self.time_s[t] - tau, &mut hint);
+                self.in_range[t] && v.abs() >= limit
+            })
+            .collect()
     }
 
     /// How far the recorded current moves during the test (A; 0 when held).
@@ -186,6 +206,7 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
             fold: None,
             group: String::new(),
             in_domain: vec![true; s.len()],
+            in_range: vec![true; s.len()],
             velocity_noise_m_s: velocity_noise_m_s(&s.v_m_s),
             n_branch_ambiguous: 0,
         });
@@ -350,6 +371,7 @@ pub const BRANCH_AMBIGUITY_SIGMAS: f64 = 2.0;
 /// |v| < 2σ_v (typically one per turn-around in a drop test), are neither
 /// fitted nor scored; the report counts them.
 fn mark_branch_ambiguous(r: &mut Rec) {
+    r.in_range = r.in_domain.clone();
     let limit = BRANCH_AMBIGUITY_SIGMAS * r.velocity_noise_m_s;
     let mut n = 0;
     for (keep, v) in r.in_domain.iter_mut().zip(&r.v_m_s) {

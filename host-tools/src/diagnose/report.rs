@@ -46,13 +46,13 @@ pub struct ReportJson {
 pub fn metrics(d: &Diagnosis, pred: &[Vec<f64>]) -> Metrics {
     let (mut se, mut n) = (0.0, 0usize);
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for (r, p) in d.prep.recs.iter().zip(pred) {
-        for ((f, q), _) in r.force_n.iter().zip(p).zip(&r.in_domain).filter(|(_, m)| **m) {
+    for ((r, p), mask) in d.prep.recs.iter().zip(pred).zip(&d.scored_mask) {
+        for ((f, q), _) in r.force_n.iter().zip(p).zip(mask).filter(|(_, m)| **m) {
             se += (f - q) * (f - q);
             lo = lo.min(*f);
             hi = hi.max(*f);
+            n += 1;
         }
-        n += r.n_scored();
     }
     let rmse_n = (se / n.max(1) as f64).sqrt();
     Metrics {
@@ -164,8 +164,10 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
     let _ = writeln!(s, "# Diagnosis report\n");
     let p = &d.prep;
     let n_total: usize = p.recs.iter().map(|r| r.len()).sum();
-    let n_scored: usize = p.recs.iter().map(|r| r.n_scored()).sum();
-    let n_ambiguous: usize = p.recs.iter().map(|r| r.n_branch_ambiguous).sum();
+    let count = |m: &[bool]| m.iter().filter(|b| **b).count();
+    let n_scored: usize = d.scored_mask.iter().map(|m| count(m)).sum();
+    let n_in_range: usize = p.recs.iter().map(|r| count(&r.in_range)).sum();
+    let n_ambiguous = n_in_range - n_scored;
     let mut noise: Vec<f64> = p.recs.iter().map(|r| r.velocity_noise_m_s).collect();
     noise.sort_by(f64::total_cmp);
     let median_noise_m_s = noise.get(noise.len() / 2).copied().unwrap_or(0.0);
@@ -185,8 +187,9 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
          in-sample for fit recordings, predicted for validate ones. Every improvement below is \
          held out.\n\n\
          Scored samples: {} of {}. Left out: {} whose branch is ambiguous (|v| < {}σ of the \
-         velocity noise, median σ = {:.2} mm/s: the paper's model picks a branch by the sign of v, \
-         and at a turn-around that sign is chance), and {} of validate recordings outside the \
+         velocity noise, median σ = {:.2} mm/s, at the velocity the baseline or the final model \
+         reads: the paper's model picks a branch by the sign of v, and at a turn-around that sign \
+         is chance), and {} of validate recordings outside the \
          stroke or turn-around range the bracketing currents were fitted on.\n",
         if d.baseline_given {
             "the given model"
@@ -320,8 +323,8 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
             r.file,
             r.role,
             current_label(r),
-            rec_rmse(&r.force_n, &d.baseline_pred[i], &r.in_domain),
-            rec_rmse(&r.force_n, &d.final_pred[i], &r.in_domain),
+            rec_rmse(&r.force_n, &d.baseline_pred[i], &d.scored_mask[i]),
+            rec_rmse(&r.force_n, &d.final_pred[i], &d.scored_mask[i]),
             peak_error(&r.force_n, &d.baseline_pred[i]),
             peak_error(&r.force_n, &d.final_pred[i])
         );

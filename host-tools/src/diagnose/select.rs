@@ -54,6 +54,11 @@ struct VariantEval {
     /// Per recording SSE under the full fit (for the parameter bootstrap).
     full_sse: Vec<f64>,
     full_fit_sse: f64,
+    /// Per recording and sample: held-out and full-fit squared errors, and
+    /// the samples this variant is scored on.
+    heldout_se: Vec<Vec<f64>>,
+    full_se: Vec<Vec<f64>>,
+    mask: Vec<Vec<bool>>,
 }
 
 /// A model scored out of sample.
@@ -68,6 +73,16 @@ pub struct Scored {
     /// In-sample SSE over fit recordings (or validate ones, for saturation).
     pub insample_sse: f64,
     pub insample_n: usize,
+    /// The in-sample data are the validate recordings (a candidate that
+    /// only changes how they are predicted).
+    pub insample_on_validate: bool,
+    /// In-sample SSE and samples over fit recordings (whatever `insample_*` holds).
+    pub fit_sse: f64,
+    pub fit_n: usize,
+    /// Per recording and sample: held-out squared error, and whether the
+    /// sample is scored (comparisons use the samples both models score).
+    pub heldout_se: Vec<Vec<f64>>,
+    pub mask: Vec<Vec<bool>>,
     /// Number of parameters (linear + searched).
     pub n_params: usize,
     /// For each variant: its terms and per-recording SSE under its full fit.
@@ -80,27 +95,29 @@ impl Scored {
     }
 }
 
-/// SSE over the samples where the model is defined.
-fn sse(a: &[f64], b: &[f64], mask: &[bool]) -> f64 {
-    a.iter()
-        .zip(b)
-        .zip(mask)
-        .filter(|(_, m)| **m)
-        .map(|((x, y), _)| (x - y) * (x - y))
-        .sum()
+/// Squared error per sample.
+fn squared_errors(a: &[f64], b: &[f64]) -> Vec<f64> {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).collect()
+}
+
+/// Sum over the samples where `mask` holds.
+fn masked_sum(se: &[f64], mask: &[bool]) -> f64 {
+    se.iter().zip(mask).filter(|(_, m)| **m).map(|(e, _)| e).sum()
 }
 
 fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
     let d = Designs::build(prep, terms);
     let fit = prep.fit_indices();
     let full = d.solve(prep, &fit)?;
-    let mut heldout_sse = vec![0.0; prep.recs.len()];
-    let mut full_sse = vec![0.0; prep.recs.len()];
-    for (i, rec) in prep.recs.iter().enumerate() {
-        full_sse[i] = sse(&d.predict(prep, i, &full), &rec.force_n, &rec.in_domain);
-        if !rec.is_fit() {
-            heldout_sse[i] = full_sse[i];
-        }
+    let mask: Vec<Vec<bool>> = d.recs.iter().map(|r| r.mask.clone()).collect();
+    let full_se: Vec<Vec<f64>> = (0..prep.recs.len())
+        .map(|i| squared_errors(&d.predict(prep, i, &full), &prep.recs[i].force_n))
+        .collect();
+    let full_sse: Vec<f64> = (0..prep.recs.len()).map(|i| masked_sum(&full_se[i], &mask[i])).collect();
+    let mut heldout_se = full_se.clone();
+    let mut heldout_sse = full_sse.clone();
+    for &i in &fit {
+        heldout_sse[i] = 0.0;
     }
     let mut fold_train_sse = Vec::with_capacity(prep.n_folds);
     for f in 0..prep.n_folds {
@@ -109,11 +126,8 @@ fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
         let sol = d.solve_in(prep, &prep.training_for(f), bracket, 6)?;
         fold_train_sse.push(sol.sse);
         for i in prep.fold_members(f) {
-            heldout_sse[i] = sse(
-                &d.predict(prep, i, &sol),
-                &prep.recs[i].force_n,
-                &prep.recs[i].in_domain,
-            );
+            heldout_se[i] = squared_errors(&d.predict(prep, i, &sol), &prep.recs[i].force_n);
+            heldout_sse[i] = masked_sum(&heldout_se[i], &mask[i]);
         }
     }
     let full_fit_sse = fit.iter().map(|&i| full_sse[i]).sum();
@@ -123,6 +137,9 @@ fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
         heldout_sse,
         full_sse,
         full_fit_sse,
+        heldout_se,
+        full_se,
+        mask,
     })
 }
 
@@ -159,6 +176,8 @@ pub fn score_refined(prep: &Prepared, mut variants: Vec<Terms>, refine: &dyn Fn(
     }
     let ev = |v: usize| evals[v].as_ref().expect("filtered to fitted variants");
     let mut heldout_sse = vec![0.0; prep.recs.len()];
+    // Which variant each recording's held-out numbers come from.
+    let mut source = vec![ok[0]; prep.recs.len()];
     for f in 0..prep.n_folds {
         let best = *ok
             .iter()
@@ -166,6 +185,7 @@ pub fn score_refined(prep: &Prepared, mut variants: Vec<Terms>, refine: &dyn Fn(
             .expect("non-empty");
         for i in prep.fold_members(f) {
             heldout_sse[i] = ev(best).heldout_sse[i];
+            source[i] = best;
         }
     }
     let validate = prep.validate_indices();
@@ -173,7 +193,8 @@ pub fn score_refined(prep: &Prepared, mut variants: Vec<Terms>, refine: &dyn Fn(
         .iter()
         .all(|&v| (ev(v).full_fit_sse - ev(ok[0]).full_fit_sse).abs() <= 1e-9 * ev(ok[0]).full_fit_sse.max(1e-300));
     let chosen;
-    let (insample_sse, insample_n);
+    let (insample_sse, insample_n, insample_on_validate);
+    let count = |m: &[bool]| m.iter().filter(|b| **b).count();
     if fit_ties && ok.len() > 1 && validate.len() >= 2 {
         // Only validate predictions differ: choose leave-one-validate-recording-out.
         for &j in &validate {
@@ -191,6 +212,7 @@ pub fn score_refined(prep: &Prepared, mut variants: Vec<Terms>, refine: &dyn Fn(
                 })
                 .expect("non-empty");
             heldout_sse[j] = ev(best).full_sse[j];
+            source[j] = best;
         }
         let val_sse = |v: usize| validate.iter().map(|&i| ev(v).full_sse[i]).sum::<f64>();
         chosen = *ok
@@ -198,7 +220,8 @@ pub fn score_refined(prep: &Prepared, mut variants: Vec<Terms>, refine: &dyn Fn(
             .min_by(|&&a, &&b| val_sse(a).total_cmp(&val_sse(b)))
             .expect("non-empty");
         insample_sse = val_sse(chosen);
-        insample_n = validate.iter().map(|&i| prep.recs[i].n_scored()).sum();
+        insample_n = validate.iter().map(|&i| count(&ev(chosen).mask[i])).sum();
+        insample_on_validate = true;
     } else {
         chosen = *ok
             .iter()
@@ -206,9 +229,11 @@ pub fn score_refined(prep: &Prepared, mut variants: Vec<Terms>, refine: &dyn Fn(
             .expect("non-empty");
         for &i in &validate {
             heldout_sse[i] = ev(chosen).full_sse[i];
+            source[i] = chosen;
         }
         insample_sse = ev(chosen).full_fit_sse;
-        insample_n = prep.fit_indices().iter().map(|&i| prep.recs[i].n_scored()).sum();
+        insample_n = prep.fit_indices().iter().map(|&i| count(&ev(chosen).mask[i])).sum();
+        insample_on_validate = false;
     }
     let terms = variants[chosen];
     let searched = usize::from(ok.len() > 1);
@@ -218,9 +243,23 @@ pub fn score_refined(prep: &Prepared, mut variants: Vec<Terms>, refine: &dyn Fn(
         terms,
         solution: ev(chosen).full.clone(),
         heldout_sse,
-        n: prep.recs.iter().map(|r| r.n_scored()).collect(),
+        n: (0..prep.recs.len()).map(|i| count(&ev(source[i]).mask[i])).collect(),
         insample_sse,
         insample_n,
+        insample_on_validate,
+        fit_sse: ev(chosen).full_fit_sse,
+        fit_n: prep.fit_indices().iter().map(|&i| count(&ev(chosen).mask[i])).sum(),
+        heldout_se: (0..prep.recs.len())
+            .map(|i| {
+                let e = ev(source[i]);
+                if prep.recs[i].is_fit() {
+                    e.heldout_se[i].clone()
+                } else {
+                    e.full_se[i].clone()
+                }
+            })
+            .collect(),
+        mask: (0..prep.recs.len()).map(|i| ev(source[i]).mask[i].clone()).collect(),
         n_params,
         variant_sse: ok.iter().map(|&v| (variants[v], ev(v).full_sse.clone())).collect(),
     })
@@ -244,19 +283,37 @@ pub struct Comparison {
 }
 
 pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<Effect>, th: &Thresholds) -> Comparison {
-    let n_total: usize = before.n.iter().sum();
-    let rmse_before_n = (before.heldout_sse.iter().sum::<f64>() / n_total as f64).sqrt();
-    let rmse_after_n = (after.heldout_sse.iter().sum::<f64>() / n_total as f64).sqrt();
-    let ratio = rmse_before_n / rmse_after_n.max(1e-300);
+    // Both models on the same samples: those both score (they differ only
+    // where a sensor delay moves the turn-around sample whose branch is chance).
     let m = prep.recs.len();
+    let (mut sse_before, mut sse_after, mut n_total) = (vec![0.0; m], vec![0.0; m], 0usize);
+    for i in 0..m {
+        if before.mask[i] == after.mask[i] {
+            sse_before[i] = before.heldout_sse[i];
+            sse_after[i] = after.heldout_sse[i];
+            n_total += before.n[i];
+            continue;
+        }
+        for t in 0..prep.recs[i].len() {
+            if before.mask[i][t] && after.mask[i][t] {
+                sse_before[i] += before.heldout_se[i][t];
+                sse_after[i] += after.heldout_se[i][t];
+                n_total += 1;
+            }
+        }
+    }
+    let n_total = n_total.max(1);
+    let rmse_before_n = (sse_before.iter().sum::<f64>() / n_total as f64).sqrt();
+    let rmse_after_n = (sse_after.iter().sum::<f64>() / n_total as f64).sqrt();
+    let ratio = rmse_before_n / rmse_after_n.max(1e-300);
     let mut rng = ChaCha8Rng::seed_from_u64(th.seed);
     let mut ratios: Vec<f64> = (0..th.bootstrap_resamples)
         .map(|_| {
             let (mut b, mut a) = (0.0, 0.0);
             for _ in 0..m {
                 let i = rng.random_range(0..m);
-                b += before.heldout_sse[i];
-                a += after.heldout_sse[i];
+                b += sse_before[i];
+                a += sse_after[i];
             }
             (b / a.max(1e-300)).sqrt()
         })
@@ -266,11 +323,15 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
     let ratio_ci95 = [pct(0.025), pct(0.975)];
     // BIC on the in-sample fit: n·ln(SSE/n) + k·ln(n). For saturation the
     // in-sample data are the validate recordings, before and after.
-    let (n_b, sse_b) = if after.insample_n == before.insample_n {
-        (before.insample_n, before.insample_sse)
-    } else {
+    // Before is measured on the same kind of data as after's in-sample fit.
+    let (n_b, sse_b) = if after.insample_on_validate {
         let v = prep.validate_indices();
-        (after.insample_n, v.iter().map(|&i| before.heldout_sse[i]).sum())
+        (
+            v.iter().map(|&i| before.n[i]).sum(),
+            v.iter().map(|&i| before.heldout_sse[i]).sum(),
+        )
+    } else {
+        (before.fit_n, before.fit_sse)
     };
     let bic = |sse: f64, n: usize, k: usize| n as f64 * (sse / n as f64).max(1e-300).ln() + k as f64 * (n as f64).ln();
     let k_added = after.n_params.saturating_sub(before.n_params).max(1);
