@@ -174,7 +174,7 @@ fn evidence_for(
     let loc = locate::locate(prep, pred_before);
     let (mut res, mut term) = (Vec::new(), Vec::new());
     // Where the added term acts: recordings ranked by the RMS change it makes.
-    let mut acts: Vec<(f64, &str, f64)> = Vec::new();
+    let mut acts: Vec<(f64, &str, String)> = Vec::new();
     for (i, r) in prep.recs.iter().enumerate() {
         let mut e = 0.0;
         for t in 0..r.len() {
@@ -183,7 +183,7 @@ fn evidence_for(
             term.push(d);
             e += d * d;
         }
-        acts.push(((e / r.len().max(1) as f64).sqrt(), r.file.as_str(), r.current_a));
+        acts.push(((e / r.len().max(1) as f64).sqrt(), r.file.as_str(), r.current_label()));
     }
     acts.sort_by(|a, b| b.0.total_cmp(&a.0));
     let acts_on: Vec<String> = acts

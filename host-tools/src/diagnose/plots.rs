@@ -260,7 +260,7 @@ pub fn loops_worst(d: &Diagnosis, path: &Path) -> Result<()> {
                     .flat_map(|&t| [r.force_n[t], d.baseline_pred[i][t], d.final_pred[i][t]]),
             );
             let mut chart = ChartBuilder::on(panel)
-                .caption(format!("{} ({} A)", r.file, r.current_a), ("sans-serif", 18))
+                .caption(format!("{} ({} A)", r.file, r.current_label()), ("sans-serif", 18))
                 .margin(12)
                 .x_label_area_size(45)
                 .y_label_area_size(70)

@@ -85,6 +85,18 @@ impl Rec {
             .collect()
     }
 
+    /// The held current, or `first→last` when it changes during the test.
+    pub fn current_label(&self) -> String {
+        match &self.current_trace_a {
+            Some(c) if self.current_change_a() > 0.0 => format!(
+                "{}→{}",
+                c.first().copied().unwrap_or(self.current_a),
+                c.last().copied().unwrap_or(self.current_a)
+            ),
+            _ => format!("{}", self.current_a),
+        }
+    }
+
     /// How far the recorded current moves during the test (A; 0 when held).
     pub fn current_change_a(&self) -> f64 {
         self.current_trace_a.as_ref().map_or(0.0, |c| {

@@ -131,16 +131,6 @@ pub fn write_predictions(d: &Diagnosis, dir: &Path) -> Result<()> {
     Ok(())
 }
 
-/// The held current, or `first→last` when it changes during the test.
-fn current_label(r: &super::prepared::Rec) -> String {
-    match &r.current_trace_a {
-        Some(c) if r.current_change_a() > 0.0 => {
-            format!("{}→{}", c.first().copied().unwrap_or(0.0), c.last().copied().unwrap_or(0.0))
-        }
-        _ => format!("{}", r.current_a),
-    }
-}
-
 /// RMSE over the samples where the model is defined (`mask`).
 fn rec_rmse(f: &[f64], p: &[f64], mask: &[bool]) -> f64 {
     let (sse, n) = f
@@ -322,7 +312,7 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
             "| {} | {:?} | {} | {:.3} | {:.3} | {:+.3} | {:+.3} |",
             r.file,
             r.role,
-            current_label(r),
+            r.current_label(),
             rec_rmse(&r.force_n, &d.baseline_pred[i], &d.scored_mask[i]),
             rec_rmse(&r.force_n, &d.final_pred[i], &d.scored_mask[i]),
             peak_error(&r.force_n, &d.baseline_pred[i]),
