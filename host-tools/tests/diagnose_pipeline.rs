@@ -93,13 +93,20 @@ fn stress_softening_is_found_with_its_depth() {
 fn coil_lag_is_found_with_its_time_constant_on_controlled_impacts() {
     // 0.6 ms = 6 samples: off the √2 grid (5.66, 8), so the refinement matters.
     let tau = 6.0 * SAMPLE_PERIOD_S;
-    let d = diagnose(&dataset_with_steps(Added::CoilLag { tau_s: tau }, 7), &DiagnoseOptions::default())
-        .expect("diagnosis");
+    let d = diagnose(
+        &dataset_with_steps(Added::CoilLag { tau_s: tau }, 7),
+        &DiagnoseOptions::default(),
+    )
+    .expect("diagnosis");
     assert_eq!(names(&d), vec!["coil_lag"]);
     let p = &d.findings[0].parameters["time_constant_s"];
     assert!((p.value - tau).abs() < 0.1 * tau, "tau {} vs {tau}", p.value);
     assert!(p.ci95[0] <= p.value && p.value <= p.ci95[1]);
-    assert!(d.findings[0].heldout_improvement > 2.0, "{}", d.findings[0].heldout_improvement);
+    assert!(
+        d.findings[0].heldout_improvement > 2.0,
+        "{}",
+        d.findings[0].heldout_improvement
+    );
     // Only the controlled impacts change: the per-recording table shows their steps.
     let md = report::report_markdown(&d, &report::report_json(&d));
     assert!(md.contains("| step0_i0-1.csv | Validate | 0→1 |"), "{md}");

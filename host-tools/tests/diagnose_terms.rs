@@ -43,14 +43,25 @@ fn reversals_are_found_on_displacement_not_noisy_velocity() {
 fn the_effective_current_follows_a_step_through_the_coil_lag() {
     let ds = dataset_with_steps(Added::None, 1);
     let prep = prepare(&ds, &FoldPlan::Stratified { k: 3 }, &[]).expect("prepared");
-    let rec = prep.recs.iter().find(|r| r.file == "step0_i0-1.csv").expect("step recording");
+    let rec = prep
+        .recs
+        .iter()
+        .find(|r| r.file == "step0_i0-1.csv")
+        .expect("step recording");
     let tau = 3.0 * SAMPLE_PERIOD_S;
     let lagged = effective_current_a(rec, Some(tau));
     // The recorded command switches at STEP_SAMPLE; the coil is taken to see it
     // half a sample earlier (mid-interval), then 1 − e^{−t/τ}.
     let t_step = (STEP_SAMPLE as f64 - 0.5) * SAMPLE_PERIOD_S;
     let (from, to) = STEPS_A[0];
-    for k in [0, STEP_SAMPLE - 1, STEP_SAMPLE, STEP_SAMPLE + 1, STEP_SAMPLE + 3, STEP_SAMPLE + 10] {
+    for k in [
+        0,
+        STEP_SAMPLE - 1,
+        STEP_SAMPLE,
+        STEP_SAMPLE + 1,
+        STEP_SAMPLE + 3,
+        STEP_SAMPLE + 10,
+    ] {
         let t = k as f64 * SAMPLE_PERIOD_S;
         let want = lagged_step_a(from, to, t, t_step, tau);
         assert!((lagged[k] - want).abs() < 1e-9, "sample {k}: {} vs {want}", lagged[k]);

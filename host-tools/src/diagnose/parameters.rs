@@ -152,7 +152,10 @@ pub fn with_intervals(
                     .map(|q| q.1)
             })
             .collect();
-        let is_searched = matches!(name.as_str(), "tau_s" | "x_e_mm" | "v0_m_s" | "n0" | "i_s_a" | "time_constant_s");
+        let is_searched = matches!(
+            name.as_str(),
+            "tau_s" | "x_e_mm" | "v0_m_s" | "n0" | "i_s_a" | "time_constant_s"
+        );
         let mut samples = if is_searched { from_search } else { from_linear };
         let ci95 = if samples.is_empty() {
             [*value, *value]

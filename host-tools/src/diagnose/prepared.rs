@@ -195,7 +195,10 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
         let current_trace_a = match &s.current_a {
             Some(c) if role == Role::Validate => {
                 if c.len() != s.len() || c.iter().any(|v| !v.is_finite()) {
-                    bail!("{}: the `current_a` column differs in length or holds NaN/infinite values", r.file);
+                    bail!(
+                        "{}: the `current_a` column differs in length or holds NaN/infinite values",
+                        r.file
+                    );
                 }
                 Some(c.clone())
             }

@@ -113,7 +113,9 @@ fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
     let full_se: Vec<Vec<f64>> = (0..prep.recs.len())
         .map(|i| squared_errors(&d.predict(prep, i, &full), &prep.recs[i].force_n))
         .collect();
-    let full_sse: Vec<f64> = (0..prep.recs.len()).map(|i| masked_sum(&full_se[i], &mask[i])).collect();
+    let full_sse: Vec<f64> = (0..prep.recs.len())
+        .map(|i| masked_sum(&full_se[i], &mask[i]))
+        .collect();
     let mut heldout_se = full_se.clone();
     let mut heldout_sse = full_sse.clone();
     for &i in &fit {
@@ -151,7 +153,11 @@ pub fn score(prep: &Prepared, variants: &[Terms]) -> Result<Scored> {
 /// As [`score`], then adds the variants `refine` proposes around the grid's
 /// best full-data fit (e.g. fractional delays between grid samples) and
 /// chooses among all of them, again inside the training folds.
-pub fn score_refined(prep: &Prepared, mut variants: Vec<Terms>, refine: &dyn Fn(&Terms) -> Vec<Terms>) -> Result<Scored> {
+pub fn score_refined(
+    prep: &Prepared,
+    mut variants: Vec<Terms>,
+    refine: &dyn Fn(&Terms) -> Vec<Terms>,
+) -> Result<Scored> {
     if variants.is_empty() {
         bail!("no model variants to score");
     }
