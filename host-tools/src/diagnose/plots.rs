@@ -229,7 +229,9 @@ pub fn residual_covariates(d: &Diagnosis, path: &Path) -> Result<()> {
     })
 }
 
-/// Force–displacement loops of the three worst recordings (by baseline RMSE).
+/// Force–displacement loops of the three worst recordings (by baseline RMSE),
+/// drawn over the scored samples only: a branch-ambiguous sample, or a stretch
+/// outside the fitted stroke, breaks the lines instead of drawing a spike.
 pub fn loops_worst(d: &Diagnosis, path: &Path) -> Result<()> {
     let mut order: Vec<(usize, f64)> = d
         .prep
@@ -237,13 +239,11 @@ pub fn loops_worst(d: &Diagnosis, path: &Path) -> Result<()> {
         .iter()
         .enumerate()
         .map(|(i, r)| {
-            let se: f64 = r
-                .force_n
-                .iter()
-                .zip(&d.baseline_pred[i])
-                .map(|(f, p)| (f - p) * (f - p))
-                .sum();
-            (i, se / r.len() as f64)
+            let (se, n) = (0..r.len())
+                .filter(|&t| d.scored_mask[i][t])
+                .map(|t| (r.force_n[t] - d.baseline_pred[i][t]).powi(2))
+                .fold((0.0, 0usize), |(s, n), e| (s + e, n + 1));
+            (i, se / n.max(1) as f64)
         })
         .collect();
     order.sort_by(|a, b| b.1.total_cmp(&a.1));
@@ -253,7 +253,28 @@ pub fn loops_worst(d: &Diagnosis, path: &Path) -> Result<()> {
         for (panel, &i) in panels.iter().zip(&worst) {
             let r = &d.prep.recs[i];
             let k = stride(r.len(), 4000);
-            let idx: Vec<usize> = (0..r.len()).step_by(k).collect();
+            let idx: Vec<usize> = (0..r.len()).step_by(k).filter(|&t| d.scored_mask[i][t]).collect();
+            // Runs of consecutive drawn samples, also split where x turns
+            // around: a thick polyline that doubles back on itself gets a
+            // miter join that shoots off the chart.
+            let mut runs: Vec<Vec<usize>> = Vec::new();
+            for &t in &idx {
+                match runs.last_mut() {
+                    Some(run) if run.last().is_some_and(|&p| t - p <= k) => {
+                        let turns = match run[..] {
+                            [.., a, b] => (r.x_mm[b] - r.x_mm[a]) * (r.x_mm[t] - r.x_mm[b]) < 0.0,
+                            _ => false,
+                        };
+                        if turns {
+                            let b = run[run.len() - 1];
+                            runs.push(vec![b, t]);
+                        } else {
+                            run.push(t);
+                        }
+                    }
+                    _ => runs.push(vec![t]),
+                }
+            }
             let (x0, x1) = range(idx.iter().map(|&t| r.x_mm[t]));
             let (y0, y1) = range(
                 idx.iter()
@@ -281,10 +302,12 @@ pub fn loops_worst(d: &Diagnosis, path: &Path) -> Result<()> {
             ];
             for (name, y, color) in series {
                 chart
-                    .draw_series(LineSeries::new(
-                        idx.iter().map(|&t| (r.x_mm[t], y[t])),
-                        color.stroke_width(2),
-                    ))
+                    .draw_series(runs.iter().map(|run| {
+                        PathElement::new(
+                            run.iter().map(|&t| (r.x_mm[t], y[t])).collect::<Vec<_>>(),
+                            color.stroke_width(2),
+                        )
+                    }))
                     .map_err(|e| anyhow!("{e}"))?
                     .label(name)
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(3)));

@@ -321,7 +321,8 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
     }
     let _ = writeln!(
         s,
-        "\n## Loops of the worst recordings, before and after\n\n![loops](loops_worst.png)"
+        "\n## Loops of the worst recordings, before and after\n\nScored samples only (the lines break where \
+         a sample is left out).\n\n![loops](loops_worst.png)"
     );
     s
 }
