@@ -1,40 +1,15 @@
 //! The diagnosis's plots: residual maps, residual against covariates, and
-//! before/after loops of the worst recordings. PNGs are rendered to a
-//! temporary file and then written atomically.
+//! before/after loops of the worst recordings. Rendered through
+//! `plot::chart::render_png` (bundled font, atomic write).
 use super::locate;
 use super::Diagnosis;
-use crate::atomic_write::write_atomic;
-use anyhow::{anyhow, Context, Result};
+use crate::plot::chart::render_png;
+use anyhow::{anyhow, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
-use std::sync::Once;
-
-static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
-static REGISTER: Once = Once::new();
-
-fn register_font() {
-    REGISTER.call_once(|| {
-        // A bundled font: plots need no system fonts.
-        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
-    });
-}
 
 type Area<'a> = DrawingArea<BitMapBackend<'a>, Shift>;
-
-fn render_png(path: &Path, size: (u32, u32), draw: impl FnOnce(&Area) -> Result<()>) -> Result<()> {
-    register_font();
-    let dir = tempfile::tempdir().context("temporary directory for a plot")?;
-    let tmp = dir.path().join("plot.png");
-    {
-        let root = BitMapBackend::new(&tmp, size).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
-        draw(&root)?;
-        root.present().map_err(|e| anyhow!("{e}"))?;
-    }
-    let bytes = std::fs::read(&tmp).context("reading the rendered plot")?;
-    write_atomic(path, &bytes)
-}
 
 fn range(vals: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = vals
@@ -61,10 +36,7 @@ fn current_color(d: &Diagnosis, current_a: f64) -> RGBColor {
         RGBColor(188, 189, 34),
         RGBColor(23, 190, 207),
     ];
-    let mut cs: Vec<f64> = d.prep.recs.iter().map(|r| r.current_a).collect();
-    cs.sort_by(f64::total_cmp);
-    cs.dedup();
-    let k = cs.iter().position(|&c| c == current_a).unwrap_or(0);
+    let k = distinct_currents(d).iter().position(|&c| c == current_a).unwrap_or(0);
     PALETTE[k % PALETTE.len()]
 }
 
