@@ -100,5 +100,5 @@ fn samples_whose_branch_is_chance_are_neither_fitted_nor_scored() {
         }
     }
     // The support data have noise-free kinematics: nothing is ambiguous but an exact zero.
-    assert!(prep.recs.iter().all(|r| r.n_branch_ambiguous <= 1));
+    assert!(prep.recs.iter().all(|r| r.n_branch_ambiguous() <= 1));
 }

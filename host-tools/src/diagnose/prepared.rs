@@ -38,8 +38,6 @@ pub struct Rec {
     pub in_range: Vec<bool>,
     /// Velocity channel noise (m/s), estimated from the recording itself.
     pub velocity_noise_m_s: f64,
-    /// Samples left out because their branch is ambiguous.
-    pub n_branch_ambiguous: usize,
 }
 
 impl Rec {
@@ -56,6 +54,15 @@ impl Rec {
         self.in_domain.iter().filter(|b| **b).count()
     }
 
+    /// Samples in range but left out because their branch is ambiguous.
+    pub fn n_branch_ambiguous(&self) -> usize {
+        self.in_range
+            .iter()
+            .zip(&self.in_domain)
+            .filter(|(r, d)| **r && !**d)
+            .count()
+    }
+
     pub fn is_fit(&self) -> bool {
         self.role == Role::Fit
     }
@@ -70,16 +77,24 @@ impl Rec {
 
     /// The samples a model is fitted and scored on: inside the range, with a
     /// clear branch for the velocity the model reads, v(t − τ) under a sensor
-    /// delay τ (see [`BRANCH_AMBIGUITY_SIGMAS`]).
+    /// delay τ.
+    ///
+    /// The paper's model switches branch on the sign of velocity, and the two
+    /// branches differ by the whole hysteresis band. At a turn-around the
+    /// sample nearest v = 0 falls on either branch by chance (velocity noise),
+    /// so one sample can carry an error of thousands of newtons that says
+    /// nothing about missing physics and would swamp every per-recording
+    /// RMSE. Those samples, |v| < 2σ_v (typically one per turn-around in a
+    /// drop test), are neither fitted nor scored; the report counts them.
     pub fn scored_mask(&self, delay_s: Option<f64>) -> Vec<bool> {
-        let Some(tau) = delay_s else {
-            return self.in_domain.clone();
-        };
         let limit = BRANCH_AMBIGUITY_SIGMAS * self.velocity_noise_m_s;
         let mut hint = 0;
         (0..self.len())
             .map(|t| {
-                let v = super::design::sample_at(&self.time_s, &self.v_m_s, self.time_s[t] - tau, &mut hint);
+                let v = match delay_s {
+                    Some(tau) => super::design::sample_at(&self.time_s, &self.v_m_s, self.time_s[t] - tau, &mut hint),
+                    None => self.v_m_s[t],
+                };
                 self.in_range[t] && v.abs() >= limit
             })
             .collect()
@@ -223,7 +238,6 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
             in_domain: vec![true; s.len()],
             in_range: vec![true; s.len()],
             velocity_noise_m_s: velocity_noise_m_s(&s.v_m_s),
-            n_branch_ambiguous: 0,
         });
     }
     let mut currents_a: Vec<f64> = recs.iter().filter(|r| r.is_fit()).map(|r| r.current_a).collect();
@@ -232,8 +246,10 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
     if currents_a.is_empty() {
         bail!("the data set has no `fit` recordings to build the baseline from");
     }
-    mark_domain(&mut recs, &currents_a);
-    recs.iter_mut().for_each(mark_branch_ambiguous);
+    mark_range(&mut recs, &currents_a);
+    for r in &mut recs {
+        r.in_domain = r.scored_mask(None);
+    }
     let n_folds = assign_folds(&mut recs, ds, plan)?;
     let free_drop = ds
         .recordings
@@ -318,7 +334,7 @@ fn reversals(x: &[f64], band_mm: f64) -> Vec<(f64, bool)> {
 /// if the reversal point lies within the range of reversal points of those
 /// currents' fit recordings (the reference model's turn-around memory is
 /// fitted per current as a function of the reversal point).
-fn mark_domain(recs: &mut [Rec], currents_a: &[f64]) {
+fn mark_range(recs: &mut [Rec], currents_a: &[f64]) {
     let span = recs
         .iter()
         .filter(|r| r.is_fit())
@@ -355,7 +371,7 @@ fn mark_domain(recs: &mut [Rec], currents_a: &[f64]) {
     };
     for r in recs.iter_mut().filter(|r| !r.is_fit()) {
         let (feature, compressing) = super::design::memory_feature(&r.x_mm, band * 5.0);
-        r.in_domain = (0..r.len())
+        r.in_range = (0..r.len())
             .map(|t| {
                 let lim = limits(r.current_at(t));
                 let x = r.x_mm[t];
@@ -377,26 +393,6 @@ fn mark_domain(recs: &mut [Rec], currents_a: &[f64]) {
 /// A sample's branch counts as ambiguous when its speed is within this many
 /// standard deviations of the velocity noise (two-sided ≈ 95 %).
 pub const BRANCH_AMBIGUITY_SIGMAS: f64 = 2.0;
-
-/// The paper's model switches branch on the sign of velocity, and the two
-/// branches differ by the whole hysteresis band. At a turn-around the sample
-/// nearest v = 0 falls on either branch by chance (velocity noise), so one
-/// sample can carry an error of thousands of newtons that says nothing about
-/// missing physics and would swamp every per-recording RMSE. Those samples,
-/// |v| < 2σ_v (typically one per turn-around in a drop test), are neither
-/// fitted nor scored; the report counts them.
-fn mark_branch_ambiguous(r: &mut Rec) {
-    r.in_range = r.in_domain.clone();
-    let limit = BRANCH_AMBIGUITY_SIGMAS * r.velocity_noise_m_s;
-    let mut n = 0;
-    for (keep, v) in r.in_domain.iter_mut().zip(&r.v_m_s) {
-        if v.abs() < limit {
-            n += usize::from(*keep);
-            *keep = false;
-        }
-    }
-    r.n_branch_ambiguous = n;
-}
 
 /// White-noise standard deviation of a channel sampled fast enough that its
 /// signal is smooth: the second difference of white noise has σ·√6, that of a
