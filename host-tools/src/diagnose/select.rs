@@ -54,10 +54,9 @@ struct VariantEval {
     /// Per recording SSE under the full fit (for the parameter bootstrap).
     full_sse: Vec<f64>,
     full_fit_sse: f64,
-    /// Per recording and sample: held-out and full-fit squared errors, and
-    /// the samples this variant is scored on.
+    /// Per recording and sample: held-out squared errors (as `heldout_sse`),
+    /// and the samples this variant is scored on.
     heldout_se: Vec<Vec<f64>>,
-    full_se: Vec<Vec<f64>>,
     mask: Vec<Vec<bool>>,
 }
 
@@ -116,7 +115,8 @@ fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
     let full_sse: Vec<f64> = (0..prep.recs.len())
         .map(|i| masked_sum(&full_se[i], &mask[i]))
         .collect();
-    let mut heldout_se = full_se.clone();
+    // Validate recordings are held out of every fit: their full-fit errors are held out.
+    let mut heldout_se = full_se;
     let mut heldout_sse = full_sse.clone();
     for &i in &fit {
         heldout_sse[i] = 0.0;
@@ -140,7 +140,6 @@ fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
         full_sse,
         full_fit_sse,
         heldout_se,
-        full_se,
         mask,
     })
 }
@@ -256,14 +255,7 @@ pub fn score_refined(
         fit_sse: ev(chosen).full_fit_sse,
         fit_n: prep.fit_indices().iter().map(|&i| count(&ev(chosen).mask[i])).sum(),
         heldout_se: (0..prep.recs.len())
-            .map(|i| {
-                let e = ev(source[i]);
-                if prep.recs[i].is_fit() {
-                    e.heldout_se[i].clone()
-                } else {
-                    e.full_se[i].clone()
-                }
-            })
+            .map(|i| ev(source[i]).heldout_se[i].clone())
             .collect(),
         mask: (0..prep.recs.len()).map(|i| ev(source[i]).mask[i].clone()).collect(),
         n_params,
