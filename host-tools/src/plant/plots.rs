@@ -2,6 +2,7 @@
 //! Rendered through `plot::chart::render_png` (bundled font, atomic write).
 use super::closed_loop::Comparison;
 use anyhow::{anyhow, Result};
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -13,15 +14,54 @@ const COLOURS: [RGBColor; 4] = [
     RGBColor(148, 103, 189),
 ];
 
-fn png_atomic(
-    path: &Path,
-    draw: impl FnOnce(&DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>) -> Result<()>,
-) -> Result<()> {
+fn png_atomic(path: &Path, draw: impl FnOnce(&Area) -> Result<()>) -> Result<()> {
     crate::plot::chart::render_png(path, SIZE, draw)
 }
 
 fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
     values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
+}
+
+type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+type ForceChart<'a, 'b> = ChartContext<'a, BitMapBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Captioned axes from 0 with force (N) upwards, shared by both plots.
+fn force_axes<'a, 'b>(
+    root: &'a Area<'b>,
+    caption: &str,
+    x_desc: &str,
+    x_hi: f64,
+    f_hi: f64,
+) -> Result<ForceChart<'a, 'b>> {
+    let mut chart = ChartBuilder::on(root)
+        .caption(caption, ("sans-serif", 26))
+        .margin(16)
+        .x_label_area_size(50)
+        .y_label_area_size(80)
+        .build_cartesian_2d(0.0..x_hi, 0.0..f_hi)
+        .map_err(|e| anyhow!("{e}"))?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc("force on the damper (N)")
+        .y_label_formatter(&|v| format!("{v:.0}"))
+        .label_style(("sans-serif", 16))
+        .axis_desc_style(("sans-serif", 18))
+        .draw()
+        .map_err(|e| anyhow!("{e}"))?;
+    Ok(chart)
+}
+
+fn legend<'a, 'b: 'a>(chart: &mut ForceChart<'a, 'b>, position: SeriesLabelPosition) -> Result<()> {
+    chart
+        .configure_series_labels()
+        .label_font(("sans-serif", 16))
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .position(position)
+        .draw()
+        .map_err(|e| anyhow!("{e}"))?;
+    Ok(())
 }
 
 /// Measured force against time since contact, one line per run.
@@ -30,22 +70,13 @@ pub fn force_time_png(cmp: &Comparison, path: &Path) -> Result<()> {
     let (_, t_max) = bounds(all().map(|s| s.time_s * 1e3));
     let (_, f_max) = bounds(all().map(|s| s.force_n));
     png_atomic(path, |root| {
-        let mut chart = ChartBuilder::on(root)
-            .caption("Drop impact: force against time", ("sans-serif", 26))
-            .margin(16)
-            .x_label_area_size(50)
-            .y_label_area_size(80)
-            .build_cartesian_2d(0.0..t_max * 1.02, 0.0..f_max * 1.08)
-            .map_err(|e| anyhow!("{e}"))?;
-        chart
-            .configure_mesh()
-            .x_desc("time since contact (ms)")
-            .y_desc("force on the damper (N)")
-            .y_label_formatter(&|v| format!("{v:.0}"))
-            .label_style(("sans-serif", 16))
-            .axis_desc_style(("sans-serif", 18))
-            .draw()
-            .map_err(|e| anyhow!("{e}"))?;
+        let mut chart = force_axes(
+            root,
+            "Drop impact: force against time",
+            "time since contact (ms)",
+            t_max * 1.02,
+            f_max * 1.08,
+        )?;
         for (i, run) in cmp.runs.iter().enumerate() {
             let colour = COLOURS[i % COLOURS.len()];
             let points = run.trajectory.samples.iter().map(|s| (s.time_s * 1e3, s.force_n));
@@ -55,15 +86,7 @@ pub fn force_time_png(cmp: &Comparison, path: &Path) -> Result<()> {
                 .label(format!("{} (peak {:.0} N)", run.label, run.summary.peak_force_n))
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3)));
         }
-        chart
-            .configure_series_labels()
-            .label_font(("sans-serif", 16))
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()
-            .map_err(|e| anyhow!("{e}"))?;
-        Ok(())
+        legend(&mut chart, SeriesLabelPosition::UpperRight)
     })
 }
 
@@ -75,22 +98,13 @@ pub fn force_displacement_png(cmp: &Comparison, path: &Path) -> Result<()> {
     let stroke = cmp.runs.first().map_or(x_max, |r| r.usable_stroke_mm);
     let x_hi = x_max.max(stroke) * 1.05;
     png_atomic(path, |root| {
-        let mut chart = ChartBuilder::on(root)
-            .caption("Drop impact: force against displacement", ("sans-serif", 26))
-            .margin(16)
-            .x_label_area_size(50)
-            .y_label_area_size(80)
-            .build_cartesian_2d(0.0..x_hi, 0.0..f_max * 1.08)
-            .map_err(|e| anyhow!("{e}"))?;
-        chart
-            .configure_mesh()
-            .x_desc("displacement (mm, compression positive)")
-            .y_desc("force on the damper (N)")
-            .y_label_formatter(&|v| format!("{v:.0}"))
-            .label_style(("sans-serif", 16))
-            .axis_desc_style(("sans-serif", 18))
-            .draw()
-            .map_err(|e| anyhow!("{e}"))?;
+        let mut chart = force_axes(
+            root,
+            "Drop impact: force against displacement",
+            "displacement (mm, compression positive)",
+            x_hi,
+            f_max * 1.08,
+        )?;
         for (i, run) in cmp.runs.iter().enumerate() {
             let colour = COLOURS[i % COLOURS.len()];
             let points = run.trajectory.samples.iter().map(|s| (s.x_mm, s.force_n));
@@ -111,14 +125,6 @@ pub fn force_displacement_png(cmp: &Comparison, path: &Path) -> Result<()> {
             .map_err(|e| anyhow!("{e}"))?
             .label(format!("usable stroke {stroke:.0} mm"))
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey.stroke_width(2)));
-        chart
-            .configure_series_labels()
-            .label_font(("sans-serif", 16))
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperLeft)
-            .draw()
-            .map_err(|e| anyhow!("{e}"))?;
-        Ok(())
+        legend(&mut chart, SeriesLabelPosition::UpperLeft)
     })
 }
