@@ -19,12 +19,17 @@ pub struct PlotOptions {
     pub interpolated_a: Vec<f64>,
 }
 
-fn x_label() -> String {
-    "displacement x (mm)".into()
-}
-
-fn f_label() -> String {
-    "force F (N)".into()
+/// A force–displacement chart (Figs. 8, 9, 11, 12) to `{base}.png/.svg`.
+fn render_loops(title: String, series: Vec<Series>, base: &Path) -> Result<()> {
+    render(
+        &Chart {
+            title,
+            x_label: "displacement x (mm)".into(),
+            y_label: "force F (N)".into(),
+            series,
+        },
+        base,
+    )
 }
 
 /// The model loop at `current_a` as one closed path (compression out, extension back).
@@ -72,13 +77,9 @@ pub fn fig08(ds: &Dataset, table: &Table, dir: &Path) -> Result<Vec<PathBuf>> {
         }
         series.push(line(format!("model, {c} A"), model_path(table, c)?, 1));
         let base = dir.join(format!("fig08_loop_{}", current_tag(c)));
-        render(
-            &Chart {
-                title: format!("Measured vs modelled force–displacement loop at {c} A"),
-                x_label: x_label(),
-                y_label: f_label(),
-                series,
-            },
+        render_loops(
+            format!("Measured vs modelled force–displacement loop at {c} A"),
+            series,
             &base,
         )?;
         out.push(base);
@@ -101,15 +102,7 @@ pub fn fig09(table: &Table, dir: &Path) -> Result<PathBuf> {
         })
         .collect::<Result<Vec<_>>>()?;
     let base = dir.join("fig09_all_currents");
-    render(
-        &Chart {
-            title: "Modelled loops at every tabulated current".into(),
-            x_label: x_label(),
-            y_label: f_label(),
-            series,
-        },
-        &base,
-    )?;
+    render_loops("Modelled loops at every tabulated current".into(), series, &base)?;
     Ok(base)
 }
 
@@ -159,15 +152,7 @@ pub fn fig11(table: &Table, currents: &[f64], dir: &Path) -> Result<Option<PathB
         });
     }
     let base = dir.join("fig11_interpolated");
-    render(
-        &Chart {
-            title: "Interpolated loops between tabulated currents".into(),
-            x_label: x_label(),
-            y_label: f_label(),
-            series,
-        },
-        &base,
-    )?;
+    render_loops("Interpolated loops between tabulated currents".into(), series, &base)?;
     Ok(Some(base))
 }
 
@@ -198,13 +183,9 @@ pub fn fig12(ds: &Dataset, table: &Table, currents: &[f64], dir: &Path) -> Resul
             style: Style::Dashed { width: 3 },
         });
         let base = dir.join(format!("fig12_bracket_{}", current_tag(c)));
-        render(
-            &Chart {
-                title: format!("Interpolated loop at {c} A between its neighbours"),
-                x_label: x_label(),
-                y_label: f_label(),
-                series,
-            },
+        render_loops(
+            format!("Interpolated loop at {c} A between its neighbours"),
+            series,
             &base,
         )?;
         out.push(base);
