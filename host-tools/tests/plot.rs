@@ -29,20 +29,25 @@ fn synthetic_dataset(dir: &Path) {
     std::fs::write(dir.join("dataset.toml"), toml).unwrap();
 }
 
-#[test]
-fn fit_then_plot_writes_every_figure() {
-    let data = tempfile::tempdir().unwrap();
-    synthetic_dataset(data.path());
-    let out = tempfile::tempdir().unwrap();
-    let model = out.path().join("model.toml");
-    let options = FitOptions {
+/// A short GSA (20 agents × 20 iterations): the tests check outputs, not GSA.
+fn quick_fit() -> FitOptions {
+    FitOptions {
         gsa: mre_host::fit::gsa::GsaParams {
             agents: 20,
             iters: 20,
             ..Default::default()
         },
         ..Default::default()
-    };
+    }
+}
+
+#[test]
+fn fit_then_plot_writes_every_figure() {
+    let data = tempfile::tempdir().unwrap();
+    synthetic_dataset(data.path());
+    let out = tempfile::tempdir().unwrap();
+    let model = out.path().join("model.toml");
+    let options = quick_fit();
     let run = run_fit(data.path(), &options, &[], &model).unwrap();
     assert_eq!(run.fits.len(), 4, "0 A and 1 A, two branches each; 0.5 A is not fitted");
     let files = run_plot(
@@ -101,14 +106,7 @@ fn whole_pipeline_on_a_synthetic_data_set() {
     synthetic_dataset(data.path());
     let out = tempfile::tempdir().unwrap();
     let model = out.path().join("model.toml");
-    let options = FitOptions {
-        gsa: mre_host::fit::gsa::GsaParams {
-            agents: 20,
-            iters: 20,
-            ..Default::default()
-        },
-        ..Default::default()
-    };
+    let options = quick_fit();
     mre_host::fit::run_fit(data.path(), &options, &[], &model).unwrap();
     // The data follow the paper's 0 and 1 A quartics plus a ±20 N sine, so
     // the fitted loops reproduce the recordings to about that (RMSE ≤ 20 N)…
