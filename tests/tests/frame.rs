@@ -2,24 +2,8 @@
 //! out-of-order frames.
 use mre_core::frame::{CommandFrame, FrameError, SampleFrame, SampleReceiver, FRAME_LEN};
 use mre_core::Flags;
+use mre_tests::crc32_reference;
 use proptest::prelude::*;
-
-/// Bitwise CRC-32 (reflected, poly 0xEDB88320, init and xorout !0): the zlib
-/// CRC, written out here independently of the `crc` crate the core uses.
-fn crc32_reference(bytes: &[u8]) -> u32 {
-    let mut crc = !0u32;
-    for &b in bytes {
-        crc ^= u32::from(b);
-        for _ in 0..8 {
-            crc = if crc & 1 != 0 {
-                (crc >> 1) ^ 0xEDB8_8320
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    !crc
-}
 
 fn sample(seq: u32) -> SampleFrame {
     SampleFrame {

@@ -7,6 +7,7 @@ use mre_core::model::Branch;
 use mre_core::table::{
     content_crc, CurrentEntry, Quartic, Table, TableError, TableImage, FORMAT_VERSION, PAPER_TABLE4_ENTRIES,
 };
+use mre_tests::crc32_reference;
 
 const CURRENTS_A: [f32; 5] = [0.0, 0.5, 1.0, 1.5, 2.0];
 const XS_MM: [f32; 3] = [0.25, 0.5, 0.8];
@@ -218,22 +219,8 @@ fn a_flipped_bit_in_a_stored_table_fails_its_crc() {
 
 #[test]
 fn crc_is_the_standard_crc32_of_the_documented_byte_layout() {
-    // Reference CRC-32 (zlib/ISO-HDLC) by the bitwise definition, over the
+    // The reference CRC-32 (zlib/ISO-HDLC, bitwise definition) over the
     // layout documented in `content_crc`.
-    fn crc32_reference(bytes: &[u8]) -> u32 {
-        let mut crc = 0xFFFF_FFFFu32;
-        for &b in bytes {
-            crc ^= b as u32;
-            for _ in 0..8 {
-                crc = if crc & 1 != 0 {
-                    (crc >> 1) ^ 0xEDB8_8320
-                } else {
-                    crc >> 1
-                };
-            }
-        }
-        !crc
-    }
     assert_eq!(
         crc32_reference(b"123456789"),
         0xCBF4_3926,
