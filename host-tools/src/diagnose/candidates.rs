@@ -204,18 +204,21 @@ fn stepped_validate_count(prep: &Prepared) -> usize {
 /// velocity, which a rate term would then pick up as spurious damping; the
 /// coil time constant's √2 grid is refined to 2^(1/8) steps.
 pub fn refinements(prep: &Prepared, best: &Terms, effect: Effect) -> Vec<Terms> {
-    match (effect, best.delay_s) {
-        (Effect::SensorDelay, Some(tau)) => {
-            let dt = median_dt_s(prep);
-            [-0.5, -0.25, 0.25, 0.5]
-                .iter()
-                .map(|f| Terms {
-                    delay_s: Some(tau + f * dt),
-                    ..*best
-                })
-                .collect()
-        }
-        (Effect::StressSoftening, _) => match best.softening {
+    match effect {
+        Effect::SensorDelay => match best.delay_s {
+            Some(tau) => {
+                let dt = median_dt_s(prep);
+                [-0.5, -0.25, 0.25, 0.5]
+                    .iter()
+                    .map(|f| Terms {
+                        delay_s: Some(tau + f * dt),
+                        ..*best
+                    })
+                    .collect()
+            }
+            None => Vec::new(),
+        },
+        Effect::StressSoftening => match best.softening {
             Some(SofteningLaw::Sequence { n0 }) => [-0.5, -0.25, 0.25, 0.5]
                 .iter()
                 .map(|e| Terms {
@@ -225,7 +228,7 @@ pub fn refinements(prep: &Prepared, best: &Terms, effect: Effect) -> Vec<Terms> 
                 .collect(),
             _ => Vec::new(),
         },
-        (Effect::CoilLag, _) => match best.coil_lag_s {
+        Effect::CoilLag => match best.coil_lag_s {
             Some(tau) => [-0.25, -0.125, 0.125, 0.25]
                 .iter()
                 .map(|e| Terms {
