@@ -1,29 +1,86 @@
-//! Output files appear whole or not at all: each is written to a temporary
-//! file in the destination folder and renamed into place, so a failed run
-//! never leaves a partial file or clobbers an existing one.
-use anyhow::{Context, Result};
+//! Whole-command output staging: a command's outputs appear all together or
+//! not at all.
+//!
+//! Inside [`command`] every [`write_atomic`] (and every [`stage_folder`]) only
+//! *stages* its output: the bytes go to a hidden temporary file (or folder)
+//! beside the destination. When the command returns `Ok`, all staged outputs
+//! are renamed into place in one step; if any rename fails, the ones already
+//! moved are rolled back and the previous outputs are restored. When the
+//! command fails (an error, a full disk, a panic), the staged files are
+//! deleted and folders created for them are removed again: the previous
+//! outputs stay exactly as they were and nothing is left behind.
+//!
+//! Outside [`command`], [`write_atomic`] publishes each file at once (same
+//! temp-file-and-rename, one file per step). The CLI runs every command but
+//! `demo` inside [`command`]; `demo` builds its whole output folder with
+//! [`stage_folder`] instead, because its later steps read what earlier ones
+//! wrote.
+//!
+//! Two outputs of one command with the same destination are an error, never a
+//! silent overwrite. Outputs get the ordinary permissions the umask gives
+//! (temporary files are created 0666 & !umask, not tempfile's private 0600).
+use anyhow::{bail, Context, Result};
+use std::cell::RefCell;
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-/// Writes `bytes` to `path` atomically (same-folder temp file + rename).
+/// File inside every folder mre writes whole (data sets, the demo's output):
+/// only such a folder may be replaced (`--force`).
+pub const MARKER_FILE: &str = ".mre-output";
+const MARKER_TEXT: &str = "This folder was written by mre; `mre ... --force` may replace it.\n";
+
+thread_local! {
+    /// The output set of the command running on this thread, if any.
+    static ACTIVE: RefCell<Option<OutputSet>> = const { RefCell::new(None) };
+}
+
+/// Runs `f` as one command: its outputs are published together when it
+/// returns `Ok` and discarded otherwise (see the module docs). A `command`
+/// inside another joins the outer one.
+pub fn command<T>(f: impl FnOnce() -> Result<T>) -> Result<T> {
+    run_command(None, f)
+}
+
+/// [`command`] with an injected fault, for tests: staging the output after
+/// the first `writes` ones fails part-way through its bytes, as a full disk
+/// would.
+pub fn command_failing_after<T>(writes: usize, f: impl FnOnce() -> Result<T>) -> Result<T> {
+    run_command(Some(writes), f)
+}
+
+fn run_command<T>(fail_after: Option<usize>, f: impl FnOnce() -> Result<T>) -> Result<T> {
+    if ACTIVE.with(|a| a.borrow().is_some()) {
+        return f();
+    }
+    /// Discards the set however `f` ends, including by a panic.
+    struct Scope;
+    impl Drop for Scope {
+        fn drop(&mut self) {
+            let _ = ACTIVE.try_with(|a| a.borrow_mut().take());
+        }
+    }
+    ACTIVE.with(|a| {
+        *a.borrow_mut() = Some(OutputSet {
+            staged: Vec::new(),
+            created_dirs: Vec::new(),
+            fail_after,
+        })
+    });
+    let scope = Scope;
+    let result = f();
+    let set = ACTIVE.with(|a| a.borrow_mut().take());
+    drop(scope);
+    let value = result?;
+    if let Some(set) = set {
+        set.publish()?;
+    }
+    Ok(value)
+}
+
+/// Writes `bytes` to `path`: staged when inside [`command`], else at once
+/// (same-folder temporary file renamed into place).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create folder {}", dir.display()))?;
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".mre-")
-        .suffix(".tmp")
-        .tempfile_in(dir)
-        .with_context(|| format!("cannot create a temporary file in {}", dir.display()))?;
-    tmp.write_all(bytes)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    tmp.as_file().sync_all().ok();
-    tmp.persist(path)
-        .map_err(|e| e.error)
-        .with_context(|| format!("cannot move output into {}", path.display()))?;
-    Ok(())
+    with_set(|set| set.stage_file(path, bytes))
 }
 
 /// Like [`write_atomic`], for text produced by a closure that may fail:
@@ -32,4 +89,450 @@ pub fn write_atomic_with(path: &Path, produce: impl FnOnce(&mut Vec<u8>) -> Resu
     let mut buf = Vec::new();
     produce(&mut buf)?;
     write_atomic(path, &buf)
+}
+
+/// Builds the folder `dest` whole: `fill` writes into an empty private
+/// folder (plain writes; nothing there is visible until publication), a
+/// [`MARKER_FILE`] is added, and the folder is staged (inside [`command`]) or
+/// renamed into place at once.
+///
+/// An existing empty folder is replaced. A non-empty one only when `replace`
+/// is set *and* it holds the marker, i.e. mre wrote it.
+pub fn stage_folder(dest: &Path, replace: bool, fill: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
+    check_replaceable(dest, replace)?;
+    let parent = parent_of(dest);
+    let mut created = Vec::new();
+    let staged = (|| {
+        create_parents(parent, &mut created)?;
+        let mut builder = tempfile::Builder::new();
+        builder.prefix(".mre-stage-");
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            builder.permissions(std::fs::Permissions::from_mode(0o777));
+        }
+        let tmp = builder
+            .tempdir_in(parent)
+            .with_context(|| format!("cannot create a temporary folder in {}", parent.display()))?;
+        fill(tmp.path())?;
+        std::fs::write(tmp.path().join(MARKER_FILE), MARKER_TEXT)
+            .with_context(|| format!("cannot write {}", dest.join(MARKER_FILE).display()))?;
+        Ok(tmp)
+    })();
+    let tmp = match staged {
+        Ok(tmp) => tmp,
+        Err(e) => {
+            remove_created(&created);
+            return Err(e);
+        }
+    };
+    with_set(|set| {
+        set.created_dirs.extend(created);
+        set.push(Staged::Folder {
+            tmp,
+            dest: dest.to_path_buf(),
+        })
+    })
+}
+
+/// Refuses to replace a non-folder, or a non-empty folder mre did not write.
+fn check_replaceable(dest: &Path, replace: bool) -> Result<()> {
+    let Ok(meta) = std::fs::symlink_metadata(dest) else {
+        return Ok(());
+    };
+    if !meta.is_dir() {
+        bail!("{} exists and is not a folder", dest.display());
+    }
+    let non_empty = std::fs::read_dir(dest)
+        .with_context(|| format!("cannot read {}", dest.display()))?
+        .next()
+        .is_some();
+    if !non_empty {
+        return Ok(());
+    }
+    if !replace {
+        bail!("{} exists and is not empty; pass --force to replace it", dest.display());
+    }
+    if !dest.join(MARKER_FILE).is_file() {
+        bail!(
+            "{} was not written by mre (it has no {MARKER_FILE} file); not replacing it: move it away or choose another folder",
+            dest.display()
+        );
+    }
+    Ok(())
+}
+
+/// Runs `f` on the active set, or on a one-output set published at once.
+fn with_set(f: impl FnOnce(&mut OutputSet) -> Result<()>) -> Result<()> {
+    match ACTIVE.with(|a| a.borrow_mut().take()) {
+        Some(mut set) => {
+            let result = f(&mut set);
+            ACTIVE.with(|a| *a.borrow_mut() = Some(set));
+            result
+        }
+        None => {
+            let mut set = OutputSet::default();
+            f(&mut set)?;
+            set.publish()
+        }
+    }
+}
+
+enum Staged {
+    File { tmp: tempfile::TempPath, dest: PathBuf },
+    Folder { tmp: tempfile::TempDir, dest: PathBuf },
+}
+
+impl Staged {
+    fn dest(&self) -> &Path {
+        match self {
+            Staged::File { dest, .. } | Staged::Folder { dest, .. } => dest,
+        }
+    }
+}
+
+/// Outputs staged so far; dropping it unpublished deletes them.
+#[derive(Default)]
+struct OutputSet {
+    staged: Vec<Staged>,
+    /// Folders created to hold staged outputs, outermost first.
+    created_dirs: Vec<PathBuf>,
+    /// Fault injection: the output after this many fails part-way.
+    fail_after: Option<usize>,
+}
+
+impl Drop for OutputSet {
+    fn drop(&mut self) {
+        self.staged.clear();
+        remove_created(&self.created_dirs);
+    }
+}
+
+fn parent_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    }
+}
+
+/// Creates `dir` and its missing ancestors, recording each one created.
+fn create_parents(dir: &Path, created: &mut Vec<PathBuf>) -> Result<()> {
+    let missing: Vec<&Path> = dir
+        .ancestors()
+        .take_while(|d| !d.as_os_str().is_empty() && !d.exists())
+        .collect();
+    for d in missing.into_iter().rev() {
+        std::fs::create_dir(d).with_context(|| format!("cannot create folder {}", d.display()))?;
+        created.push(d.to_path_buf());
+    }
+    Ok(())
+}
+
+/// Removes folders this command created, innermost first, if still empty.
+fn remove_created(created: &[PathBuf]) {
+    for d in created.iter().rev() {
+        let _ = std::fs::remove_dir(d);
+    }
+}
+
+fn same_path(a: &Path, b: &Path) -> bool {
+    let abs = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+    abs(a) == abs(b)
+}
+
+impl OutputSet {
+    fn push(&mut self, entry: Staged) -> Result<()> {
+        if self.staged.iter().any(|s| same_path(s.dest(), entry.dest())) {
+            bail!(
+                "two outputs of this command would both be written to {}; nothing was written",
+                entry.dest().display()
+            );
+        }
+        self.staged.push(entry);
+        Ok(())
+    }
+
+    fn stage_file(&mut self, path: &Path, bytes: &[u8]) -> Result<()> {
+        if self.staged.iter().any(|s| same_path(s.dest(), path)) {
+            bail!(
+                "two outputs of this command would both be written to {}; nothing was written",
+                path.display()
+            );
+        }
+        let dir = parent_of(path);
+        create_parents(dir, &mut self.created_dirs)?;
+        let mut builder = tempfile::Builder::new();
+        builder.prefix(".mre-").suffix(".tmp");
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            builder.permissions(std::fs::Permissions::from_mode(0o666));
+        }
+        let mut tmp = builder
+            .tempfile_in(dir)
+            .with_context(|| format!("cannot create a temporary file in {}", dir.display()))?;
+        let injected = self.fail_after == Some(self.staged.len());
+        let written = if injected {
+            tmp.write_all(&bytes[..bytes.len() / 2])
+                .and_then(|()| Err(std::io::Error::other("injected write failure (disk full)")))
+        } else {
+            tmp.write_all(bytes).and_then(|()| tmp.as_file().sync_all())
+        };
+        written.with_context(|| format!("cannot write {}", path.display()))?;
+        self.push(Staged::File {
+            tmp: tmp.into_temp_path(),
+            dest: path.to_path_buf(),
+        })
+    }
+
+    /// Renames every staged output into place; on a failure, undoes the
+    /// ones already moved and restores what they replaced.
+    fn publish(mut self) -> Result<()> {
+        let mut done: Vec<Published> = Vec::new();
+        for entry in std::mem::take(&mut self.staged) {
+            match publish_one(entry) {
+                Ok(p) => done.push(p),
+                Err(e) => {
+                    for p in done.into_iter().rev() {
+                        p.undo();
+                    }
+                    return Err(e);
+                }
+            }
+        }
+        for p in done {
+            p.discard_old();
+        }
+        self.created_dirs.clear();
+        Ok(())
+    }
+}
+
+/// One output moved into place, and where the output it replaced went.
+struct Published {
+    dest: PathBuf,
+    old: Option<PathBuf>,
+    is_dir: bool,
+}
+
+impl Published {
+    fn remove(path: &Path, is_dir: bool) {
+        let _ = if is_dir {
+            std::fs::remove_dir_all(path)
+        } else {
+            std::fs::remove_file(path)
+        };
+    }
+
+    fn undo(self) {
+        Self::remove(&self.dest, self.is_dir);
+        if let Some(old) = &self.old {
+            let _ = std::fs::rename(old, &self.dest);
+        }
+    }
+
+    fn discard_old(self) {
+        if let Some(old) = &self.old {
+            let old_is_dir = std::fs::symlink_metadata(old).is_ok_and(|m| m.is_dir());
+            Self::remove(old, old_is_dir);
+        }
+    }
+}
+
+/// Moves an existing `dest` to a fresh hidden name beside it.
+fn move_aside(dest: &Path) -> Result<Option<PathBuf>> {
+    let Ok(meta) = std::fs::symlink_metadata(dest) else {
+        return Ok(None);
+    };
+    let dir = parent_of(dest);
+    let builder = {
+        let mut b = tempfile::Builder::new();
+        b.prefix(".mre-old-");
+        b
+    };
+    // Reserve a name of the same kind, then rename over it (POSIX rename
+    // replaces an empty folder by a folder and a file by a file).
+    let aside = if meta.is_dir() {
+        builder.tempdir_in(dir).map(|d| d.keep())
+    } else {
+        builder
+            .tempfile_in(dir)
+            .and_then(|f| f.into_temp_path().keep().map_err(|e| e.error))
+    }
+    .with_context(|| format!("cannot create a temporary name in {}", dir.display()))?;
+    if let Err(e) = std::fs::rename(dest, &aside) {
+        Published::remove(&aside, meta.is_dir());
+        return Err(e).with_context(|| format!("cannot move {} aside", dest.display()));
+    }
+    Ok(Some(aside))
+}
+
+fn publish_one(entry: Staged) -> Result<Published> {
+    let is_dir = matches!(entry, Staged::Folder { .. });
+    let dest = entry.dest().to_path_buf();
+    let old = move_aside(&dest)?;
+    let moved = match entry {
+        Staged::File { tmp, dest } => tmp.persist(&dest).map_err(|e| e.error),
+        Staged::Folder { tmp, dest } => {
+            let path = tmp.keep();
+            std::fs::rename(&path, &dest).inspect_err(|_| {
+                let _ = std::fs::remove_dir_all(&path);
+            })
+        }
+    };
+    if let Err(e) = moved {
+        if let Some(old) = &old {
+            let _ = std::fs::rename(old, &dest);
+        }
+        return Err(e).with_context(|| format!("cannot move the new output into {}", dest.display()));
+    }
+    Ok(Published { dest, old, is_dir })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn listing(dir: &Path) -> Vec<(String, Vec<u8>)> {
+        let mut out = Vec::new();
+        for e in walk(dir) {
+            let rel = e.strip_prefix(dir).unwrap().display().to_string();
+            let bytes = if e.is_dir() {
+                Vec::new()
+            } else {
+                std::fs::read(&e).unwrap()
+            };
+            out.push((rel, bytes));
+        }
+        out.sort();
+        out
+    }
+
+    fn walk(dir: &Path) -> Vec<PathBuf> {
+        let mut all = Vec::new();
+        for e in std::fs::read_dir(dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                all.extend(walk(&p));
+            }
+            all.push(p);
+        }
+        all
+    }
+
+    fn three_outputs(root: &Path, text: &str) -> Result<()> {
+        write_atomic(&root.join("a.txt"), text.as_bytes())?;
+        write_atomic(&root.join("sub/b.txt"), text.as_bytes())?;
+        write_atomic(&root.join("new/deeper/c.txt"), text.as_bytes())?;
+        Ok(())
+    }
+
+    #[test]
+    fn a_failure_part_way_leaves_the_previous_outputs_exactly() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir(dir.path().join("sub")).unwrap();
+        std::fs::write(dir.path().join("a.txt"), "old a").unwrap();
+        std::fs::write(dir.path().join("sub/b.txt"), "old b").unwrap();
+        let before = listing(dir.path());
+        for n in 0..3 {
+            let err = command_failing_after(n, || three_outputs(dir.path(), "new")).unwrap_err();
+            assert!(format!("{err:#}").contains("injected write failure"), "{err:#}");
+            assert_eq!(listing(dir.path()), before, "after failing at output {}", n + 1);
+        }
+        command(|| three_outputs(dir.path(), "new")).unwrap();
+        let after = listing(dir.path());
+        let text = |name: &str| after.iter().find(|(n, _)| n == name).map(|(_, b)| b.clone());
+        assert_eq!(text("a.txt").unwrap(), b"new");
+        assert_eq!(text("new/deeper/c.txt").unwrap(), b"new");
+        assert_eq!(after.len(), 6, "three files, three folders, no leftovers: {after:?}");
+    }
+
+    #[test]
+    fn an_error_after_staging_publishes_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let err = command(|| -> Result<()> {
+            three_outputs(dir.path(), "new")?;
+            bail!("later step failed")
+        })
+        .unwrap_err();
+        assert_eq!(err.to_string(), "later step failed");
+        assert!(listing(dir.path()).is_empty());
+    }
+
+    #[test]
+    fn two_outputs_to_one_path_are_an_error() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("x.csv");
+        let err = command(|| {
+            write_atomic(&p, b"1")?;
+            write_atomic(&dir.path().join(".").join("x.csv"), b"2")
+        })
+        .unwrap_err();
+        assert!(err.to_string().contains("would both be written to"), "{err:#}");
+        assert!(listing(dir.path()).is_empty());
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn outputs_get_umask_permissions() {
+        use std::os::unix::fs::PermissionsExt;
+        // The process umask, read back without changing it for long.
+        let dir = tempfile::tempdir().unwrap();
+        let probe = dir.path().join("probe");
+        std::fs::write(&probe, "").unwrap();
+        let expected = std::fs::metadata(&probe).unwrap().permissions().mode() & 0o777;
+        write_atomic(&dir.path().join("out.txt"), b"x").unwrap();
+        let mode = std::fs::metadata(dir.path().join("out.txt"))
+            .unwrap()
+            .permissions()
+            .mode()
+            & 0o777;
+        assert_eq!(mode, expected, "{mode:o} vs {expected:o}");
+        assert_ne!(mode, 0o600);
+    }
+
+    #[test]
+    fn folders_are_replaced_only_when_mre_wrote_them() {
+        let dir = tempfile::tempdir().unwrap();
+        let set = dir.path().join("set");
+        let fill = |text: &'static str| move |p: &Path| Ok(std::fs::write(p.join("f"), text)?);
+        stage_folder(&set, false, fill("one")).unwrap();
+        assert!(set.join(MARKER_FILE).is_file());
+        let err = stage_folder(&set, false, fill("two")).unwrap_err();
+        assert!(err.to_string().contains("--force"), "{err:#}");
+        stage_folder(&set, true, fill("two")).unwrap();
+        assert_eq!(std::fs::read_to_string(set.join("f")).unwrap(), "two");
+
+        let theirs = dir.path().join("theirs");
+        std::fs::create_dir(&theirs).unwrap();
+        std::fs::write(theirs.join("thesis.tex"), "years of work").unwrap();
+        let err = stage_folder(&theirs, true, fill("x")).unwrap_err();
+        assert!(err.to_string().contains("not written by mre"), "{err:#}");
+        assert_eq!(
+            std::fs::read_to_string(theirs.join("thesis.tex")).unwrap(),
+            "years of work"
+        );
+        let names: Vec<String> = listing(dir.path()).into_iter().map(|(n, _)| n).collect();
+        assert!(
+            names
+                .iter()
+                .all(|n| !n.contains(".mre-stage") && !n.contains(".mre-old")),
+            "{names:?}"
+        );
+    }
+
+    #[test]
+    fn a_staged_folder_is_discarded_with_its_command() {
+        let dir = tempfile::tempdir().unwrap();
+        let set = dir.path().join("set");
+        stage_folder(&set, true, |p| Ok(std::fs::write(p.join("f"), "old")?)).unwrap();
+        let before = listing(dir.path());
+        let err = command_failing_after(1, || {
+            stage_folder(&set, true, |p| Ok(std::fs::write(p.join("f"), "new")?))?;
+            write_atomic(&dir.path().join("key.json"), b"{}")
+        })
+        .unwrap_err();
+        assert!(format!("{err:#}").contains("injected"), "{err:#}");
+        assert_eq!(listing(dir.path()), before);
+    }
 }

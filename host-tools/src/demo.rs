@@ -173,9 +173,28 @@ fn processor_in_the_loop(out: &Path, seed: u64) -> Result<DemoStep> {
     })
 }
 
-/// Runs every step; stops at the first failure (each step's outputs are
-/// written atomically, so a failed step leaves no partial file).
+/// Runs every step; stops at the first failure. The whole output folder is
+/// built in a staging folder and renamed into place at the end, so a failed
+/// run leaves the previous `out` exactly as it was (a previous `out` is
+/// replaced only if mre wrote it).
 pub fn run_demo(options: &DemoOptions) -> Result<Vec<DemoStep>> {
+    let mut steps = Vec::new();
+    crate::atomic_write::stage_folder(&options.out_dir, true, |staging| {
+        steps = run_steps(&DemoOptions {
+            out_dir: staging.to_path_buf(),
+            ..options.clone()
+        })?;
+        for step in &mut steps {
+            if let Ok(inside) = step.report.strip_prefix(staging) {
+                step.report = options.out_dir.join(inside);
+            }
+        }
+        Ok(())
+    })?;
+    Ok(steps)
+}
+
+fn run_steps(options: &DemoOptions) -> Result<Vec<DemoStep>> {
     let data = &options.data_dir;
     let out = &options.out_dir;
     let steps = vec![

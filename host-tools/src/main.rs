@@ -259,7 +259,14 @@ impl DropArgs {
 }
 
 fn main() {
-    if let Err(e) = run(Cli::parse()) {
+    let cli = Cli::parse();
+    // Every command's outputs are published together or not at all; the demo
+    // stages its whole output folder itself (its steps read earlier outputs).
+    let result = match cli.command {
+        Command::Demo { .. } => run(cli),
+        _ => mre_host::atomic_write::command(|| run(cli)),
+    };
+    if let Err(e) = result {
         eprintln!("error: {e:#}");
         std::process::exit(1);
     }

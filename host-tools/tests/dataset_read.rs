@@ -287,7 +287,8 @@ fn error_non_finite_current_and_bad_role() {
     );
     assert_eq!(
         load_err(dir.path()),
-        format!("{m}: line 4: unknown variant `fitt`, expected `fit` or `validate`")
+        // `role = "fitt"`: the value starts at column 8.
+        format!("{m}: line 4, column 8: unknown variant `fitt`, expected `fit` or `validate`")
     );
 }
 

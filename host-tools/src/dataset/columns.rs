@@ -15,7 +15,23 @@ pub enum Quantity {
 }
 
 impl Quantity {
-    fn describe(self) -> &'static str {
+    /// The physically plausible range in the internal unit (min, max, unit).
+    /// A value outside is a unit mix-up or a broken channel, rejected at load:
+    /// 1e6 s of recording, 1 m of displacement, 100 m/s, 10⁶ m/s² (10⁵ g),
+    /// 10 MN, 100 A, absolute zero to 1000 °C.
+    pub fn plausible_range(self) -> (f64, f64, &'static str) {
+        match self {
+            Quantity::Time => (-1e6, 1e6, "s"),
+            Quantity::Displacement => (-1e3, 1e3, "mm"),
+            Quantity::Velocity => (-100.0, 100.0, "m/s"),
+            Quantity::Acceleration => (-1e6, 1e6, "m/s²"),
+            Quantity::Force => (-1e7, 1e7, "N"),
+            Quantity::Current => (-100.0, 100.0, "A"),
+            Quantity::Temperature => (-273.15, 1000.0, "°C"),
+        }
+    }
+
+    pub fn describe(self) -> &'static str {
         match self {
             Quantity::Time => "time",
             Quantity::Displacement => "displacement",

@@ -7,9 +7,52 @@ pub enum DatasetError {
     #[error("{path}: cannot read: {reason}")]
     Unreadable { path: String, reason: String },
 
-    /// TOML syntax error, wrong value type, missing key in `dataset.toml`.
+    /// A missing key in `dataset.toml`.
     #[error("{path}: line {line}: {message}")]
     Manifest { path: String, line: usize, message: String },
+
+    /// TOML syntax error or a value of the wrong type in `dataset.toml`.
+    #[error("{path}: line {line}, column {column}: {message}")]
+    Syntax {
+        path: String,
+        line: usize,
+        column: usize,
+        message: String,
+    },
+
+    #[error(
+        "{path}: line {line}, column {column}: `{key}` = {value} is outside the plausible range [{min}, {max}] {unit}"
+    )]
+    SettingOutOfRange {
+        path: String,
+        line: usize,
+        column: usize,
+        key: String,
+        value: f64,
+        min: f64,
+        max: f64,
+        unit: String,
+    },
+
+    /// A record the CSV reader cannot parse (e.g. not UTF-8).
+    #[error("{path}: line {line}: {message}")]
+    BadRecord { path: String, line: usize, message: String },
+
+    #[error(
+        "{path}: line {line}, column {column} ({name}): `{text}` is outside the plausible {quantity} range \
+         [{min}, {max}] {unit}"
+    )]
+    OutOfRange {
+        path: String,
+        line: usize,
+        column: usize,
+        name: String,
+        text: String,
+        quantity: String,
+        min: f64,
+        max: f64,
+        unit: String,
+    },
 
     #[error("{path}: line {line}: unknown key `{key}` in {section}")]
     UnknownKey {

@@ -29,6 +29,15 @@ const RECORDING_KEYS: &[&str] = &[
     "columns",
 ];
 
+/// Plausible ranges of the numeric settings (key, min, max, unit): a value
+/// outside is a typo or a unit mix-up, rejected at load.
+pub const SETTING_BOUNDS: &[(&str, f64, f64, &str)] = &[
+    ("current_a", -100.0, 100.0, "A"),
+    ("mass_kg", 1e-6, 1e4, "kg"),
+    ("impact_velocity_m_s", -100.0, 100.0, "m/s"),
+    ("temperature_c", -273.15, 1000.0, "°C"),
+];
+
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 enum Delimiter {
@@ -64,7 +73,26 @@ struct Manifest {
 
 /// 1-based line of a byte offset.
 fn line_of(text: &str, offset: usize) -> usize {
-    text.as_bytes().iter().take(offset).filter(|&&b| b == b'\n').count() + 1
+    position_of(text, offset).0
+}
+
+/// 1-based line and column (in characters) of a byte offset.
+pub fn position_of(text: &str, offset: usize) -> (usize, usize) {
+    let before = text.get(..offset.min(text.len())).unwrap_or(text);
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    let line = before.bytes().filter(|&b| b == b'\n').count() + 1;
+    (line, before[line_start..].chars().count() + 1)
+}
+
+/// A TOML syntax or type error in `dataset.toml`, with line and column.
+fn syntax_error(mpath: &str, text: &str, e: &toml::de::Error) -> DatasetError {
+    let (line, column) = e.span().map_or((1, 1), |s| position_of(text, s.start));
+    DatasetError::Syntax {
+        path: mpath.to_string(),
+        line,
+        column,
+        message: e.message().trim().to_string(),
+    }
 }
 
 impl Dataset {
@@ -77,11 +105,7 @@ impl Dataset {
             reason: e.to_string(),
         })?;
         check_keys(&text, &mpath)?;
-        let manifest: Manifest = toml::from_str(&text).map_err(|e| DatasetError::Manifest {
-            path: mpath.clone(),
-            line: e.span().map_or(1, |s| line_of(&text, s.start)),
-            message: e.message().trim().to_string(),
-        })?;
+        let manifest: Manifest = toml::from_str(&text).map_err(|e| syntax_error(&mpath, &text, &e))?;
 
         let mut first_line_of_file: HashMap<String, usize> = HashMap::new();
         let mut recordings = Vec::with_capacity(manifest.recording.len());
@@ -106,15 +130,31 @@ impl Dataset {
             first_line_of_file.insert(file.clone(), line);
             let d = &manifest.defaults;
             let finite = |v: Option<&Spanned<f64>>, key: &str| -> Result<Option<f64>, DatasetError> {
-                match v {
-                    Some(sv) if !sv.get_ref().is_finite() => Err(DatasetError::NonFiniteSetting {
+                let Some(sv) = v else { return Ok(None) };
+                let value = *sv.get_ref();
+                let (line, column) = position_of(&text, sv.span().start);
+                if !value.is_finite() {
+                    return Err(DatasetError::NonFiniteSetting {
                         path: mpath.clone(),
-                        line: line_of(&text, sv.span().start),
+                        line,
                         key: key.to_string(),
-                        value: *sv.get_ref(),
-                    }),
-                    Some(sv) => Ok(Some(*sv.get_ref())),
-                    None => Ok(None),
+                        value,
+                    });
+                }
+                match SETTING_BOUNDS.iter().find(|(k, ..)| *k == key) {
+                    Some(&(_, min, max, unit)) if !(min..=max).contains(&value) => {
+                        Err(DatasetError::SettingOutOfRange {
+                            path: mpath.clone(),
+                            line,
+                            column,
+                            key: key.to_string(),
+                            value,
+                            min,
+                            max,
+                            unit: unit.to_string(),
+                        })
+                    }
+                    _ => Ok(Some(value)),
                 }
             };
             let current_a = match finite(s.current_a.as_ref().or(d.current_a.as_ref()), "current_a")? {
@@ -164,11 +204,7 @@ impl Dataset {
 
 /// Rejects keys the format does not define, naming the key and its line.
 fn check_keys(text: &str, mpath: &str) -> Result<(), DatasetError> {
-    let doc = toml::de::DeTable::parse(text).map_err(|e| DatasetError::Manifest {
-        path: mpath.to_string(),
-        line: e.span().map_or(1, |s| line_of(text, s.start)),
-        message: e.message().trim().to_string(),
-    })?;
+    let doc = toml::de::DeTable::parse(text).map_err(|e| syntax_error(mpath, text, &e))?;
     let unknown = |key: &Spanned<toml::de::DeString<'_>>, section: &str| DatasetError::UnknownKey {
         path: mpath.to_string(),
         line: line_of(text, key.span().start),
@@ -213,12 +249,57 @@ fn check_keys(text: &str, mpath: &str) -> Result<(), DatasetError> {
     Ok(())
 }
 
-/// Splits one line into fields.
-fn fields(line: &str, delimiter: Delimiter) -> Vec<&str> {
+/// The non-comment records of a recording file as (line, fields): through
+/// the csv crate for `,` (quotes, CRLF), split on runs of blanks for
+/// `whitespace`. A UTF-8 byte-order mark is skipped; lines starting with `#`
+/// and blank lines are ignored.
+fn records(bytes: &[u8], delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize, Vec<String>)>, DatasetError> {
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF".as_slice()).unwrap_or(bytes);
+    let mut out = Vec::new();
     match delimiter {
-        Delimiter::Whitespace => line.split_whitespace().collect(),
-        Delimiter::Comma => line.split(',').map(str::trim).collect(),
+        Delimiter::Comma => {
+            let mut reader = csv::ReaderBuilder::new()
+                .has_headers(false)
+                .flexible(true)
+                .trim(csv::Trim::All)
+                .comment(Some(b'#'))
+                .from_reader(bytes);
+            for record in reader.records() {
+                let record = record.map_err(|e| DatasetError::BadRecord {
+                    path: dpath.to_string(),
+                    line: e.position().map_or(1, |p| p.line() as usize),
+                    message: match e.kind() {
+                        csv::ErrorKind::Utf8 { err, .. } => format!("field {} is not UTF-8 text", err.field() + 1),
+                        _ => e.to_string(),
+                    },
+                })?;
+                let line = record.position().map_or(1, |p| p.line() as usize);
+                if record.iter().all(str::is_empty) {
+                    continue;
+                }
+                out.push((line, record.iter().map(str::to_owned).collect()));
+            }
+        }
+        Delimiter::Whitespace => {
+            let text = std::str::from_utf8(bytes).map_err(|e| DatasetError::BadRecord {
+                path: dpath.to_string(),
+                line: bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1,
+                message: "not UTF-8 text".to_string(),
+            })?;
+            for (i, line) in text.lines().enumerate() {
+                let trimmed = line.trim();
+                if trimmed.is_empty() || trimmed.starts_with('#') {
+                    continue;
+                }
+                let fields = trimmed
+                    .split_whitespace()
+                    .map(|f| f.trim_matches('"').to_owned())
+                    .collect();
+                out.push((i + 1, fields));
+            }
+        }
     }
+    Ok(out)
 }
 
 fn read_samples(
@@ -229,21 +310,17 @@ fn read_samples(
     manifest_text: &str,
 ) -> Result<(Samples, bool), DatasetError> {
     let dpath = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| DatasetError::Unreadable {
+    let bytes = std::fs::read(path).map_err(|e| DatasetError::Unreadable {
         path: dpath.clone(),
         reason: e.to_string(),
     })?;
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l))
-        .filter(|(_, l)| !l.trim().is_empty());
+    let mut lines = records(&bytes, delimiter, &dpath)?.into_iter();
 
     // Column names come from `columns` in dataset.toml, or from the header row.
     let (names, name_path, name_line): (Vec<String>, &str, usize) = match columns {
         Some(c) => (c.get_ref().clone(), mpath, line_of(manifest_text, c.span().start)),
         None => match lines.next() {
-            Some((n, l)) => (fields(l, delimiter).iter().map(|s| s.to_string()).collect(), &dpath, n),
+            Some((n, names)) => (names, &dpath, n),
             None => {
                 return Err(DatasetError::TooFewSamples {
                     path: dpath,
@@ -260,9 +337,8 @@ fn read_samples(
     let mut channels: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
     let mut last_line = name_line;
     let time_col = layout.iter().position(|c| matches!(c, Some((Quantity::Time, _))));
-    for (n, line) in lines {
+    for (n, f) in lines {
         last_line = n;
-        let f = fields(line, delimiter);
         if f.len() != names.len() {
             return Err(DatasetError::FieldCount {
                 path: dpath,
@@ -290,6 +366,20 @@ fn read_samples(
                 });
             }
             let value = value * scale;
+            let (min, max, unit) = quantity.plausible_range();
+            if !(min..=max).contains(&value) {
+                return Err(DatasetError::OutOfRange {
+                    path: dpath,
+                    line: n,
+                    column: col + 1,
+                    name: names[col].clone(),
+                    text: text.to_string(),
+                    quantity: quantity.describe().to_string(),
+                    min,
+                    max,
+                    unit: unit.to_string(),
+                });
+            }
             if quantity == Quantity::Time && Some(col) == time_col {
                 if let Some(&previous_s) = channels[col].last() {
                     if value <= previous_s {

@@ -4,12 +4,12 @@
 //! `force_n`, and `acceleration_m_s2`, `current_a`, `temperature_c` when
 //! present).
 //!
-//! The folder appears whole or not at all: everything is written into a
-//! temporary folder beside the target and renamed into place. An existing
-//! non-empty folder is refused unless `force` is set; then it is replaced only
-//! after the new one is complete.
+//! The folder appears whole or not at all (`atomic_write::stage_folder`):
+//! everything is written into a temporary folder beside the target and renamed
+//! into place. An existing non-empty folder is refused unless `force` is set,
+//! and even then replaced only if mre wrote it (its marker file).
 use super::{Dataset, Recording, Role, TagValue};
-use crate::atomic_write::write_atomic;
+use crate::atomic_write::stage_folder;
 use anyhow::{bail, ensure, Context, Result};
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
@@ -36,78 +36,29 @@ pub struct WriteOptions {
 
 /// Writes `dataset` into the folder `dir` (see the module docs).
 pub fn write_dataset(dataset: &Dataset, dir: &Path, options: &WriteOptions) -> Result<()> {
-    check_target(dir, options.force)?;
     let toml_text = dataset_toml(dataset)?;
     let files = dataset
         .recordings
         .iter()
         .map(|rec| Ok((rec.file.clone(), recording_csv(rec, &options.precision)?)))
         .collect::<Result<Vec<_>>>()?;
-
-    let parent = match dir.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    std::fs::create_dir_all(parent).with_context(|| format!("cannot create folder {}", parent.display()))?;
-    let staging = tempfile::Builder::new()
-        .prefix(".mre-dataset-")
-        .tempdir_in(parent)
-        .with_context(|| format!("cannot create a temporary folder in {}", parent.display()))?;
-    write_atomic(&staging.path().join("dataset.toml"), toml_text.as_bytes())?;
-    for (file, bytes) in &files {
-        write_atomic(&staging.path().join(file), bytes)?;
-    }
-    publish(staging, dir)
-}
-
-/// Refuses to clobber a non-empty folder (or any non-folder) without `force`.
-fn check_target(dir: &Path, force: bool) -> Result<()> {
-    if !dir.exists() {
-        return Ok(());
-    }
-    ensure!(dir.is_dir(), "{} exists and is not a folder", dir.display());
-    let non_empty = std::fs::read_dir(dir)
-        .with_context(|| format!("cannot read {}", dir.display()))?
-        .next()
-        .is_some();
-    if non_empty && !force {
-        bail!("{} exists and is not empty; pass --force to replace it", dir.display());
-    }
-    Ok(())
-}
-
-/// Moves the finished staging folder to `dir`, replacing what was there.
-fn publish(staging: tempfile::TempDir, dir: &Path) -> Result<()> {
-    // The staging folder is private (0700); the data set is an ordinary folder.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(0o755))
-            .with_context(|| format!("cannot set permissions on {}", staging.path().display()))?;
-    }
-    let staged = staging.keep();
-    let result = (|| {
-        if dir.exists() {
-            // Set the old folder aside first, so a failed rename loses nothing.
-            let parent = staged.parent().unwrap_or(Path::new("."));
-            let aside = tempfile::Builder::new().prefix(".mre-old-").tempdir_in(parent)?.keep();
-            std::fs::remove_dir(&aside)?;
-            std::fs::rename(dir, &aside).with_context(|| format!("cannot move {} aside", dir.display()))?;
-            if let Err(e) = std::fs::rename(&staged, dir) {
-                let _ = std::fs::rename(&aside, dir);
-                return Err(e).with_context(|| format!("cannot move the new data set into {}", dir.display()));
+    // The staging folder is private until it is renamed into place, so its
+    // files are written directly.
+    stage_folder(dir, options.force, |staging| {
+        let write = |name: &str, bytes: &[u8]| {
+            let path = staging.join(name);
+            if let Some(parent) = path.parent() {
+                std::fs::create_dir_all(parent)
+                    .with_context(|| format!("cannot create {}", dir.join(name).display()))?;
             }
-            std::fs::remove_dir_all(&aside).ok();
-            Ok(())
-        } else {
-            std::fs::rename(&staged, dir)
-                .with_context(|| format!("cannot move the new data set into {}", dir.display()))
+            std::fs::write(&path, bytes).with_context(|| format!("cannot write {}", dir.join(name).display()))
+        };
+        write("dataset.toml", toml_text.as_bytes())?;
+        for (file, bytes) in &files {
+            write(file, bytes)?;
         }
-    })();
-    if result.is_err() {
-        std::fs::remove_dir_all(&staged).ok();
-    }
-    result
+        Ok(())
+    })
 }
 
 /// A TOML string literal (quoted and escaped).
@@ -199,7 +150,9 @@ fn check_files(dataset: &Dataset) -> Result<()> {
         let path = Path::new(&rec.file);
         let inside = !rec.file.is_empty()
             && path.components().all(|c| matches!(c, Component::Normal(_)))
-            && path.file_name().is_some_and(|n| n != "dataset.toml");
+            && path
+                .file_name()
+                .is_some_and(|n| n != "dataset.toml" && n != crate::atomic_write::MARKER_FILE);
         ensure!(
             inside,
             "recording file `{}` must be a relative path inside the data set folder",

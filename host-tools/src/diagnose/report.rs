@@ -3,7 +3,7 @@
 use super::parameters::Param;
 use super::{plots, Diagnosis};
 use crate::atomic_write::{write_atomic, write_atomic_with};
-use anyhow::{Context, Result};
+use anyhow::Result;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -110,7 +110,6 @@ pub fn predictions_file_name(recording_file: &str) -> String {
 
 /// Writes `time_s,force_measured_n,force_baseline_n,force_final_n` per recording.
 pub fn write_predictions(d: &Diagnosis, dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     for (i, r) in d.prep.recs.iter().enumerate() {
         let path = dir.join(predictions_file_name(&r.file));
         write_atomic_with(&path, |buf| {
@@ -330,7 +329,6 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
 /// Writes every output; `report_dir` gets `report.md` and its PNGs.
 pub fn write_all(d: &Diagnosis, report_dir: &Path, json_path: &Path, predictions_dir: &Path) -> Result<ReportJson> {
     let json = report_json(d);
-    std::fs::create_dir_all(report_dir).with_context(|| format!("creating {}", report_dir.display()))?;
     plots::residual_map(d, &report_dir.join("residual_map.png"))?;
     plots::residual_covariates(d, &report_dir.join("residual_covariates.png"))?;
     plots::loops_worst(d, &report_dir.join("loops_worst.png"))?;

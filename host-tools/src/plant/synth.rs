@@ -409,6 +409,11 @@ pub fn write_synth(effect: &str, seed: u64, out: &Path, key_path: Option<&Path>,
         key_path.display(),
         out.display()
     );
+    ensure!(
+        force || !key_path.exists(),
+        "the key file {} exists; pass --force to replace it",
+        key_path.display()
+    );
     let output = synthesize(effect, seed)?;
     let options = WriteOptions {
         force,

@@ -1,0 +1,144 @@
+//! What real DAQ exports and spreadsheets write: a byte-order mark, CRLF line
+//! ends, quoted header names, comment lines, whitespace-delimited columns; and
+//! values no instrument can produce, rejected at load with file, line and column.
+use mre_host::dataset::{Dataset, DatasetError};
+use std::path::Path;
+
+const MANIFEST: &str = "name = \"daq\"\n[[recording]]\nfile = \"a.csv\"\ncurrent_a = 0.5\n";
+
+/// 12 samples of x = i·0.1 mm, F = 50·x N, t = i·0.01 s, one line each.
+fn rows(sep: &str, eol: &str) -> String {
+    (0..12)
+        .map(|i| {
+            let x = i as f64 * 0.1;
+            format!("{}{sep}{x}{sep}{}{eol}", i as f64 * 0.01, 50.0 * x)
+        })
+        .collect()
+}
+
+fn load(dir: &Path, manifest: &str, data: &[u8]) -> Result<Dataset, DatasetError> {
+    std::fs::write(dir.join("dataset.toml"), manifest).unwrap();
+    std::fs::write(dir.join("a.csv"), data).unwrap();
+    Dataset::load(dir)
+}
+
+fn check_samples(ds: &Dataset) {
+    let s = &ds.recordings[0].samples;
+    assert_eq!(s.len(), 12);
+    assert_eq!(s.time_s[3], 0.03);
+    assert_eq!(s.x_mm[5], 0.5);
+    assert_eq!(s.force_n[5], 25.0);
+}
+
+#[test]
+fn an_excel_export_loads() {
+    // UTF-8 BOM, quoted header names, CRLF, a comment line before the header
+    // and one between samples, a blank line at the end.
+    let mut text =
+        String::from("\u{feff}# exported 2026-11-22 by the DAQ\r\n\"time_s\",\"displacement_mm\",\"force_n\"\r\n");
+    let body = rows(",", "\r\n");
+    let (first, rest) = body.split_at(body.find("\r\n").unwrap() + 2);
+    text.push_str(first);
+    text.push_str("# channel 2 re-zeroed\r\n");
+    text.push_str(rest);
+    text.push_str("\r\n");
+    let dir = tempfile::tempdir().unwrap();
+    check_samples(&load(dir.path(), MANIFEST, text.as_bytes()).unwrap());
+}
+
+#[test]
+fn spaces_around_names_and_quote_all_numbers_load() {
+    let mut text = String::from(" time_s , displacement_mm , force_n \n");
+    for line in rows(",", "\n").lines() {
+        let quoted: Vec<String> = line.split(',').map(|f| format!("\"{f}\"")).collect();
+        text.push_str(&quoted.join(","));
+        text.push('\n');
+    }
+    let dir = tempfile::tempdir().unwrap();
+    check_samples(&load(dir.path(), MANIFEST, text.as_bytes()).unwrap());
+}
+
+#[test]
+fn a_whitespace_file_with_bom_crlf_tabs_and_comments_loads() {
+    let mut text = String::from("\u{feff}# MTS export\r\n\"time_s\"\t\"displacement_mm\"   \"force_n\"\r\n");
+    text.push_str(&rows("\t  ", "\r\n"));
+    let manifest = MANIFEST.replace("[[recording]]", "[defaults]\ndelimiter = \"whitespace\"\n[[recording]]");
+    let dir = tempfile::tempdir().unwrap();
+    check_samples(&load(dir.path(), &manifest, text.as_bytes()).unwrap());
+}
+
+#[test]
+fn an_absurd_force_is_rejected_at_load_with_file_line_and_column() {
+    let mut text = String::from("time_s,displacement_mm,force_n\n");
+    text.push_str(&rows(",", "\n"));
+    // Line 5 (the 4th sample) gets a force of 1e300 N.
+    let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    lines[4] = "0.03,0.3,1e300".into();
+    let dir = tempfile::tempdir().unwrap();
+    let err = load(dir.path(), MANIFEST, lines.join("\n").as_bytes()).unwrap_err();
+    let file = dir.path().join("a.csv").display().to_string();
+    assert_eq!(
+        err.to_string(),
+        format!(
+            "{file}: line 5, column 3 (force_n): `1e300` is outside the plausible force range [-10000000, 10000000] N"
+        )
+    );
+}
+
+#[test]
+fn a_displacement_in_metres_written_as_millimetres_of_a_kilometre_is_rejected() {
+    // 2 m in a `displacement_m` column is 2000 mm: beyond the 1 m bound.
+    let mut text = String::from("time_s,displacement_m,force_n\n");
+    for i in 0..12 {
+        text.push_str(&format!("{},{},1\n", i as f64 * 0.01, if i == 7 { 2.0 } else { 0.001 }));
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let err = load(dir.path(), MANIFEST, text.as_bytes()).unwrap_err();
+    assert!(
+        matches!(err, DatasetError::OutOfRange { line: 9, column: 2, .. }),
+        "{err}"
+    );
+}
+
+#[test]
+fn an_absurd_current_in_the_manifest_is_rejected_with_line_and_column() {
+    let mut text = String::from("time_s,displacement_mm,force_n\n");
+    text.push_str(&rows(",", "\n"));
+    let manifest = "[[recording]]\nfile = \"a.csv\"\ncurrent_a = 500.0\n";
+    let dir = tempfile::tempdir().unwrap();
+    let err = load(dir.path(), manifest, text.as_bytes()).unwrap_err();
+    let m = dir.path().join("dataset.toml").display().to_string();
+    assert_eq!(
+        err.to_string(),
+        format!("{m}: line 3, column 13: `current_a` = 500 is outside the plausible range [-100, 100] A")
+    );
+}
+
+#[test]
+fn a_toml_syntax_error_names_line_and_column() {
+    let dir = tempfile::tempdir().unwrap();
+    // Line 3: `current_a = 0.5.5`; the parser stops at the second `.`, column 16.
+    let manifest = "[[recording]]\nfile = \"a.csv\"\ncurrent_a = 0.5.5\n";
+    let err = load(dir.path(), manifest, b"").unwrap_err();
+    assert!(
+        matches!(
+            err,
+            DatasetError::Syntax {
+                line: 3,
+                column: 16,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains("dataset.toml: line 3, column 16: "), "{err}");
+}
+
+#[test]
+fn a_file_that_is_not_text_names_its_line() {
+    let mut text = b"time_s,displacement_mm,force_n\n0,0,0\n".to_vec();
+    text.extend_from_slice(b"0.01,\xff\xfe,1\n");
+    let dir = tempfile::tempdir().unwrap();
+    let err = load(dir.path(), MANIFEST, &text).unwrap_err();
+    assert!(matches!(err, DatasetError::BadRecord { line: 3, .. }), "{err}");
+}
