@@ -128,6 +128,9 @@ pub fn stage_folder(dest: &Path, replace: bool, fill: impl FnOnce(&Path) -> Resu
     };
     with_set(|set| {
         set.created_dirs.extend(created);
+        if set.fail_after == Some(set.staged.len()) {
+            bail!("cannot write {}: injected write failure (disk full)", dest.display());
+        }
         set.push(Staged::Folder {
             tmp,
             dest: dest.to_path_buf(),

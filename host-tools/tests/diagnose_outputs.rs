@@ -56,20 +56,27 @@ fn outputs_follow_the_contract() {
 }
 
 #[test]
-fn a_bad_data_set_writes_nothing() {
+fn a_run_failing_part_way_writes_nothing() {
     let dir = tempfile::tempdir().expect("tempdir");
     let data = dir.path().join("data");
-    std::fs::create_dir_all(&data).expect("mkdir");
-    std::fs::write(
-        data.join("dataset.toml"),
-        "name = \"x\"\n[[recording]]\nfile = \"missing.csv\"\ncurrent_a = 0.0\n",
+    write_dataset(
+        &dataset(Added::Viscous { c_n_s_per_m: 400.0 }, 7),
+        &data,
+        &WriteOptions::default(),
     )
-    .expect("toml");
+    .expect("write");
     let (rep, json, pred) = (
         dir.path().join("rep"),
         dir.path().join("r.json"),
         dir.path().join("pred"),
     );
-    assert!(run_to_files(&data, &DiagnoseOptions::default(), &rep, &json, &pred).is_err());
+    // The plots and some predictions are staged; the 6th output fails.
+    let err = mre_host::atomic_write::command_failing_after(5, || {
+        run_to_files(&data, &DiagnoseOptions::default(), &rep, &json, &pred)
+    })
+    .expect_err("injected failure");
+    assert!(format!("{err:#}").contains("injected write failure"), "{err:#}");
     assert!(!rep.exists() && !json.exists() && !pred.exists());
+    let names: Vec<_> = std::fs::read_dir(dir.path()).expect("ls").map(|e| e.expect("entry").file_name()).collect();
+    assert_eq!(names, vec![std::ffi::OsString::from("data")]);
 }

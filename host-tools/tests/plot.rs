@@ -84,19 +84,18 @@ fn fit_then_plot_writes_every_figure() {
 }
 
 #[test]
-fn a_failed_plot_writes_nothing() {
+fn a_plot_failing_part_way_writes_nothing() {
     let data = tempfile::tempdir().unwrap();
     synthetic_dataset(data.path());
     let out = tempfile::tempdir().unwrap();
-    let missing_model = out.path().join("absent.toml");
-    assert!(run_plot(
-        data.path(),
-        &missing_model,
-        &[],
-        &PlotOptions { interpolated_a: vec![] },
-        out.path()
-    )
-    .is_err());
+    // The paper's table fits these data; the third figure file fails to write.
+    let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/paper/table4.toml");
+    let options = PlotOptions { interpolated_a: vec![] };
+    let err = mre_host::atomic_write::command_failing_after(2, || {
+        run_plot(data.path(), &model, &[], &options, &out.path().join("figs"))
+    })
+    .unwrap_err();
+    assert!(format!("{err:#}").contains("injected write failure"), "{err:#}");
     assert_eq!(std::fs::read_dir(out.path()).unwrap().count(), 0);
 }
 
