@@ -116,28 +116,45 @@ fn gsa_at_paper_scale_comes_near_the_optimum() {
     // The paper's coefficients are ~10⁴ wide boxes next to ~10² ones. GSA runs
     // on the box mapped to [−100, 100]⁵ (the scale its constants were tuned
     // for), so it must improve on its initial agents, never beat the exact
-    // optimum, and, over several seeds, land within the stated factor.
+    // optimum, beat a random search with the same number of evaluations on
+    // every seed (a yardstick independent of GSA), and land within the stated
+    // factor of the optimum in the median over seeds.
     let (x, f) = synthetic(&PAPER_1A_C, 500, 20.0, 3);
     let optimum = fit_quartic(&x, &f).unwrap();
     let m = BranchMoments::new(&x, &f);
     let bounds = data_bounds(&x, &f).unwrap();
+    let params = GsaParams::default();
+    let mut ratios = Vec::new();
     for seed in 1..=5 {
-        let r = minimize(
-            |c| m.rmse(c),
-            &bounds,
-            &GsaParams::default(),
-            &mut branch_rng(seed, 0),
-            || {},
-        );
+        let r = minimize(|c| m.rmse(c), &bounds, &params, &mut branch_rng(seed, 0), || {});
         assert!(r.best_value < r.convergence[0]);
         assert!(r.best_value >= optimum.rmse_n * (1.0 - 1e-9));
-        assert!(r.best_value < GSA_PAPER_SCALE_FACTOR * optimum.rmse_n, "seed {seed}");
+        let random = random_search(|c| m.rmse(c), &bounds, params.agents * params.iters, seed);
+        assert!(r.best_value < random, "seed {seed}: GSA {} vs random search {random}", r.best_value);
+        ratios.push(r.best_value / optimum.rmse_n);
     }
+    ratios.sort_by(f64::total_cmp);
+    assert!(
+        ratios[2] < GSA_PAPER_SCALE_MEDIAN_FACTOR,
+        "median GSA/optimum {} over seeds 1..=5: {ratios:?}",
+        ratios[2]
+    );
 }
 
 /// Stated tolerance of GSA (N = T = 100) against the exact optimum at the
-/// paper's scale.
-const GSA_PAPER_SCALE_FACTOR: f64 = 20.0;
+/// paper's scale, in the median over seeds 1..=5. Single seeds range from
+/// 1.7× to 12× (GSA is a poor optimiser here; `mre fit` puts the exact
+/// least-squares optimum into the table and reports GSA's gap).
+const GSA_PAPER_SCALE_MEDIAN_FACTOR: f64 = 5.0;
+
+/// The best of `evaluations` uniform samples of the box.
+fn random_search(f: impl Fn(&[f64; 5]) -> f64, b: &SearchBox, evaluations: usize, seed: u64) -> f64 {
+    use rand::Rng;
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    (0..evaluations)
+        .map(|_| f(&std::array::from_fn(|k| rng.random_range(b.lower[k]..=b.upper[k]))))
+        .fold(f64::INFINITY, f64::min)
+}
 
 #[test]
 fn gsa_is_reproducible_for_a_seed() {

@@ -286,6 +286,7 @@ fn a_coil_energised_before_contact_hides_its_lag_at_constant_current() {
 #[test]
 fn bad_settings_are_refused_with_a_clear_error() {
     let plant = Plant::nominal();
+    // Each bad setting with the words its error must contain.
     let bad = [
         ImpactConfig {
             impact_velocity_m_s: f64::NAN,
@@ -304,9 +305,15 @@ fn bad_settings_are_refused_with_a_clear_error() {
             ..ImpactConfig::default()
         },
     ];
-    for cfg in bad {
+    let expected = [
+        "impact settings must be finite",
+        "RK4 step must be in (0, 1 µs]",
+        "control period must be a whole number of sample periods",
+        "mass must be positive",
+    ];
+    for (cfg, want) in bad.into_iter().zip(expected) {
         let err = simulate(&plant, &cfg, CurrentSource::Constant(1.0)).unwrap_err();
-        assert!(!format!("{err:#}").is_empty());
+        assert!(format!("{err:#}").contains(want), "expected `{want}` in: {err:#}");
     }
     let mut broken = Plant::nominal();
     broken.law.loss_eta = 1.5;

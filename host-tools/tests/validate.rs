@@ -96,9 +96,16 @@ fn intermediate_current_is_interpolated_and_bracketed() {
     assert_eq!(r.rmse_n, 0.0);
     let b = r.bracket.as_ref().unwrap();
     assert_eq!((b.lower_current_a, b.upper_current_a), (0.5, 1.0));
-    // Linear interpolation with t ∈ [0, 1] always lies between its neighbours.
-    assert_eq!(b.model_between, 1.0);
+    // The recording is the interpolated model itself: every sample lies between.
     assert_eq!(b.measured_between, 1.0);
+
+    // Every other sample 100 kN above both neighbours: exactly half lie between.
+    let mut shifted = recording(&table, 0.7, 1.0, Role::Validate);
+    for f in shifted.samples.force_n.iter_mut().step_by(2) {
+        *f += 1e5;
+    }
+    let b = validate_recording(&table, &shifted).bracket.unwrap();
+    assert_eq!(b.measured_between, 0.5);
 }
 
 #[test]

@@ -20,8 +20,8 @@ pub fn qemu_binary() -> Option<PathBuf> {
 
 /// How to install QEMU 10 (the `b-l475e-iot01a` machine is not in bookworm's 7.2).
 pub const INSTALL_HINT: &str = "install qemu-system-arm ≥ 9 (Debian bookworm: \
-    echo 'deb http://deb.debian.org/debian bookworm-backports main' > /etc/apt/sources.list.d/backports.list \
-    && apt-get update && apt-get install -y -t bookworm-backports qemu-system-arm)";
+    apt-get install -y -t \"$(.ci/apt-backports)\" qemu-system-arm, which adds bookworm-backports \
+    from the mirror your apt sources already use)";
 
 /// The workspace root (this crate's parent directory).
 pub fn workspace_root() -> PathBuf {

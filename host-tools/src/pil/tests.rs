@@ -60,7 +60,7 @@ fn qemu_or_skip() -> Option<PathBuf> {
         Some(q) => Some(q),
         None if std::env::var_os("CI").is_some() => panic!("QEMU is required in CI: {INSTALL_HINT}"),
         None => {
-            eprintln!("skipping PIL test: {INSTALL_HINT}");
+            eprintln!("\n*** SKIPPED: PIL test not run, QEMU is missing ({INSTALL_HINT}); under CI=1 this fails ***\n");
             None
         }
     }

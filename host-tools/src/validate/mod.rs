@@ -12,9 +12,9 @@
 //!
 //! Recordings whose current is not a table entry are predicted by
 //! interpolation (never fitted: `fit` only uses `role = "fit"`). For those,
-//! the Fig. 12 bracket check: is the interpolated loop between its
-//! neighbours' loops (model, on a grid over the shared stroke), and which
-//! fraction of the measured samples lies between the neighbours' loops?
+//! the Fig. 12 bracket check: which fraction of the measured samples lies
+//! between the neighbours' loops? (The interpolated model itself always does:
+//! linear interpolation, so that is not reported.)
 pub mod report;
 
 use crate::dataset::{Dataset, Recording, Role};
@@ -39,9 +39,6 @@ pub struct LargestError {
 pub struct Bracket {
     pub lower_current_a: f64,
     pub upper_current_a: f64,
-    /// Fraction of grid points (both branches) where the interpolated model
-    /// lies between the two neighbours' models.
-    pub model_between: f64,
     /// Fraction of measured samples lying between the neighbours' models.
     pub measured_between: f64,
 }
@@ -161,30 +158,13 @@ pub fn neighbours(table: &Table, current_a: f64) -> Option<(f32, f32)> {
         .map(|w| (w[0].current_a, w[1].current_a))
 }
 
-fn between(f: f64, a: f64, b: f64, tol: f64) -> bool {
-    f >= a.min(b) - tol && f <= a.max(b) + tol
+fn between(f: f64, a: f64, b: f64) -> bool {
+    f >= a.min(b) && f <= a.max(b)
 }
 
 /// The Fig. 12 check for one interpolated recording.
 pub fn bracket(table: &Table, rec: &Recording) -> Option<Bracket> {
     let (lo, hi) = neighbours(table, rec.current_a)?;
-    let c = rec.current_a as f32;
-    let (x0, x1) = fitted_stroke_mm(table, c);
-    let mut inside = 0usize;
-    let mut total = 0usize;
-    const GRID: usize = 201;
-    for i in 0..GRID {
-        let x = x0 + (x1 - x0) * i as f32 / (GRID - 1) as f32;
-        for b in [Branch::Compression, Branch::Extension] {
-            let f = table.force_on_branch(x, b, c).force_n as f64;
-            let fl = table.force_on_branch(x, b, lo).force_n as f64;
-            let fh = table.force_on_branch(x, b, hi).force_n as f64;
-            // f32 rounding of the interpolation: allow 1e-4 of the force scale.
-            let tol = 1e-4 * fl.abs().max(fh.abs()).max(1.0);
-            inside += usize::from(between(f, fl, fh, tol));
-            total += 1;
-        }
-    }
     let s = &rec.samples;
     let measured_inside = s
         .x_mm
@@ -194,13 +174,12 @@ pub fn bracket(table: &Table, rec: &Recording) -> Option<Bracket> {
         .filter(|((&x, &v), &f)| {
             let fl = table.force(x as f32, v as f32, lo).force_n as f64;
             let fh = table.force(x as f32, v as f32, hi).force_n as f64;
-            between(f, fl, fh, 0.0)
+            between(f, fl, fh)
         })
         .count();
     Some(Bracket {
         lower_current_a: lo as f64,
         upper_current_a: hi as f64,
-        model_between: inside as f64 / total.max(1) as f64,
         measured_between: measured_inside as f64 / s.len().max(1) as f64,
     })
 }

@@ -85,19 +85,17 @@ pub fn markdown(r: &ValidationReport) -> String {
     } else {
         let _ = writeln!(
             s,
-            "| recording | current (A) | neighbours (A) | model loop between neighbours (%) | measured samples \
-             between neighbour models (%) |"
+            "| recording | current (A) | neighbours (A) | measured samples between neighbour models (%) |"
         );
-        let _ = writeln!(s, "|---|---|---|---|---|");
+        let _ = writeln!(s, "|---|---|---|---|");
         for (x, b) in brackets {
             let _ = writeln!(
                 s,
-                "| {} | {} | {} – {} | {} | {} |",
+                "| {} | {} | {} – {} | {} |",
                 x.file,
                 x.current_a,
                 b.lower_current_a,
                 b.upper_current_a,
-                pct(b.model_between),
                 pct(b.measured_between)
             );
         }
