@@ -186,6 +186,10 @@ enum Command {
         /// Folder for CSV, summary, plots and pil.json.
         #[arg(long)]
         report: PathBuf,
+        /// Inject faults instead (e.g. `all:1e-2`, `corrupt:1e-3,drop:1e-2,duplicate:1e-2,sensors,upload`);
+        /// writes faults.md and faults.json.
+        #[arg(long)]
+        faults: Option<String>,
     },
 }
 
@@ -440,7 +444,30 @@ fn run(cli: Cli) -> Result<()> {
             print!("{}", mre_host::plant::sim_report::summary_table(&cmp));
             println!("report: {}", report.join("summary.md").display());
         }
-        Command::Pil { drop, elf, report } => {
+        Command::Pil {
+            drop,
+            elf,
+            report,
+            faults: Some(spec),
+        } => {
+            let plan = mre_host::pil::faults::FaultPlan::parse(&spec, drop.seed)?;
+            let request = mre_host::pil::sim::PilRequest {
+                sim: drop.request(None)?,
+                elf,
+            };
+            let r = mre_host::pil::faults::run_to_report(&request, &plan, &report)?;
+            print!("{}", r.markdown());
+            println!("report: {}", report.join("faults.md").display());
+            if !r.all_detected_and_survived() {
+                anyhow::bail!("not every injected fault was detected and survived (see faults.md)");
+            }
+        }
+        Command::Pil {
+            drop,
+            elf,
+            report,
+            faults: None,
+        } => {
             let sim = drop.request(None)?;
             let out = mre_host::pil::sim::run_pil(&mre_host::pil::sim::PilRequest { sim, elf }, &report)?;
             print!("{}", mre_host::plant::sim_report::summary_table(&out.comparison));

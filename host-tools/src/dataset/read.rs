@@ -104,8 +104,15 @@ impl Dataset {
             path: mpath.clone(),
             reason: e.to_string(),
         })?;
-        check_keys(&text, &mpath)?;
-        let manifest: Manifest = toml::from_str(&text).map_err(|e| syntax_error(&mpath, &text, &e))?;
+        Self::from_manifest(dir, &text)
+    }
+
+    /// Like [`Dataset::load`], with the `dataset.toml` text given (the
+    /// recording files are still read from `dir`).
+    pub fn from_manifest(dir: &Path, text: &str) -> Result<Dataset, DatasetError> {
+        let mpath = dir.join("dataset.toml").display().to_string();
+        check_keys(text, &mpath)?;
+        let manifest: Manifest = toml::from_str(text).map_err(|e| syntax_error(&mpath, text, &e))?;
 
         let mut first_line_of_file: HashMap<String, usize> = HashMap::new();
         let mut recordings = Vec::with_capacity(manifest.recording.len());
@@ -117,7 +124,7 @@ impl Dataset {
                     message: format!("[[recording]] #{} has no `file`", index + 1),
                 });
             };
-            let line = line_of(&text, file_key.span().start);
+            let line = line_of(text, file_key.span().start);
             let file = file_key.get_ref().clone();
             if let Some(&first_line) = first_line_of_file.get(&file) {
                 return Err(DatasetError::DuplicateFile {
@@ -132,7 +139,7 @@ impl Dataset {
             let finite = |v: Option<&Spanned<f64>>, key: &str| -> Result<Option<f64>, DatasetError> {
                 let Some(sv) = v else { return Ok(None) };
                 let value = *sv.get_ref();
-                let (line, column) = position_of(&text, sv.span().start);
+                let (line, column) = position_of(text, sv.span().start);
                 if !value.is_finite() {
                     return Err(DatasetError::NonFiniteSetting {
                         path: mpath.clone(),
@@ -177,7 +184,7 @@ impl Dataset {
             }
             let columns = s.columns.as_ref().or(d.columns.as_ref());
             let delimiter = s.delimiter.or(d.delimiter).unwrap_or(Delimiter::Comma);
-            let (samples, velocity_estimated) = read_samples(&data_path, delimiter, columns, &mpath, &text)?;
+            let (samples, velocity_estimated) = read_samples(&data_path, delimiter, columns, &mpath, text)?;
             recordings.push(Recording {
                 file,
                 current_a,
@@ -314,7 +321,31 @@ fn read_samples(
         path: dpath.clone(),
         reason: e.to_string(),
     })?;
-    let mut lines = records(&bytes, delimiter, &dpath)?.into_iter();
+    parse_samples(&bytes, delimiter, columns, &dpath, mpath, manifest_text)
+}
+
+/// Parses one recording file with a header row, as [`Dataset::load`] does
+/// (`whitespace`: the `delimiter = "whitespace"` format). `path` names the
+/// file in errors.
+pub fn parse_recording(bytes: &[u8], whitespace: bool, path: &str) -> Result<Samples, DatasetError> {
+    let delimiter = if whitespace {
+        Delimiter::Whitespace
+    } else {
+        Delimiter::Comma
+    };
+    parse_samples(bytes, delimiter, None, path, "", "").map(|(samples, _)| samples)
+}
+
+fn parse_samples(
+    bytes: &[u8],
+    delimiter: Delimiter,
+    columns: Option<&Spanned<Vec<String>>>,
+    dpath: &str,
+    mpath: &str,
+    manifest_text: &str,
+) -> Result<(Samples, bool), DatasetError> {
+    let dpath = dpath.to_string();
+    let mut lines = records(bytes, delimiter, &dpath)?.into_iter();
 
     // Column names come from `columns` in dataset.toml, or from the header row.
     let (names, name_path, name_line): (Vec<String>, &str, usize) = match columns {

@@ -37,7 +37,8 @@ impl PilLink {
         Ok(link)
     }
 
-    fn read_command(&mut self) -> Result<CommandFrame> {
+    /// Reads the next command frame (fault injection reads answers itself).
+    pub fn read_command(&mut self) -> Result<CommandFrame> {
         let mut buf = [0u8; FRAME_LEN];
         self.stream.read_exact(&mut buf)?;
         CommandFrame::decode(&buf).map_err(|e| anyhow::anyhow!("bad command frame: {e:?}"))
@@ -63,7 +64,18 @@ impl PilLink {
     pub fn upload_config(&mut self, table: &Table, cfg: &ControlConfig) -> Result<()> {
         let mut words = [0u32; CONFIG_MAX_WORDS];
         let n = encode_config(table, cfg, &mut words);
-        for (k, chunk) in words[..n].chunks(3).enumerate() {
+        let answer = self.send_config_words(&words[..n])?;
+        if answer.flags.contains(Flags::TABLE_FAULT) {
+            bail!("the firmware refused the uploaded table or configuration");
+        }
+        Ok(())
+    }
+
+    /// Sends a configuration blob (config frames + commit) and returns the
+    /// firmware's answer, a hello flagged `TABLE_FAULT` if it refused.
+    pub fn send_config_words(&mut self, words: &[u32]) -> Result<CommandFrame> {
+        let n = words.len();
+        for (k, chunk) in words.chunks(3).enumerate() {
             let mut three = [0u32; 3];
             three[..chunk.len()].copy_from_slice(chunk);
             let frame = ConfigChunk::Words {
@@ -85,10 +97,12 @@ impl PilLink {
                 answer.seq
             );
         }
-        if answer.flags.contains(Flags::TABLE_FAULT) {
-            bail!("the firmware refused the uploaded table or configuration");
-        }
-        Ok(())
+        Ok(answer)
+    }
+
+    /// How long to wait for an answer (default [`ANSWER_TIMEOUT`]).
+    pub fn set_answer_timeout(&mut self, timeout: Duration) -> Result<()> {
+        self.stream.set_read_timeout(Some(timeout)).context("read timeout")
     }
 
     /// Sends raw bytes (tests use it to inject corrupt frames).

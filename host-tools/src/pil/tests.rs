@@ -55,7 +55,7 @@ impl Plant for StandInDrop {
 }
 
 /// QEMU, or `None` to skip (outside CI only).
-fn qemu_or_skip() -> Option<PathBuf> {
+pub(super) fn qemu_or_skip() -> Option<PathBuf> {
     match qemu_binary() {
         Some(q) => Some(q),
         None if std::env::var_os("CI").is_some() => panic!("QEMU is required in CI: {INSTALL_HINT}"),
@@ -66,7 +66,7 @@ fn qemu_or_skip() -> Option<PathBuf> {
     }
 }
 
-fn firmware() -> PathBuf {
+pub(super) fn firmware() -> PathBuf {
     static ELF: OnceLock<PathBuf> = OnceLock::new();
     ELF.get_or_init(|| build_firmware().expect("building the PIL firmware image"))
         .clone()

@@ -18,8 +18,6 @@
 pub mod report;
 
 use crate::dataset::{Dataset, Recording, Role};
-use crate::loops::fitted_stroke_mm;
-use mre_core::model::Branch;
 use mre_core::table::Table;
 use mre_core::Flags;
 use serde::Serialize;
