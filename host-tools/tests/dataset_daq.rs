@@ -142,3 +142,19 @@ fn a_file_that_is_not_text_names_its_line() {
     let err = load(dir.path(), MANIFEST, &text).unwrap_err();
     assert!(matches!(err, DatasetError::BadRecord { line: 3, .. }), "{err}");
 }
+
+#[test]
+fn an_absurd_estimated_velocity_is_rejected_at_load() {
+    // Samples 1 ns apart with 0.1 mm between them: 10⁵ m/s, far beyond the
+    // 100 m/s bound; the velocity column is missing, so it is estimated.
+    let mut text = String::from("time_s,displacement_mm,force_n\n");
+    for i in 0..12 {
+        text.push_str(&format!("{},{},1\n", i as f64 * 1e-9, i as f64 * 0.1));
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let err = load(dir.path(), MANIFEST, text.as_bytes()).unwrap_err();
+    assert!(
+        matches!(&err, DatasetError::OutOfRange { line: 2, column: 2, name, .. } if name.contains("estimated")),
+        "{err}"
+    );
+}

@@ -367,9 +367,11 @@ fn parse_samples(
 
     let mut channels: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
     let mut last_line = name_line;
+    let mut sample_lines = Vec::new();
     let time_col = layout.iter().position(|c| matches!(c, Some((Quantity::Time, _))));
     for (n, f) in lines {
         last_line = n;
+        sample_lines.push(n);
         if f.len() != names.len() {
             return Err(DatasetError::FieldCount {
                 path: dpath,
@@ -450,6 +452,27 @@ fn parse_samples(
         Some(v) => (v, false),
         None => (estimate_velocity_m_s(&time_s, &x_mm), true),
     };
+    if estimated {
+        // Samples closer in time than the displacement allows give an absurd
+        // velocity: reject it here rather than in the fit.
+        let (min, max, unit) = Quantity::Velocity.plausible_range();
+        if let Some(k) = v_m_s.iter().position(|v| !(min..=max).contains(v)) {
+            let column = layout
+                .iter()
+                .position(|c| matches!(c, Some((Quantity::Displacement, _))));
+            return Err(DatasetError::OutOfRange {
+                path: dpath,
+                line: sample_lines.get(k).copied().unwrap_or(last_line),
+                column: column.map_or(0, |c| c + 1),
+                name: format!("velocity estimated from {}", column.map_or("x", |c| names[c].as_str())),
+                text: format!("{}", v_m_s[k]),
+                quantity: Quantity::Velocity.describe().to_string(),
+                min,
+                max,
+                unit: unit.to_string(),
+            });
+        }
+    }
     let samples = Samples {
         accel_m_s2: take(Quantity::Acceleration, &mut channels),
         current_a: take(Quantity::Current, &mut channels),
