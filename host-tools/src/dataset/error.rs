@@ -1,5 +1,6 @@
 //! Every way a data set can be rejected. Each `Display` is the whole message a
 //! user sees: it names the file, the line and (for a value) the column.
+use super::columns::Quantity;
 use thiserror::Error;
 
 #[derive(Clone, Debug, Error, PartialEq)]
@@ -31,7 +32,7 @@ pub enum DatasetError {
         value: f64,
         min: f64,
         max: f64,
-        unit: String,
+        unit: &'static str,
     },
 
     /// A record the CSV reader cannot parse (e.g. not UTF-8).
@@ -39,8 +40,8 @@ pub enum DatasetError {
     BadRecord { path: String, line: usize, message: String },
 
     #[error(
-        "{path}: line {line}, column {column} ({name}): `{text}` is outside the plausible {quantity} range \
-         [{min}, {max}] {unit}"
+        "{path}: line {line}, column {column} ({name}): `{text}` is outside the plausible {} range [{}, {}] {}",
+        .quantity.describe(), .quantity.plausible_range().0, .quantity.plausible_range().1, .quantity.plausible_range().2
     )]
     OutOfRange {
         path: String,
@@ -48,10 +49,7 @@ pub enum DatasetError {
         column: usize,
         name: String,
         text: String,
-        quantity: String,
-        min: f64,
-        max: f64,
-        unit: String,
+        quantity: Quantity,
     },
 
     #[error("{path}: line {line}: unknown key `{key}` in {section}")]

@@ -158,7 +158,7 @@ impl Dataset {
                             value,
                             min,
                             max,
-                            unit: unit.to_string(),
+                            unit,
                         })
                     }
                     _ => Ok(Some(value)),
@@ -399,7 +399,7 @@ fn parse_samples(
                 });
             }
             let value = value * scale;
-            let (min, max, unit) = quantity.plausible_range();
+            let (min, max, _) = quantity.plausible_range();
             if !(min..=max).contains(&value) {
                 return Err(DatasetError::OutOfRange {
                     path: dpath,
@@ -407,10 +407,7 @@ fn parse_samples(
                     column: col + 1,
                     name: names[col].clone(),
                     text: text.to_string(),
-                    quantity: quantity.describe().to_string(),
-                    min,
-                    max,
-                    unit: unit.to_string(),
+                    quantity,
                 });
             }
             if quantity == Quantity::Time && Some(col) == time_col {
@@ -455,7 +452,7 @@ fn parse_samples(
     if estimated {
         // Samples closer in time than the displacement allows give an absurd
         // velocity: reject it here rather than in the fit.
-        let (min, max, unit) = Quantity::Velocity.plausible_range();
+        let (min, max, _) = Quantity::Velocity.plausible_range();
         if let Some(k) = v_m_s.iter().position(|v| !(min..=max).contains(v)) {
             let column = layout
                 .iter()
@@ -466,10 +463,7 @@ fn parse_samples(
                 column: column.map_or(0, |c| c + 1),
                 name: format!("velocity estimated from {}", column.map_or("x", |c| names[c].as_str())),
                 text: format!("{}", v_m_s[k]),
-                quantity: Quantity::Velocity.describe().to_string(),
-                min,
-                max,
-                unit: unit.to_string(),
+                quantity: Quantity::Velocity,
             });
         }
     }
