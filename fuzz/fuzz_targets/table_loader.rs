@@ -7,7 +7,9 @@ use mre_core::model::Branch;
 
 fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else { return };
-    let Ok(table) = mre_host::table_file::parse_table_toml(text) else { return };
+    let Ok(table) = mre_host::table_file::parse_table_toml(text) else {
+        return;
+    };
     let (lo, hi) = table.current_range_a();
     assert!(lo.is_finite() && hi.is_finite() && lo <= hi);
     for e in table.entries() {

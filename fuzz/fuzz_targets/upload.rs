@@ -4,10 +4,15 @@
 //! re-encodes to itself, and both paths agree.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use mre_core::frame::{decode_config, encode_config, ConfigChunk, ConfigCollector, Incoming, SampleReceiver, CONFIG_MAX_WORDS};
+use mre_core::frame::{
+    decode_config, encode_config, ConfigChunk, ConfigCollector, Incoming, SampleReceiver, CONFIG_MAX_WORDS,
+};
 
 fuzz_target!(|data: &[u8]| {
-    let words: Vec<u32> = data.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+    let words: Vec<u32> = data
+        .chunks_exact(4)
+        .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect();
     let direct = decode_config(&words);
     if let Ok((table, cfg)) = &direct {
         let mut out = [0u32; CONFIG_MAX_WORDS];
@@ -49,9 +54,16 @@ fuzz_target!(|data: &[u8]| {
                 assert_eq!(c1, c2);
             }
             (Err(_), Err(_)) => {}
-            _ => panic!("the upload and the direct decode disagree: {:?} vs {:?}", uploaded.is_ok(), direct.is_ok()),
+            _ => panic!(
+                "the upload and the direct decode disagree: {:?} vs {:?}",
+                uploaded.is_ok(),
+                direct.is_ok()
+            ),
         }
     } else {
-        assert!(uploaded.is_err(), "a blob longer than the largest configuration is refused");
+        assert!(
+            uploaded.is_err(),
+            "a blob longer than the largest configuration is refused"
+        );
     }
 });
