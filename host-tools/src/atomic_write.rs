@@ -262,6 +262,10 @@ impl OutputSet {
                 path.display()
             );
         }
+        // Never move a folder aside (and delete it) to put a file in its place.
+        if std::fs::symlink_metadata(path).is_ok_and(|m| m.is_dir()) {
+            bail!("{} is a folder; the output file cannot replace it", path.display());
+        }
         let dir = parent_of(path);
         create_parents(dir, &mut self.created_dirs)?;
         let mut builder = tempfile::Builder::new();
@@ -473,6 +477,17 @@ mod tests {
         .unwrap_err();
         assert!(err.to_string().contains("would both be written to"), "{err:#}");
         assert!(listing(dir.path()).is_empty());
+    }
+
+    #[test]
+    fn a_file_output_never_replaces_a_folder() {
+        let dir = tempfile::tempdir().unwrap();
+        let target = dir.path().join("results");
+        std::fs::create_dir(&target).unwrap();
+        std::fs::write(target.join("keep.txt"), "mine").unwrap();
+        let err = command(|| write_atomic(&target, b"model")).unwrap_err();
+        assert!(err.to_string().contains("is a folder"), "{err:#}");
+        assert_eq!(std::fs::read_to_string(target.join("keep.txt")).unwrap(), "mine");
     }
 
     #[cfg(unix)]
