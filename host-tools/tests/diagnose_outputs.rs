@@ -77,6 +77,9 @@ fn a_run_failing_part_way_writes_nothing() {
     .expect_err("injected failure");
     assert!(format!("{err:#}").contains("injected write failure"), "{err:#}");
     assert!(!rep.exists() && !json.exists() && !pred.exists());
-    let names: Vec<_> = std::fs::read_dir(dir.path()).expect("ls").map(|e| e.expect("entry").file_name()).collect();
+    let names: Vec<_> = std::fs::read_dir(dir.path())
+        .expect("ls")
+        .map(|e| e.expect("entry").file_name())
+        .collect();
     assert_eq!(names, vec![std::ffi::OsString::from("data")]);
 }

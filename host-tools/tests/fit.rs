@@ -130,7 +130,11 @@ fn gsa_at_paper_scale_comes_near_the_optimum() {
         assert!(r.best_value < r.convergence[0]);
         assert!(r.best_value >= optimum.rmse_n * (1.0 - 1e-9));
         let random = random_search(|c| m.rmse(c), &bounds, params.agents * params.iters, seed);
-        assert!(r.best_value < random, "seed {seed}: GSA {} vs random search {random}", r.best_value);
+        assert!(
+            r.best_value < random,
+            "seed {seed}: GSA {} vs random search {random}",
+            r.best_value
+        );
         ratios.push(r.best_value / optimum.rmse_n);
     }
     ratios.sort_by(f64::total_cmp);

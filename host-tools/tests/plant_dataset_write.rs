@@ -145,11 +145,18 @@ fn refuses_to_overwrite_and_bad_data_writes_nothing() {
     assert!(!fresh.exists(), "a failed run leaves no folder");
     // Failing part-way: the folder is complete in staging, then the command fails.
     let err = mre_host::atomic_write::command_failing_after(0, || {
-        write_dataset(&dataset(), &dir.path().join("fresh").join("deeper"), &WriteOptions::default())
+        write_dataset(
+            &dataset(),
+            &dir.path().join("fresh").join("deeper"),
+            &WriteOptions::default(),
+        )
     })
     .unwrap_err();
     assert!(format!("{err:#}").contains("injected write failure"), "{err:#}");
-    assert!(!fresh.exists(), "a failed run leaves no folder, not even the parents it created");
+    assert!(
+        !fresh.exists(),
+        "a failed run leaves no folder, not even the parents it created"
+    );
     // No staging leftovers beside the target.
     let names: Vec<_> = std::fs::read_dir(dir.path())
         .unwrap()
