@@ -16,6 +16,9 @@
 //! [`stage_folder`] instead, because its later steps read what earlier ones
 //! wrote.
 //!
+//! The output set belongs to the thread that runs the command: write outputs
+//! from that thread (rayon workers compute; they do not write).
+//!
 //! Two outputs of one command with the same destination are an error, never a
 //! silent overwrite. Outputs get the ordinary permissions the umask gives
 //! (temporary files are created 0666 & !umask, not tempfile's private 0600).
