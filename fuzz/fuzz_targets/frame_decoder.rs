@@ -1,33 +1,18 @@
 //! The PIL frame decoder on an arbitrary byte stream, as the firmware's
 //! receiver sees it. Never a panic; every frame accepted is a 24-byte
-//! window of the stream whose CRC-32 (computed here, bit by bit) is valid
+//! window of the stream whose CRC-32 (the tests' bitwise reference, not the core's table) is valid
 //! and which decodes to the same frame: no frame is made up from noise.
 //! (Not "re-encodes to the same bytes": fields a frame marks absent are
 //! ignored, so a frame may carry any bytes there.)
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 use mre_core::frame::{CommandFrame, ConfigChunk, Incoming, SampleFrame, SampleReceiver, FRAME_LEN};
-
-/// CRC-32/ISO-HDLC, bit by bit (independent of the core's table-driven one).
-fn crc32(bytes: &[u8]) -> u32 {
-    let mut crc = !0u32;
-    for &b in bytes {
-        crc ^= u32::from(b);
-        for _ in 0..8 {
-            crc = if crc & 1 != 0 {
-                (crc >> 1) ^ 0xEDB8_8320
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    !crc
-}
+use mre_tests::crc32_reference;
 
 fn sent(data: &[u8], frame: &Incoming) -> bool {
     data.windows(FRAME_LEN).any(|w| {
         let buf: &[u8; FRAME_LEN] = w.try_into().unwrap();
-        let crc_ok = u32::from_le_bytes([w[20], w[21], w[22], w[23]]) == crc32(&w[..20]);
+        let crc_ok = u32::from_le_bytes([w[20], w[21], w[22], w[23]]) == crc32_reference(&w[..20]);
         crc_ok
             && match frame {
                 // Compared by canonical encoding, so NaN payloads compare bit for bit.
@@ -50,7 +35,7 @@ fuzz_target!(|data: &[u8]| {
         if CommandFrame::decode(buf).is_ok() {
             assert_eq!(
                 u32::from_le_bytes([w[20], w[21], w[22], w[23]]),
-                crc32(&w[..20]),
+                crc32_reference(&w[..20]),
                 "a command frame with a bad CRC decoded"
             );
         }

@@ -35,13 +35,19 @@ fn three_outputs(root: &Path, text: &str) -> Result<()> {
     Ok(())
 }
 
-#[test]
-fn a_failure_part_way_leaves_the_previous_outputs_exactly() {
+/// A folder holding a previous run's `a.txt` and `sub/b.txt`, and its listing.
+fn previous_outputs() -> (tempfile::TempDir, Vec<(String, Vec<u8>)>) {
     let dir = tempfile::tempdir().unwrap();
     std::fs::create_dir(dir.path().join("sub")).unwrap();
     std::fs::write(dir.path().join("a.txt"), "old a").unwrap();
     std::fs::write(dir.path().join("sub/b.txt"), "old b").unwrap();
     let before = listing(dir.path());
+    (dir, before)
+}
+
+#[test]
+fn a_failure_part_way_leaves_the_previous_outputs_exactly() {
+    let (dir, before) = previous_outputs();
     for n in 0..3 {
         let err = command_failing_after(n, || three_outputs(dir.path(), "new")).unwrap_err();
         assert!(format!("{err:#}").contains("injected write failure"), "{err:#}");
@@ -57,17 +63,13 @@ fn a_failure_part_way_leaves_the_previous_outputs_exactly() {
 
 #[test]
 fn a_failed_rename_rolls_back_the_ones_already_published() {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::create_dir(dir.path().join("sub")).unwrap();
-    std::fs::write(dir.path().join("a.txt"), "old a").unwrap();
-    std::fs::write(dir.path().join("sub/b.txt"), "old b").unwrap();
-    let before = listing(dir.path());
+    let (dir, before) = previous_outputs();
     for n in 0..3 {
         let mut set = OutputSet::default();
         set.fail_publish_after = Some(n);
-        set.stage_file(&dir.path().join("a.txt"), b"new").unwrap();
-        set.stage_file(&dir.path().join("sub/b.txt"), b"new").unwrap();
-        set.stage_file(&dir.path().join("new/deeper/c.txt"), b"new").unwrap();
+        for name in ["a.txt", "sub/b.txt", "new/deeper/c.txt"] {
+            set.stage_file(&dir.path().join(name), b"new").unwrap();
+        }
         let err = set.publish().unwrap_err();
         assert!(err.to_string().contains("injected rename failure"));
         assert_eq!(listing(dir.path()), before, "after {n} renames");
