@@ -7,12 +7,8 @@ use plotters::prelude::*;
 use std::path::Path;
 
 const SIZE: (u32, u32) = (1000, 640);
-const COLOURS: [RGBColor; 4] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-];
+/// The figures' one palette (Okabe–Ito).
+const COLOURS: [RGBColor; 7] = crate::plot::chart::PALETTE;
 
 fn png_atomic(path: &Path, draw: impl FnOnce(&Area) -> Result<()>) -> Result<()> {
     crate::plot::chart::render_png(path, SIZE, draw)
