@@ -58,6 +58,14 @@ fn fit_validate_plot(dataset: &Path, out: &Path, seed: u64, hold_out_a: &[f64], 
     )?;
     crate::fit::sweep::run_sweep(dataset, &options, hold_out_a, &out.join("sweep"))?;
     crate::tables::run_tables(&model_path, &out.join("generated_table.rs"))?;
+    let page = out.join("index.html");
+    crate::html::Page::new(title)
+        .folder(&out.join("validate"))
+        .folder(&out.join("plots"))
+        .folder(&out.join("sweep"))
+        .file(&model_path)
+        .file(&out.join("generated_table.rs"))
+        .write(&page)?;
     let gaps: Vec<f64> = run.fits.iter().filter_map(|f| f.gap_ratio()).collect();
     let worst_gap = gaps.iter().cloned().fold(f64::NAN, f64::max);
     let nrmse: Vec<f64> = report.recordings.iter().map(|r| r.nrmse).collect();
@@ -72,7 +80,7 @@ fn fit_validate_plot(dataset: &Path, out: &Path, seed: u64, hold_out_a: &[f64], 
             100.0 * mean_nrmse,
             nrmse.len()
         ),
-        report: out.join("validate").join("report.md"),
+        report: page,
     })
 }
 
@@ -184,6 +192,7 @@ pub fn run_demo(options: &DemoOptions) -> Result<Vec<DemoStep>> {
             out_dir: staging.to_path_buf(),
             ..options.clone()
         })?;
+        write_index(staging, &steps)?;
         for step in &mut steps {
             if let Ok(inside) = step.report.strip_prefix(staging) {
                 step.report = options.out_dir.join(inside);
@@ -192,6 +201,35 @@ pub fn run_demo(options: &DemoOptions) -> Result<Vec<DemoStep>> {
         Ok(())
     })?;
     Ok(steps)
+}
+
+/// `index.html` in the demo's output folder: every step's headline, linked
+/// to the step's own page (the `index.html` beside its report).
+fn write_index(out: &Path, steps: &[DemoStep]) -> Result<()> {
+    let pages: Vec<Option<PathBuf>> = steps
+        .iter()
+        .map(|s| {
+            let page = s.report.with_file_name("index.html");
+            (s.report.starts_with(out) && page.is_file()).then_some(page)
+        })
+        .collect();
+    let entries: Vec<crate::html::IndexEntry> = steps
+        .iter()
+        .zip(&pages)
+        .map(|(s, page)| crate::html::IndexEntry {
+            title: &s.title,
+            headline: &s.headline,
+            link: page.as_deref(),
+        })
+        .collect();
+    crate::html::write_index(
+        out,
+        "mre demo: every step on the bundled data",
+        "The paper's model fitted to real MR damper recordings and to simulated drop tests, validated by \
+         predicting currents it never saw, diagnosed for missing physics, and run in closed loop on the host \
+         and on the firmware. Each step's page has its tables, figures and data files.",
+        &entries,
+    )
 }
 
 fn run_steps(options: &DemoOptions) -> Result<Vec<DemoStep>> {

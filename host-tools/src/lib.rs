@@ -5,6 +5,7 @@ pub mod dataset;
 pub mod demo;
 pub mod diagnose;
 pub mod fit;
+pub mod html;
 pub mod linalg;
 pub mod loops;
 pub mod pil;

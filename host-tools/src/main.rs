@@ -283,18 +283,15 @@ fn run(cli: Cli) -> Result<()> {
         Command::Demo { data, out, seed } => {
             let steps = mre_host::demo::run_demo(&mre_host::demo::DemoOptions {
                 data_dir: data,
-                out_dir: out,
+                out_dir: out.clone(),
                 seed,
             })?;
             println!();
             for step in steps {
-                println!(
-                    "{}\n  {}\n  report: {}",
-                    step.title,
-                    step.headline,
-                    step.report.display()
-                );
+                println!("{}\n  {}", step.title, step.headline);
             }
+            // One place to look: the page links every step's report.
+            println!("\n{}", out.join("index.html").display());
         }
         Command::Model {
             table,
