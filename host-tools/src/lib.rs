@@ -11,6 +11,7 @@ pub mod loops;
 pub mod pil;
 pub mod plant;
 pub mod plot;
+pub mod progress;
 pub mod table_file;
 pub mod tables;
 pub mod validate;

@@ -13,6 +13,9 @@ use std::path::PathBuf;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// No progress bars (they are shown only on a terminal anyway).
+    #[arg(long, short, global = true)]
+    quiet: bool,
 }
 
 #[derive(Subcommand)]
@@ -175,6 +178,13 @@ enum Command {
         #[arg(long)]
         report: PathBuf,
     },
+    /// Data set helpers: `mre dataset init DIR` writes dataset.toml for a folder of recordings.
+    Dataset {
+        #[command(subcommand)]
+        action: DatasetAction,
+    },
+    /// Print a shell completion script (e.g. `mre completions bash > /etc/bash_completion.d/mre`).
+    Completions { shell: clap_complete::Shell },
     /// Processor-in-the-loop: the drop comparison with the controlled run
     /// closed through the firmware in QEMU (`cargo fw-pil` image).
     Pil {
@@ -186,6 +196,20 @@ enum Command {
         /// Folder for CSV, summary, plots and pil.json.
         #[arg(long)]
         report: PathBuf,
+    },
+}
+
+#[derive(Subcommand)]
+enum DatasetAction {
+    /// Write DIR/dataset.toml from the recordings in DIR (never overwrites one).
+    Init {
+        dir: PathBuf,
+        /// Metadata in file names, `x` for the decimal point, e.g. '{amplitude_mm}mm{frequency_hz}Hz{current_a}A'.
+        #[arg(long)]
+        pattern: Option<String>,
+        /// The data set's name (default: the folder's name).
+        #[arg(long)]
+        name: Option<String>,
     },
 }
 
@@ -260,6 +284,7 @@ impl DropArgs {
 
 fn main() {
     let cli = Cli::parse();
+    mre_host::progress::set_enabled(!cli.quiet && show_progress());
     // Every command's outputs are published together or not at all; the demo
     // stages its whole output folder itself (its steps read earlier outputs).
     let result = match cli.command {
@@ -311,7 +336,7 @@ fn run(cli: Cli) -> Result<()> {
             hold_out_current,
             out,
         } => {
-            let options = gsa.options(method, show_progress());
+            let options = gsa.options(method, mre_host::progress::enabled());
             let run = mre_host::fit::run_fit(&dataset, &options, &hold_out_current, &out)?;
             print!("{}", mre_host::fit::summary_markdown(&run.fits));
             println!(
@@ -436,6 +461,16 @@ fn run(cli: Cli) -> Result<()> {
             let cmp = run_sim(&request, &report)?;
             print!("{}", mre_host::plant::sim_report::summary_table(&cmp));
             println!("report: {}", report.join("summary.md").display());
+        }
+        Command::Dataset {
+            action: DatasetAction::Init { dir, pattern, name },
+        } => {
+            let path = mre_host::dataset::init::run_init(&dir, pattern.as_deref(), name.as_deref())?;
+            println!("wrote {} (check the units it assumed, in its comments)", path.display());
+        }
+        Command::Completions { shell } => {
+            use clap::CommandFactory;
+            clap_complete::generate(shell, &mut Cli::command(), "mre", &mut std::io::stdout());
         }
         Command::Pil { drop, elf, report } => {
             let sim = drop.request(None)?;

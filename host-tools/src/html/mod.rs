@@ -167,28 +167,30 @@ fn read(dest: &Path, from: &Path) -> Result<Vec<u8>> {
 /// Markdown reports, figures, JSON tables and the file list of one folder.
 fn render_files(out: &mut String, base: &Path, files: &[(PathBuf, PathBuf)], top: bool) -> Result<()> {
     let h = if top { "h2" } else { "h3" };
+    // Figures a report shows itself are embedded there, not repeated below.
+    let mut shown: Vec<PathBuf> = Vec::new();
     for (dest, from) in files.iter().filter(|(d, _)| extension(d) == "md") {
         let text = String::from_utf8_lossy(&read(dest, from)?).into_owned();
-        out.push_str(&markdown(&text));
+        out.push_str(&markdown(&text, files, &mut shown)?);
     }
     let figures: Vec<&(PathBuf, PathBuf)> = files
         .iter()
         .filter(|(d, _)| {
             let e = extension(d);
-            e == "png" || (e == "svg" && !files.iter().any(|(o, _)| *o == d.with_extension("png")))
+            let figure = e == "png" || (e == "svg" && !files.iter().any(|(o, _)| *o == d.with_extension("png")));
+            figure && !shown.contains(d)
         })
         .collect();
     if !figures.is_empty() {
         let _ = writeln!(out, "<{h}>Figures</{h}>\n<div class=\"figures\">");
         for (dest, from) in figures {
-            let mime = if extension(dest) == "png" { "image/png" } else { "image/svg+xml" };
-            let data = base64::engine::general_purpose::STANDARD.encode(read(dest, from)?);
             let name = escape(&dest.file_name().unwrap_or_default().to_string_lossy());
             let _ = writeln!(
                 out,
-                "<figure><a href=\"{link}\"><img src=\"data:{mime};base64,{data}\" alt=\"{name}\"></a>\
+                "<figure><a href=\"{link}\"><img src=\"{data}\" alt=\"{name}\"></a>\
                  <figcaption>{name}</figcaption></figure>",
-                link = escape(&href(base, dest))
+                link = escape(&href(base, dest)),
+                data = data_uri(dest, from)?
             );
         }
         out.push_str("</div>\n");
@@ -205,8 +207,9 @@ fn render_files(out: &mut String, base: &Path, files: &[(PathBuf, PathBuf)], top
             "<details class=\"data\"{open}><summary>Data: <code>{}</code> (the numbers of the file, 4 significant digits)</summary>",
             escape(&name)
         );
+        out.push_str("<div class=\"scroll\">\n");
         json::render(out, &href(base, dest), &mut Vec::new(), &value);
-        out.push_str("</details>\n");
+        out.push_str("</div></details>\n");
     }
     let links: Vec<&PathBuf> = files
         .iter()
@@ -227,12 +230,48 @@ fn render_files(out: &mut String, base: &Path, files: &[(PathBuf, PathBuf)], top
     Ok(())
 }
 
+/// A figure file as a `data:` URI.
+fn data_uri(dest: &Path, from: &Path) -> Result<String> {
+    let mime = if extension(dest) == "svg" { "image/svg+xml" } else { "image/png" };
+    let data = base64::engine::general_purpose::STANDARD.encode(read(dest, from)?);
+    Ok(format!("data:{mime};base64,{data}"))
+}
+
 /// A markdown report as HTML; its headings move one level down, below the
-/// page's own title.
-fn markdown(text: &str) -> String {
-    use pulldown_cmark::{Event, HeadingLevel, Options, Parser, Tag, TagEnd};
+/// page's own title. Images it shows from its own folder (`files`) are
+/// embedded and added to `shown`.
+fn markdown(text: &str, files: &[(PathBuf, PathBuf)], shown: &mut Vec<PathBuf>) -> Result<String> {
+    use pulldown_cmark::{CowStr, Event, HeadingLevel, Options, Parser, Tag, TagEnd};
     let demote = |l: HeadingLevel| HeadingLevel::try_from(l as usize + 1).unwrap_or(l);
+    let mut failed = None;
     let parser = Parser::new_ext(text, Options::ENABLE_TABLES).map(|e| match e {
+        Event::Start(Tag::Image {
+            link_type,
+            dest_url,
+            title,
+            id,
+        }) => {
+            let local = files
+                .iter()
+                .find(|(d, _)| d.file_name().is_some_and(|n| n.to_string_lossy() == *dest_url));
+            let dest_url = match local.map(|(d, f)| (d, data_uri(d, f))) {
+                Some((d, Ok(uri))) => {
+                    shown.push(d.clone());
+                    CowStr::from(uri)
+                }
+                Some((_, Err(e))) => {
+                    failed = Some(e);
+                    dest_url
+                }
+                None => dest_url,
+            };
+            Event::Start(Tag::Image {
+                link_type,
+                dest_url,
+                title,
+                id,
+            })
+        }
         // Raw HTML in a report is shown as text, never interpreted.
         Event::Html(s) | Event::InlineHtml(s) => Event::Text(s),
         Event::Start(Tag::Heading {
@@ -251,9 +290,13 @@ fn markdown(text: &str) -> String {
     });
     let mut html = String::new();
     pulldown_cmark::html::push_html(&mut html, parser);
+    if let Some(e) = failed {
+        return Err(e);
+    }
     // Wide tables scroll inside their own box.
-    html.replace("<table>", "<div class=\"scroll\"><table>")
-        .replace("</table>", "</table></div>")
+    Ok(html
+        .replace("<table>", "<div class=\"scroll\"><table>")
+        .replace("</table>", "</table></div>"))
 }
 
 fn skeleton(title: &str, lead: Option<&str>, body: &str) -> String {
@@ -310,7 +353,12 @@ mod tests {
     fn page_shows_markdown_figures_json_and_links() {
         let dir = tempfile::tempdir().unwrap();
         let d = dir.path();
-        std::fs::write(d.join("report.md"), "# Validation\n\n| a | b |\n|---|---|\n| 1 | <x> |\n").unwrap();
+        std::fs::write(
+            d.join("report.md"),
+            "# Validation\n\n| a | b |\n|---|---|\n| 1 | <x> |\n\n![loops](loops.svg)\n",
+        )
+        .unwrap();
+        std::fs::write(d.join("loops.svg"), "<svg xmlns='http://www.w3.org/2000/svg' width='5' height='5'/>").unwrap();
         std::fs::write(d.join("report.json"), r#"{"rmse_n": 0.125}"#).unwrap();
         std::fs::write(d.join("run.csv"), "t,x\n").unwrap();
         std::fs::write(d.join("fig.svg"), "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'/>").unwrap();
@@ -322,6 +370,9 @@ mod tests {
         assert!(html.contains("&lt;x&gt;"), "raw HTML in markdown is escaped");
         assert!(html.contains("data-json-path=\"report.json#/rmse_n\">0.1250<"));
         assert!(html.contains("src=\"data:image/svg+xml;base64,"));
+        // The figure the report shows is embedded there and not repeated in the gallery.
+        assert!(html.contains("<img src=\"data:image/svg+xml;base64,") && html.contains("alt=\"loops\""));
+        assert_eq!(html.matches("<figcaption>").count(), 1, "only fig.svg in the gallery");
         assert!(html.contains("<a href=\"run.csv\">run.csv</a>"));
         assert!(!html.contains("<script"), "no script");
     }
