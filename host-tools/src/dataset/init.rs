@@ -24,8 +24,6 @@ use std::path::Path;
 const DATA_EXTENSIONS: &[&str] = &["txt", "csv", "dat", "tsv", "asc"];
 /// Pattern names that are recording keys rather than tags.
 const KEYS: &[&str] = &["current_a", "impact_velocity_m_s", "temperature_c", "mass_kg", "sequence"];
-/// Lines read to sniff a file's layout.
-const SNIFF_LINES: usize = 400;
 
 #[derive(Clone, Debug, PartialEq)]
 enum Delimiter {
@@ -154,14 +152,14 @@ fn map_name(raw: &str) -> Option<String> {
     Some(name.to_string())
 }
 
-/// The first non-comment, non-blank lines split into fields.
+/// The non-comment, non-blank lines split into fields; the first one
+/// tells the delimiter.
 fn sniff_records(text: &str) -> Result<(Delimiter, Vec<Vec<String>>)> {
     let lines: Vec<&str> = text
         .trim_start_matches('\u{feff}')
         .lines()
         .map(str::trim)
         .filter(|l| !l.is_empty() && !l.starts_with('#'))
-        .take(SNIFF_LINES)
         .collect();
     let Some(first) = lines.first() else {
         bail!("no data lines")
