@@ -306,11 +306,13 @@ fn show_progress() -> bool {
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Demo { data, out, seed } => {
+            let progress = mre_host::progress::spinner("mre demo: fit, validate, plot, diagnose, simulate, PIL");
             let steps = mre_host::demo::run_demo(&mre_host::demo::DemoOptions {
                 data_dir: data,
                 out_dir: out.clone(),
                 seed,
             })?;
+            std::mem::drop(progress);
             println!();
             for step in steps {
                 println!("{}\n  {}", step.title, step.headline);
@@ -352,9 +354,10 @@ fn run(cli: Cli) -> Result<()> {
             report,
             hold_out_current,
         } => {
+            let _progress = mre_host::progress::spinner("validating");
             let r = mre_host::validate::run_validate(&dataset, &model, &hold_out_current, &report)?;
             print!("{}", mre_host::validate::report::markdown(&r));
-            println!("\nwrote {}/report.md and report.json", report.display());
+            println!("\nwrote {0}/report.md, report.json and index.html", report.display());
         }
         Command::Plot {
             dataset,
@@ -366,6 +369,7 @@ fn run(cli: Cli) -> Result<()> {
             let options = mre_host::plot::PlotOptions {
                 interpolated_a: interpolate,
             };
+            let _progress = mre_host::progress::spinner("drawing the figures");
             let files = mre_host::plot::run_plot(&dataset, &model, &hold_out_current, &options, &out)?;
             for f in files {
                 println!("wrote {}.png and .svg", f.display());
@@ -378,6 +382,7 @@ fn run(cli: Cli) -> Result<()> {
             out,
         } => {
             let base = gsa.options(mre_host::fit::FitOptions::default().method, false);
+            let _progress = mre_host::progress::spinner("sweeping GSA iterations and agents");
             let s = mre_host::fit::sweep::run_sweep(&dataset, &base, &hold_out_current, &out)?;
             print!("{}", mre_host::fit::sweep::to_csv(&s));
             println!("wrote {}/sweep.csv and the Fig. 13/14 plots", out.display());
@@ -419,14 +424,19 @@ fn run(cli: Cli) -> Result<()> {
             seed,
         } => {
             let opts = mre_host::diagnose::options_from_cli(model.as_deref(), folds_by, folds, validate_current, seed)?;
+            let progress = mre_host::progress::spinner("diagnosing");
             let out = mre_host::diagnose::run_to_files(&dataset, &opts, &report, &json, &predictions)?;
+            std::mem::drop(progress);
             println!("{}", mre_host::diagnose::summary_line(&out));
             println!("report: {}", report.join("report.md").display());
+            println!("page: {}", report.join("index.html").display());
         }
         Command::BenchDiagnose { cases, seed, json } => {
             let opts = mre_host::diagnose::DiagnoseOptions::default();
+            let progress = mre_host::progress::bar(cases as u64, "cases");
             let summary = mre_host::diagnose::bench::run_bench(cases, seed, &opts, |k, c| {
-                eprintln!(
+                progress.inc();
+                progress.println(&format!(
                     "case {:>3} seed {}: truth {:<20} diagnosed {:?} ({:.2} s); first round {:?}",
                     k + 1,
                     c.seed,
@@ -437,8 +447,9 @@ fn run(cli: Cli) -> Result<()> {
                         .iter()
                         .map(|(n, r)| format!("{n} {r:.3}"))
                         .collect::<Vec<_>>()
-                )
+                ))
             })?;
+            std::mem::drop(progress);
             print!("{}", mre_host::diagnose::bench::format_summary(&summary));
             if let Some(path) = json {
                 mre_host::atomic_write::write_atomic(&path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
@@ -458,9 +469,12 @@ fn run(cli: Cli) -> Result<()> {
             if request.runs.is_empty() {
                 request.runs = DEFAULT_RUNS.to_vec();
             }
+            let progress = mre_host::progress::spinner("simulating the drop test");
             let cmp = run_sim(&request, &report)?;
+            std::mem::drop(progress);
             print!("{}", mre_host::plant::sim_report::summary_table(&cmp));
             println!("report: {}", report.join("summary.md").display());
+            println!("page: {}", report.join("index.html").display());
         }
         Command::Dataset {
             action: DatasetAction::Init { dir, pattern, name },
@@ -474,7 +488,9 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Pil { drop, elf, report } => {
             let sim = drop.request(None)?;
+            let progress = mre_host::progress::spinner("building the PIL firmware and running it in QEMU");
             let out = mre_host::pil::sim::run_pil(&mre_host::pil::sim::PilRequest { sim, elf }, &report)?;
+            std::mem::drop(progress);
             print!("{}", mre_host::plant::sim_report::summary_table(&out.comparison));
             let a = out.agreement;
             println!(
@@ -482,6 +498,7 @@ fn run(cli: Cli) -> Result<()> {
                 a.bit_identical_commands, a.samples, a.max_command_diff_a, a.frames
             );
             println!("report: {}", report.join("summary.md").display());
+            println!("page: {}", report.join("index.html").display());
             if !a.agrees() {
                 anyhow::bail!("the firmware run does not match the in-process run (see pil.json)");
             }
