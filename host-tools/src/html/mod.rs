@@ -173,12 +173,18 @@ fn render_files(out: &mut String, base: &Path, files: &[(PathBuf, PathBuf)], top
         let text = String::from_utf8_lossy(&read(dest, from)?).into_owned();
         out.push_str(&markdown(&text, files, &mut shown)?);
     }
+    // A figure saved as PNG and SVG is embedded once, in the smaller form.
+    let size = |p: &Path| std::fs::metadata(p).map_or(u64::MAX, |m| m.len());
     let figures: Vec<&(PathBuf, PathBuf)> = files
         .iter()
-        .filter(|(d, _)| {
+        .filter(|(d, from)| {
             let e = extension(d);
-            let figure = e == "png" || (e == "svg" && !files.iter().any(|(o, _)| *o == d.with_extension("png")));
-            figure && !shown.contains(d)
+            let other = if e == "png" { "svg" } else { "png" };
+            let smaller_twin = files
+                .iter()
+                .find(|(o, _)| *o == d.with_extension(other))
+                .is_some_and(|(_, o_from)| (size(o_from), other) < (size(from), e.as_str()));
+            (e == "png" || e == "svg") && !smaller_twin && !shown.contains(d)
         })
         .collect();
     if !figures.is_empty() {
