@@ -7,6 +7,10 @@
 # Usage: tests/browser/check.sh [OUT]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+command -v chromium >/dev/null || { echo "needs Debian's chromium: apt-get install -y chromium"; exit 1; }
+# check.mjs speaks the DevTools protocol over Node's built-in WebSocket (Node >= 20.10).
+node -e 'const [a, b] = process.versions.node.split(".").map(Number); process.exit(a > 20 || (a === 20 && b >= 10) ? 0 : 1)' \
+  || { echo "needs node >= 20.10 (has $(node --version 2>/dev/null || echo none))"; exit 1; }
 shots=${SCREENSHOTS:-target/browser-screenshots}
 if [ $# -ge 1 ]; then
   out=$1

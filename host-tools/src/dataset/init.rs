@@ -113,7 +113,7 @@ fn match_pattern(pieces: &[Piece], stem: &str) -> Option<Vec<(String, f64)>> {
 /// A header name to a unit-carrying column name, if it can be told.
 fn map_name(raw: &str) -> Option<String> {
     let lower = raw.trim().to_ascii_lowercase();
-    if parse_header(&[lower.clone()], "", 1).is_ok() {
+    if parse_header(std::slice::from_ref(&lower), "", 1).is_ok() {
         return Some(lower);
     }
     // Split "Force (kN)", "force[kN]", "Force_kN", "force kn" into word and unit.
