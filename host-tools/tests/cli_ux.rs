@@ -32,7 +32,10 @@ fn validate_writes_a_page_whose_numbers_are_the_json_ones() {
         let at = html.find(&key).unwrap_or_else(|| panic!("no {key}")) + key.len();
         let shown: f64 = html[at..html[at..].find('<').unwrap() + at].parse().unwrap();
         // Four significant digits: within half a unit of the 4th digit.
-        assert!((shown - rmse).abs() <= 5e-4 * rmse.abs(), "recording {i}: {shown} vs {rmse}");
+        assert!(
+            (shown - rmse).abs() <= 5e-4 * rmse.abs(),
+            "recording {i}: {shown} vs {rmse}"
+        );
     }
     assert!(html.contains("<a href=\"report.json\">report.json</a>"));
     assert!(!html.contains("<script"));

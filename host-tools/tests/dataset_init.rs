@@ -45,5 +45,8 @@ fn reproduces_the_committed_mts_manifest() {
     let again = init(dir.path(), "other");
     assert!(!again.status.success());
     assert!(String::from_utf8_lossy(&again.stderr).contains("never overwrites"));
-    assert_eq!(std::fs::read_to_string(dir.path().join("dataset.toml")).unwrap(), written_text);
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("dataset.toml")).unwrap(),
+        written_text
+    );
 }

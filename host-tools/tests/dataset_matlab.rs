@@ -48,7 +48,12 @@ fn mat_copy(dir: &Path) {
         if let Some(file) = line.strip_prefix("file = \"").and_then(|l| l.strip_suffix(".txt\"")) {
             let c = raw_columns(&mts().join(format!("{file}.txt")));
             let n = c[0].len();
-            let bytes = mat_v5::mat_v5(&[("t", n, 1, &c[0]), ("x", n, 1, &c[1]), ("v", n, 1, &c[2]), ("F", n, 1, &c[3])]);
+            let bytes = mat_v5::mat_v5(&[
+                ("t", n, 1, &c[0]),
+                ("x", n, 1, &c[1]),
+                ("v", n, 1, &c[2]),
+                ("F", n, 1, &c[3]),
+            ]);
             std::fs::write(dir.join(format!("{file}.mat")), bytes).unwrap();
         }
     }
@@ -103,11 +108,18 @@ fn mat_data_set_fits_validates_and_diagnoses_like_the_text_one() {
         let model = o.join("model.toml");
         let run = mre_host::fit::run_fit(data, &options, &[0.5], &model).unwrap();
         models.push(normalised(&run.model, data));
-        let r = mre_host::validate::run_validate(data, &model.display().to_string(), &[0.5], &o.join("validate")).unwrap();
+        let r =
+            mre_host::validate::run_validate(data, &model.display().to_string(), &[0.5], &o.join("validate")).unwrap();
         reports.push(normalised(&r.recordings, data));
         let opts = mre_host::diagnose::options_from_cli(None, Some("frequency_hz".into()), 5, vec![0.5], 1).unwrap();
-        let d = mre_host::diagnose::run_to_files(data, &opts, &o.join("diag"), &o.join("diag/report.json"), &o.join("pred"))
-            .unwrap();
+        let d = mre_host::diagnose::run_to_files(
+            data,
+            &opts,
+            &o.join("diag"),
+            &o.join("diag/report.json"),
+            &o.join("pred"),
+        )
+        .unwrap();
         diagnoses.push(normalised(&d, data));
         assert!(o.join("validate/index.html").is_file() && o.join("diag/index.html").is_file());
     }
@@ -136,7 +148,11 @@ fn units_bad_names_and_wrong_shapes() {
     let t: Vec<f64> = (0..20).map(|k| k as f64).collect(); // ms
     let x: Vec<f64> = (0..20).map(|k| (k as f64 * 0.3).sin() * 0.004).collect(); // m
     let f: Vec<f64> = (0..20).map(|k| k as f64 * 0.5).collect(); // kN
-    let vars = [("t", 1, 20, t.as_slice()), ("x", 20, 1, x.as_slice()), ("F", 20, 1, f.as_slice())];
+    let vars = [
+        ("t", 1, 20, t.as_slice()),
+        ("x", 20, 1, x.as_slice()),
+        ("F", 20, 1, f.as_slice()),
+    ];
     // Unit suffixes convert as for CSV (a row vector is fine too).
     let ok = r#"{ time_ms = "t", displacement_m = "x", force_kn = "F" }"#;
     assert_eq!(one_file(dir.path(), &vars, ok), "");
@@ -147,8 +163,15 @@ fn units_bad_names_and_wrong_shapes() {
     assert_eq!(s.force_n[4], 2.0 * 1e3);
     assert!(ds.recordings[0].velocity_estimated);
 
-    let e = one_file(dir.path(), &vars, r#"{ time_ms = "t", displacement_m = "pos", force_kn = "F" }"#);
-    assert!(e.contains("no numeric variable `pos`") && e.contains("it has: t, x, F"), "{e}");
+    let e = one_file(
+        dir.path(),
+        &vars,
+        r#"{ time_ms = "t", displacement_m = "pos", force_kn = "F" }"#,
+    );
+    assert!(
+        e.contains("no numeric variable `pos`") && e.contains("it has: t, x, F"),
+        "{e}"
+    );
 
     let two_rows: Vec<f64> = x.iter().chain(&x).cloned().collect();
     let e = one_file(
@@ -158,15 +181,27 @@ fn units_bad_names_and_wrong_shapes() {
     );
     assert!(e.contains("`x`") && e.contains("2×20") && e.contains("vector"), "{e}");
 
-    let e = one_file(dir.path(), &[("t", 1, 20, &t), ("x", 19, 1, &x[..19]), ("F", 20, 1, &f)], ok);
+    let e = one_file(
+        dir.path(),
+        &[("t", 1, 20, &t), ("x", 19, 1, &x[..19]), ("F", 20, 1, &f)],
+        ok,
+    );
     assert!(e.contains("`x` has 19") && e.contains("20 samples"), "{e}");
 
-    let e = one_file(dir.path(), &vars, r#"{ time_ms = "t", displacement_furlong = "x", force_kn = "F" }"#);
+    let e = one_file(
+        dir.path(),
+        &vars,
+        r#"{ time_ms = "t", displacement_furlong = "x", force_kn = "F" }"#,
+    );
     assert!(e.contains("unknown column name `displacement_furlong`"), "{e}");
 
     // Time running backwards is caught by the same checks as for CSV.
     let back: Vec<f64> = t.iter().rev().cloned().collect();
-    let e = one_file(dir.path(), &[("t", 20, 1, &back), ("x", 20, 1, &x), ("F", 20, 1, &f)], ok);
+    let e = one_file(
+        dir.path(),
+        &[("t", 20, 1, &back), ("x", 20, 1, &x), ("F", 20, 1, &f)],
+        ok,
+    );
     assert!(e.contains("time"), "{e}");
 }
 
@@ -182,11 +217,19 @@ fn v73_and_missing_variables_get_clear_errors() {
     let e = Dataset::load(dir.path()).unwrap_err().to_string();
     assert!(e.contains("v7.3") && e.contains("-v7"), "{e}");
 
-    std::fs::write(dir.path().join("dataset.toml"), "[[recording]]\nfile = \"drop01.mat\"\ncurrent_a = 1.0\n").unwrap();
+    std::fs::write(
+        dir.path().join("dataset.toml"),
+        "[[recording]]\nfile = \"drop01.mat\"\ncurrent_a = 1.0\n",
+    )
+    .unwrap();
     let e = Dataset::load(dir.path()).unwrap_err().to_string();
     assert!(e.contains("MATLAB file") && e.contains("variables"), "{e}");
 
-    std::fs::write(dir.path().join("drop01.mat"), b"not a mat file at all, just text".repeat(8)).unwrap();
+    std::fs::write(
+        dir.path().join("drop01.mat"),
+        b"not a mat file at all, just text".repeat(8),
+    )
+    .unwrap();
     std::fs::write(
         dir.path().join("dataset.toml"),
         "[[recording]]\nfile = \"drop01.mat\"\ncurrent_a = 1.0\nvariables = { time_s = \"t\", displacement_mm = \"x\", force_n = \"F\" }\n",

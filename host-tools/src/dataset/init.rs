@@ -23,7 +23,13 @@ use std::path::Path;
 /// Extensions taken as recordings.
 const DATA_EXTENSIONS: &[&str] = &["txt", "csv", "dat", "tsv", "asc"];
 /// Pattern names that are recording keys rather than tags.
-const KEYS: &[&str] = &["current_a", "impact_velocity_m_s", "temperature_c", "mass_kg", "sequence"];
+const KEYS: &[&str] = &[
+    "current_a",
+    "impact_velocity_m_s",
+    "temperature_c",
+    "mass_kg",
+    "sequence",
+];
 
 #[derive(Clone, Debug, PartialEq)]
 enum Delimiter {
@@ -197,7 +203,11 @@ fn slope_and_correlation(x: &[f64], y: &[f64]) -> (f64, f64) {
         sxy0 += a * b;
         sxx0 += a * a;
     }
-    let r = if sxx > 0.0 && syy > 0.0 { sxy / (sxx * syy).sqrt() } else { 0.0 };
+    let r = if sxx > 0.0 && syy > 0.0 {
+        sxy / (sxx * syy).sqrt()
+    } else {
+        0.0
+    };
     (if sxx0 > 0.0 { sxy0 / sxx0 } else { 0.0 }, r)
 }
 
@@ -266,7 +276,10 @@ fn infer_columns(data: &[Vec<f64>], amplitude_mm: Option<f64>, notes: &mut Vec<S
             amplitude_mm.unwrap_or_default()
         ),
         None => {
-            notes.push(format!("displacement: column {} taken as mm (no amplitude in the file name)", x + 1));
+            notes.push(format!(
+                "displacement: column {} taken as mm (no amplitude in the file name)",
+                x + 1
+            ));
             false
         }
     };
@@ -301,7 +314,10 @@ fn infer_columns(data: &[Vec<f64>], amplitude_mm: Option<f64>, notes: &mut Vec<S
     for i in rest.into_iter().filter(|&i| i != force) {
         notes.push(format!("column {} not recognised: ignored", i + 1));
     }
-    Ok(names.into_iter().map(|n| n.unwrap_or_else(|| "ignore".into())).collect())
+    Ok(names
+        .into_iter()
+        .map(|n| n.unwrap_or_else(|| "ignore".into()))
+        .collect())
 }
 
 /// Sniffs one file's layout.
@@ -416,7 +432,11 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
         }
     }
     if found.is_empty() {
-        let why = if skipped.is_empty() { "the folder is empty".to_string() } else { skipped.join("; ") };
+        let why = if skipped.is_empty() {
+            "the folder is empty".to_string()
+        } else {
+            skipped.join("; ")
+        };
         bail!("no recordings found in {}: {why}", dir.display());
     }
     // Grouped by current (the model's main variable), then by the pattern's
@@ -431,7 +451,9 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
         })
         .collect();
     found.sort_by(|a, b| {
-        let mut ord = key(a, "current_a").unwrap_or(f64::NAN).total_cmp(&key(b, "current_a").unwrap_or(f64::NAN));
+        let mut ord = key(a, "current_a")
+            .unwrap_or(f64::NAN)
+            .total_cmp(&key(b, "current_a").unwrap_or(f64::NAN));
         for k in &order {
             ord = ord.then(key(a, k).unwrap_or(f64::NAN).total_cmp(&key(b, k).unwrap_or(f64::NAN)));
         }
@@ -441,12 +463,19 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
     // The layout most files share goes to [defaults]; the others set their own.
     let mut counts: Vec<(&Layout, usize)> = Vec::new();
     for f in &found {
-        match counts.iter_mut().find(|(l, _)| l.delimiter == f.layout.delimiter && l.columns == f.layout.columns) {
+        match counts
+            .iter_mut()
+            .find(|(l, _)| l.delimiter == f.layout.delimiter && l.columns == f.layout.columns)
+        {
             Some((_, n)) => *n += 1,
             None => counts.push((&f.layout, 1)),
         }
     }
-    let common = counts.iter().max_by_key(|(_, n)| *n).map(|(l, _)| (*l).clone()).unwrap_or_else(|| found[0].layout.clone());
+    let common = counts
+        .iter()
+        .max_by_key(|(_, n)| *n)
+        .map(|(l, _)| (*l).clone())
+        .unwrap_or_else(|| found[0].layout.clone());
     let same = |l: &Layout| l.delimiter == common.delimiter && l.columns == common.columns;
 
     let title = name.map(str::to_owned).unwrap_or_else(|| {
@@ -456,10 +485,20 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
             .unwrap_or_else(|| "recordings".into())
     });
     let mut s = String::new();
-    let _ = writeln!(s, "# Written by `mre dataset init`{}.", pattern.map(|p| format!(" --pattern '{p}'")).unwrap_or_default());
-    let _ = writeln!(s, "# Check the units and fill in what file names cannot say (shared/spec/dataset-format.md).");
+    let _ = writeln!(
+        s,
+        "# Written by `mre dataset init`{}.",
+        pattern.map(|p| format!(" --pattern '{p}'")).unwrap_or_default()
+    );
+    let _ = writeln!(
+        s,
+        "# Check the units and fill in what file names cannot say (shared/spec/dataset-format.md)."
+    );
     if !found.iter().any(|f| key(f, "current_a").is_some()) {
-        let _ = writeln!(s, "# current_a: not in the file names; set it for every recording (or pass --pattern).");
+        let _ = writeln!(
+            s,
+            "# current_a: not in the file names; set it for every recording (or pass --pattern)."
+        );
     }
     for line in &skipped {
         let _ = writeln!(s, "# skipped {line}");
@@ -500,7 +539,11 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
         }
         if !same(&f.layout) {
             if f.layout.delimiter != common.delimiter {
-                let d = if f.layout.delimiter == Delimiter::Whitespace { "whitespace" } else { "," };
+                let d = if f.layout.delimiter == Delimiter::Whitespace {
+                    "whitespace"
+                } else {
+                    ","
+                };
                 let _ = writeln!(s, "delimiter = \"{d}\"");
             }
             if f.layout.columns != common.columns {
@@ -522,7 +565,10 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
 pub fn run_init(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Result<std::path::PathBuf> {
     let dest = dir.join("dataset.toml");
     if dest.exists() {
-        bail!("{} exists; mre dataset init never overwrites it (move it away to start again)", dest.display());
+        bail!(
+            "{} exists; mre dataset init never overwrites it (move it away to start again)",
+            dest.display()
+        );
     }
     let text = manifest_for(dir, pattern, name)?;
     crate::atomic_write::write_atomic(&dest, text.as_bytes())?;
@@ -600,7 +646,10 @@ mod tests {
         std::fs::write(dir.path().join("a.csv"), &text).unwrap();
         let toml = manifest_for(dir.path(), None, Some("t")).unwrap();
         assert!(toml.contains("# column `Strain` not recognised: ignored"), "{toml}");
-        assert!(toml.contains("columns = [\"time_s\", \"displacement_mm\", \"force_kn\", \"ignore\"]"), "{toml}");
+        assert!(
+            toml.contains("columns = [\"time_s\", \"displacement_mm\", \"force_kn\", \"ignore\"]"),
+            "{toml}"
+        );
         assert!(toml.contains("# current_a: not in the file names"), "{toml}");
         // With a current added, it loads: the renamed header row is skipped, kN converted.
         let toml = toml.replace("file = \"a.csv\"", "file = \"a.csv\"\ncurrent_a = 0.0");
@@ -616,6 +665,9 @@ mod tests {
         std::fs::write(dir.path().join("dataset.toml"), "name = \"mine\"\n").unwrap();
         let e = run_init(dir.path(), None, None).unwrap_err();
         assert!(e.to_string().contains("never overwrites"), "{e}");
-        assert_eq!(std::fs::read_to_string(dir.path().join("dataset.toml")).unwrap(), "name = \"mine\"\n");
+        assert_eq!(
+            std::fs::read_to_string(dir.path().join("dataset.toml")).unwrap(),
+            "name = \"mine\"\n"
+        );
     }
 }

@@ -81,7 +81,11 @@ pub(super) fn read_samples(
             let have: Vec<&str> = mat.arrays().iter().map(|a| a.name()).collect();
             return Err(setting(format!(
                 "`{file}` has no numeric variable `{var}` (for {column}); it has: {}",
-                if have.is_empty() { "none".to_string() } else { have.join(", ") }
+                if have.is_empty() {
+                    "none".to_string()
+                } else {
+                    have.join(", ")
+                }
             )));
         };
         let size = array.size();

@@ -98,7 +98,11 @@ fn inline_array(out: &mut String, file: &str, path: &mut Vec<String>, items: &[V
     }
     for (i, item) in items.iter().enumerate() {
         if i > 0 {
-            out.push_str(if item.is_object() || item.is_array() { "\n" } else { ", " });
+            out.push_str(if item.is_object() || item.is_array() {
+                "\n"
+            } else {
+                ", "
+            });
         }
         path.push(i.to_string());
         render(out, file, path, item);
@@ -126,6 +130,10 @@ fn rows_table(out: &mut String, file: &str, path: &mut Vec<String>, items: &[Val
     for item in items {
         columns(item, &mut Vec::new(), &mut cols);
     }
+    // A field that is an object in some rows (and null in others) shows as
+    // its flattened fields only.
+    let all = cols.clone();
+    cols.retain(|c| !all.iter().any(|o| o.len() > c.len() && o.starts_with(c)));
     out.push_str("<div class=\"scroll\"><table class=\"rows\">\n<thead><tr>");
     for c in &cols {
         let _ = write!(out, "<th>{}</th>", escape(&c.join(" ")).replace('_', "_<wbr>"));
@@ -191,6 +199,16 @@ mod tests {
         // One header per flattened field, in first-seen order.
         let headers: Vec<&str> = s.match_indices("<th>").map(|(i, _)| &s[i + 4..i + 8]).collect();
         assert_eq!(headers.len(), 2 /* kv keys */ + 3 /* columns */);
+    }
+
+    #[test]
+    fn a_field_null_in_some_rows_and_an_object_in_others_is_flattened() {
+        let v = serde_json::json!([{ "b": null }, { "b": { "lo": 1.5, "hi": 2.5 } }]);
+        let mut s = String::new();
+        render(&mut s, "r.json", &mut Vec::new(), &v);
+        assert_eq!(s.matches("<th>").count(), 2, "b lo, b hi; no plain b column: {s}");
+        assert!(s.contains("data-json-path=\"r.json#/1/b/hi\">2.500<"));
+        assert!(!s.contains("class=\"kv\""), "no table inside a cell");
     }
 
     #[test]

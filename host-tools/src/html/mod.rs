@@ -88,7 +88,7 @@ impl Page {
         for dir in &self.folders {
             let files: Vec<(PathBuf, PathBuf)> = crate::atomic_write::files_in(dir)
                 .into_iter()
-                .filter(|(d, _)| !same_file(d, dest))
+                .filter(|(d, _)| !crate::atomic_write::same_path(d, dest))
                 .collect();
             if several {
                 let _ = writeln!(
@@ -106,7 +106,12 @@ impl Page {
         let extra: Vec<&PathBuf> = self
             .files
             .iter()
-            .filter(|f| !self.folders.iter().any(|d| same_file(f.parent().unwrap_or(Path::new(".")), d)))
+            .filter(|f| {
+                !self
+                    .folders
+                    .iter()
+                    .any(|d| crate::atomic_write::same_path(f.parent().unwrap_or(Path::new(".")), d))
+            })
             .collect();
         if !extra.is_empty() {
             let files: Vec<(PathBuf, PathBuf)> = extra
@@ -114,7 +119,7 @@ impl Page {
                 .map(|f| {
                     let readable = crate::atomic_write::files_in(f.parent().unwrap_or(Path::new(".")))
                         .into_iter()
-                        .find(|(d, _)| same_file(d, f))
+                        .find(|(d, _)| crate::atomic_write::same_path(d, f))
                         .map(|(_, r)| r)
                         .unwrap_or_else(|| f.clone());
                     (f.clone(), readable)
@@ -126,11 +131,6 @@ impl Page {
         }
         Ok(skeleton(&self.title, self.lead.as_deref(), &body))
     }
-}
-
-fn same_file(a: &Path, b: &Path) -> bool {
-    let abs = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
-    abs(a) == abs(b)
 }
 
 /// `path` relative to `base` when it lies below it; else as given.
@@ -225,11 +225,7 @@ fn render_files(out: &mut String, base: &Path, files: &[(PathBuf, PathBuf)], top
     if !links.is_empty() {
         let _ = writeln!(out, "<{h}>Files</{h}>\n<ul class=\"files\">");
         for d in links {
-            let _ = writeln!(
-                out,
-                "<li><a href=\"{0}\">{0}</a></li>",
-                escape(&href(base, d))
-            );
+            let _ = writeln!(out, "<li><a href=\"{0}\">{0}</a></li>", escape(&href(base, d)));
         }
         out.push_str("</ul>\n");
     }
@@ -238,7 +234,11 @@ fn render_files(out: &mut String, base: &Path, files: &[(PathBuf, PathBuf)], top
 
 /// A figure file as a `data:` URI.
 fn data_uri(dest: &Path, from: &Path) -> Result<String> {
-    let mime = if extension(dest) == "svg" { "image/svg+xml" } else { "image/png" };
+    let mime = if extension(dest) == "svg" {
+        "image/svg+xml"
+    } else {
+        "image/png"
+    };
     let data = base64::engine::general_purpose::STANDARD.encode(read(dest, from)?);
     Ok(format!("data:{mime};base64,{data}"))
 }
@@ -334,18 +334,10 @@ pub fn write_index(dir: &Path, title: &str, lead: &str, entries: &[IndexEntry]) 
     let mut body = String::from("<ol class=\"steps\">\n");
     for e in entries {
         let heading = match e.link {
-            Some(link) => format!(
-                "<a href=\"{}\">{}</a>",
-                escape(&href(dir, link)),
-                escape(e.title)
-            ),
+            Some(link) => format!("<a href=\"{}\">{}</a>", escape(&href(dir, link)), escape(e.title)),
             None => escape(e.title),
         };
-        let _ = writeln!(
-            body,
-            "<li><h2>{heading}</h2><p>{}</p></li>",
-            escape(e.headline)
-        );
+        let _ = writeln!(body, "<li><h2>{heading}</h2><p>{}</p></li>", escape(e.headline));
     }
     body.push_str("</ol>\n");
     crate::atomic_write::write_atomic(&dest, skeleton(title, Some(lead), &body).as_bytes())
@@ -364,12 +356,19 @@ mod tests {
             "# Validation\n\n| a | b |\n|---|---|\n| 1 | <x> |\n\n![loops](loops.svg)\n",
         )
         .unwrap();
-        std::fs::write(d.join("loops.svg"), "<svg xmlns='http://www.w3.org/2000/svg' width='5' height='5'/>").unwrap();
+        std::fs::write(
+            d.join("loops.svg"),
+            "<svg xmlns='http://www.w3.org/2000/svg' width='5' height='5'/>",
+        )
+        .unwrap();
         std::fs::write(d.join("report.json"), r#"{"rmse_n": 0.125}"#).unwrap();
         std::fs::write(d.join("run.csv"), "t,x\n").unwrap();
-        std::fs::write(d.join("fig.svg"), "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'/>").unwrap();
-        crate::atomic_write::command(|| Page::new("Validation & co").folder(d).write(&d.join("index.html")))
-            .unwrap();
+        std::fs::write(
+            d.join("fig.svg"),
+            "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'/>",
+        )
+        .unwrap();
+        crate::atomic_write::command(|| Page::new("Validation & co").folder(d).write(&d.join("index.html"))).unwrap();
         let html = std::fs::read_to_string(d.join("index.html")).unwrap();
         assert!(html.contains("<title>Validation &amp; co</title>"));
         assert!(html.contains("<th>a</th>"), "markdown table rendered");

@@ -48,7 +48,8 @@ pub fn mat_v5(vars: &[(&str, usize, usize, &[f64])]) -> Vec<u8> {
 /// The first bytes of a MATLAB v7.3 file: a 512-byte header block (version
 /// 0x0200) followed by the HDF5 signature.
 pub fn mat_v73_header() -> Vec<u8> {
-    let mut out = b"MATLAB 7.3 MAT-file, Platform: GLNXA64, Created on: Mon Jan  1 00:00:00 2024 HDF5 schema 1.00 .".to_vec();
+    let mut out =
+        b"MATLAB 7.3 MAT-file, Platform: GLNXA64, Created on: Mon Jan  1 00:00:00 2024 HDF5 schema 1.00 .".to_vec();
     out.resize(116, b' ');
     out.extend_from_slice(&[0; 8]);
     out.extend_from_slice(&0x0200u16.to_le_bytes());
