@@ -7,14 +7,15 @@
 //   - every number marked with data-json-path equals the value at that
 //     JSON pointer in the JSON file beside the page, to the 4 significant
 //     digits shown;
+//   - every link leads to a file that exists;
 //   - a screenshot at a laptop's size (1366×768) is written for review.
 // Usage: node --experimental-websocket check.mjs SCREENSHOT_DIR PAGE.html...
 // Ends with "N passed, N failed" and a non-zero exit when any check fails.
 import { spawn } from 'node:child_process';
-import { mkdtempSync, readFileSync, writeFileSync, mkdirSync, rmSync } from 'node:fs';
+import { existsSync, mkdtempSync, readFileSync, writeFileSync, mkdirSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve, dirname, relative } from 'node:path';
-import { pathToFileURL } from 'node:url';
+import { fileURLToPath, pathToFileURL } from 'node:url';
 
 const [shotDir, ...pages] = process.argv.slice(2);
 if (!shotDir || pages.length === 0) {
@@ -151,6 +152,11 @@ for (const abs of absPages) {
   }
   check(bad === 0, `${name}: ${bad} of ${numbers.length} numbers differ from their JSON file`);
 
+  // Every link leads to a file that exists (links are relative file paths).
+  const links = await evaluate('[...document.links].map((a) => a.href)');
+  const broken = links.filter((href) => !href.startsWith('file:') || !existsSync(fileURLToPath(href)));
+  check(broken.length === 0, `${name}: broken links ${broken.slice(0, 5).join(', ')}`);
+
   const text = await evaluate('document.body.innerText.length');
   check(text > 100, `${name}: page body is (nearly) empty`);
 
@@ -159,7 +165,7 @@ for (const abs of absPages) {
   writeFileSync(join(shotDir, shotName), Buffer.from(shot.data, 'base64'));
 
   check(errors.length === 0, `${name}: ${errors.join('; ')}`);
-  console.log(`${name}: ${images.length} images, ${numbers.length} numbers checked, screenshot ${join(shotDir, shotName)}`);
+  console.log(`${name}: ${images.length} images, ${numbers.length} numbers, ${links.length} links checked; screenshot ${join(shotDir, shotName)}`);
 }
 
 clearTimeout(giveUp);
