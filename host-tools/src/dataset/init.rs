@@ -387,6 +387,30 @@ struct Found {
     file: String,
     layout: Layout,
     fields: Vec<(String, f64)>,
+    /// For a .mat file: its `variables = { … }` line.
+    variables: Option<String>,
+}
+
+/// The `variables` line of a .mat file: each real vector whose name maps to
+/// a unit name (as header names do); the others are listed in `notes`.
+fn sniff_mat(path: &Path, notes: &mut Vec<String>) -> Result<String> {
+    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let mat = matfile::MatFile::parse(bytes.as_slice())
+        .map_err(|e| anyhow::anyhow!("not a MATLAB v5/v7 MAT-file ({e}); a v7.3 file must be saved with -v7"))?;
+    let mut pairs: Vec<(String, String)> = Vec::new();
+    for a in mat.arrays() {
+        let vector = a.size().iter().filter(|&&d| d != 1).count() <= 1;
+        match map_name(a.name()).filter(|_| vector) {
+            Some(column) if !pairs.iter().any(|(c, _)| *c == column) => pairs.push((column, a.name().to_string())),
+            _ => notes.push(format!("variable `{}` not recognised: not read", a.name())),
+        }
+    }
+    let names: Vec<String> = pairs.iter().map(|(c, _)| c.clone()).collect();
+    let layout = parse_header(&names, &path.display().to_string(), 1).map_err(|e| anyhow::anyhow!("{e}"))?;
+    super::columns::required_columns(&layout, &path.display().to_string(), 1)
+        .map_err(|e| anyhow::anyhow!("{e}; name the variables in `variables = {{ time_s = \"…\", … }}` by hand"))?;
+    let inner: Vec<String> = pairs.iter().map(|(c, v)| format!("{c} = {}", toml_string(v))).collect();
+    Ok(format!("variables = {{ {} }}", inner.join(", ")))
 }
 
 /// The text of `dataset.toml` for the recordings in `dir`.
@@ -408,9 +432,13 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase())
             .unwrap_or_default();
-        if !DATA_EXTENSIONS.contains(&ext.as_str()) {
+        let is_mat = ext == "mat";
+        if !DATA_EXTENSIONS.contains(&ext.as_str()) && !is_mat {
             if file != "dataset.toml" {
-                skipped.push(format!("{file}: not a recording (.{})", DATA_EXTENSIONS.join(", .")));
+                skipped.push(format!(
+                    "{file}: not a recording (.{}, .mat)",
+                    DATA_EXTENSIONS.join(", .")
+                ));
             }
             continue;
         }
@@ -426,8 +454,30 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
             None => Vec::new(),
         };
         let amplitude_mm = fields.iter().find(|(k, _)| k == "amplitude_mm").map(|(_, v)| *v);
+        if is_mat {
+            let mut notes = Vec::new();
+            match sniff_mat(&path, &mut notes) {
+                Ok(line) => found.push(Found {
+                    file,
+                    layout: Layout {
+                        delimiter: Delimiter::Comma,
+                        columns: None,
+                        notes,
+                    },
+                    fields,
+                    variables: Some(line),
+                }),
+                Err(e) => skipped.push(format!("{file}: {e:#}")),
+            }
+            continue;
+        }
         match sniff(&path, amplitude_mm) {
-            Ok(layout) => found.push(Found { file, layout, fields }),
+            Ok(layout) => found.push(Found {
+                file,
+                layout,
+                fields,
+                variables: None,
+            }),
             Err(e) => skipped.push(format!("{file}: {e:#}")),
         }
     }
@@ -462,7 +512,7 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
 
     // The layout most files share goes to [defaults]; the others set their own.
     let mut counts: Vec<(&Layout, usize)> = Vec::new();
-    for f in &found {
+    for f in found.iter().filter(|f| f.variables.is_none()) {
         match counts
             .iter_mut()
             .find(|(l, _)| l.delimiter == f.layout.delimiter && l.columns == f.layout.columns)
@@ -475,7 +525,11 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
         .iter()
         .max_by_key(|(_, n)| *n)
         .map(|(l, _)| (*l).clone())
-        .unwrap_or_else(|| found[0].layout.clone());
+        .unwrap_or(Layout {
+            delimiter: Delimiter::Comma,
+            columns: None,
+            notes: Vec::new(),
+        });
     let same = |l: &Layout| l.delimiter == common.delimiter && l.columns == common.columns;
 
     let title = name.map(str::to_owned).unwrap_or_else(|| {
@@ -518,7 +572,9 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
     write_layout(&mut s, &common);
     for f in &found {
         let _ = writeln!(s, "\n[[recording]]");
-        if !same(&f.layout) {
+        // A .mat file says its own variables; delimiter and columns do not apply.
+        let own = f.variables.is_none() && !same(&f.layout);
+        if own || f.variables.is_some() {
             for note in &f.layout.notes {
                 let _ = writeln!(s, "# {note}");
             }
@@ -537,7 +593,10 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
         if !tags.is_empty() {
             let _ = writeln!(s, "tags = {{ {} }}", tags.join(", "));
         }
-        if !same(&f.layout) {
+        if let Some(line) = &f.variables {
+            let _ = writeln!(s, "{line}");
+        }
+        if own {
             if f.layout.delimiter != common.delimiter {
                 let d = if f.layout.delimiter == Delimiter::Whitespace {
                     "whitespace"
@@ -657,6 +716,32 @@ mod tests {
         let ds = crate::dataset::Dataset::load(dir.path()).unwrap();
         assert_eq!(ds.recordings[0].samples.len(), 20);
         assert_eq!(ds.recordings[0].samples.force_n[3], 6000.0);
+    }
+
+    #[test]
+    fn mat_files_get_their_variables_mapped() {
+        use crate::dataset::matlab::mat_v5::mat_v5;
+        let dir = tempfile::tempdir().unwrap();
+        let t: Vec<f64> = (0..30).map(|k| k as f64 * 1e-3).collect();
+        let x: Vec<f64> = (0..30).map(|k| (k as f64 * 0.2).sin()).collect();
+        let f: Vec<f64> = (0..30).map(|k| k as f64).collect();
+        let bytes = mat_v5(&[
+            ("t", 30, 1, &t),
+            ("x", 30, 1, &x),
+            ("F", 30, 1, &f),
+            ("gain", 1, 1, &[2.0]),
+        ]);
+        std::fs::write(dir.path().join("drop0x5A.mat"), bytes).unwrap();
+        let toml = manifest_for(dir.path(), Some("drop{current_a}A"), None).unwrap();
+        assert!(
+            toml.contains(r#"variables = { time_s = "t", displacement_mm = "x", force_n = "F" }"#),
+            "{toml}"
+        );
+        assert!(toml.contains("# variable `gain` not recognised"), "{toml}");
+        std::fs::write(dir.path().join("dataset.toml"), &toml).unwrap();
+        let ds = crate::dataset::Dataset::load(dir.path()).unwrap();
+        assert_eq!(ds.recordings[0].current_a, 0.5);
+        assert_eq!(ds.recordings[0].samples.force_n, f);
     }
 
     #[test]

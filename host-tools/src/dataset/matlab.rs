@@ -118,7 +118,7 @@ pub(super) fn read_samples(
 /// The tests' MAT-file writer (shared with the integration tests).
 #[cfg(test)]
 #[path = "../../tests/support/mat_v5.rs"]
-mod mat_v5;
+pub(super) mod mat_v5;
 
 #[cfg(test)]
 mod tests {

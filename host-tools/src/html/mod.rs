@@ -8,6 +8,19 @@
 //! pointer they came from, and links to every CSV, JSON and markdown file.
 //! No script and no external resource, so it works offline and from a
 //! `file://` URL.
+//!
+//! A command adds its page as the last step of writing its report (the
+//! outputs staged before are found even though they are not published yet):
+//!
+//! ```ignore
+//! crate::html::Page::new("Comparison of models")
+//!     .folder(report_dir)            // report.md, *.png/*.svg, *.json, *.csv there
+//!     .file(json_path)               // a JSON written elsewhere, if any
+//!     .write(&report_dir.join("index.html"))?;
+//! ```
+//!
+//! The demo's step pages are linked from `out/index.html` when they sit
+//! beside the step's report (`DemoStep::report` → `index.html`).
 pub mod json;
 
 use anyhow::{Context, Result};
