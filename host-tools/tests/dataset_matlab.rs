@@ -205,36 +205,28 @@ fn units_bad_names_and_wrong_shapes() {
     assert!(e.contains("time"), "{e}");
 }
 
+/// The load error for `drop01.mat` holding `bytes`, listed with `variables`
+/// (a `variables = …` line, or "" for none).
+fn load_error(dir: &Path, bytes: &[u8], variables: &str) -> String {
+    std::fs::write(dir.join("drop01.mat"), bytes).unwrap();
+    std::fs::write(
+        dir.join("dataset.toml"),
+        format!("[[recording]]\nfile = \"drop01.mat\"\ncurrent_a = 1.0\n{variables}\n"),
+    )
+    .unwrap();
+    Dataset::load(dir).unwrap_err().to_string()
+}
+
 #[test]
 fn v73_and_missing_variables_get_clear_errors() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("drop01.mat"), mat_v5::mat_v73_header()).unwrap();
-    std::fs::write(
-        dir.path().join("dataset.toml"),
-        "[[recording]]\nfile = \"drop01.mat\"\ncurrent_a = 1.0\nvariables = { time_s = \"t\", displacement_mm = \"x\", force_n = \"F\" }\n",
-    )
-    .unwrap();
-    let e = Dataset::load(dir.path()).unwrap_err().to_string();
+    let vars = r#"variables = { time_s = "t", displacement_mm = "x", force_n = "F" }"#;
+    let e = load_error(dir.path(), &mat_v5::mat_v73_header(), vars);
     assert!(e.contains("v7.3") && e.contains("-v7"), "{e}");
 
-    std::fs::write(
-        dir.path().join("dataset.toml"),
-        "[[recording]]\nfile = \"drop01.mat\"\ncurrent_a = 1.0\n",
-    )
-    .unwrap();
-    let e = Dataset::load(dir.path()).unwrap_err().to_string();
+    let e = load_error(dir.path(), &mat_v5::mat_v73_header(), "");
     assert!(e.contains("MATLAB file") && e.contains("variables"), "{e}");
 
-    std::fs::write(
-        dir.path().join("drop01.mat"),
-        b"not a mat file at all, just text".repeat(8),
-    )
-    .unwrap();
-    std::fs::write(
-        dir.path().join("dataset.toml"),
-        "[[recording]]\nfile = \"drop01.mat\"\ncurrent_a = 1.0\nvariables = { time_s = \"t\", displacement_mm = \"x\", force_n = \"F\" }\n",
-    )
-    .unwrap();
-    let e = Dataset::load(dir.path()).unwrap_err().to_string();
+    let e = load_error(dir.path(), &b"not a mat file at all, just text".repeat(8), vars);
     assert!(e.contains("not a MATLAB v5/v7 MAT-file"), "{e}");
 }
