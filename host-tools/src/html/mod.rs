@@ -217,8 +217,19 @@ fn render_files(out: &mut String, base: &Path, files: &[(PathBuf, PathBuf)], top
     for (dest, from) in files.iter().filter(|(d, _)| extension(d) == "json") {
         let name = dest.file_name().unwrap_or_default().to_string_lossy().into_owned();
         let bytes = read(dest, from)?;
-        let value: serde_json::Value =
-            serde_json::from_slice(&bytes).with_context(|| format!("{} is not valid JSON", dest.display()))?;
+        // A JSON file mre did not write (left in the folder by someone) does
+        // not stop the command: the page says what is wrong with it.
+        let value: serde_json::Value = match serde_json::from_slice(&bytes) {
+            Ok(v) => v,
+            Err(e) => {
+                let _ = writeln!(
+                    out,
+                    "<p class=\"note\"><code>{}</code> is not valid JSON ({e}); not shown.</p>",
+                    escape(&name)
+                );
+                continue;
+            }
+        };
         // Small reports open; long ones (a diagnosis's every candidate) folded.
         let open = if bytes.len() < OPEN_JSON_BYTES { " open" } else { "" };
         let _ = writeln!(
@@ -393,6 +404,16 @@ mod tests {
         assert_eq!(html.matches("<figcaption>").count(), 1, "only fig.svg in the gallery");
         assert!(html.contains("<a href=\"run.csv\">run.csv</a>"));
         assert!(!html.contains("<script"), "no script");
+    }
+
+    #[test]
+    fn a_broken_json_file_in_the_folder_is_named_not_fatal() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        std::fs::write(d.join("notes.json"), "{ not json").unwrap();
+        Page::new("x").folder(d).write(&d.join("index.html")).unwrap();
+        let html = std::fs::read_to_string(d.join("index.html")).unwrap();
+        assert!(html.contains("<code>notes.json</code> is not valid JSON"), "{html}");
     }
 
     #[test]
