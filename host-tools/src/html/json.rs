@@ -130,21 +130,34 @@ fn rows_table(out: &mut String, file: &str, path: &mut Vec<String>, items: &[Val
     for item in items {
         columns(item, &mut Vec::new(), &mut cols);
     }
-    // A field that is an object in some rows (and null in others) shows as
-    // its flattened fields only.
-    let all = cols.clone();
-    cols.retain(|c| !all.iter().any(|o| o.len() > c.len() && o.starts_with(c)));
+    // A field that is an object in some rows shows as its flattened fields;
+    // its own column stays only for rows where it is a plain value (e.g.
+    // `"Controlled"` beside `{ "Passive": 2 }`), never for null alone.
+    let flattened = |c: &Vec<String>| cols.iter().any(|o| o.len() > c.len() && o.starts_with(c));
+    let at = |item: &Value, c: &[String]| c.iter().try_fold(item, |v, k| v.get(k)).cloned();
+    // (path, whether its objects are shown flattened elsewhere)
+    let cols: Vec<(Vec<String>, bool)> = cols
+        .iter()
+        .map(|c| (c.clone(), flattened(c)))
+        .filter(|(c, split)| {
+            !split
+                || items
+                    .iter()
+                    .any(|i| at(i, c).is_some_and(|v| !v.is_null() && !v.is_object()))
+        })
+        .collect();
     out.push_str("<div class=\"scroll\"><table class=\"rows\">\n<thead><tr>");
-    for c in &cols {
+    for (c, _) in &cols {
         let _ = write!(out, "<th>{}</th>", escape(&c.join(" ")).replace('_', "_<wbr>"));
     }
     out.push_str("</tr></thead>\n<tbody>\n");
     for (i, item) in items.iter().enumerate().take(MAX_ROWS) {
         out.push_str("<tr>");
-        for c in &cols {
+        for (c, split) in &cols {
             out.push_str("<td>");
             let cell = c.iter().try_fold(item, |v, k| v.get(k));
-            if let Some(cell) = cell {
+            // An object here is already shown in its flattened columns.
+            if let Some(cell) = cell.filter(|v| !(*split && v.is_object())) {
                 path.push(i.to_string());
                 path.extend(c.iter().cloned());
                 render(out, file, path, cell);
@@ -208,6 +221,14 @@ mod tests {
         render(&mut s, "r.json", &mut Vec::new(), &v);
         assert_eq!(s.matches("<th>").count(), 2, "b lo, b hi; no plain b column: {s}");
         assert!(s.contains("data-json-path=\"r.json#/1/b/hi\">2.500<"));
+        assert!(!s.contains("class=\"kv\""), "no table inside a cell");
+
+        // A plain value beside objects keeps its column (for its rows only).
+        let v = serde_json::json!([{ "spec": "Controlled" }, { "spec": { "Passive": 2.0 } }]);
+        let mut s = String::new();
+        render(&mut s, "r.json", &mut Vec::new(), &v);
+        assert_eq!(s.matches("<th>").count(), 2, "spec, spec Passive: {s}");
+        assert!(s.contains("Controlled") && s.contains("data-json-path=\"r.json#/1/spec/Passive\">2<"));
         assert!(!s.contains("class=\"kv\""), "no table inside a cell");
     }
 
