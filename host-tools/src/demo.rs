@@ -37,6 +37,7 @@ pub struct DemoStep {
 /// Fit (GSA and lsq), validate, plot, sweep and flash table for one data set.
 /// Recordings at `hold_out_a` are predicted by interpolation, never fitted.
 fn fit_validate_plot(dataset: &Path, out: &Path, seed: u64, hold_out_a: &[f64], title: &str) -> Result<DemoStep> {
+    let _progress = crate::progress::spinner(title);
     let options = crate::fit::FitOptions {
         gsa: crate::fit::gsa::GsaParams {
             seed,
@@ -85,6 +86,7 @@ fn fit_validate_plot(dataset: &Path, out: &Path, seed: u64, hold_out_a: &[f64], 
 }
 
 fn closed_loop(out: &Path, seed: u64) -> Result<DemoStep> {
+    let _progress = crate::progress::spinner("closed-loop drop test (host)");
     let request = crate::plant::closed_loop::SimRequest {
         seed,
         ..Default::default()
@@ -106,6 +108,7 @@ fn closed_loop(out: &Path, seed: u64) -> Result<DemoStep> {
 /// answer key (kept outside the set) is read only afterwards, to compare.
 fn diagnosis(data: &Path, out: &Path, seed: u64) -> Result<DemoStep> {
     const SET: &str = "drop-viscous_damping";
+    let _progress = crate::progress::spinner("blind diagnosis of a drop-test set");
     let dir = out.join("diagnose");
     let opts = crate::diagnose::options_from_cli(None, None, 5, vec![], seed)?;
     let found = crate::diagnose::run_to_files(
@@ -131,6 +134,7 @@ fn diagnosis(data: &Path, out: &Path, seed: u64) -> Result<DemoStep> {
 /// What the paper's model leaves out on the real MR damper: whole
 /// amplitude–frequency pairs held out in turn, 0.5 A predicted.
 fn real_data_diagnosis(data: &Path, out: &Path, seed: u64) -> Result<DemoStep> {
+    let _progress = crate::progress::spinner("diagnosis of the real MR damper data");
     let dir = out.join("diagnose-mr-damper-mts");
     let opts = crate::diagnose::options_from_cli(None, Some("frequency_hz".into()), 5, vec![0.5], seed)?;
     let found = crate::diagnose::run_to_files(
@@ -157,6 +161,7 @@ fn processor_in_the_loop(out: &Path, seed: u64) -> Result<DemoStep> {
             report: workspace_root().join("firmware/README.md"),
         });
     }
+    let _progress = crate::progress::spinner("building the PIL firmware and running it in QEMU");
     let dir = out.join("pil");
     let request = crate::pil::sim::PilRequest {
         sim: crate::plant::closed_loop::SimRequest {

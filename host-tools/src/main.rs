@@ -306,13 +306,11 @@ fn show_progress() -> bool {
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Demo { data, out, seed } => {
-            let progress = mre_host::progress::spinner("mre demo: fit, validate, plot, diagnose, simulate, PIL");
             let steps = mre_host::demo::run_demo(&mre_host::demo::DemoOptions {
                 data_dir: data,
                 out_dir: out.clone(),
                 seed,
             })?;
-            std::mem::drop(progress);
             println!();
             for step in steps {
                 println!("{}\n  {}", step.title, step.headline);
