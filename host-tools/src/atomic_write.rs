@@ -244,7 +244,7 @@ fn remove_created(created: &[PathBuf]) {
     }
 }
 
-fn same_path(a: &Path, b: &Path) -> bool {
+pub(crate) fn same_path(a: &Path, b: &Path) -> bool {
     let abs = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
     abs(a) == abs(b)
 }
@@ -404,6 +404,38 @@ fn publish_one(entry: Staged) -> Result<Published> {
         return Err(e).with_context(|| format!("cannot move the new output into {}", dest.display()));
     }
     Ok(Published { dest, old, is_dir })
+}
+
+/// The files `dir` will hold once this command's outputs are published: its
+/// staged files there and the files already on disk (hidden ones left out),
+/// each as (destination, path to read its bytes from now), sorted by name.
+/// Lets a report page written last (the HTML report) see the outputs that
+/// were staged before it.
+pub fn files_in(dir: &Path) -> Vec<(PathBuf, PathBuf)> {
+    let mut files: Vec<(PathBuf, PathBuf)> = ACTIVE.with(|a| {
+        a.borrow()
+            .iter()
+            .flat_map(|set| set.staged.iter())
+            .filter_map(|s| match s {
+                Staged::File { tmp, dest } if same_path(parent_of(dest), dir) => {
+                    Some((dest.clone(), tmp.to_path_buf()))
+                }
+                _ => None,
+            })
+            .collect()
+    });
+    if let Ok(entries) = std::fs::read_dir(dir) {
+        for e in entries.flatten() {
+            let path = e.path();
+            let hidden = e.file_name().to_string_lossy().starts_with('.');
+            let staged = files.iter().any(|(d, _)| same_path(d, &path));
+            if !hidden && !staged && path.is_file() {
+                files.push((path.clone(), path));
+            }
+        }
+    }
+    files.sort_by(|a, b| a.0.file_name().cmp(&b.0.file_name()));
+    files
 }
 
 #[cfg(test)]

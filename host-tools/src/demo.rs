@@ -37,6 +37,7 @@ pub struct DemoStep {
 /// Fit (GSA and lsq), validate, plot, sweep and flash table for one data set.
 /// Recordings at `hold_out_a` are predicted by interpolation, never fitted.
 fn fit_validate_plot(dataset: &Path, out: &Path, seed: u64, hold_out_a: &[f64], title: &str) -> Result<DemoStep> {
+    let _progress = crate::progress::spinner(title);
     let options = crate::fit::FitOptions {
         gsa: crate::fit::gsa::GsaParams {
             seed,
@@ -58,6 +59,14 @@ fn fit_validate_plot(dataset: &Path, out: &Path, seed: u64, hold_out_a: &[f64], 
     )?;
     crate::fit::sweep::run_sweep(dataset, &options, hold_out_a, &out.join("sweep"))?;
     crate::tables::run_tables(&model_path, &out.join("generated_table.rs"))?;
+    let page = out.join("index.html");
+    crate::html::Page::new(title)
+        .folder(&out.join("validate"))
+        .folder(&out.join("plots"))
+        .folder(&out.join("sweep"))
+        .file(&model_path)
+        .file(&out.join("generated_table.rs"))
+        .write(&page)?;
     let gaps: Vec<f64> = run.fits.iter().filter_map(|f| f.gap_ratio()).collect();
     let worst_gap = gaps.iter().cloned().fold(f64::NAN, f64::max);
     let nrmse: Vec<f64> = report.recordings.iter().map(|r| r.nrmse).collect();
@@ -72,11 +81,12 @@ fn fit_validate_plot(dataset: &Path, out: &Path, seed: u64, hold_out_a: &[f64], 
             100.0 * mean_nrmse,
             nrmse.len()
         ),
-        report: out.join("validate").join("report.md"),
+        report: page,
     })
 }
 
 fn closed_loop(out: &Path, seed: u64) -> Result<DemoStep> {
+    let _progress = crate::progress::spinner("closed-loop drop test (host)");
     let request = crate::plant::closed_loop::SimRequest {
         seed,
         ..Default::default()
@@ -98,6 +108,7 @@ fn closed_loop(out: &Path, seed: u64) -> Result<DemoStep> {
 /// answer key (kept outside the set) is read only afterwards, to compare.
 fn diagnosis(data: &Path, out: &Path, seed: u64) -> Result<DemoStep> {
     const SET: &str = "drop-viscous_damping";
+    let _progress = crate::progress::spinner("blind diagnosis of a drop-test set");
     let dir = out.join("diagnose");
     let opts = crate::diagnose::options_from_cli(None, None, 5, vec![], seed)?;
     let found = crate::diagnose::run_to_files(
@@ -123,6 +134,7 @@ fn diagnosis(data: &Path, out: &Path, seed: u64) -> Result<DemoStep> {
 /// What the paper's model leaves out on the real MR damper: whole
 /// amplitude–frequency pairs held out in turn, 0.5 A predicted.
 fn real_data_diagnosis(data: &Path, out: &Path, seed: u64) -> Result<DemoStep> {
+    let _progress = crate::progress::spinner("diagnosis of the real MR damper data");
     let dir = out.join("diagnose-mr-damper-mts");
     let opts = crate::diagnose::options_from_cli(None, Some("frequency_hz".into()), 5, vec![0.5], seed)?;
     let found = crate::diagnose::run_to_files(
@@ -149,6 +161,7 @@ fn processor_in_the_loop(out: &Path, seed: u64) -> Result<DemoStep> {
             report: workspace_root().join("firmware/README.md"),
         });
     }
+    let _progress = crate::progress::spinner("building the PIL firmware and running it in QEMU");
     let dir = out.join("pil");
     let request = crate::pil::sim::PilRequest {
         sim: crate::plant::closed_loop::SimRequest {
@@ -184,6 +197,7 @@ pub fn run_demo(options: &DemoOptions) -> Result<Vec<DemoStep>> {
             out_dir: staging.to_path_buf(),
             ..options.clone()
         })?;
+        write_index(staging, &steps)?;
         for step in &mut steps {
             if let Ok(inside) = step.report.strip_prefix(staging) {
                 step.report = options.out_dir.join(inside);
@@ -192,6 +206,35 @@ pub fn run_demo(options: &DemoOptions) -> Result<Vec<DemoStep>> {
         Ok(())
     })?;
     Ok(steps)
+}
+
+/// `index.html` in the demo's output folder: every step's headline, linked
+/// to the step's own page (the `index.html` beside its report).
+fn write_index(out: &Path, steps: &[DemoStep]) -> Result<()> {
+    let pages: Vec<Option<PathBuf>> = steps
+        .iter()
+        .map(|s| {
+            let page = s.report.with_file_name("index.html");
+            (s.report.starts_with(out) && page.is_file()).then_some(page)
+        })
+        .collect();
+    let entries: Vec<crate::html::IndexEntry> = steps
+        .iter()
+        .zip(&pages)
+        .map(|(s, page)| crate::html::IndexEntry {
+            title: &s.title,
+            headline: &s.headline,
+            link: page.as_deref(),
+        })
+        .collect();
+    crate::html::write_index(
+        out,
+        "mre demo: every step on the bundled data",
+        "The paper's model fitted to real MR damper recordings and to simulated drop tests, validated by \
+         predicting currents it never saw, diagnosed for missing physics, and run in closed loop on the host \
+         and on the firmware. Each step's page has its tables, figures and data files.",
+        &entries,
+    )
 }
 
 fn run_steps(options: &DemoOptions) -> Result<Vec<DemoStep>> {

@@ -13,6 +13,9 @@ use std::path::PathBuf;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// No progress bars (they are shown only on a terminal anyway).
+    #[arg(long, short, global = true)]
+    quiet: bool,
 }
 
 #[derive(Subcommand)]
@@ -175,6 +178,13 @@ enum Command {
         #[arg(long)]
         report: PathBuf,
     },
+    /// Data set helpers: `mre dataset init DIR` writes dataset.toml for a folder of recordings.
+    Dataset {
+        #[command(subcommand)]
+        action: DatasetAction,
+    },
+    /// Print a shell completion script (e.g. `mre completions bash > /etc/bash_completion.d/mre`).
+    Completions { shell: clap_complete::Shell },
     /// Processor-in-the-loop: the drop comparison with the controlled run
     /// closed through the firmware in QEMU (`cargo fw-pil` image).
     Pil {
@@ -190,6 +200,20 @@ enum Command {
         /// writes faults.md and faults.json.
         #[arg(long)]
         faults: Option<String>,
+    },
+}
+
+#[derive(Subcommand)]
+enum DatasetAction {
+    /// Write DIR/dataset.toml from the recordings in DIR (never overwrites one).
+    Init {
+        dir: PathBuf,
+        /// Metadata in file names, `x` for the decimal point, e.g. '{amplitude_mm}mm{frequency_hz}Hz{current_a}A'.
+        #[arg(long)]
+        pattern: Option<String>,
+        /// The data set's name (default: the folder's name).
+        #[arg(long)]
+        name: Option<String>,
     },
 }
 
@@ -264,6 +288,7 @@ impl DropArgs {
 
 fn main() {
     let cli = Cli::parse();
+    mre_host::progress::set_enabled(!cli.quiet && show_progress());
     // Every command's outputs are published together or not at all; the demo
     // stages its whole output folder itself (its steps read earlier outputs).
     let result = match cli.command {
@@ -287,18 +312,15 @@ fn run(cli: Cli) -> Result<()> {
         Command::Demo { data, out, seed } => {
             let steps = mre_host::demo::run_demo(&mre_host::demo::DemoOptions {
                 data_dir: data,
-                out_dir: out,
+                out_dir: out.clone(),
                 seed,
             })?;
             println!();
             for step in steps {
-                println!(
-                    "{}\n  {}\n  report: {}",
-                    step.title,
-                    step.headline,
-                    step.report.display()
-                );
+                println!("{}\n  {}", step.title, step.headline);
             }
+            // One place to look: the page links every step's report.
+            println!("\n{}", out.join("index.html").display());
         }
         Command::Model {
             table,
@@ -318,7 +340,7 @@ fn run(cli: Cli) -> Result<()> {
             hold_out_current,
             out,
         } => {
-            let options = gsa.options(method, show_progress());
+            let options = gsa.options(method, mre_host::progress::enabled());
             let run = mre_host::fit::run_fit(&dataset, &options, &hold_out_current, &out)?;
             print!("{}", mre_host::fit::summary_markdown(&run.fits));
             println!(
@@ -334,9 +356,10 @@ fn run(cli: Cli) -> Result<()> {
             report,
             hold_out_current,
         } => {
+            let _progress = mre_host::progress::spinner("validating");
             let r = mre_host::validate::run_validate(&dataset, &model, &hold_out_current, &report)?;
             print!("{}", mre_host::validate::report::markdown(&r));
-            println!("\nwrote {}/report.md and report.json", report.display());
+            println!("\nwrote {0}/report.md, report.json and index.html", report.display());
         }
         Command::Plot {
             dataset,
@@ -348,6 +371,7 @@ fn run(cli: Cli) -> Result<()> {
             let options = mre_host::plot::PlotOptions {
                 interpolated_a: interpolate,
             };
+            let _progress = mre_host::progress::spinner("drawing the figures");
             let files = mre_host::plot::run_plot(&dataset, &model, &hold_out_current, &options, &out)?;
             for f in files {
                 println!("wrote {}.png and .svg", f.display());
@@ -360,6 +384,7 @@ fn run(cli: Cli) -> Result<()> {
             out,
         } => {
             let base = gsa.options(mre_host::fit::FitOptions::default().method, false);
+            let _progress = mre_host::progress::spinner("sweeping GSA iterations and agents");
             let s = mre_host::fit::sweep::run_sweep(&dataset, &base, &hold_out_current, &out)?;
             print!("{}", mre_host::fit::sweep::to_csv(&s));
             println!("wrote {}/sweep.csv and the Fig. 13/14 plots", out.display());
@@ -401,14 +426,19 @@ fn run(cli: Cli) -> Result<()> {
             seed,
         } => {
             let opts = mre_host::diagnose::options_from_cli(model.as_deref(), folds_by, folds, validate_current, seed)?;
+            let progress = mre_host::progress::spinner("diagnosing");
             let out = mre_host::diagnose::run_to_files(&dataset, &opts, &report, &json, &predictions)?;
+            std::mem::drop(progress);
             println!("{}", mre_host::diagnose::summary_line(&out));
             println!("report: {}", report.join("report.md").display());
+            println!("page: {}", report.join("index.html").display());
         }
         Command::BenchDiagnose { cases, seed, json } => {
             let opts = mre_host::diagnose::DiagnoseOptions::default();
+            let progress = mre_host::progress::bar(cases as u64, "cases");
             let summary = mre_host::diagnose::bench::run_bench(cases, seed, &opts, |k, c| {
-                eprintln!(
+                progress.inc();
+                progress.println(&format!(
                     "case {:>3} seed {}: truth {:<20} diagnosed {:?} ({:.2} s); first round {:?}",
                     k + 1,
                     c.seed,
@@ -419,8 +449,9 @@ fn run(cli: Cli) -> Result<()> {
                         .iter()
                         .map(|(n, r)| format!("{n} {r:.3}"))
                         .collect::<Vec<_>>()
-                )
+                ))
             })?;
+            std::mem::drop(progress);
             print!("{}", mre_host::diagnose::bench::format_summary(&summary));
             if let Some(path) = json {
                 mre_host::atomic_write::write_atomic(&path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
@@ -440,9 +471,22 @@ fn run(cli: Cli) -> Result<()> {
             if request.runs.is_empty() {
                 request.runs = DEFAULT_RUNS.to_vec();
             }
+            let progress = mre_host::progress::spinner("simulating the drop test");
             let cmp = run_sim(&request, &report)?;
+            std::mem::drop(progress);
             print!("{}", mre_host::plant::sim_report::summary_table(&cmp));
             println!("report: {}", report.join("summary.md").display());
+            println!("page: {}", report.join("index.html").display());
+        }
+        Command::Dataset {
+            action: DatasetAction::Init { dir, pattern, name },
+        } => {
+            let path = mre_host::dataset::init::run_init(&dir, pattern.as_deref(), name.as_deref())?;
+            println!("wrote {} (check the units it assumed, in its comments)", path.display());
+        }
+        Command::Completions { shell } => {
+            use clap::CommandFactory;
+            clap_complete::generate(shell, &mut Cli::command(), "mre", &mut std::io::stdout());
         }
         Command::Pil {
             drop,
@@ -469,7 +513,9 @@ fn run(cli: Cli) -> Result<()> {
             faults: None,
         } => {
             let sim = drop.request(None)?;
+            let progress = mre_host::progress::spinner("building the PIL firmware and running it in QEMU");
             let out = mre_host::pil::sim::run_pil(&mre_host::pil::sim::PilRequest { sim, elf }, &report)?;
+            std::mem::drop(progress);
             print!("{}", mre_host::plant::sim_report::summary_table(&out.comparison));
             let a = out.agreement;
             println!(
@@ -477,6 +523,7 @@ fn run(cli: Cli) -> Result<()> {
                 a.bit_identical_commands, a.samples, a.max_command_diff_a, a.frames
             );
             println!("report: {}", report.join("summary.md").display());
+            println!("page: {}", report.join("index.html").display());
             if !a.agrees() {
                 anyhow::bail!("the firmware run does not match the in-process run (see pil.json)");
             }

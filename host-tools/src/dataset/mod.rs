@@ -8,6 +8,8 @@ pub mod branches;
 pub mod columns;
 pub mod error;
 pub mod hash;
+pub mod init;
+pub mod matlab;
 pub mod read;
 pub mod velocity;
 

@@ -27,6 +27,7 @@ const RECORDING_KEYS: &[&str] = &[
     "tags",
     "delimiter",
     "columns",
+    "variables",
 ];
 
 /// Plausible ranges of the numeric settings (key, min, max, unit): a value
@@ -59,6 +60,8 @@ struct Settings {
     tags: Option<BTreeMap<String, TagValue>>,
     delimiter: Option<Delimiter>,
     columns: Option<Spanned<Vec<String>>>,
+    /// For a .mat file: unit-named column → MATLAB variable name.
+    variables: Option<Spanned<BTreeMap<String, String>>>,
 }
 
 #[derive(Deserialize)]
@@ -184,7 +187,26 @@ impl Dataset {
             }
             let columns = s.columns.as_ref().or(d.columns.as_ref());
             let delimiter = s.delimiter.or(d.delimiter).unwrap_or(Delimiter::Comma);
-            let (samples, velocity_estimated) = read_samples(&data_path, delimiter, columns, &mpath, text)?;
+            let is_mat = Path::new(&file)
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("mat"));
+            let variables = s.variables.as_ref().or(d.variables.as_ref());
+            let (samples, velocity_estimated) = match (is_mat, variables) {
+                (true, Some(v)) => {
+                    super::matlab::read_samples(&data_path, v.get_ref(), &mpath, line_of(text, v.span().start))?
+                }
+                (true, None) => {
+                    return Err(DatasetError::Manifest {
+                        path: mpath,
+                        line,
+                        message: format!(
+                            "`{file}` is a MATLAB file: give its variables, e.g. \
+                             variables = {{ time_s = \"t\", displacement_mm = \"x\", force_n = \"F\" }}"
+                        ),
+                    })
+                }
+                (false, _) => read_samples(&data_path, delimiter, columns, &mpath, text)?,
+            };
             recordings.push(Recording {
                 file,
                 current_a,
@@ -349,7 +371,18 @@ fn parse_samples(
 
     // Column names come from `columns` in dataset.toml, or from the header row.
     let (names, name_path, name_line): (Vec<String>, &str, usize) = match columns {
-        Some(c) => (c.get_ref().clone(), mpath, line_of(manifest_text, c.span().start)),
+        Some(c) => {
+            // A header row that `columns` renames (`Force (kN)` → `force_kn`,
+            // as `mre dataset init` writes) is skipped, not read as data.
+            if lines
+                .as_slice()
+                .first()
+                .is_some_and(|(_, f)| f.iter().any(|x| x.parse::<f64>().is_err()))
+            {
+                lines.next();
+            }
+            (c.get_ref().clone(), mpath, line_of(manifest_text, c.span().start))
+        }
         None => match lines.next() {
             Some((n, names)) => (names, &dpath, n),
             None => {
@@ -362,14 +395,45 @@ fn parse_samples(
             }
         },
     };
-    let layout = parse_header(&names, name_path, name_line)?;
+    let rows = lines.map(|(n, f)| (n, f.into_iter().map(Cell::Text).collect()));
+    samples_from_rows(&dpath, &names, name_path, name_line, rows)
+}
+
+/// One field of a recording: text from a CSV file, or a number from a
+/// MATLAB file (already binary).
+pub(super) enum Cell {
+    Text(String),
+    Number(f64),
+}
+
+impl std::fmt::Display for Cell {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Cell::Text(t) => f.write_str(t),
+            Cell::Number(v) => write!(f, "{v}"),
+        }
+    }
+}
+
+/// Checks and converts rows (line, cells) under unit-named columns `names`
+/// (named at `name_path`:`name_line`) into samples in internal units;
+/// the bool is true when velocity was estimated.
+pub(super) fn samples_from_rows(
+    dpath: &str,
+    names: &[String],
+    name_path: &str,
+    name_line: usize,
+    rows: impl Iterator<Item = (usize, Vec<Cell>)>,
+) -> Result<(Samples, bool), DatasetError> {
+    let dpath = dpath.to_string();
+    let layout = parse_header(names, name_path, name_line)?;
     required_columns(&layout, name_path, name_line)?;
 
     let mut channels: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
     let mut last_line = name_line;
     let mut sample_lines = Vec::new();
     let time_col = layout.iter().position(|c| matches!(c, Some((Quantity::Time, _))));
-    for (n, f) in lines {
+    for (n, f) in rows {
         last_line = n;
         sample_lines.push(n);
         if f.len() != names.len() {
@@ -382,13 +446,16 @@ fn parse_samples(
         }
         for (col, text) in f.iter().enumerate() {
             let Some((quantity, scale)) = layout[col] else { continue };
-            let value: f64 = text.parse().map_err(|_| DatasetError::NotANumber {
-                path: dpath.clone(),
-                line: n,
-                column: col + 1,
-                name: names[col].clone(),
-                text: text.to_string(),
-            })?;
+            let value: f64 = match text {
+                Cell::Number(v) => *v,
+                Cell::Text(t) => t.parse().map_err(|_| DatasetError::NotANumber {
+                    path: dpath.clone(),
+                    line: n,
+                    column: col + 1,
+                    name: names[col].clone(),
+                    text: t.clone(),
+                })?,
+            };
             if !value.is_finite() {
                 return Err(DatasetError::NotFinite {
                     path: dpath,

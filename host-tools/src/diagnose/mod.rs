@@ -252,7 +252,12 @@ pub fn run_to_files(
 ) -> Result<report::ReportJson> {
     let ds = Dataset::load(dataset_dir)?;
     let d = diagnose(&ds, opts)?;
-    report::write_all(&d, report_dir, json_path, predictions_dir)
+    let json = report::write_all(&d, report_dir, json_path, predictions_dir)?;
+    crate::html::Page::new(format!("Diagnosis of {}", dataset_dir.display()))
+        .folder(report_dir)
+        .file(json_path)
+        .write(&report_dir.join("index.html"))?;
+    Ok(json)
 }
 
 /// One line for the terminal: what was found.

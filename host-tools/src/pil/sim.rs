@@ -190,6 +190,9 @@ pub fn run_pil(request: &PilRequest, report_dir: &Path) -> Result<PilOutcome> {
         Ok(())
     })
     .context("writing pil.json")?;
+    crate::html::Page::new("Closed-loop drop test, firmware in QEMU (PIL)")
+        .folder(report_dir)
+        .write(&report_dir.join("index.html"))?;
     Ok(PilOutcome {
         comparison,
         agreement,

@@ -335,5 +335,8 @@ pub fn run_sim(request: &SimRequest, report_dir: &std::path::Path) -> Result<Com
     };
     let cmp = run_comparison(&setup, &runs)?;
     super::sim_report::write_sim_report(&cmp, report_dir)?;
+    crate::html::Page::new("Closed-loop drop test (host)")
+        .folder(report_dir)
+        .write(&report_dir.join("index.html"))?;
     Ok(cmp)
 }

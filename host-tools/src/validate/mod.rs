@@ -194,5 +194,8 @@ pub fn run_validate(
     let table = crate::table_file::load_table(model)?;
     let report = validate(&ds, &table, model);
     report::write(report_dir, &report)?;
+    crate::html::Page::new(format!("Validation of {}", report.dataset))
+        .folder(report_dir)
+        .write(&report_dir.join("index.html"))?;
     Ok(report)
 }

@@ -1,0 +1,758 @@
+//! `mre dataset init DIR`: writes `dataset.toml` for a folder of recordings,
+//! asking nothing.
+//!
+//! - The delimiter (`,` or whitespace) and whether there is a header row are
+//!   sniffed from each file.
+//! - Header names are mapped to the unit-carrying names of the format
+//!   (`Time (ms)` → `time_ms`, `Load [kN]` → `force_kn`); names it cannot
+//!   map become `ignore` and are listed in a comment.
+//! - Files without a header get their columns from the data: time is the
+//!   column that rises steadily, displacement and velocity are the pair where
+//!   one is the other's derivative (their ratio gives the units), and force is
+//!   what is left. The file-name amplitude, when given, settles mm against m.
+//! - `--pattern '{amplitude_mm}mm{frequency_hz}Hz{current_a}A'` reads metadata
+//!   from file names, with `x` for the decimal point (`0x5` = 0.5).
+//!   `current_a`, `impact_velocity_m_s`, `temperature_c`, `mass_kg` and
+//!   `sequence` are recording keys; any other name becomes a tag.
+//! - An existing dataset.toml is never overwritten.
+use super::columns::parse_header;
+use anyhow::{bail, Context, Result};
+use std::fmt::Write;
+use std::path::Path;
+
+/// Extensions taken as recordings.
+const DATA_EXTENSIONS: &[&str] = &["txt", "csv", "dat", "tsv", "asc"];
+/// Pattern names that are recording keys rather than tags.
+const KEYS: &[&str] = &[
+    "current_a",
+    "impact_velocity_m_s",
+    "temperature_c",
+    "mass_kg",
+    "sequence",
+];
+
+#[derive(Clone, Debug, PartialEq)]
+enum Delimiter {
+    Comma,
+    Whitespace,
+}
+
+/// How one file is laid out, and what was assumed on the way.
+#[derive(Clone, Debug, PartialEq)]
+struct Layout {
+    delimiter: Delimiter,
+    /// Unit-named columns; `None` when the file's own header already uses them.
+    columns: Option<Vec<String>>,
+    /// Said in a comment: unmapped columns, assumed units.
+    notes: Vec<String>,
+}
+
+/// One `{name}` or literal piece of a file-name pattern.
+#[derive(Debug, PartialEq)]
+enum Piece {
+    Field(String),
+    Literal(String),
+}
+
+fn parse_pattern(pattern: &str) -> Result<Vec<Piece>> {
+    let mut pieces = Vec::new();
+    let mut rest = pattern;
+    while !rest.is_empty() {
+        if let Some(after) = rest.strip_prefix('{') {
+            let end = after
+                .find('}')
+                .with_context(|| format!("pattern `{pattern}`: `{{` without `}}`"))?;
+            let name = &after[..end];
+            if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+                bail!("pattern `{pattern}`: `{{{name}}}` is not a field name (letters, digits, _)");
+            }
+            if matches!(pieces.last(), Some(Piece::Field(_))) {
+                bail!("pattern `{pattern}`: two fields need text between them to be told apart");
+            }
+            pieces.push(Piece::Field(name.to_string()));
+            rest = &after[end + 1..];
+        } else {
+            let end = rest.find('{').unwrap_or(rest.len());
+            pieces.push(Piece::Literal(rest[..end].to_string()));
+            rest = &rest[end..];
+        }
+    }
+    if !pieces.iter().any(|p| matches!(p, Piece::Field(_))) {
+        bail!("pattern `{pattern}` has no {{field}}");
+    }
+    Ok(pieces)
+}
+
+/// A number in a file name: `x` (or `.`) is the decimal point, `m` or a
+/// leading `-` a minus sign (`m0x5` = −0.5).
+fn parse_number(text: &str) -> Option<f64> {
+    let t = text.replace(['x', 'X'], ".");
+    let t = t.strip_prefix('m').map(|r| format!("-{r}")).unwrap_or(t);
+    if t.is_empty() || !t.chars().all(|c| c.is_ascii_digit() || c == '.' || c == '-') {
+        return None;
+    }
+    t.parse().ok()
+}
+
+/// The fields of a file name (without extension) matched to the pattern;
+/// `None` when it does not match.
+fn match_pattern(pieces: &[Piece], stem: &str) -> Option<Vec<(String, f64)>> {
+    let mut rest = stem;
+    let mut values = Vec::new();
+    for (i, piece) in pieces.iter().enumerate() {
+        match piece {
+            Piece::Literal(l) => rest = rest.strip_prefix(l.as_str())?,
+            Piece::Field(name) => {
+                // The value runs to the next literal (first place it fits), or to the end.
+                let end = match pieces.get(i + 1) {
+                    Some(Piece::Literal(l)) => rest.get(1..)?.find(l.as_str())? + 1,
+                    _ => rest.len(),
+                };
+                values.push((name.clone(), parse_number(&rest[..end])?));
+                rest = &rest[end..];
+            }
+        }
+    }
+    rest.is_empty().then_some(values)
+}
+
+/// A header name to a unit-carrying column name, if it can be told.
+fn map_name(raw: &str) -> Option<String> {
+    let lower = raw.trim().to_ascii_lowercase();
+    if parse_header(std::slice::from_ref(&lower), "", 1).is_ok() {
+        return Some(lower);
+    }
+    // Split "Force (kN)", "force[kN]", "Force_kN", "force kn" into word and unit.
+    let cleaned: String = lower
+        .chars()
+        .map(|c| if "()[]{}_,;:".contains(c) { ' ' } else { c })
+        .collect();
+    let mut words: Vec<&str> = cleaned.split_whitespace().collect();
+    let unit = if words.len() > 1 { words.pop() } else { None };
+    let word = words.join(" ");
+    let quantity = match word.as_str() {
+        "time" | "t" => "time",
+        "displacement" | "disp" | "position" | "stroke" | "x" | "deflection" => "displacement",
+        "velocity" | "vel" | "speed" | "v" => "velocity",
+        "force" | "load" | "f" => "force",
+        "acceleration" | "accel" | "acc" | "a" => "acceleration",
+        "current" | "i" | "coil current" => "current",
+        "temperature" | "temp" => "temperature",
+        _ => return None,
+    };
+    let unit = unit.map(|u| u.replace(['/', ' '], "_").replace("sec", "s"));
+    let name = match (quantity, unit.as_deref()) {
+        ("time", None | Some("s")) => "time_s",
+        ("time", Some("ms")) => "time_ms",
+        ("displacement", None | Some("mm")) => "displacement_mm",
+        ("displacement", Some("m")) => "displacement_m",
+        ("velocity", None | Some("m_s")) => "velocity_m_s",
+        ("velocity", Some("mm_s")) => "velocity_mm_s",
+        ("acceleration", None | Some("m_s2") | Some("m_s^2")) => "acceleration_m_s2",
+        ("force", None | Some("n")) => "force_n",
+        ("force", Some("kn")) => "force_kn",
+        ("current", None | Some("a")) => "current_a",
+        ("temperature", None | Some("c") | Some("degc") | Some("°c")) => "temperature_c",
+        _ => return None,
+    };
+    Some(name.to_string())
+}
+
+/// The non-comment, non-blank lines split into fields; the first one
+/// tells the delimiter.
+fn sniff_records(text: &str) -> Result<(Delimiter, Vec<Vec<String>>)> {
+    let lines: Vec<&str> = text
+        .trim_start_matches('\u{feff}')
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with('#'))
+        .collect();
+    let Some(first) = lines.first() else {
+        bail!("no data lines")
+    };
+    let delimiter = if first.contains(',') {
+        Delimiter::Comma
+    } else if first.contains(';') {
+        bail!("`;`-separated: the data set format reads `,` or whitespace; convert the file first")
+    } else {
+        Delimiter::Whitespace
+    };
+    let records = lines
+        .iter()
+        .map(|l| match delimiter {
+            Delimiter::Comma => l.split(',').map(|f| f.trim().trim_matches('"').to_string()).collect(),
+            Delimiter::Whitespace => l.split_whitespace().map(|f| f.trim_matches('"').to_string()).collect(),
+        })
+        .collect();
+    Ok((delimiter, records))
+}
+
+fn is_number(s: &str) -> bool {
+    s.parse::<f64>().is_ok_and(f64::is_finite)
+}
+
+/// Slope of `y` on `x` through the origin, and the correlation of the two.
+fn slope_and_correlation(x: &[f64], y: &[f64]) -> (f64, f64) {
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let (mut sxy, mut sxx, mut syy, mut sxy0, mut sxx0) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for (a, b) in x.iter().zip(y) {
+        sxy += (a - mx) * (b - my);
+        sxx += (a - mx) * (a - mx);
+        syy += (b - my) * (b - my);
+        sxy0 += a * b;
+        sxx0 += a * a;
+    }
+    let r = if sxx > 0.0 && syy > 0.0 {
+        sxy / (sxx * syy).sqrt()
+    } else {
+        0.0
+    };
+    (if sxx0 > 0.0 { sxy0 / sxx0 } else { 0.0 }, r)
+}
+
+/// The power of ten nearest to `k`, if `k` is within a factor 2 of it.
+fn decade(k: f64) -> Option<i32> {
+    if k <= 0.0 || !k.is_finite() {
+        return None;
+    }
+    let e = k.log10().round() as i32;
+    ((k / 10f64.powi(e)).log2().abs() < 1.0).then_some(e)
+}
+
+/// Columns of a file without a header, told from the data (module docs).
+fn infer_columns(data: &[Vec<f64>], amplitude_mm: Option<f64>, notes: &mut Vec<String>) -> Result<Vec<String>> {
+    let n_cols = data.len();
+    let mut names: Vec<Option<String>> = vec![None; n_cols];
+    let rising = |c: &Vec<f64>| c.windows(2).all(|w| w[1] > w[0]);
+    let time = (0..n_cols)
+        .find(|&i| rising(&data[i]))
+        .context("no column rises steadily, so none can be time; give the file a header row")?;
+    let t = &data[time];
+    let step = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
+    let time_ms = step >= 1.0;
+    names[time] = Some(if time_ms { "time_ms" } else { "time_s" }.into());
+    let t_s: Vec<f64> = t.iter().map(|v| if time_ms { v * 1e-3 } else { *v }).collect();
+    notes.push(format!(
+        "time: column {} (rises steadily; {} s per sample taken as {})",
+        time + 1,
+        crate::html::json::format_number(step),
+        if time_ms { "ms" } else { "s" }
+    ));
+
+    // Displacement and velocity: the pair where one is the other's derivative.
+    let derivative = |c: &[f64]| -> Vec<f64> {
+        (1..c.len() - 1)
+            .map(|k| (c[k + 1] - c[k - 1]) / (t_s[k + 1] - t_s[k - 1]))
+            .collect()
+    };
+    let mut best: Option<(usize, usize, f64, f64)> = None;
+    for a in (0..n_cols).filter(|&i| i != time) {
+        let da = derivative(&data[a]);
+        for b in (0..n_cols).filter(|&i| i != time && i != a) {
+            let (k, r) = slope_and_correlation(&da, &data[b][1..data[b].len() - 1]);
+            if r > 0.9 && best.is_none_or(|(.., rb)| r > rb) {
+                best = Some((a, b, k, r));
+            }
+        }
+    }
+    let (x, v, k, r) = best.context(
+        "no two columns are displacement and its derivative (velocity), so the columns cannot be told apart; \
+         give the file a header row",
+    )?;
+    // Displacement unit from the file-name amplitude when known, else mm.
+    let half_range = {
+        let c = &data[x];
+        let (lo, hi) = c.iter().fold((f64::MAX, f64::MIN), |(l, h), v| (l.min(*v), h.max(*v)));
+        (hi - lo) / 2.0
+    };
+    let x_in_m = match amplitude_mm.map(|a| decade(half_range / a)) {
+        Some(Some(-3)) => true,
+        Some(Some(0)) => false,
+        Some(_) => bail!(
+            "column {} (displacement) spans ±{} but the file name says amplitude {} mm: neither mm nor m",
+            x + 1,
+            crate::html::json::format_number(half_range),
+            amplitude_mm.unwrap_or_default()
+        ),
+        None => {
+            notes.push(format!(
+                "displacement: column {} taken as mm (no amplitude in the file name)",
+                x + 1
+            ));
+            false
+        }
+    };
+    // v ≈ k · dx/dt: k = 1 same length unit, 10⁻³ or 10³ the other one.
+    let v_in_m = match (x_in_m, decade(k)) {
+        (true, Some(0)) | (false, Some(-3)) => true,
+        (false, Some(0)) | (true, Some(3)) => false,
+        _ => bail!(
+            "column {} follows the derivative of column {} (correlation {r:.3}) with factor {k:.3e}, \
+             which is no unit conversion; give the file a header row",
+            v + 1,
+            x + 1
+        ),
+    };
+    names[x] = Some(if x_in_m { "displacement_m" } else { "displacement_mm" }.into());
+    names[v] = Some(if v_in_m { "velocity_m_s" } else { "velocity_mm_s" }.into());
+    notes.push(format!(
+        "displacement: column {}, velocity: column {} (its derivative; correlation {r:.3}, factor {k:.4})",
+        x + 1,
+        v + 1
+    ));
+    // Force: what is left (the largest if several).
+    let rest: Vec<usize> = (0..n_cols).filter(|&i| names[i].is_none()).collect();
+    let peak = |i: usize| data[i].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let force = rest
+        .iter()
+        .copied()
+        .max_by(|&a, &b| peak(a).total_cmp(&peak(b)))
+        .context("no column is left for force")?;
+    names[force] = Some("force_n".into());
+    notes.push(format!("force: column {} taken as N; check the unit", force + 1));
+    for i in rest.into_iter().filter(|&i| i != force) {
+        notes.push(format!("column {} not recognised: ignored", i + 1));
+    }
+    Ok(names
+        .into_iter()
+        .map(|n| n.unwrap_or_else(|| "ignore".into()))
+        .collect())
+}
+
+/// Sniffs one file's layout.
+fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
+    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let text = std::str::from_utf8(&bytes).context("not UTF-8 text")?;
+    let (delimiter, records) = sniff_records(text)?;
+    let mut notes = Vec::new();
+    let header = !records[0].iter().all(|f| is_number(f));
+    if header {
+        let names: Vec<String> = records[0]
+            .iter()
+            .map(|raw| match map_name(raw) {
+                Some(n) => n,
+                None => {
+                    notes.push(format!("column `{raw}` not recognised: ignored"));
+                    "ignore".into()
+                }
+            })
+            .collect();
+        parse_header(&names, &path.display().to_string(), 1).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let unchanged = names.iter().zip(&records[0]).all(|(n, raw)| n == raw);
+        return Ok(Layout {
+            delimiter,
+            columns: (!unchanged).then_some(names),
+            notes,
+        });
+    }
+    let width = records[0].len();
+    let mut data = vec![Vec::new(); width];
+    for r in &records {
+        if r.len() != width || !r.iter().all(|f| is_number(f)) {
+            break;
+        }
+        for (c, f) in r.iter().enumerate() {
+            data[c].push(f.parse::<f64>().unwrap_or(f64::NAN));
+        }
+    }
+    if data[0].len() < 5 {
+        bail!("fewer than 5 numeric rows to tell the columns from");
+    }
+    let columns = infer_columns(&data, amplitude_mm, &mut notes)?;
+    Ok(Layout {
+        delimiter,
+        columns: Some(columns),
+        notes,
+    })
+}
+
+/// A number as TOML writes it (always with a decimal point, so it reads
+/// back as a float).
+fn toml_number(v: f64) -> String {
+    toml::Value::Float(v).to_string()
+}
+
+/// A string as a TOML basic string.
+fn toml_string(s: &str) -> String {
+    toml::Value::String(s.to_string()).to_string()
+}
+
+fn columns_line(columns: &[String]) -> String {
+    let quoted: Vec<String> = columns.iter().map(|c| toml_string(c)).collect();
+    format!("columns = [{}]", quoted.join(", "))
+}
+
+struct Found {
+    file: String,
+    layout: Layout,
+    fields: Vec<(String, f64)>,
+    /// For a .mat file: its `variables = { … }` line.
+    variables: Option<String>,
+}
+
+/// The `variables` line of a .mat file: each real vector whose name maps to
+/// a unit name (as header names do); the others are listed in `notes`.
+fn sniff_mat(path: &Path, notes: &mut Vec<String>) -> Result<String> {
+    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let mat = matfile::MatFile::parse(bytes.as_slice())
+        .map_err(|e| anyhow::anyhow!("not a MATLAB v5/v7 MAT-file ({e}); a v7.3 file must be saved with -v7"))?;
+    let mut pairs: Vec<(String, String)> = Vec::new();
+    for a in mat.arrays() {
+        let vector = a.size().iter().filter(|&&d| d != 1).count() <= 1;
+        match map_name(a.name()).filter(|_| vector) {
+            Some(column) if !pairs.iter().any(|(c, _)| *c == column) => pairs.push((column, a.name().to_string())),
+            _ => notes.push(format!("variable `{}` not recognised: not read", a.name())),
+        }
+    }
+    let names: Vec<String> = pairs.iter().map(|(c, _)| c.clone()).collect();
+    let layout = parse_header(&names, &path.display().to_string(), 1).map_err(|e| anyhow::anyhow!("{e}"))?;
+    super::columns::required_columns(&layout, &path.display().to_string(), 1)
+        .map_err(|e| anyhow::anyhow!("{e}; name the variables in `variables = {{ time_s = \"…\", … }}` by hand"))?;
+    let inner: Vec<String> = pairs.iter().map(|(c, v)| format!("{c} = {}", toml_string(v))).collect();
+    Ok(format!("variables = {{ {} }}", inner.join(", ")))
+}
+
+/// The text of `dataset.toml` for the recordings in `dir`.
+pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Result<String> {
+    let pieces = pattern.map(parse_pattern).transpose()?;
+    let mut files: Vec<String> = std::fs::read_dir(dir)
+        .with_context(|| format!("cannot read folder {}", dir.display()))?
+        .filter_map(|e| e.ok())
+        .filter(|e| e.path().is_file())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| !n.starts_with('.'))
+        .collect();
+    files.sort();
+    let mut found = Vec::new();
+    let mut skipped = Vec::new();
+    for file in files {
+        let path = dir.join(&file);
+        let ext = path
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase())
+            .unwrap_or_default();
+        let is_mat = ext == "mat";
+        if !DATA_EXTENSIONS.contains(&ext.as_str()) && !is_mat {
+            if file != "dataset.toml" {
+                skipped.push(format!(
+                    "{file}: not a recording (.{}, .mat)",
+                    DATA_EXTENSIONS.join(", .")
+                ));
+            }
+            continue;
+        }
+        let stem = path.file_stem().unwrap_or_default().to_string_lossy().into_owned();
+        let fields = match &pieces {
+            Some(p) => match match_pattern(p, &stem) {
+                Some(f) => f,
+                None => {
+                    skipped.push(format!("{file}: name does not match the pattern"));
+                    continue;
+                }
+            },
+            None => Vec::new(),
+        };
+        let amplitude_mm = fields.iter().find(|(k, _)| k == "amplitude_mm").map(|(_, v)| *v);
+        if is_mat {
+            let mut notes = Vec::new();
+            match sniff_mat(&path, &mut notes) {
+                Ok(line) => found.push(Found {
+                    file,
+                    layout: Layout {
+                        delimiter: Delimiter::Comma,
+                        columns: None,
+                        notes,
+                    },
+                    fields,
+                    variables: Some(line),
+                }),
+                Err(e) => skipped.push(format!("{file}: {e:#}")),
+            }
+            continue;
+        }
+        match sniff(&path, amplitude_mm) {
+            Ok(layout) => found.push(Found {
+                file,
+                layout,
+                fields,
+                variables: None,
+            }),
+            Err(e) => skipped.push(format!("{file}: {e:#}")),
+        }
+    }
+    if found.is_empty() {
+        let why = if skipped.is_empty() {
+            "the folder is empty".to_string()
+        } else {
+            skipped.join("; ")
+        };
+        bail!("no recordings found in {}: {why}", dir.display());
+    }
+    // Grouped by current (the model's main variable), then by the pattern's
+    // other fields in pattern order, then by name.
+    let key = |f: &Found, k: &str| f.fields.iter().find(|(n, _)| n == k).map(|(_, v)| *v);
+    let order: Vec<String> = pieces
+        .iter()
+        .flatten()
+        .filter_map(|p| match p {
+            Piece::Field(n) if n != "current_a" => Some(n.clone()),
+            _ => None,
+        })
+        .collect();
+    found.sort_by(|a, b| {
+        let mut ord = key(a, "current_a")
+            .unwrap_or(f64::NAN)
+            .total_cmp(&key(b, "current_a").unwrap_or(f64::NAN));
+        for k in &order {
+            ord = ord.then(key(a, k).unwrap_or(f64::NAN).total_cmp(&key(b, k).unwrap_or(f64::NAN)));
+        }
+        ord.then(a.file.cmp(&b.file))
+    });
+
+    // The layout most files share goes to [defaults]; the others set their own.
+    let mut counts: Vec<(&Layout, usize)> = Vec::new();
+    for f in found.iter().filter(|f| f.variables.is_none()) {
+        match counts
+            .iter_mut()
+            .find(|(l, _)| l.delimiter == f.layout.delimiter && l.columns == f.layout.columns)
+        {
+            Some((_, n)) => *n += 1,
+            None => counts.push((&f.layout, 1)),
+        }
+    }
+    let common = counts
+        .iter()
+        .max_by_key(|(_, n)| *n)
+        .map(|(l, _)| (*l).clone())
+        .unwrap_or(Layout {
+            delimiter: Delimiter::Comma,
+            columns: None,
+            notes: Vec::new(),
+        });
+    let same = |l: &Layout| l.delimiter == common.delimiter && l.columns == common.columns;
+
+    let title = name.map(str::to_owned).unwrap_or_else(|| {
+        std::path::absolute(dir)
+            .ok()
+            .and_then(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+            .unwrap_or_else(|| "recordings".into())
+    });
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "# Written by `mre dataset init`{}.",
+        pattern.map(|p| format!(" --pattern '{p}'")).unwrap_or_default()
+    );
+    let _ = writeln!(
+        s,
+        "# Check the units and fill in what file names cannot say (shared/spec/dataset-format.md)."
+    );
+    if !found.iter().any(|f| key(f, "current_a").is_some()) {
+        let _ = writeln!(
+            s,
+            "# current_a: not in the file names; set it for every recording (or pass --pattern)."
+        );
+    }
+    for line in &skipped {
+        let _ = writeln!(s, "# skipped {line}");
+    }
+    let _ = writeln!(s, "name = {}\n\n[defaults]", toml_string(&title));
+    let write_layout = |s: &mut String, l: &Layout| {
+        if l.delimiter == Delimiter::Whitespace {
+            let _ = writeln!(s, "delimiter = \"whitespace\"");
+        }
+        if let Some(c) = &l.columns {
+            let _ = writeln!(s, "{}", columns_line(c));
+        }
+    };
+    for note in &common.notes {
+        let _ = writeln!(s, "# {note}");
+    }
+    write_layout(&mut s, &common);
+    for f in &found {
+        let _ = writeln!(s, "\n[[recording]]");
+        // A .mat file says its own variables; delimiter and columns do not apply.
+        let own = f.variables.is_none() && !same(&f.layout);
+        if own || f.variables.is_some() {
+            for note in &f.layout.notes {
+                let _ = writeln!(s, "# {note}");
+            }
+        }
+        let _ = writeln!(s, "file = {}", toml_string(&f.file));
+        let mut tags = Vec::new();
+        for (k, v) in &f.fields {
+            if k == "sequence" {
+                let _ = writeln!(s, "sequence = {}", *v as i64);
+            } else if KEYS.contains(&k.as_str()) {
+                let _ = writeln!(s, "{k} = {}", toml_number(*v));
+            } else {
+                tags.push(format!("{k} = {}", toml_number(*v)));
+            }
+        }
+        if !tags.is_empty() {
+            let _ = writeln!(s, "tags = {{ {} }}", tags.join(", "));
+        }
+        if let Some(line) = &f.variables {
+            let _ = writeln!(s, "{line}");
+        }
+        if own {
+            if f.layout.delimiter != common.delimiter {
+                let d = if f.layout.delimiter == Delimiter::Whitespace {
+                    "whitespace"
+                } else {
+                    ","
+                };
+                let _ = writeln!(s, "delimiter = \"{d}\"");
+            }
+            if f.layout.columns != common.columns {
+                match &f.layout.columns {
+                    Some(c) => {
+                        let _ = writeln!(s, "{}", columns_line(c));
+                    }
+                    None => {
+                        let _ = writeln!(s, "# this file's header names its columns");
+                    }
+                }
+            }
+        }
+    }
+    Ok(s)
+}
+
+/// Writes `DIR/dataset.toml`; refuses when one exists.
+pub fn run_init(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Result<std::path::PathBuf> {
+    let dest = dir.join("dataset.toml");
+    if dest.exists() {
+        bail!(
+            "{} exists; mre dataset init never overwrites it (move it away to start again)",
+            dest.display()
+        );
+    }
+    let text = manifest_for(dir, pattern, name)?;
+    crate::atomic_write::write_atomic(&dest, text.as_bytes())?;
+    Ok(dest)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pattern_reads_numbers_with_x_for_the_point() {
+        let p = parse_pattern("{amplitude_mm}mm{frequency_hz}Hz{current_a}A").unwrap();
+        assert_eq!(
+            match_pattern(&p, "25mm0x25Hz0x5A").unwrap(),
+            vec![
+                ("amplitude_mm".to_string(), 25.0),
+                ("frequency_hz".to_string(), 0.25),
+                ("current_a".to_string(), 0.5)
+            ]
+        );
+        assert_eq!(match_pattern(&p, "25mm0x25Hz").map(|_| ()), None);
+        assert_eq!(match_pattern(&p, "25mmabcHz1A").map(|_| ()), None);
+        assert!(parse_pattern("{a}{b}").is_err());
+        assert!(parse_pattern("plain").is_err());
+        assert_eq!(parse_number("m1x5"), Some(-1.5));
+    }
+
+    #[test]
+    fn header_names_map_to_unit_names() {
+        assert_eq!(map_name("Time (ms)").as_deref(), Some("time_ms"));
+        assert_eq!(map_name("Load [kN]").as_deref(), Some("force_kn"));
+        assert_eq!(map_name("velocity_mm_s").as_deref(), Some("velocity_mm_s"));
+        assert_eq!(map_name("Velocity (mm/s)").as_deref(), Some("velocity_mm_s"));
+        assert_eq!(map_name("Disp (m)").as_deref(), Some("displacement_m"));
+        assert_eq!(map_name("Strain gauge 3"), None);
+    }
+
+    /// x = A sin(2π f t) in m, v its derivative in mm/s, force in N: the
+    /// columns shuffled, no header.
+    #[test]
+    fn headerless_columns_are_told_from_the_physics() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut text = String::new();
+        for k in 0..200 {
+            let t = k as f64 * 0.01;
+            let w = 2.0 * std::f64::consts::PI * 0.5;
+            let x_m = 0.01 * (w * t).sin();
+            let v_mm_s = 10.0 * w * (w * t).cos();
+            let f_n = 300.0 * (w * t).sin() + 50.0 * (w * t).cos();
+            text.push_str(&format!("{f_n:.6}\t{t:.3}\t{v_mm_s:.6}\t{x_m:.8}\n"));
+        }
+        std::fs::write(dir.path().join("10mm0x5Hz2A.txt"), &text).unwrap();
+        let toml = manifest_for(dir.path(), Some("{amplitude_mm}mm{frequency_hz}Hz{current_a}A"), None).unwrap();
+        let v: toml::Value = toml::from_str(&toml).unwrap();
+        assert_eq!(
+            v["defaults"]["columns"],
+            toml::Value::try_from(["force_n", "time_s", "velocity_mm_s", "displacement_m"]).unwrap(),
+            "{toml}"
+        );
+        assert_eq!(v["recording"][0]["current_a"].as_float(), Some(2.0));
+        // The manifest loads as a data set.
+        std::fs::write(dir.path().join("dataset.toml"), &toml).unwrap();
+        let ds = crate::dataset::Dataset::load(dir.path()).unwrap();
+        assert!((ds.recordings[0].samples.x_mm.iter().cloned().fold(0.0, f64::max) - 10.0).abs() < 0.01);
+    }
+
+    #[test]
+    fn unknown_header_columns_are_ignored_and_listed() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut text = String::from("Time (s),Displacement (mm),Force (kN),Strain\n");
+        for k in 0..20 {
+            text.push_str(&format!("{},{},{},1\n", k as f64 * 0.1, k, 2 * k));
+        }
+        std::fs::write(dir.path().join("a.csv"), &text).unwrap();
+        let toml = manifest_for(dir.path(), None, Some("t")).unwrap();
+        assert!(toml.contains("# column `Strain` not recognised: ignored"), "{toml}");
+        assert!(
+            toml.contains("columns = [\"time_s\", \"displacement_mm\", \"force_kn\", \"ignore\"]"),
+            "{toml}"
+        );
+        assert!(toml.contains("# current_a: not in the file names"), "{toml}");
+        // With a current added, it loads: the renamed header row is skipped, kN converted.
+        let toml = toml.replace("file = \"a.csv\"", "file = \"a.csv\"\ncurrent_a = 0.0");
+        std::fs::write(dir.path().join("dataset.toml"), &toml).unwrap();
+        let ds = crate::dataset::Dataset::load(dir.path()).unwrap();
+        assert_eq!(ds.recordings[0].samples.len(), 20);
+        assert_eq!(ds.recordings[0].samples.force_n[3], 6000.0);
+    }
+
+    #[test]
+    fn mat_files_get_their_variables_mapped() {
+        use crate::dataset::matlab::mat_v5::mat_v5;
+        let dir = tempfile::tempdir().unwrap();
+        let t: Vec<f64> = (0..30).map(|k| k as f64 * 1e-3).collect();
+        let x: Vec<f64> = (0..30).map(|k| (k as f64 * 0.2).sin()).collect();
+        let f: Vec<f64> = (0..30).map(|k| k as f64).collect();
+        let bytes = mat_v5(&[
+            ("t", 30, 1, &t),
+            ("x", 30, 1, &x),
+            ("F", 30, 1, &f),
+            ("gain", 1, 1, &[2.0]),
+        ]);
+        std::fs::write(dir.path().join("drop0x5A.mat"), bytes).unwrap();
+        let toml = manifest_for(dir.path(), Some("drop{current_a}A"), None).unwrap();
+        assert!(
+            toml.contains(r#"variables = { time_s = "t", displacement_mm = "x", force_n = "F" }"#),
+            "{toml}"
+        );
+        assert!(toml.contains("# variable `gain` not recognised"), "{toml}");
+        std::fs::write(dir.path().join("dataset.toml"), &toml).unwrap();
+        let ds = crate::dataset::Dataset::load(dir.path()).unwrap();
+        assert_eq!(ds.recordings[0].current_a, 0.5);
+        assert_eq!(ds.recordings[0].samples.force_n, f);
+    }
+
+    #[test]
+    fn an_existing_manifest_is_never_replaced() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("dataset.toml"), "name = \"mine\"\n").unwrap();
+        let e = run_init(dir.path(), None, None).unwrap_err();
+        assert!(e.to_string().contains("never overwrites"), "{e}");
+        assert_eq!(
+            std::fs::read_to_string(dir.path().join("dataset.toml")).unwrap(),
+            "name = \"mine\"\n"
+        );
+    }
+}
