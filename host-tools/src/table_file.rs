@@ -53,6 +53,28 @@ pub fn read_table_file(path: &Path) -> Result<Table> {
     parse_table_toml(&text).with_context(|| format!("in table file {}", path.display()))
 }
 
+/// The `[model] input_sha256` a model file records (the hash of the data
+/// set it was fitted on), if it has one. A plain table file has none.
+pub fn read_dataset_sha256(path: &Path) -> Result<Option<String>> {
+    #[derive(Deserialize)]
+    struct Doc {
+        model: Option<Meta>,
+    }
+    #[derive(Deserialize)]
+    struct Meta {
+        input_sha256: Option<String>,
+    }
+    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read table file {}", path.display()))?;
+    let doc: Doc = toml::from_str(&text).with_context(|| format!("in table file {}", path.display()))?;
+    let sha = doc.model.and_then(|m| m.input_sha256);
+    if let Some(s) = &sha {
+        if s.len() != 64 || !s.bytes().all(|b| b.is_ascii_hexdigit()) {
+            bail!("in table file {}: [model] input_sha256 is not 64 hex digits", path.display());
+        }
+    }
+    Ok(sha)
+}
+
 pub fn parse_table_toml(text: &str) -> Result<Table> {
     let doc: TableToml = toml::from_str(text)?;
     if let Some(v) = doc.format_version {

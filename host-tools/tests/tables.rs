@@ -1,11 +1,13 @@
 //! The committed flash table (`firmware/src/generated_table.rs`) must be what
-//! `mre tables` generates from the committed model (`models/mr-damper-mts.toml`).
+//! `mre tables` generates from the committed model (`models/drop-none.toml`),
+//! and that model must be what `mre fit` makes of the bundled drop tests.
 use mre_core::table::Table;
-use mre_host::table_file::read_table_file;
+use mre_host::table_file::{read_dataset_sha256, read_table_file};
 use mre_host::tables::generate_table_source;
 use std::path::Path;
 
-const MODEL: &str = "models/mr-damper-mts.toml";
+const MODEL: &str = "models/drop-none.toml";
+const DATASET: &str = "data/drop-none";
 
 fn root() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
@@ -14,7 +16,8 @@ fn root() -> &'static Path {
 #[test]
 fn committed_generated_table_matches_the_committed_model() {
     let table = read_table_file(&root().join(MODEL)).unwrap();
-    let generated = generate_table_source(MODEL, &table);
+    let sha = read_dataset_sha256(&root().join(MODEL)).unwrap();
+    let generated = generate_table_source(MODEL, &table, sha.as_deref());
     let committed = include_str!("../../firmware/src/generated_table.rs");
     assert!(
         generated == committed,
@@ -27,7 +30,37 @@ fn generated_image_validates_and_equals_the_model() {
     let from_flash = Table::from_image(&mre_core::generated_table::GENERATED_TABLE).unwrap();
     let from_model = read_table_file(&root().join(MODEL)).unwrap();
     assert_eq!(from_flash, from_model);
-    assert_eq!(from_flash.entries().len(), 3);
+    // The drop tests' five fit currents, 0–2 A.
+    assert_eq!(from_flash.current_range_a(), (0.0, 2.0));
+    assert_eq!(from_flash.entries().len(), 5);
+}
+
+#[test]
+fn committed_model_is_the_fit_of_the_bundled_drop_tests() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("model.toml");
+    let options = mre_host::fit::FitOptions {
+        method: mre_host::fit::Method::Lsq,
+        ..Default::default()
+    };
+    mre_host::fit::run_fit(&root().join(DATASET), &options, &[], &out).unwrap();
+    assert_eq!(read_table_file(&out).unwrap(), read_table_file(&root().join(MODEL)).unwrap());
+    // The flash image names the data set it came from.
+    assert_eq!(
+        read_dataset_sha256(&out).unwrap().as_deref(),
+        Some(mre_core::generated_table::SOURCE_DATASET_SHA256)
+    );
+}
+
+#[test]
+fn generated_table_covers_the_usable_stroke() {
+    // The drop tests' 0 A recordings reach past the 12 mm usable stroke
+    // (passive 0 A at 2.24 m/s needs about 16 mm); the stiffer currents stop
+    // the mass sooner, so their quartics cover less (clamped beyond).
+    let t = Table::from_image(&mre_core::generated_table::GENERATED_TABLE).unwrap();
+    let widest = t.entries().iter().map(|e| e.x_max_mm).fold(0.0f32, f32::max);
+    assert!(widest >= 12.0, "{widest}");
+    assert!(t.entries().iter().all(|e| e.x_min_mm <= 0.0));
 }
 
 #[test]
@@ -49,7 +82,7 @@ fn paper_table_generates_source_with_its_known_crc() {
     // The paper table's CRC is computed by the core at compile time; the
     // generator must print the same value.
     let paper = Table::paper().unwrap();
-    let src = generate_table_source("paper", &paper);
+    let src = generate_table_source("paper", &paper, None);
     assert!(src.contains(&format!("crc32: {:#010x},", mre_core::table::PAPER_TABLE4.crc32)));
     assert!(src.contains("current_a: 2.0,"));
     assert!(src.contains("compression: Quartic::new([-6619.6, 19772.0, -24021.0, 19016.0, -105.53]),"));
