@@ -35,3 +35,17 @@ pub fn sqrt_precise(x: f32) -> f32 {
     }
     y
 }
+
+/// Hyperbolic tangent from micromath's `exp`: `1 − 2/(e^{2u} + 1)`. Saturates
+/// to ±1 for large |u| (e^{2u} overflows to +inf or underflows to 0), never NaN
+/// for a non-NaN input.
+#[inline]
+pub fn tanh(u: f32) -> f32 {
+    1.0 - 2.0 / (F32Ext::exp(2.0 * u) + 1.0)
+}
+
+/// Inverse hyperbolic tangent `½·ln((1+w)/(1−w))` for `|w| < 1` (±inf at ±1).
+#[inline]
+pub fn atanh(w: f32) -> f32 {
+    0.5 * F32Ext::ln((1.0 + w) / (1.0 - w))
+}

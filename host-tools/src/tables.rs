@@ -24,7 +24,10 @@ pub fn generate_table_source(source: &str, table: &Table, dataset_sha256: Option
         s,
         "//! A host test (`host-tools/tests/tables.rs`) fails if this file drifts from the model."
     );
-    let _ = writeln!(s, "use crate::table::{{CurrentEntry, Quartic, TableImage}};");
+    let _ = writeln!(
+        s,
+        "use crate::table::{{CurrentEntry, ModelTerms, Quartic, TableImage}};"
+    );
     let _ = writeln!(s);
     let _ = writeln!(s, "/// The fitted entries, currents ascending (x in mm, F in N).");
     let _ = writeln!(s, "pub const GENERATED_ENTRIES: [CurrentEntry; {}] = [", entries.len());
@@ -43,7 +46,11 @@ pub fn generate_table_source(source: &str, table: &Table, dataset_sha256: Option
         s,
         "/// SHA-256 of the data set the model was fitted on (the model file's `[model] input_sha256`; empty if it has none)."
     );
-    let _ = writeln!(s, "pub const SOURCE_DATASET_SHA256: &str = {:?};", dataset_sha256.unwrap_or(""));
+    let _ = writeln!(
+        s,
+        "pub const SOURCE_DATASET_SHA256: &str = {:?};",
+        dataset_sha256.unwrap_or("")
+    );
     let _ = writeln!(s);
     let _ = writeln!(
         s,
@@ -52,6 +59,17 @@ pub fn generate_table_source(source: &str, table: &Table, dataset_sha256: Option
     let _ = writeln!(s, "pub static GENERATED_TABLE: TableImage<'static> = TableImage {{");
     let _ = writeln!(s, "    version: {},", table.version());
     let _ = writeln!(s, "    entries: &GENERATED_ENTRIES,");
+    let t = table.terms();
+    if t.is_none() {
+        let _ = writeln!(s, "    terms: ModelTerms::NONE,");
+    } else {
+        let _ = writeln!(s, "    terms: ModelTerms {{");
+        let _ = writeln!(s, "        viscous_n_s_per_m: {:?},", t.viscous_n_s_per_m);
+        let _ = writeln!(s, "        saturation_current_a: {:?},", t.saturation_current_a);
+        let _ = writeln!(s, "        sensor_delay_s: {:?},", t.sensor_delay_s);
+        let _ = writeln!(s, "        coil_tau_s: {:?},", t.coil_tau_s);
+        let _ = writeln!(s, "    }},");
+    }
     let _ = writeln!(s, "    crc32: {:#010x},", table.crc32());
     let _ = writeln!(s, "}};");
     s

@@ -44,7 +44,10 @@ fn committed_model_is_the_fit_of_the_bundled_drop_tests() {
         ..Default::default()
     };
     mre_host::fit::run_fit(&root().join(DATASET), &options, &[], &out).unwrap();
-    assert_eq!(read_table_file(&out).unwrap(), read_table_file(&root().join(MODEL)).unwrap());
+    assert_eq!(
+        read_table_file(&out).unwrap(),
+        read_table_file(&root().join(MODEL)).unwrap()
+    );
     // The flash image names the data set it came from.
     assert_eq!(
         read_dataset_sha256(&out).unwrap().as_deref(),
@@ -86,4 +89,50 @@ fn paper_table_generates_source_with_its_known_crc() {
     assert!(src.contains(&format!("crc32: {:#010x},", mre_core::table::PAPER_TABLE4.crc32)));
     assert!(src.contains("current_a: 2.0,"));
     assert!(src.contains("compression: Quartic::new([-6619.6, 19772.0, -24021.0, 19016.0, -105.53]),"));
+}
+
+#[test]
+fn version_1_model_files_still_load_and_version_2_files_carry_their_terms() {
+    use mre_host::table_file::{parse_table_toml, table_to_toml};
+    // The real MR damper model was written before version 2.
+    let v1 = read_table_file(&root().join("models/mr-damper-mts.toml")).unwrap();
+    assert_eq!(v1.version(), 1);
+    assert!(v1.terms().is_none());
+    let v2_text = r#"
+format_version = 2
+[terms]
+saturation_current_a = 0.8
+coil_tau_s = 0.002
+[[current]]
+current_a = 0.0
+compression = [0.0, 0.0, 0.0, 100.0, 0.0]
+extension = [0.0, 0.0, 0.0, 50.0, 0.0]
+x_min_mm = 0.0
+x_max_mm = 12.0
+viscous_n_s_per_m = 40.0
+[[current]]
+current_a = 2.0
+compression = [0.0, 0.0, 0.0, 900.0, 0.0]
+extension = [0.0, 0.0, 0.0, 450.0, 0.0]
+x_min_mm = 0.0
+x_max_mm = 4.0
+"#;
+    let t = parse_table_toml(v2_text).unwrap();
+    assert_eq!(t.version(), 2);
+    assert_eq!(t.terms().saturation_current_a, 0.8);
+    assert_eq!(t.terms().sensor_delay_s, 0.0);
+    assert_eq!(t.terms().coil_tau_s, 0.002);
+    assert_eq!(t.terms().viscous_n_s_per_m[..2], [40.0, 0.0]);
+    assert_eq!(parse_table_toml(&table_to_toml(&t)).unwrap(), t);
+    // Terms need version 2; a version 1 file with them is an error, not ignored.
+    let err = format!(
+        "{:#}",
+        parse_table_toml(&v2_text.replace("format_version = 2", "format_version = 1")).unwrap_err()
+    );
+    assert!(err.contains("format_version = 2"), "{err}");
+    let err = format!(
+        "{:#}",
+        parse_table_toml(&v2_text.replace("0.002", "-0.002")).unwrap_err()
+    );
+    assert!(err.contains("coil_tau_s"), "{err}");
 }
