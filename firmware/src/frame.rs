@@ -592,6 +592,8 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
             x_valid_max_mm,
             v_valid_max_m_s,
             period_s,
+            // Board constants: the same on host and board, not uploaded.
+            ..LawConfig::default()
         },
         estimator_alpha,
         range_fault_samples,

@@ -49,3 +49,36 @@ pub fn tanh(u: f32) -> f32 {
 pub fn atanh(w: f32) -> f32 {
     0.5 * F32Ext::ln((1.0 + w) / (1.0 - w))
 }
+
+/// `e^x` to f32 precision for configuration-time constants (micromath's
+/// `exp` is ~1e-3 off, too coarse for a coil model the host checks against
+/// std): `e^n·e^f` with n the integer part (repeated products of e) and a
+/// 12-term Taylor series of the fraction. Up to 80 multiplies: not for the
+/// per-period path. Clamped to e^±80.
+pub fn exp_precise(x: f32) -> f32 {
+    if x.is_nan() {
+        return x;
+    }
+    let x = clamp(x, -80.0, 80.0);
+    let n = x as i32; // towards zero: |f| < 1
+    let f = x - n as f32;
+    let mut term = 1.0f32;
+    let mut sum = 1.0f32;
+    let mut k = 1.0f32;
+    while k <= 12.0 {
+        term *= f / k;
+        sum += term;
+        k += 1.0;
+    }
+    let base = if n < 0 {
+        1.0 / core::f32::consts::E
+    } else {
+        core::f32::consts::E
+    };
+    let mut i = 0;
+    while i < n.unsigned_abs() {
+        sum *= base;
+        i += 1;
+    }
+    sum
+}

@@ -187,15 +187,19 @@ pub fn law_config(setup: &SimSetup) -> LawConfig {
     }
 }
 
-/// Runs the drop with the core's `ImpactLaw` and `table` in the loop.
+/// Runs the drop with the core's `ImpactLaw` and `table` in the loop. When
+/// the table carries a coil time constant the law pre-energises the coil
+/// while idle, so the drop starts with the coil settled at that current.
 pub fn run_controlled(setup: &SimSetup, table: &Table) -> Result<Trajectory> {
-    let mut law = ImpactLaw::new(law_config(setup)).map_err(|e| anyhow::anyhow!("law configuration: {e:?}"))?;
+    let tau_s = table.terms().coil_tau_s;
+    let mut law =
+        ImpactLaw::new_armed(law_config(setup), tau_s).map_err(|e| anyhow::anyhow!("law configuration: {e:?}"))?;
+    let impact = ImpactConfig {
+        initial_current_a: f64::from(law.coil_estimate_a()),
+        ..setup.impact.clone()
+    };
     let controller = move |x_mm: f32, v_m_s: f32| law.step(table, x_mm, v_m_s).current_a;
-    simulate(
-        &setup.plant,
-        &setup.impact,
-        CurrentSource::Controller(Box::new(controller)),
-    )
+    simulate(&setup.plant, &impact, CurrentSource::Controller(Box::new(controller)))
 }
 
 /// Runs every spec and compares them.
