@@ -150,6 +150,9 @@ enum Command {
         validate_current: Vec<f64>,
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Also write the final model (format 2 table file) for `mre tables`.
+        #[arg(long)]
+        model_out: Option<PathBuf>,
     },
     /// Blind benchmark of `diagnose` on `mre synth --effect random` cases.
     BenchDiagnose {
@@ -388,9 +391,18 @@ fn run(cli: Cli) -> Result<()> {
             folds,
             validate_current,
             seed,
+            model_out,
         } => {
             let opts = mre_host::diagnose::options_from_cli(model.as_deref(), folds_by, folds, validate_current, seed)?;
-            let out = mre_host::diagnose::run_to_files(&dataset, &opts, &report, &json, &predictions)?;
+            let out = match &model_out {
+                Some(path) => {
+                    use mre_host::diagnose::model_out::run_to_files_with_model;
+                    let (out, _) = run_to_files_with_model(&dataset, &opts, &report, &json, &predictions, path)?;
+                    println!("final model: {}", path.display());
+                    out
+                }
+                None => mre_host::diagnose::run_to_files(&dataset, &opts, &report, &json, &predictions)?,
+            };
             println!("{}", mre_host::diagnose::summary_line(&out));
             println!("report: {}", report.join("report.md").display());
         }
