@@ -154,6 +154,12 @@ enum Command {
         #[arg(long)]
         model_out: Option<PathBuf>,
     },
+    /// Controllers (a) paper table, (b) `mre fit`, (c) `mre diagnose` against the physical limit.
+    BenchControl {
+        /// Folder for report.md and report.json.
+        #[arg(long, default_value = "out/bench-control")]
+        out: PathBuf,
+    },
     /// Blind benchmark of `diagnose` on `mre synth --effect random` cases.
     BenchDiagnose {
         #[arg(long, default_value_t = 60)]
@@ -405,6 +411,11 @@ fn run(cli: Cli) -> Result<()> {
             };
             println!("{}", mre_host::diagnose::summary_line(&out));
             println!("report: {}", report.join("report.md").display());
+        }
+        Command::BenchControl { out } => {
+            let outcomes = mre_host::control_bench::run_to_files(&mre_host::control_bench::default_cases(), &out)?;
+            print!("{}", mre_host::control_bench::markdown(&outcomes));
+            println!("\nreport: {}", out.join("report.md").display());
         }
         Command::BenchDiagnose { cases, seed, json } => {
             let opts = mre_host::diagnose::DiagnoseOptions::default();

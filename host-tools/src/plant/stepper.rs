@@ -162,6 +162,9 @@ pub struct ImpactSummary {
     pub peak_force_n: f64,
     /// Largest deceleration of the mass, `F/m − g` (m/s²).
     pub peak_deceleration_m_s2: f64,
+    /// Largest jerk `|Δ(F/m)|/T` (m/s³) between control-period boundaries
+    /// (T = the control period): what an occupant feels, on the true force.
+    pub peak_jerk_m_s3: f64,
     pub max_stroke_mm: f64,
     /// Speed at which the mass leaves the damper (m/s, ≥ 0), if it did.
     pub rebound_velocity_m_s: Option<f64>,
@@ -284,6 +287,7 @@ impl PlantStepper {
             summary: ImpactSummary {
                 peak_force_n: 0.0,
                 peak_deceleration_m_s2: -cfg.gravity_m_s2,
+                peak_jerk_m_s3: 0.0,
                 max_stroke_mm: 0.0,
                 rebound_velocity_m_s: None,
                 contact_time_s: 0.0,
@@ -408,6 +412,11 @@ impl PlantStepper {
             .peak_deceleration_m_s2
             .max(force_n / self.cfg.mass_kg - self.cfg.gravity_m_s2);
         s.max_stroke_mm = s.max_stroke_mm.max(self.state.x_m * 1.0e3);
+        if self.step % self.steps_per_period == 0 {
+            let previous_n = self.force_history_n[(self.step - self.steps_per_period) as usize];
+            let jerk = (force_n - previous_n).abs() / (self.cfg.mass_kg * self.cfg.control_period_s);
+            s.peak_jerk_m_s3 = s.peak_jerk_m_s3.max(jerk);
+        }
         let state_bad = !(self.state.x_m.is_finite() && self.state.v_m_s.is_finite());
         if !self.finished && (self.time_s() >= self.cfg.max_duration_s || state_bad) {
             self.summary.contact_time_s = self.time_s();

@@ -313,7 +313,11 @@ pub fn synthesize(effect: &str, seed: u64) -> Result<SynthOutput> {
 
 /// Synthesises a whole data set in memory (no disk).
 pub fn synthesize_with_plan(effect: &str, seed: u64, plan: &SynthPlan) -> Result<SynthOutput> {
-    let plant = draw_plant(effect, seed, plan)?;
+    synthesize_plant(draw_plant(effect, seed, plan)?, seed, plan)
+}
+
+/// The campaign of `plan` recorded on a given plant (`mre bench-control` sets the coil τ).
+pub fn synthesize_plant(plant: Plant, seed: u64, plan: &SynthPlan) -> Result<SynthOutput> {
     let tests = plan_tests(plan, seed)?;
     let recordings = tests
         .par_iter()
