@@ -77,6 +77,12 @@ pub struct LawConfig {
     pub armed_current_a: f32,
 }
 
+/// The end of the stroke (mm) over which the law plans with this much stroke
+/// left: about ten times the displacement sensor's noise. A mass arriving
+/// there at v overtravels by about `v²/(2a)`; at the 0.1 m/s the plan leaves
+/// at most, a few hundredths of a millimetre.
+pub const TERMINAL_MM: f32 = 0.1;
+
 /// Displacement (mm) at or below which the damper counts as idle between
 /// impacts (the coil is pre-energised there). Above the sensor's noise.
 pub const CONTACT_MM: f32 = 0.05;
@@ -313,7 +319,14 @@ impl ImpactLaw {
 
         let wanted_a = match branch {
             Branch::Compression => {
-                match stopping_force_n(cfg.mass_kg, cfg.gravity_m_s2, v_m_s, cfg.stroke_max_mm - x_mm) {
+                // The last TERMINAL_MM are planned as if that much were left:
+                // a slow arrival there (noise, model error) must not ask
+                // for the unbounded force of stopping in a micrometre.
+                let remaining_mm = cfg.stroke_max_mm - x_mm;
+                if remaining_mm < TERMINAL_MM {
+                    flags |= Flags::STROKE_EXHAUSTED;
+                }
+                match stopping_force_n(cfg.mass_kg, cfg.gravity_m_s2, v_m_s, remaining_mm.max(TERMINAL_MM)) {
                     Some(force_n) => {
                         target_force_n = force_n;
                         let r = table.current_for_branch_v(x_mm, v_m_s, Branch::Compression, force_n);
