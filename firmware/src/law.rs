@@ -239,23 +239,25 @@ impl ImpactLaw {
             selector: BranchSelector::new(cfg.branch_band_m_s, Branch::Extension),
             last_current_a: cfg.current_min_a,
             last_compression_current_a: cfg.current_min_a,
-            coil_a: cfg.current_min_a,
+            // Before its first sample the law has been idle: a lagging coil
+            // has settled at the pre-energising current (a coil without lag
+            // is overwritten by the first command).
+            coil_a: cfg.armed_current_a,
             coil_tau_s: 0.0,
             coil_alpha: 1.0,
             lead_s: [0.0; LEAD_TAU.len()],
         })
     }
 
-    /// A law that has been idle long enough for a coil with time constant
-    /// `coil_tau_s` to settle at the pre-energising current (what the board
-    /// has before an impact; a simulation that starts at contact uses it).
-    pub fn new_armed(cfg: LawConfig, coil_tau_s: f32) -> Result<Self, ConfigError> {
-        let mut law = Self::new(cfg)?;
-        if coil_tau_s > 0.0 {
-            law.last_current_a = cfg.armed_current_a;
-            law.coil_a = cfg.armed_current_a;
+    /// The coil current the law holds between impacts with `table`: the
+    /// pre-energising current if its coil lags, else the rebound's minimum.
+    /// A simulation that starts at contact starts the coil there.
+    pub fn idle_current_a(&self, table: &Table) -> f32 {
+        if table.terms().coil_tau_s > 0.0 {
+            self.cfg.armed_current_a
+        } else {
+            self.cfg.current_min_a
         }
-        Ok(law)
     }
 
     /// The law's model of the coil current (A).

@@ -30,7 +30,18 @@ fn the_drive_brings_a_first_order_coil_to_the_wanted_current_in_one_period() {
     // ±3 A supply), and the coil, i += α·(u − i), lands on 0.5 A.
     let alpha = 1.0 - (-0.5f64).exp();
     let table = with_terms(lag(2.0e-4));
+    // A law that has not been idle yet: its coil model starts at 0 A.
+    let mut law = ImpactLaw::new(LawConfig {
+        armed_current_a: 0.0,
+        ..fast()
+    })
+    .unwrap();
+    for _ in 0..3 {
+        law.step(&table, 5.0, -1.0); // rebounding: 0 A wanted
+    }
+    assert!(law.coil_estimate_a().abs() < 1e-6);
     let mut law = ImpactLaw::new(fast()).unwrap();
+    law.step(&table, 5.0, -1.0);
     let drive = law.step(&table, 0.0, 0.0).current_a as f64;
     assert!((drive - 1.270747).abs() < 1e-3, "{drive}");
     let coil = alpha * drive;
@@ -42,7 +53,7 @@ fn the_drive_brings_a_first_order_coil_to_the_wanted_current_in_one_period() {
     assert!((drive + 0.770747).abs() < 1e-3, "{drive}");
     assert!((0.5 + alpha * (drive - 0.5)).abs() < 1e-4);
     // A bigger jump than the supply allows saturates at −3 A (−12 V / 4 Ω).
-    let mut slow = ImpactLaw::new_armed(fast(), 5.0e-3).unwrap();
+    let mut slow = ImpactLaw::new(fast()).unwrap();
     let cmd = slow.step(&with_terms(lag(5.0e-3)), 1.0, -0.5);
     assert_eq!(cmd.current_a, -3.0);
 }
@@ -63,7 +74,7 @@ fn idle_with_a_lagging_coil_pre_energises_and_without_one_rests_at_the_minimum()
     let mut plain = ImpactLaw::new(fast()).unwrap();
     assert_eq!(plain.step(&lagged_free(), 0.0, 0.0).current_a, 0.0);
     // Past contact on the way out the rebound policy applies (0 A wanted).
-    let mut out = ImpactLaw::new_armed(fast(), 1.0e-3).unwrap();
+    let mut out = ImpactLaw::new(fast()).unwrap();
     let cmd = out.step(&lagged, CONTACT_MM + 1.0, -0.5);
     assert!(cmd.current_a < 0.0, "drives the current down: {}", cmd.current_a);
 }
@@ -110,7 +121,7 @@ proptest! {
             ..ModelTerms::NONE
         });
         let cfg = LawConfig::default();
-        let mut law = ImpactLaw::new_armed(cfg, tau_ms * 1e-3).unwrap();
+        let mut law = ImpactLaw::new(cfg).unwrap();
         for (x, v) in samples {
             let cmd = law.step(&table, x, v);
             prop_assert!(cmd.current_a.is_finite());

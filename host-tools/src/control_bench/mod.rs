@@ -214,12 +214,10 @@ pub fn run_anchor(setup: &SimSetup, table: &Table) -> Result<ImpactSummary> {
     .summary)
 }
 
-/// Runs one case end to end.
-pub fn run_case(case: &Case) -> Result<CaseOutcome> {
-    let plan = SynthPlan::default();
-    let plant = case.plant(&plan)?;
-    // The campaign goes through the recording files, as `mre synth` writes them.
-    let recorded = synthesize_plant(plant.clone(), case.seed(), &plan)?.dataset;
+/// `plant`'s campaign (`mre synth`'s plan) written as recording files into a
+/// temporary folder and loaded back, as a user's recordings would be.
+pub fn record_campaign(plant: &Plant, seed: u64) -> Result<(tempfile::TempDir, Dataset)> {
+    let recorded = synthesize_plant(plant.clone(), seed, &SynthPlan::default())?.dataset;
     let dir = tempfile::tempdir()?;
     let options = WriteOptions {
         force: true,
@@ -227,6 +225,23 @@ pub fn run_case(case: &Case) -> Result<CaseOutcome> {
     };
     write_dataset(&recorded, dir.path(), &options)?;
     let campaign = Dataset::load(dir.path())?;
+    Ok((dir, campaign))
+}
+
+/// Controller (c)'s table for a simulated plant: its campaign, then
+/// `mre diagnose --model-out`'s model file (what `mre sim --controlled` and
+/// `mre pil` fly).
+pub fn diagnosed_table(plant: &Plant, seed: u64) -> Result<Table> {
+    let (_dir, campaign) = record_campaign(plant, seed)?;
+    let d = crate::diagnose::diagnose(&campaign, &crate::diagnose::DiagnoseOptions::default())?;
+    let (_, text) = crate::diagnose::model_out::model_file(&d, &campaign)?;
+    crate::table_file::parse_table_toml(&text).context("(c): the model file")
+}
+
+/// Runs one case end to end.
+pub fn run_case(case: &Case) -> Result<CaseOutcome> {
+    let plant = case.plant(&SynthPlan::default())?;
+    let (_dir, campaign) = record_campaign(&plant, case.seed())?;
     let ctl = controllers_for(&campaign)?;
     let setup = drop_setup(&plant, campaign.recordings.len(), case.seed());
     let limit = physical_limit(&plant, &setup.impact, (0.0, 2.0), setup.usable_stroke_mm)?;
