@@ -50,26 +50,49 @@ impl Table {
                 flags: Flags::NON_FINITE_INPUT,
             };
         }
-        let v = crate::model::viscous_velocity(v_m_s);
-        let c = &self.terms().viscous_n_s_per_m;
-        let viscous = |k: usize| c.get(k).copied().unwrap_or(0.0) * v;
+        if self.has_viscous() {
+            let v = crate::model::viscous_velocity(v_m_s);
+            let c = &self.terms().viscous_n_s_per_m;
+            self.solve_at(x_mm, branch, target_force_n, |k| c.get(k).copied().unwrap_or(0.0) * v)
+        } else {
+            // No rate term: nothing per entry beyond the quartic.
+            self.solve_at(x_mm, branch, target_force_n, |_| 0.0)
+        }
+    }
+
+    /// The inverse with `extra_n(k)` added to entry k's quartic.
+    #[inline(always)]
+    fn solve_at(
+        &self,
+        x_mm: f32,
+        branch: Branch,
+        target_force_n: f32,
+        extra_n: impl Fn(usize) -> f32,
+    ) -> CurrentResult {
+        let entries = self.entries();
         if self.in_shared_stroke(x_mm) {
             let r = match branch {
-                Branch::Compression => solve(entries, target_force_n, |k, e| e.compression.eval(x_mm) + viscous(k)),
-                Branch::Extension => solve(entries, target_force_n, |k, e| e.extension.eval(x_mm) + viscous(k)),
+                Branch::Compression => solve(entries, target_force_n, |k, e| e.compression.eval(x_mm) + extra_n(k)),
+                Branch::Extension => solve(entries, target_force_n, |k, e| e.extension.eval(x_mm) + extra_n(k)),
             };
             return self.to_current(r);
         }
         // Some entry clamps x. A non-finite x is evaluated at each entry's
         // x_min, as the forward model does (and flagged as non-finite only).
-        let (x_mm, flag) = if x_mm.is_finite() {
-            (x_mm, Flags::X_CLAMPED)
+        let flag = if x_mm.is_finite() {
+            Flags::X_CLAMPED
         } else {
-            (f32::NEG_INFINITY, Flags::NON_FINITE_INPUT)
+            Flags::NON_FINITE_INPUT
         };
-        let mut r = self.to_current(solve(entries, target_force_n, |k, e| {
-            e.force_n(x_mm, branch).force_n + viscous(k)
-        }));
+        let r = match branch {
+            Branch::Compression => solve(entries, target_force_n, |k, e| {
+                e.compression.eval(math::clamp(x_mm, e.x_min_mm, e.x_max_mm)) + extra_n(k)
+            }),
+            Branch::Extension => solve(entries, target_force_n, |k, e| {
+                e.extension.eval(math::clamp(x_mm, e.x_min_mm, e.x_max_mm)) + extra_n(k)
+            }),
+        };
+        let mut r = self.to_current(r);
         r.flags |= flag;
         r
     }

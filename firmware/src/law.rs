@@ -306,12 +306,12 @@ impl ImpactLaw {
             return self.fail_safe(input_faults);
         }
         let cfg = self.cfg;
-        let terms = *table.terms();
-        if terms.coil_tau_s != self.coil_tau_s {
-            self.set_coil_tau(terms.coil_tau_s);
+        let (coil_tau_s, delay_s) = (table.terms().coil_tau_s, table.terms().sensor_delay_s);
+        if coil_tau_s != self.coil_tau_s {
+            self.set_coil_tau(coil_tau_s);
         }
-        let (x_mm, v_m_s) = if terms.sensor_delay_s > 0.0 {
-            self.predict(table, x_mm, v_m_s, terms.sensor_delay_s)
+        let (x_mm, v_m_s) = if delay_s > 0.0 {
+            self.predict(table, x_mm, v_m_s, delay_s)
         } else {
             (x_mm, v_m_s)
         };
@@ -415,6 +415,11 @@ impl ImpactLaw {
         let u_min = cfg.drive_min_a;
         let mut wanted_a = now_a;
         for (&lead_s, &growth) in self.lead_s.iter().zip(&LEAD_GROWTH) {
+            // Even the lowest current ahead bounds no lower than this: skip
+            // the inverse when the wanted current is already below it.
+            if wanted_a <= u_min + (cfg.current_min_a - u_min) * growth {
+                continue;
+            }
             let v_ahead = v_m_s + a_m_s2 * lead_s;
             if v_ahead <= 0.0 {
                 break;

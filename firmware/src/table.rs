@@ -219,6 +219,7 @@ pub struct Table {
     /// Each entry's interpolation knot: its current, or `tanh(I/I_s)` under
     /// saturation (computed once here, not per period).
     knots: [f32; MAX_CURRENTS],
+    has_viscous: bool,
     /// The stroke every entry was fitted on (the intersection of their
     /// ranges; empty if they share none). Inside it no x needs clamping, which
     /// lets the inverse skip per-entry clamps on its hot path.
@@ -253,6 +254,7 @@ impl Table {
             crc32: content_crc(version, entries, &terms),
             terms,
             knots: [0.0; MAX_CURRENTS],
+            has_viscous: terms.viscous_n_s_per_m.iter().take(entries.len()).any(|c| *c != 0.0),
             shared_x_min_mm: f32::NEG_INFINITY,
             shared_x_max_mm: f32::INFINITY,
         };
@@ -322,6 +324,12 @@ impl Table {
     #[inline]
     pub(crate) fn knot(&self, index: usize) -> f32 {
         self.knots.get(index).copied().unwrap_or(0.0)
+    }
+
+    /// True when some entry has a viscous term (else the model skips it).
+    #[inline]
+    pub fn has_viscous(&self) -> bool {
+        self.has_viscous
     }
 
     /// Entry `index`'s viscous coefficient (N·s/m).

@@ -11,6 +11,7 @@
 //!   (the constant-Bingham-number control of MR energy absorbers), on
 //!   model (c), its command advanced by the identified coil lag (the
 //!   time-lag correction of Choi & Wereley's analysis), no re-planning.
+pub mod demo_step;
 pub mod limit;
 
 use crate::dataset::write::{write_dataset, WriteOptions};
@@ -112,7 +113,7 @@ pub struct RunOutcome {
 }
 
 impl RunOutcome {
-    fn new(controller: &str, s: &ImpactSummary, limit: &Limit, stroke_mm: f64) -> Self {
+    pub fn new(controller: &str, s: &ImpactSummary, limit: &Limit, stroke_mm: f64) -> Self {
         RunOutcome {
             controller: controller.to_owned(),
             peak_force_n: s.peak_force_n,
