@@ -75,7 +75,7 @@ impl Table {
                 Branch::Compression => solve(entries, target_force_n, |k, e| e.compression.eval(x_mm) + extra_n(k)),
                 Branch::Extension => solve(entries, target_force_n, |k, e| e.extension.eval(x_mm) + extra_n(k)),
             };
-            return self.to_current(r);
+            return self.current_of(r);
         }
         // Some entry clamps x. A non-finite x is evaluated at each entry's
         // x_min, as the forward model does (and flagged as non-finite only).
@@ -92,7 +92,7 @@ impl Table {
                 e.extension.eval(math::clamp(x_mm, e.x_min_mm, e.x_max_mm)) + extra_n(k)
             }),
         };
-        let mut r = self.to_current(r);
+        let mut r = self.current_of(r);
         r.flags |= flag;
         r
     }
@@ -100,7 +100,7 @@ impl Table {
     /// The current at fraction `t` of segment `lower` (t = 0 and t = 1:
     /// exactly the entries' currents): linear in I, or through atanh under saturation.
     #[inline]
-    fn to_current(&self, s: Solution) -> CurrentResult {
+    fn current_of(&self, s: Solution) -> CurrentResult {
         let entries = self.entries();
         let at = |k: usize| entries.get(k).map_or(0.0, |e| e.current_a);
         let (i0, i1) = (at(s.lower), at(s.lower + 1));

@@ -268,11 +268,15 @@ impl Table {
         // value, and the interpolation would divide by zero.
         let knots = table.knots.get(..table.len).unwrap_or(&[]);
         let flat = knots.windows(2).any(|w| match w {
-            [a, b] => !(b > a),
+            // Not strictly ascending, NaN included.
+            [a, b] => b.partial_cmp(a) != Some(core::cmp::Ordering::Greater),
             _ => false,
         });
         // The inverse needs atanh of every knot: none may round to ±1.
-        let saturated_to_one = terms.saturation_current_a > 0.0 && knots.iter().any(|k| !(crate::math::abs(*k) < 1.0));
+        let saturated_to_one = terms.saturation_current_a > 0.0
+            && knots
+                .iter()
+                .any(|k| crate::math::abs(*k).partial_cmp(&1.0) != Some(core::cmp::Ordering::Less));
         if flat || saturated_to_one {
             return Err(TableError::BadTerm {
                 term: "saturation_current_a",

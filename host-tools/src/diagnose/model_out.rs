@@ -73,7 +73,7 @@ pub fn final_table(d: &Diagnosis) -> Result<Table> {
             .filter(|&i| prep.recs[i].current_a == current_a)
             .flat_map(|i| prep.recs[i].x_mm.iter().copied());
         let (lo, hi) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)));
-        if !(lo < hi) {
+        if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
             return Err(anyhow!("{current_a} A: no fitted stroke"));
         }
         // x⁰..x⁴ as fitted, scaled by the softening factor.

@@ -412,7 +412,7 @@ impl PlantStepper {
             .peak_deceleration_m_s2
             .max(force_n / self.cfg.mass_kg - self.cfg.gravity_m_s2);
         s.max_stroke_mm = s.max_stroke_mm.max(self.state.x_m * 1.0e3);
-        if self.step % self.steps_per_period == 0 {
+        if self.step.is_multiple_of(self.steps_per_period) {
             let previous_n = self.force_history_n[(self.step - self.steps_per_period) as usize];
             let jerk = (force_n - previous_n).abs() / (self.cfg.mass_kg * self.cfg.control_period_s);
             s.peak_jerk_m_s3 = s.peak_jerk_m_s3.max(jerk);
