@@ -58,6 +58,17 @@ impl ModelTerms {
         coil_tau_s: 0.0,
     };
 
+    /// Every term at once (coil τ 2 ms, sensor delay 0.1 ms, a viscous term
+    /// on the second entry, saturation at 1.5 A): the longest path through
+    /// the model and the law, which the instruction-count bench and the PIL
+    /// agreement test fly.
+    pub const EVERY_TERM: ModelTerms = ModelTerms {
+        viscous_n_s_per_m: [0.0, 30.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        saturation_current_a: 1.5,
+        sensor_delay_s: 1.0e-4,
+        coil_tau_s: 2.0e-3,
+    };
+
     pub fn is_none(&self) -> bool {
         *self == Self::NONE
     }
@@ -421,16 +432,7 @@ pub const fn content_crc(version: u16, entries: &[CurrentEntry], terms: &ModelTe
             fields[8 + k] = e.extension.coeffs[k];
             k += 1;
         }
-        let mut f = 0;
-        while f < 13 {
-            let b = fields[f].to_bits().to_le_bytes();
-            buf[at] = b[0];
-            buf[at + 1] = b[1];
-            buf[at + 2] = b[2];
-            buf[at + 3] = b[3];
-            at += 4;
-            f += 1;
-        }
+        at = push_le(&mut buf, at, &fields, 13);
         i += 1;
     }
     if version >= FORMAT_VERSION {
@@ -443,19 +445,27 @@ pub const fn content_crc(version: u16, entries: &[CurrentEntry], terms: &ModelTe
             fields[3 + k] = terms.viscous_n_s_per_m[k];
             k += 1;
         }
-        let mut f = 0;
-        while f < 3 + count {
-            let b = fields[f].to_bits().to_le_bytes();
-            buf[at] = b[0];
-            buf[at + 1] = b[1];
-            buf[at + 2] = b[2];
-            buf[at + 3] = b[3];
-            at += 4;
-            f += 1;
-        }
+        at = push_le(&mut buf, at, &fields, 3 + count);
     }
     let (used, _) = buf.split_at(at);
     CRC32.checksum(used)
+}
+
+/// Writes `fields[..n]` as little-endian f32 into `buf` from `at`; returns
+/// the end. Callers keep `at + 4·n ≤ IMAGE_BYTES` (see `content_crc`).
+#[allow(clippy::indexing_slicing)]
+const fn push_le(buf: &mut [u8; IMAGE_BYTES], mut at: usize, fields: &[f32], n: usize) -> usize {
+    let mut f = 0;
+    while f < n {
+        let b = fields[f].to_bits().to_le_bytes();
+        buf[at] = b[0];
+        buf[at + 1] = b[1];
+        buf[at + 2] = b[2];
+        buf[at + 3] = b[3];
+        at += 4;
+        f += 1;
+    }
+    at
 }
 
 const fn paper_entry(current_a: f32, c: [f32; 5], e: [f32; 5], x_max_mm: f32) -> CurrentEntry {

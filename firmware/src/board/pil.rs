@@ -411,14 +411,7 @@ pub mod icount {
         };
         model_steps(&flown);
         control_steps(ctl);
-        let mut terms = ModelTerms {
-            saturation_current_a: 1.5,
-            sensor_delay_s: 1.0e-4,
-            coil_tau_s: 2.0e-3,
-            ..ModelTerms::NONE
-        };
-        terms.viscous_n_s_per_m[1] = 30.0;
-        let with_terms = Table::with_terms(flown.entries(), terms);
+        let with_terms = Table::with_terms(flown.entries(), ModelTerms::EVERY_TERM);
         let Ok(mut ctl_terms) = Controller::new(*ctl.config(), with_terms) else {
             defmt::error!("icount: terms table refused");
             semihosting::process::exit(1)

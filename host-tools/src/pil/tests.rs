@@ -254,14 +254,7 @@ fn firmware_flies_every_version_2_term_sample_for_sample() {
     })
     .unwrap();
     assert!(setup.plant.effect.force_delay_s() > 0.0 && setup.impact.coil_lag_s == Some(2.0e-3));
-    let mut terms = ModelTerms {
-        saturation_current_a: 1.5,
-        sensor_delay_s: 1.0e-4,
-        coil_tau_s: 2.0e-3,
-        ..ModelTerms::NONE
-    };
-    terms.viscous_n_s_per_m[1] = 30.0;
-    let table = Table::with_terms(&mre_core::generated_table::GENERATED_ENTRIES, terms).unwrap();
+    let table = Table::with_terms(&mre_core::generated_table::GENERATED_ENTRIES, ModelTerms::EVERY_TERM).unwrap();
     let cfg = control_config(&setup).unwrap();
     let (fw, frames) = run_firmware(&setup, &table, &cfg, &firmware()).unwrap();
     let host = run_in_process(&setup, &table, &cfg).unwrap();
