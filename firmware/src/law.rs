@@ -324,6 +324,11 @@ impl ImpactLaw {
                 // The last TERMINAL_MM are planned as if that much were left:
                 // a slow arrival there (noise, model error) must not ask
                 // for the unbounded force of stopping in a micrometre.
+                // The command holds for one period while the mass moves on
+                // and, at a held current, the force grows with x: plan for
+                // where the period ends, so the force peaks at the target
+                // instead of past it.
+                let x_mm = x_mm + v_m_s * cfg.period_s * 1.0e3;
                 let remaining_mm = cfg.stroke_max_mm - x_mm;
                 if remaining_mm < TERMINAL_MM {
                     flags |= Flags::STROKE_EXHAUSTED;

@@ -34,10 +34,11 @@ fn compression_command_produces_the_stopping_force() {
         ..fast_config()
     };
     let mut law = ImpactLaw::new(cfg).expect("valid config");
-    // x = 0.5 mm, v = 1.0 m/s: F* = 0.5·5.5·1.0/0.0007 + 53.955 = 3982.5 N,
+    // Sampled at x = 0.4 mm, v = 1.0 m/s, the law plans for the end of the
+    // 100 µs period, x = 0.5 mm: F* = 0.5·5.5·1.0/0.0007 + 53.955 = 3982.5 N,
     // which the paper's table reaches between 0.5 A (2532.6 N) and 1 A
     // (4826.2 N) at x = 0.5 mm.
-    let cmd = law.step(&t, 0.5, 1.0);
+    let cmd = law.step(&t, 0.4, 1.0);
     let expected_force = 0.5 * 5.5 * 1.0 / 0.0007 + 5.5 * 9.81;
     assert!(
         (cmd.target_force_n - expected_force).abs() < 0.5,

@@ -83,7 +83,7 @@ fn idle_with_a_lagging_coil_pre_energises_and_without_one_rests_at_the_minimum()
 fn sensor_delay_is_predicted_with_the_free_fall_before_contact() {
     // Before contact (x < 0) no force acts: across d = 0.5 ms the mass moves
     // v·d + ½·g·d² and speeds up by g·d. The law targets the stopping force
-    // of that predicted state.
+    // of that predicted state, one period on.
     let d = 5.0e-4f32;
     let table = with_terms(ModelTerms {
         sensor_delay_s: d,
@@ -95,6 +95,8 @@ fn sensor_delay_is_predicted_with_the_free_fall_before_contact() {
     let cmd = law.step(&table, x_mm, v);
     let x_p = -0.5 + (2.0 * 5.0e-4 + 0.5 * 9.81 * 2.5e-7) * 1.0e3;
     let v_p = 2.0 + 9.81 * 5.0e-4;
+    // ... and then plans for the end of the 100 µs period it holds the command.
+    let x_p = x_p + v_p * 1.0e-4 * 1.0e3;
     let expected = stopping_force_n(5.5, 9.81, v_p, cfg.stroke_max_mm - x_p).unwrap();
     assert!(
         (cmd.target_force_n - expected).abs() < 1e-2 * expected,
