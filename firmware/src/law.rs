@@ -71,9 +71,9 @@ pub struct LawConfig {
     /// Coil current held between impacts when the coil lags (pre-energising).
     /// Moderate on purpose: at contact the force is zero whatever the field,
     /// and a coil that starts high must then decay (at most at V_s/L) while
-    /// the plan asks for less. Measured on the drop test (`mre sim
-    /// --controlled --coil-lag-ms 5`): 0–1 A all land within 1.13–1.21× of
-    /// the 1242 N, 2 A gives 2.98×.
+    /// the plan asks for less. Measured when it was chosen (drop test,
+    /// τ = 5 ms, the look-ahead on): 0–1 A all within 1.13–1.21× of the
+    /// issue's 1242 N, 2 A 2.98×.
     pub armed_current_a: f32,
 }
 
