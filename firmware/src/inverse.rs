@@ -84,14 +84,10 @@ impl Table {
         } else {
             Flags::NON_FINITE_INPUT
         };
-        let r = match branch {
-            Branch::Compression => solve(entries, target_force_n, |k, e| {
-                e.compression.eval(math::clamp(x_mm, e.x_min_mm, e.x_max_mm)) + extra_n(k)
-            }),
-            Branch::Extension => solve(entries, target_force_n, |k, e| {
-                e.extension.eval(math::clamp(x_mm, e.x_min_mm, e.x_max_mm)) + extra_n(k)
-            }),
-        };
+        // A clamped entry's force is its precomputed stroke end.
+        let r = solve(entries, target_force_n, |k, e| {
+            self.clamped_force_n(k, e, branch, x_mm) + extra_n(k)
+        });
         let mut r = self.current_of(r);
         r.flags |= flag;
         r
@@ -111,18 +107,7 @@ impl Table {
         } else {
             let i_s = self.terms().saturation_current_a;
             if i_s > 0.0 {
-                // w = w0 + t·(w1 − w0), I = I_s·atanh(w), then one Newton
-                // step on the forward model's own tanh so that forward and
-                // inverse agree to its precision (micromath's ln and exp
-                // differ by ~1e-3 alone).
-                let w = self.knot(s.lower) + s.t * (self.knot(s.lower + 1) - self.knot(s.lower));
-                let mut i = i_s * math::atanh(w);
-                let th = math::tanh(i / i_s);
-                let slope = 1.0 - th * th;
-                if slope > 0.0 {
-                    i -= i_s * (th - w) / slope;
-                }
-                math::clamp(i, i0, i1)
+                self.saturated_current_a(s, i_s, i0, i1)
             } else {
                 i0 + s.t * (i1 - i0)
             }
@@ -131,6 +116,23 @@ impl Table {
             current_a,
             flags: s.flags,
         }
+    }
+
+    /// The current at fraction `t` of segment `lower` under saturation:
+    /// w = w0 + t·(w1 − w0), I = I_s·atanh(w), then one Newton step on the
+    /// forward model's own tanh so that forward and inverse agree to its
+    /// precision (micromath's ln and exp differ by ~1e-3 alone). Out of line:
+    /// its registers would otherwise be saved on every call.
+    #[inline(never)]
+    fn saturated_current_a(&self, s: Solution, i_s: f32, i0: f32, i1: f32) -> f32 {
+        let w = self.knot(s.lower) + s.t * (self.knot(s.lower + 1) - self.knot(s.lower));
+        let mut i = i_s * math::atanh(w);
+        let th = math::tanh(i / i_s);
+        let slope = 1.0 - th * th;
+        if slope > 0.0 {
+            i -= i_s * (th - w) / slope;
+        }
+        math::clamp(i, i0, i1)
     }
 
     /// [`Table::current_for_branch_v`] with the branch from the sign of `v_m_s`.

@@ -7,6 +7,7 @@
 //! Tables are stored in flash as a [`TableImage`] (version + entries + CRC-32)
 //! and only become a usable [`Table`] through a validating constructor, so a
 //! corrupt or inconsistent table is never evaluated.
+use crate::model::Branch;
 use crc::{Crc, CRC_32_ISO_HDLC};
 
 /// Most currents one table can hold (fixed size: no heap on the board).
@@ -236,6 +237,12 @@ pub struct Table {
     /// lets the inverse skip per-entry clamps on its hot path.
     shared_x_min_mm: f32,
     shared_x_max_mm: f32,
+    /// Each entry's force at the ends of its stroke, `[compression,
+    /// extension]` at x_min and at x_max: what it gives for any clamped x,
+    /// computed once (by the same Horner evaluation) so that a clamped entry
+    /// costs a load instead of a clamp and a quartic on the hot path.
+    end_low_n: [[f32; 2]; MAX_CURRENTS],
+    end_high_n: [[f32; 2]; MAX_CURRENTS],
 }
 
 impl Table {
@@ -268,9 +275,26 @@ impl Table {
             has_viscous: terms.viscous_n_s_per_m.iter().take(entries.len()).any(|c| *c != 0.0),
             shared_x_min_mm: f32::NEG_INFINITY,
             shared_x_max_mm: f32::INFINITY,
+            end_low_n: [[0.0; 2]; MAX_CURRENTS],
+            end_high_n: [[0.0; 2]; MAX_CURRENTS],
         };
-        for ((slot, knot), entry) in table.entries.iter_mut().zip(table.knots.iter_mut()).zip(entries) {
+        let ends = table.end_low_n.iter_mut().zip(table.end_high_n.iter_mut());
+        for (((slot, knot), entry), (low, high)) in table
+            .entries
+            .iter_mut()
+            .zip(table.knots.iter_mut())
+            .zip(entries)
+            .zip(ends)
+        {
             *slot = *entry;
+            *low = [
+                entry.compression.eval(entry.x_min_mm),
+                entry.extension.eval(entry.x_min_mm),
+            ];
+            *high = [
+                entry.compression.eval(entry.x_max_mm),
+                entry.extension.eval(entry.x_max_mm),
+            ];
             *knot = crate::model::interpolation_variable(entry.current_a, terms.saturation_current_a);
             table.shared_x_min_mm = table.shared_x_min_mm.max(entry.x_min_mm);
             table.shared_x_max_mm = table.shared_x_max_mm.min(entry.x_max_mm);
@@ -358,6 +382,28 @@ impl Table {
     #[inline]
     pub fn in_shared_stroke(&self, x_mm: f32) -> bool {
         x_mm >= self.shared_x_min_mm && x_mm <= self.shared_x_max_mm
+    }
+
+    /// Entry `index` (= `e`)'s force on `branch` at `x_mm` clamped to its
+    /// stroke, the clamped ends from the precomputed table; a NaN or
+    /// infinite x counts as x_min, as in the forward model.
+    #[inline(always)]
+    pub(crate) fn clamped_force_n(&self, index: usize, e: &CurrentEntry, branch: Branch, x_mm: f32) -> f32 {
+        let b = match branch {
+            Branch::Compression => 0,
+            Branch::Extension => 1,
+        };
+        let end = |ends: &[[f32; 2]; MAX_CURRENTS]| ends.get(index).and_then(|f| f.get(b)).copied().unwrap_or(0.0);
+        if x_mm >= e.x_min_mm && x_mm <= e.x_max_mm {
+            match branch {
+                Branch::Compression => e.compression.eval(x_mm),
+                Branch::Extension => e.extension.eval(x_mm),
+            }
+        } else if x_mm > e.x_max_mm && x_mm.is_finite() {
+            end(&self.end_high_n)
+        } else {
+            end(&self.end_low_n)
+        }
     }
 
     /// Lowest and highest tabulated current.
