@@ -53,40 +53,43 @@ impl Table {
         if self.has_viscous() {
             let v = crate::model::viscous_velocity(v_m_s);
             let c = &self.terms().viscous_n_s_per_m;
-            self.solve_at(x_mm, branch, target_force_n, |k| c.get(k).copied().unwrap_or(0.0) * v)
+            self.solve_at(x_mm, branch, target_force_n, |k, f| {
+                f + c.get(k).copied().unwrap_or(0.0) * v
+            })
         } else {
             // No rate term: nothing per entry beyond the quartic.
-            self.solve_at(x_mm, branch, target_force_n, |_| 0.0)
+            self.solve_at(x_mm, branch, target_force_n, |_, f| f)
         }
     }
 
-    /// The inverse with `extra_n(k)` added to entry k's quartic.
+    /// The inverse with entry k's quartic force `f` replaced by `with_extra(k, f)`
+    /// (the identity without a rate term, so nothing is added per entry).
     #[inline(always)]
     fn solve_at(
         &self,
         x_mm: f32,
         branch: Branch,
         target_force_n: f32,
-        extra_n: impl Fn(usize) -> f32,
+        with_extra: impl Fn(usize, f32) -> f32,
     ) -> CurrentResult {
         let entries = self.entries();
         if self.in_shared_stroke(x_mm) {
             let r = match branch {
-                Branch::Compression => solve(entries, target_force_n, |k, e| e.compression.eval(x_mm) + extra_n(k)),
-                Branch::Extension => solve(entries, target_force_n, |k, e| e.extension.eval(x_mm) + extra_n(k)),
+                Branch::Compression => solve(entries, target_force_n, |k, e| with_extra(k, e.compression.eval(x_mm))),
+                Branch::Extension => solve(entries, target_force_n, |k, e| with_extra(k, e.extension.eval(x_mm))),
             };
             return self.current_of(r);
         }
         // Some entry clamps x. A non-finite x is evaluated at each entry's
         // x_min, as the forward model does (and flagged as non-finite only).
-        let flag = if x_mm.is_finite() {
-            Flags::X_CLAMPED
+        let (flag, x_mm) = if x_mm.is_finite() {
+            (Flags::X_CLAMPED, x_mm)
         } else {
-            Flags::NON_FINITE_INPUT
+            (Flags::NON_FINITE_INPUT, f32::NEG_INFINITY)
         };
         // A clamped entry's force is its precomputed stroke end.
         let r = solve(entries, target_force_n, |k, e| {
-            self.clamped_force_n(k, e, branch, x_mm) + extra_n(k)
+            with_extra(k, self.clamped_force_n(k, e, branch, x_mm))
         });
         let mut r = self.current_of(r);
         r.flags |= flag;
@@ -176,34 +179,55 @@ fn solve(
             flags: Flags::NONE,
         };
     }
-    let below = f0 < target_force_n;
-    // Until a crossing, every force lies on the `below` side of the target,
-    // so the nearest one so far is the largest (below) or smallest (above).
-    // Ties keep the lowest current.
+    // One loop per side of the target, so each entry costs one comparison
+    // for the crossing. Until a crossing, every force lies on the starting
+    // side, so the nearest one so far is the largest (below) or smallest
+    // (above); ties keep the lowest current.
     let mut nearest = (0, f0);
+    if f0 < target_force_n {
+        for (k, entry) in entries.iter().enumerate().skip(1) {
+            let force = force_at(k, entry);
+            // Reaching the target (or a NaN force, which brackets nothing
+            // sensible but must not pass for "below").
+            if !(force < target_force_n) {
+                return bracket(k, f0, force, target_force_n);
+            }
+            if force > nearest.1 {
+                nearest = (k, force);
+            }
+            f0 = force;
+        }
+        return saturated(nearest.0, Flags::SATURATED_HIGH);
+    }
     for (k, entry) in entries.iter().enumerate().skip(1) {
         let force = force_at(k, entry);
-        // A sign change, or touching the target from above.
-        if (force < target_force_n) != below || force == target_force_n {
-            let t = (target_force_n - f0) / (force - f0);
-            return Solution {
-                lower: k - 1,
-                t,
-                flags: Flags::NONE,
-            };
+        // Falling to or through the target from above.
+        if force <= target_force_n {
+            return bracket(k, f0, force, target_force_n);
         }
-        if (below && force > nearest.1) || (!below && force < nearest.1) {
+        if force < nearest.1 {
             nearest = (k, force);
         }
         f0 = force;
     }
-    let side = if below {
-        Flags::SATURATED_HIGH
-    } else {
-        Flags::SATURATED_LOW
-    };
+    saturated(nearest.0, Flags::SATURATED_LOW)
+}
+
+/// The target lies between entry `k − 1` (force `f0`) and entry `k` (`f1`).
+#[inline(always)]
+fn bracket(k: usize, f0: f32, f1: f32, target_force_n: f32) -> Solution {
     Solution {
-        lower: nearest.0,
+        lower: k - 1,
+        t: (target_force_n - f0) / (f1 - f0),
+        flags: Flags::NONE,
+    }
+}
+
+/// No segment brackets the target: the nearest knot, flagged with its side.
+#[inline(always)]
+fn saturated(lower: usize, side: Flags) -> Solution {
+    Solution {
+        lower,
         t: 0.0,
         flags: side,
     }

@@ -385,8 +385,9 @@ impl Table {
     }
 
     /// Entry `index` (= `e`)'s force on `branch` at `x_mm` clamped to its
-    /// stroke, the clamped ends from the precomputed table; a NaN or
-    /// infinite x counts as x_min, as in the forward model.
+    /// stroke, the clamped ends from the precomputed table. The caller maps
+    /// a non-finite x to −∞ (it then counts as x_min, as in the forward
+    /// model); a NaN that slips through gets the x_min end too.
     #[inline(always)]
     pub(crate) fn clamped_force_n(&self, index: usize, e: &CurrentEntry, branch: Branch, x_mm: f32) -> f32 {
         let b = match branch {
@@ -394,13 +395,15 @@ impl Table {
             Branch::Extension => 1,
         };
         let end = |ends: &[[f32; 2]; MAX_CURRENTS]| ends.get(index).and_then(|f| f.get(b)).copied().unwrap_or(0.0);
-        if x_mm >= e.x_min_mm && x_mm <= e.x_max_mm {
+        // Past the end first: beyond the stiff entries' strokes it is the
+        // common case.
+        if x_mm > e.x_max_mm {
+            end(&self.end_high_n)
+        } else if x_mm >= e.x_min_mm {
             match branch {
                 Branch::Compression => e.compression.eval(x_mm),
                 Branch::Extension => e.extension.eval(x_mm),
             }
-        } else if x_mm > e.x_max_mm && x_mm.is_finite() {
-            end(&self.end_high_n)
         } else {
             end(&self.end_low_n)
         }
