@@ -100,9 +100,7 @@ impl Table {
     /// exactly the entries' currents): linear in I, or through atanh under saturation.
     #[inline]
     fn current_of(&self, s: Solution) -> CurrentResult {
-        let entries = self.entries();
-        let at = |k: usize| entries.get(k).map_or(0.0, |e| e.current_a);
-        let (i0, i1) = (at(s.lower), at(s.lower + 1));
+        let (i0, i1) = (s.i0, s.i1);
         let current_a = if s.t <= 0.0 {
             i0
         } else if s.t >= 1.0 {
@@ -149,10 +147,13 @@ impl Table {
 }
 
 /// Where the inverse landed: fraction `t` of the segment from entry `lower`
-/// to `lower + 1` (t = 0: on entry `lower` itself).
+/// (current `i0`) to `lower + 1` (`i1`); t = 0: on entry `lower` itself.
+/// The scan carries the currents so the result needs no second lookup.
 #[derive(Clone, Copy, Debug)]
 struct Solution {
     lower: usize,
+    i0: f32,
+    i1: f32,
     t: f32,
     flags: Flags,
 }
@@ -165,69 +166,69 @@ fn solve(
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
     let Some(first) = entries.first() else {
-        return Solution {
-            lower: 0,
-            t: 0.0,
-            flags: Flags::TABLE_FAULT,
-        };
+        return saturated(0, 0.0, Flags::TABLE_FAULT);
     };
     let mut f0 = force_at(0, first);
     if f0 == target_force_n {
-        return Solution {
-            lower: 0,
-            t: 0.0,
-            flags: Flags::NONE,
-        };
+        return saturated(0, first.current_a, Flags::NONE);
     }
     // One loop per side of the target, so each entry costs one comparison
     // for the crossing. Until a crossing, every force lies on the starting
     // side, so the nearest one so far is the largest (below) or smallest
     // (above); ties keep the lowest current.
-    let mut nearest = (0, f0);
+    let mut nearest = (0, f0, first.current_a);
+    let mut i_prev = first.current_a;
     if f0 < target_force_n {
         for (k, entry) in entries.iter().enumerate().skip(1) {
             let force = force_at(k, entry);
             // Reaching the target (or a NaN force, which brackets nothing
             // sensible but must not pass for "below").
             if !(force < target_force_n) {
-                return bracket(k, f0, force, target_force_n);
+                return bracket(k, (i_prev, entry.current_a), f0, force, target_force_n);
             }
             if force > nearest.1 {
-                nearest = (k, force);
+                nearest = (k, force, entry.current_a);
             }
-            f0 = force;
+            (f0, i_prev) = (force, entry.current_a);
         }
-        return saturated(nearest.0, Flags::SATURATED_HIGH);
+        return saturated(nearest.0, nearest.2, Flags::SATURATED_HIGH);
     }
     for (k, entry) in entries.iter().enumerate().skip(1) {
         let force = force_at(k, entry);
         // Falling to or through the target from above.
         if force <= target_force_n {
-            return bracket(k, f0, force, target_force_n);
+            return bracket(k, (i_prev, entry.current_a), f0, force, target_force_n);
         }
         if force < nearest.1 {
-            nearest = (k, force);
+            nearest = (k, force, entry.current_a);
         }
-        f0 = force;
+        (f0, i_prev) = (force, entry.current_a);
     }
-    saturated(nearest.0, Flags::SATURATED_LOW)
+    saturated(nearest.0, nearest.2, Flags::SATURATED_LOW)
 }
 
-/// The target lies between entry `k − 1` (force `f0`) and entry `k` (`f1`).
+/// The target lies between entry `k − 1` (force `f0`) and entry `k` (`f1`),
+/// whose currents are `currents`.
 #[inline(always)]
-fn bracket(k: usize, f0: f32, f1: f32, target_force_n: f32) -> Solution {
+fn bracket(k: usize, currents: (f32, f32), f0: f32, f1: f32, target_force_n: f32) -> Solution {
     Solution {
         lower: k - 1,
+        i0: currents.0,
+        i1: currents.1,
         t: (target_force_n - f0) / (f1 - f0),
         flags: Flags::NONE,
     }
 }
 
-/// No segment brackets the target: the nearest knot, flagged with its side.
+/// On entry `lower` (current `current_a`) itself: the target was met
+/// there, or no segment brackets it and this is the nearest knot, flagged
+/// with its side.
 #[inline(always)]
-fn saturated(lower: usize, side: Flags) -> Solution {
+fn saturated(lower: usize, current_a: f32, side: Flags) -> Solution {
     Solution {
         lower,
+        i0: current_a,
+        i1: current_a,
         t: 0.0,
         flags: side,
     }
