@@ -122,6 +122,10 @@ enum Command {
         /// Replace an existing non-empty folder.
         #[arg(long)]
         force: bool,
+        /// Choose a drop height per current so every current's fastest test
+        /// reaches this stroke (mm), instead of the paper's velocities at all.
+        #[arg(long)]
+        full_stroke_mm: Option<f64>,
     },
     /// Locate model-vs-recording mismatch, name the missing physics, model it, show the fit improve.
     Diagnose {
@@ -377,8 +381,14 @@ fn run(cli: Cli) -> Result<()> {
             out,
             key,
             force,
+            full_stroke_mm,
         } => {
-            let output = mre_host::plant::synth::write_synth(&effect, seed, &out, key.as_deref(), force)?;
+            let plan = match full_stroke_mm {
+                Some(mm) => mre_host::plant::synth::SynthPlan::full_stroke(mm),
+                None => mre_host::plant::synth::SynthPlan::default(),
+            };
+            let output =
+                mre_host::plant::synth::write_synth_with_plan(&effect, seed, &plan, &out, key.as_deref(), force)?;
             let key_path = key.unwrap_or_else(|| mre_host::plant::synth::default_key_path(&out));
             println!(
                 "wrote {} recordings to {} (key: {})",
