@@ -169,9 +169,6 @@ fn solve(
         return saturated(0, 0.0, Flags::TABLE_FAULT);
     };
     let mut f0 = force_at(0, first);
-    if f0 == target_force_n {
-        return saturated(0, first.current_a, Flags::NONE);
-    }
     // One loop per side of the target, so each entry costs one comparison
     // for the crossing. Until a crossing, every force lies on the starting
     // side, so the nearest one so far is the largest (below) or smallest
@@ -192,6 +189,9 @@ fn solve(
             (f0, i_prev) = (force, entry.current_a);
         }
         return saturated(nearest.0, nearest.2, Flags::SATURATED_HIGH);
+    }
+    if f0 == target_force_n {
+        return saturated(0, first.current_a, Flags::NONE);
     }
     for (k, entry) in entries.iter().enumerate().skip(1) {
         let force = force_at(k, entry);
