@@ -159,6 +159,9 @@ struct Solution {
 }
 
 /// The inverse over entries whose force at the fixed x is `force_at(index, entry)`.
+// `!(force < target)` on purpose: a NaN force must end the below-target scan
+// (as the comparison `(force < target) != below` did), in one comparison.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 #[inline(always)]
 fn solve(
     entries: &[CurrentEntry],

@@ -80,7 +80,10 @@ fn full_stroke_set_matches_the_generating_script_and_reaches_the_stroke() {
     for name in sorted_files(&fresh) {
         let bytes = std::fs::read(committed.join(&name)).unwrap();
         total_bytes += bytes.len() as u64;
-        assert!(bytes == std::fs::read(fresh.join(&name)).unwrap(), "{name} differs: rerun data/generate.sh");
+        assert!(
+            bytes == std::fs::read(fresh.join(&name)).unwrap(),
+            "{name} differs: rerun data/generate.sh"
+        );
     }
     assert_eq!(
         std::fs::read(data_dir().join("keys/drop-full-stroke.json")).unwrap(),

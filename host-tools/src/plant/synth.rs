@@ -118,7 +118,9 @@ pub fn velocity_reaching(plant: &Plant, mass_kg: f64, current_a: f64, stroke_mm:
             initial_current_a: current_a,
             ..ImpactConfig::default()
         };
-        Ok(simulate(plant, &cfg, CurrentSource::Constant(current_a))?.summary.max_stroke_mm)
+        Ok(simulate(plant, &cfg, CurrentSource::Constant(current_a))?
+            .summary
+            .max_stroke_mm)
     };
     let (mut lo, mut hi) = (0.1f64, 30.0f64);
     ensure!(
