@@ -26,6 +26,28 @@ fn sorted_files(dir: &Path) -> Vec<String> {
     names
 }
 
+/// The committed set equals the freshly generated one file for file, byte
+/// for byte; returns its size in bytes.
+fn assert_same_files(committed: &Path, fresh: &Path) -> u64 {
+    assert_eq!(
+        sorted_files(committed),
+        sorted_files(fresh),
+        "{}: file list",
+        committed.display()
+    );
+    let mut total_bytes = 0u64;
+    for name in sorted_files(fresh) {
+        let bytes = std::fs::read(committed.join(&name)).unwrap();
+        total_bytes += bytes.len() as u64;
+        assert!(
+            bytes == std::fs::read(fresh.join(&name)).unwrap(),
+            "{}/{name} differs: rerun data/generate.sh",
+            committed.display()
+        );
+    }
+    total_bytes
+}
+
 #[test]
 fn bundled_sets_match_the_generating_script() {
     let script = std::fs::read_to_string(data_dir().join("generate.sh")).unwrap();
@@ -40,15 +62,7 @@ fn bundled_sets_match_the_generating_script() {
         let fresh = tmp.path().join(format!("drop-{effect}"));
         let key = tmp.path().join(format!("drop-{effect}.json"));
         write_synth(effect, seed, &fresh, Some(&key), false).unwrap();
-        assert_eq!(sorted_files(&committed), sorted_files(&fresh), "{effect}: file list");
-        for name in sorted_files(&fresh) {
-            let bytes = std::fs::read(committed.join(&name)).unwrap();
-            total_bytes += bytes.len() as u64;
-            assert!(
-                bytes == std::fs::read(fresh.join(&name)).unwrap(),
-                "{effect}/{name} differs: rerun data/generate.sh"
-            );
-        }
+        total_bytes += assert_same_files(&committed, &fresh);
         let committed_key = std::fs::read(data_dir().join(format!("keys/drop-{effect}.json"))).unwrap();
         assert_eq!(committed_key, std::fs::read(&key).unwrap(), "{effect}: key");
         assert!(
@@ -75,16 +89,7 @@ fn full_stroke_set_matches_the_generating_script_and_reaches_the_stroke() {
     let fresh = tmp.path().join("drop-full-stroke");
     let key = tmp.path().join("drop-full-stroke.json");
     let output = write_synth_with_plan("none", 108, &SynthPlan::full_stroke(15.0), &fresh, Some(&key), false).unwrap();
-    assert_eq!(sorted_files(&committed), sorted_files(&fresh));
-    let mut total_bytes = 0u64;
-    for name in sorted_files(&fresh) {
-        let bytes = std::fs::read(committed.join(&name)).unwrap();
-        total_bytes += bytes.len() as u64;
-        assert!(
-            bytes == std::fs::read(fresh.join(&name)).unwrap(),
-            "{name} differs: rerun data/generate.sh"
-        );
-    }
+    let total_bytes = assert_same_files(&committed, &fresh);
     assert_eq!(
         std::fs::read(data_dir().join("keys/drop-full-stroke.json")).unwrap(),
         std::fs::read(&key).unwrap()
