@@ -13,6 +13,13 @@
 # parameters, base law, instrument) are in data/keys/, outside the sets, so a
 # diagnosis run on a set stays blind. `tests/plant_bundled_data.rs` checks the
 # committed files still match this script.
+#
+# drop-full-stroke (no concealed effect) has the same plan except the drop
+# heights: one per current, so that every current's fastest test reaches
+# 15 mm (0 A about 2 m/s, 2 A about 8.5 m/s). At the paper's 2.24 m/s the
+# stiff currents stop the mass within 4–5 mm, and a model fitted on those
+# drops would be clamped over the rest of the stroke; the model `cargo fw`
+# flies (models/drop-full-stroke.toml) is fitted on this set.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 MRE=${MRE:-"cargo run --quiet -p host-tools --bin mre --"}
@@ -29,3 +36,4 @@ gen stress_softening 104
 gen end_stop 105
 gen magnetic_saturation 106
 gen coil_lag 107
+$MRE synth --effect none --seed 108 --full-stroke-mm 15 --out data/drop-full-stroke --key data/keys/drop-full-stroke.json --force

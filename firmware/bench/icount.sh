@@ -10,6 +10,11 @@
 # registers before the call are not counted. QEMU counts instructions, not
 # cycles: FPU divides, flash wait states and pipeline stalls are not in it.
 #
+# The cases span the whole usable stroke (x 0–12 mm, including x ≥ 4 mm where
+# the stiff currents' quartics clamp x), first with the flown table
+# (firmware/src/generated_table.rs), then with the same entries and every
+# format 2 term (coil τ, sensor delay, viscous, saturation): the worst path.
+#
 # Usage: bash firmware/bench/icount.sh   (from the repository root)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -35,7 +40,10 @@ awk -v b="$BEGIN_PC" -v e="$END_PC" '
                else if (on) n++ ; next }
   /^Stopped/ { if (on) n-- }
   END {
-    split("model x=0.1mm,F=600N|model x=0.2mm,F=1726N|model x=0.5mm,F=3000N|model x=0.9mm,F=9000N (saturated)|law x=0.2mm,v=3m/s|law x=0.5mm,v=2m/s|control x=0.2mm,v=3m/s (sensor)|control x=0.5mm,v=2m/s (sensor)|control x=0.8mm (estimator)|control x=0.3mm,v=-1m/s (rebound)", names, "|")
-    for (i = 0; i < k; i++) printf "%-42s %6d instructions\n", names[i + 1], counts[i]
-    if (k != 10) { print "expected 10 measurements, got " k > "/dev/stderr"; exit 1 }
+    split("model x=0.5mm,v=2.2,F=900N|model x=2mm,v=2.0,F=1300N|model x=3.5mm,v=1.9,F=1250N|model x=6mm,v=1.5,F=1250N (clamped)|model x=10mm,v=0.9,F=1300N (clamped)|model x=12mm,v=0.3,F=90kN (clamped, saturated)|control x=0.5mm,v=2.2 (sensor)|control x=3mm,v=1.9 (sensor)|control x=6mm,v=1.5 (sensor)|control x=10mm (estimator)|control x=11.95mm,v=0.2 (terminal)|control x=6mm,v=-1 (rebound)", names, "|")
+    for (i = 0; i < k; i++) {
+      table = (i < 12) ? "flown table" : "flown + all v2 terms"
+      printf "%-22s %-46s %6d instructions\n", table, names[i % 12 + 1], counts[i]
+    }
+    if (k != 24) { print "expected 24 measurements, got " k > "/dev/stderr"; exit 1 }
   }' "$TRACE"

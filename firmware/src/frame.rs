@@ -361,13 +361,24 @@ impl SampleReceiver {
 
 pub const KIND_CONFIG: u8 = 3;
 /// Header (2) + 13 per table entry + law (13) + control (7).
-pub const CONFIG_MAX_WORDS: usize = 2 + 13 * MAX_CURRENTS + LAW_WORDS + CONTROL_WORDS;
+pub const CONFIG_MAX_WORDS: usize = 2 + 13 * MAX_CURRENTS + TERMS_MAX_WORDS + LAW_WORDS + CONTROL_WORDS;
+/// Version 2 tables append their terms: saturation current, sensor delay,
+/// coil τ, then one viscous coefficient per entry.
+const TERMS_MAX_WORDS: usize = 3 + MAX_CURRENTS;
+
+fn terms_words(version: u16, count: usize) -> usize {
+    if version >= crate::table::FORMAT_VERSION {
+        3 + count
+    } else {
+        0
+    }
+}
 const LAW_WORDS: usize = 13;
 const CONTROL_WORDS: usize = 7;
 
 use crate::control::ControlConfig;
 use crate::law::{LawConfig, ReboundPolicy};
-use crate::table::{CurrentEntry, Quartic, Table, TableImage, MAX_CURRENTS};
+use crate::table::{CurrentEntry, ModelTerms, Quartic, Table, TableImage, MAX_CURRENTS};
 
 /// One received piece of the configuration blob.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -453,6 +464,15 @@ pub fn encode_config(table: &Table, cfg: &ControlConfig, out: &mut [u32; CONFIG_
             push(c.to_bits());
         }
     }
+    if terms_words(table.version(), entries.len()) > 0 {
+        let t = table.terms();
+        for f in [t.saturation_current_a, t.sensor_delay_s, t.coil_tau_s] {
+            push(f.to_bits());
+        }
+        for c in t.viscous_n_s_per_m.iter().take(entries.len()) {
+            push(c.to_bits());
+        }
+    }
     let law = &cfg.law;
     let (rebound_kind, rebound_a) = match law.rebound {
         ReboundPolicy::Minimum => (0, 0.0),
@@ -499,7 +519,7 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
     let head = next()?;
     let version = (head & 0xFFFF) as u16;
     let count = (head >> 16) as usize;
-    if count > MAX_CURRENTS || words.len() != 2 + 13 * count + LAW_WORDS + CONTROL_WORDS {
+    if count > MAX_CURRENTS || words.len() != 2 + 13 * count + terms_words(version, count) + LAW_WORDS + CONTROL_WORDS {
         return Err(ConfigBlobError::Incomplete);
     }
     let crc32 = next()?;
@@ -518,9 +538,19 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
             *c = f32::from_bits(next()?);
         }
     }
+    let mut terms = ModelTerms::NONE;
+    if terms_words(version, count) > 0 {
+        terms.saturation_current_a = f32::from_bits(next()?);
+        terms.sensor_delay_s = f32::from_bits(next()?);
+        terms.coil_tau_s = f32::from_bits(next()?);
+        for c in terms.viscous_n_s_per_m.iter_mut().take(count) {
+            *c = f32::from_bits(next()?);
+        }
+    }
     let image = TableImage {
         version,
         entries: entries.get(..count).unwrap_or(&[]),
+        terms,
         crc32,
     };
     let table = Table::from_image(&image).map_err(ConfigBlobError::Table)?;
@@ -562,6 +592,8 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
             x_valid_max_mm,
             v_valid_max_m_s,
             period_s,
+            // Board constants: the same on host and board, not uploaded.
+            ..LawConfig::default()
         },
         estimator_alpha,
         range_fault_samples,

@@ -1,13 +1,16 @@
 //! The inverse model: which coil current gives a wanted force.
 //!
-//! At fixed x and branch the forward model is piecewise linear in current,
-//! with a knot at every tabulated current. The answer is the lowest current at
-//! which that polyline equals the target, solved exactly on its segment. The
+//! At fixed x, v and branch the forward model is piecewise linear in current
+//! (in `tanh(I/I_s)` under a version 2 saturation term), with a knot at every
+//! tabulated current. The answer is the lowest current at which that polyline
+//! equals the target, solved exactly on its segment (under saturation the
+//! current is then mapped back through atanh, to micromath's precision). The
 //! force need not grow with current (the paper's 2 A loop lies below its 1.5 A
 //! loop in places), so segments are scanned from the lowest current up rather
 //! than bisected. If no current gives the target, the knot with the nearest
 //! force is returned and flagged `SATURATED_HIGH` or `SATURATED_LOW`.
 use crate::flags::Flags;
+use crate::math;
 use crate::model::Branch;
 use crate::table::{CurrentEntry, Table};
 
@@ -28,6 +31,12 @@ impl Table {
     /// unreachable case. When x lies in every entry's stroke
     /// (the usual case) the per-entry clamps are skipped.
     pub fn current_for_branch(&self, x_mm: f32, branch: Branch, target_force_n: f32) -> CurrentResult {
+        self.current_for_branch_v(x_mm, 0.0, branch, target_force_n)
+    }
+
+    /// [`Table::current_for_branch`] at velocity `v_m_s`, which a version 2
+    /// table's viscous term depends on (see [`crate::model::viscous_velocity`]).
+    pub fn current_for_branch_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32) -> CurrentResult {
         let entries = self.entries();
         let Some(first) = entries.first() else {
             return CurrentResult {
@@ -41,27 +50,95 @@ impl Table {
                 flags: Flags::NON_FINITE_INPUT,
             };
         }
+        if self.has_viscous() {
+            let v = crate::model::viscous_velocity(v_m_s);
+            let c = &self.terms().viscous_n_s_per_m;
+            self.solve_at(x_mm, branch, target_force_n, |k, f| {
+                f + c.get(k).copied().unwrap_or(0.0) * v
+            })
+        } else {
+            // No rate term: nothing per entry beyond the quartic.
+            self.solve_at(x_mm, branch, target_force_n, |_, f| f)
+        }
+    }
+
+    /// The inverse with entry k's quartic force `f` replaced by `with_extra(k, f)`
+    /// (the identity without a rate term, so nothing is added per entry).
+    #[inline(always)]
+    fn solve_at(
+        &self,
+        x_mm: f32,
+        branch: Branch,
+        target_force_n: f32,
+        with_extra: impl Fn(usize, f32) -> f32,
+    ) -> CurrentResult {
+        let entries = self.entries();
         if self.in_shared_stroke(x_mm) {
-            return match branch {
-                Branch::Compression => solve(entries, target_force_n, |e| e.compression.eval(x_mm)),
-                Branch::Extension => solve(entries, target_force_n, |e| e.extension.eval(x_mm)),
+            let r = match branch {
+                Branch::Compression => solve(entries, target_force_n, |k, e| with_extra(k, e.compression.eval(x_mm))),
+                Branch::Extension => solve(entries, target_force_n, |k, e| with_extra(k, e.extension.eval(x_mm))),
             };
+            return self.current_of(r);
         }
         // Some entry clamps x. A non-finite x is evaluated at each entry's
         // x_min, as the forward model does (and flagged as non-finite only).
-        let (x_mm, flag) = if x_mm.is_finite() {
-            (x_mm, Flags::X_CLAMPED)
+        let (flag, x_mm) = if x_mm.is_finite() {
+            (Flags::X_CLAMPED, x_mm)
         } else {
-            (f32::NEG_INFINITY, Flags::NON_FINITE_INPUT)
+            (Flags::NON_FINITE_INPUT, f32::NEG_INFINITY)
         };
-        let mut r = solve(entries, target_force_n, |e| e.force_n(x_mm, branch).force_n);
+        // A clamped entry's force is its precomputed stroke end.
+        let r = solve(entries, target_force_n, |k, e| {
+            with_extra(k, self.clamped_force_n(k, e, branch, x_mm))
+        });
+        let mut r = self.current_of(r);
         r.flags |= flag;
         r
     }
 
-    /// [`Table::current_for_branch`] with the branch from the sign of `v_m_s`.
+    /// The current at fraction `t` of segment `lower` (t = 0 and t = 1:
+    /// exactly the entries' currents): linear in I, or through atanh under saturation.
+    #[inline]
+    fn current_of(&self, s: Solution) -> CurrentResult {
+        let (i0, i1) = (s.i0, s.i1);
+        let current_a = if s.t <= 0.0 {
+            i0
+        } else if s.t >= 1.0 {
+            i1
+        } else {
+            let i_s = self.terms().saturation_current_a;
+            if i_s > 0.0 {
+                self.saturated_current_a(s, i_s, i0, i1)
+            } else {
+                i0 + s.t * (i1 - i0)
+            }
+        };
+        CurrentResult {
+            current_a,
+            flags: s.flags,
+        }
+    }
+
+    /// The current at fraction `t` of segment `lower` under saturation:
+    /// w = w0 + t·(w1 − w0), I = I_s·atanh(w), then one Newton step on the
+    /// forward model's own tanh so that forward and inverse agree to its
+    /// precision (micromath's ln and exp differ by ~1e-3 alone). Out of line:
+    /// its registers would otherwise be saved on every call.
+    #[inline(never)]
+    fn saturated_current_a(&self, s: Solution, i_s: f32, i0: f32, i1: f32) -> f32 {
+        let w = self.knot(s.lower) + s.t * (self.knot(s.lower + 1) - self.knot(s.lower));
+        let mut i = i_s * math::atanh(w);
+        let th = math::tanh(i / i_s);
+        let slope = 1.0 - th * th;
+        if slope > 0.0 {
+            i -= i_s * (th - w) / slope;
+        }
+        math::clamp(i, i0, i1)
+    }
+
+    /// [`Table::current_for_branch_v`] with the branch from the sign of `v_m_s`.
     pub fn current_for(&self, x_mm: f32, v_m_s: f32, target_force_n: f32) -> CurrentResult {
-        let mut r = self.current_for_branch(x_mm, Branch::from_velocity(v_m_s), target_force_n);
+        let mut r = self.current_for_branch_v(x_mm, v_m_s, Branch::from_velocity(v_m_s), target_force_n);
         if !v_m_s.is_finite() {
             r.flags |= Flags::NON_FINITE_INPUT;
         }
@@ -69,55 +146,93 @@ impl Table {
     }
 }
 
-/// The inverse over entries whose force at the fixed x is `force_at`.
+/// Where the inverse landed: fraction `t` of the segment from entry `lower`
+/// (current `i0`) to `lower + 1` (`i1`); t = 0: on entry `lower` itself.
+/// The scan carries the currents so the result needs no second lookup.
+#[derive(Clone, Copy, Debug)]
+struct Solution {
+    lower: usize,
+    i0: f32,
+    i1: f32,
+    t: f32,
+    flags: Flags,
+}
+
+/// The inverse over entries whose force at the fixed x is `force_at(index, entry)`.
+// `!(force < target)` on purpose: a NaN force must end the below-target scan
+// (as the comparison `(force < target) != below` did), in one comparison.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 #[inline(always)]
 fn solve(
     entries: &[CurrentEntry],
     target_force_n: f32,
-    mut force_at: impl FnMut(&CurrentEntry) -> f32,
-) -> CurrentResult {
+    mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
+) -> Solution {
     let Some(first) = entries.first() else {
-        return CurrentResult {
-            current_a: 0.0,
-            flags: Flags::TABLE_FAULT,
-        };
+        return saturated(0, 0.0, Flags::TABLE_FAULT);
     };
-    let mut f0 = force_at(first);
-    let mut i0 = first.current_a;
+    let mut f0 = force_at(0, first);
+    // One loop per side of the target, so each entry costs one comparison
+    // for the crossing. Until a crossing, every force lies on the starting
+    // side, so the nearest one so far is the largest (below) or smallest
+    // (above); ties keep the lowest current.
+    let mut nearest = (0, f0, first.current_a);
+    let mut i_prev = first.current_a;
+    if f0 < target_force_n {
+        for (k, entry) in entries.iter().enumerate().skip(1) {
+            let force = force_at(k, entry);
+            // Reaching the target (or a NaN force, which brackets nothing
+            // sensible but must not pass for "below").
+            if !(force < target_force_n) {
+                return bracket(k, (i_prev, entry.current_a), f0, force, target_force_n);
+            }
+            if force > nearest.1 {
+                nearest = (k, force, entry.current_a);
+            }
+            (f0, i_prev) = (force, entry.current_a);
+        }
+        return saturated(nearest.0, nearest.2, Flags::SATURATED_HIGH);
+    }
     if f0 == target_force_n {
-        return CurrentResult {
-            current_a: i0,
-            flags: Flags::NONE,
-        };
+        return saturated(0, first.current_a, Flags::NONE);
     }
-    let below = f0 < target_force_n;
-    // Until a crossing, every force lies on the `below` side of the target,
-    // so the nearest one so far is the largest (below) or smallest (above).
-    // Ties keep the lowest current.
-    let mut nearest = (i0, f0);
-    for entry in entries.iter().skip(1) {
-        let force = force_at(entry);
-        // A sign change, or touching the target from above.
-        if (force < target_force_n) != below || force == target_force_n {
-            let t = (target_force_n - f0) / (force - f0);
-            return CurrentResult {
-                current_a: i0 + t * (entry.current_a - i0),
-                flags: Flags::NONE,
-            };
+    for (k, entry) in entries.iter().enumerate().skip(1) {
+        let force = force_at(k, entry);
+        // Falling to or through the target from above.
+        if force <= target_force_n {
+            return bracket(k, (i_prev, entry.current_a), f0, force, target_force_n);
         }
-        if (below && force > nearest.1) || (!below && force < nearest.1) {
-            nearest = (entry.current_a, force);
+        if force < nearest.1 {
+            nearest = (k, force, entry.current_a);
         }
-        f0 = force;
-        i0 = entry.current_a;
+        (f0, i_prev) = (force, entry.current_a);
     }
-    let side = if below {
-        Flags::SATURATED_HIGH
-    } else {
-        Flags::SATURATED_LOW
-    };
-    CurrentResult {
-        current_a: nearest.0,
+    saturated(nearest.0, nearest.2, Flags::SATURATED_LOW)
+}
+
+/// The target lies between entry `k − 1` (force `f0`) and entry `k` (`f1`),
+/// whose currents are `currents`.
+#[inline(always)]
+fn bracket(k: usize, currents: (f32, f32), f0: f32, f1: f32, target_force_n: f32) -> Solution {
+    Solution {
+        lower: k - 1,
+        i0: currents.0,
+        i1: currents.1,
+        t: (target_force_n - f0) / (f1 - f0),
+        flags: Flags::NONE,
+    }
+}
+
+/// On entry `lower` (current `current_a`) itself: the target was met
+/// there, or no segment brackets it and this is the nearest knot, flagged
+/// with its side.
+#[inline(always)]
+fn saturated(lower: usize, current_a: f32, side: Flags) -> Solution {
+    Solution {
+        lower,
+        i0: current_a,
+        i1: current_a,
+        t: 0.0,
         flags: side,
     }
 }

@@ -7,6 +7,21 @@
 //! `F*`, then applies the rebound policy, an output clamp and a slew-rate
 //! limit. Untrusted inputs (NaN, ±inf, out of range) command the fail-safe
 //! current instead.
+//!
+//! With a version 2 table the law also compensates what diagnosis found:
+//! - **sensor delay** `d`: the sampled x, v are predicted `d` ahead with the
+//!   model's own deceleration, `x + v·d`, `v + (g − F/m)·d`;
+//! - **coil lag** τ: the law keeps a model of the coil current (first order,
+//!   `i += α·(u − i)`, `α = 1 − e^{−T/τ}`), and commands the drive `u` that
+//!   brings the modelled current to the wanted current in one period
+//!   (inverse of the lag), clamped to the driver's range (the supply voltage
+//!   over the coil resistance, [`LawConfig::drive_min_a`]…`drive_max_a`). The
+//!   wanted current itself stays within the coil's current limits. Because
+//!   the coil can only decay so fast, the wanted current is also capped so
+//!   that, decaying at the driver's limit, it can still meet what the plan
+//!   wants 0.1 τ and 0.5 τ ahead (predictive command). Between impacts
+//!   (extension branch with x at contact) it pre-energises the coil to
+//!   [`LawConfig::armed_current_a`].
 use crate::flags::Flags;
 use crate::math;
 use crate::model::{Branch, BranchSelector};
@@ -48,7 +63,29 @@ pub struct LawConfig {
     pub v_valid_max_m_s: f32,
     /// Control period, for the slew limit.
     pub period_s: f32,
+    /// Drive command range (A) with a coil time constant: the driver's
+    /// supply voltage over the coil resistance, negative when it can reverse
+    /// the voltage (half bridge). Board constants, not uploaded in PIL.
+    pub drive_min_a: f32,
+    pub drive_max_a: f32,
+    /// Coil current held between impacts when the coil lags (pre-energising).
+    /// Moderate on purpose: at contact the force is zero whatever the field,
+    /// and a coil that starts high must then decay (at most at V_s/L) while
+    /// the plan asks for less. Measured when it was chosen (drop test,
+    /// τ = 5 ms, the look-ahead on): 0–1 A all within 1.13–1.21× of the
+    /// issue's 1242 N, 2 A 2.98×.
+    pub armed_current_a: f32,
 }
+
+/// The end of the stroke (mm) over which the law plans with this much stroke
+/// left: about ten times the displacement sensor's noise. A mass arriving
+/// there at v overtravels by about `v²/(2a)`; at the 0.1 m/s the plan leaves
+/// at most, a few hundredths of a millimetre.
+pub const TERMINAL_MM: f32 = 0.1;
+
+/// Displacement (mm) at or below which the damper counts as idle between
+/// impacts (the coil is pre-energised there). Above the sensor's noise.
+pub const CONTACT_MM: f32 = 0.05;
 
 impl Default for LawConfig {
     /// The paper's drop test (5.5 kg at 2.24 m/s) on a 2 A coil at 10 kHz.
@@ -69,6 +106,10 @@ impl Default for LawConfig {
             x_valid_max_mm: 25.0,
             v_valid_max_m_s: 20.0,
             period_s: 1.0e-4,
+            // 12 V half bridge into the 4 Ω coil (firmware/README.md).
+            drive_min_a: -3.0,
+            drive_max_a: 3.0,
+            armed_current_a: 0.5,
         }
     }
 }
@@ -98,6 +139,9 @@ impl LawConfig {
             self.x_valid_max_mm,
             self.v_valid_max_m_s,
             self.period_s,
+            self.drive_min_a,
+            self.drive_max_a,
+            self.armed_current_a,
         ];
         if all.iter().any(|v| !v.is_finite()) {
             return Err(ConfigError::NonFinite);
@@ -117,11 +161,17 @@ impl LawConfig {
         if positive.iter().any(|&v| v <= 0.0) || self.gravity_m_s2 < 0.0 || self.branch_band_m_s < 0.0 {
             return Err(ConfigError::NonPositive);
         }
-        if self.current_min_a > self.current_max_a {
+        if self.current_min_a > self.current_max_a
+            || self.drive_min_a > self.current_min_a
+            || self.drive_max_a < self.current_max_a
+        {
             return Err(ConfigError::EmptyOutputRange);
         }
         if self.failsafe_current_a < self.current_min_a || self.failsafe_current_a > self.current_max_a {
             return Err(ConfigError::FailsafeOutsideRange);
+        }
+        if self.armed_current_a < self.current_min_a || self.armed_current_a > self.current_max_a {
+            return Err(ConfigError::EmptyOutputRange);
         }
         if self.x_valid_min_mm >= self.x_valid_max_mm {
             return Err(ConfigError::EmptySensorRange);
@@ -133,7 +183,9 @@ impl LawConfig {
 /// One control decision.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Command {
-    /// Always finite and within `[current_min_a, current_max_a]`.
+    /// The coil command: always finite; within `[current_min_a,
+    /// current_max_a]`, or, when the table has a coil time constant, the
+    /// drive within `[drive_min_a, drive_max_a]` (A equivalent: V / R).
     pub current_a: f32,
     /// The force the law asked for (0 when fail-safe or rebounding).
     pub target_force_n: f32,
@@ -159,9 +211,24 @@ pub fn stopping_force_n(mass_kg: f32, gravity_m_s2: f32, v_m_s: f32, remaining_m
 pub struct ImpactLaw {
     cfg: LawConfig,
     selector: BranchSelector,
+    /// The last wanted coil current (the slew limiter's memory).
     last_current_a: f32,
     last_compression_current_a: f32,
+    /// Model of the coil current behind the drive (used when τ > 0).
+    coil_a: f32,
+    /// The τ `coil_alpha` was computed for, and `1 − e^{−T/τ}`.
+    coil_tau_s: f32,
+    coil_alpha: f32,
+    /// The look-ahead times `LEAD_TAU · τ` (s).
+    lead_s: [f32; LEAD_TAU.len()],
 }
+
+/// How far ahead the law looks for a lagging coil, in units of τ: the
+/// current must be able to decay to what the plan wants there.
+pub const LEAD_TAU: [f32; 2] = [0.1, 0.5];
+/// `e^{LEAD_TAU}`: how much a decaying coil's distance to the drive floor
+/// shrinks over each look-ahead (computed once, by hand: e^0.05 …).
+const LEAD_GROWTH: [f32; 2] = [1.105_170_9, 1.648_721_3];
 
 impl ImpactLaw {
     /// Refuses an invalid configuration instead of running with it.
@@ -172,7 +239,30 @@ impl ImpactLaw {
             selector: BranchSelector::new(cfg.branch_band_m_s, Branch::Extension),
             last_current_a: cfg.current_min_a,
             last_compression_current_a: cfg.current_min_a,
+            // Before its first sample the law has been idle: a lagging coil
+            // has settled at the pre-energising current (a coil without lag
+            // is overwritten by the first command).
+            coil_a: cfg.armed_current_a,
+            coil_tau_s: 0.0,
+            coil_alpha: 1.0,
+            lead_s: [0.0; LEAD_TAU.len()],
         })
+    }
+
+    /// The coil current the law holds between impacts with `table`: the
+    /// pre-energising current if its coil lags, else the rebound's minimum.
+    /// A simulation that starts at contact starts the coil there.
+    pub fn idle_current_a(&self, table: &Table) -> f32 {
+        if table.terms().coil_tau_s > 0.0 {
+            self.cfg.armed_current_a
+        } else {
+            self.cfg.current_min_a
+        }
+    }
+
+    /// The law's model of the coil current (A).
+    pub fn coil_estimate_a(&self) -> f32 {
+        self.coil_a
     }
 
     pub fn config(&self) -> &LawConfig {
@@ -187,6 +277,7 @@ impl ImpactLaw {
     /// wait for a ramp.
     pub fn fail_safe(&mut self, flags: Flags) -> Command {
         self.last_current_a = self.cfg.failsafe_current_a;
+        self.coil_a += self.coil_alpha * (self.cfg.failsafe_current_a - self.coil_a);
         Command {
             current_a: self.cfg.failsafe_current_a,
             target_force_n: 0.0,
@@ -215,18 +306,43 @@ impl ImpactLaw {
             return self.fail_safe(input_faults);
         }
         let cfg = self.cfg;
+        let (coil_tau_s, delay_s) = (table.terms().coil_tau_s, table.terms().sensor_delay_s);
+        if coil_tau_s != self.coil_tau_s {
+            self.set_coil_tau(coil_tau_s);
+        }
+        let (x_mm, v_m_s) = if delay_s > 0.0 {
+            self.predict(table, x_mm, v_m_s, delay_s)
+        } else {
+            (x_mm, v_m_s)
+        };
         let branch = self.selector.update(v_m_s);
         let mut flags = Flags::NONE;
         let mut target_force_n = 0.0;
 
         let wanted_a = match branch {
             Branch::Compression => {
-                match stopping_force_n(cfg.mass_kg, cfg.gravity_m_s2, v_m_s, cfg.stroke_max_mm - x_mm) {
+                // The last TERMINAL_MM are planned as if that much were left:
+                // a slow arrival there (noise, model error) must not ask
+                // for the unbounded force of stopping in a micrometre.
+                // The command holds for one period while the mass moves on
+                // and, at a held current, the force grows with x: plan for
+                // where the period ends, so the force peaks at the target
+                // instead of past it.
+                let x_mm = x_mm + v_m_s * cfg.period_s * 1.0e3;
+                let remaining_mm = cfg.stroke_max_mm - x_mm;
+                if remaining_mm < TERMINAL_MM {
+                    flags |= Flags::STROKE_EXHAUSTED;
+                }
+                match stopping_force_n(cfg.mass_kg, cfg.gravity_m_s2, v_m_s, remaining_mm.max(TERMINAL_MM)) {
                     Some(force_n) => {
                         target_force_n = force_n;
-                        let r = table.current_for_branch(x_mm, Branch::Compression, force_n);
+                        let r = table.current_for_branch_v(x_mm, v_m_s, Branch::Compression, force_n);
                         flags |= r.flags;
-                        r.current_a
+                        if self.coil_alpha < 1.0 {
+                            self.anticipate(table, x_mm, v_m_s, force_n, r.current_a)
+                        } else {
+                            r.current_a
+                        }
                     }
                     None => {
                         flags |= Flags::STROKE_EXHAUSTED;
@@ -234,6 +350,8 @@ impl ImpactLaw {
                     }
                 }
             }
+            // Idle between impacts with a lagging coil: pre-energise.
+            Branch::Extension if self.coil_tau_s > 0.0 && x_mm <= CONTACT_MM => cfg.armed_current_a,
             Branch::Extension => {
                 flags |= Flags::REBOUND;
                 match cfg.rebound {
@@ -248,7 +366,13 @@ impl ImpactLaw {
         if clamped_a != wanted_a {
             flags |= Flags::OUTPUT_CLAMPED;
         }
-        let max_step_a = cfg.slew_a_per_s * cfg.period_s;
+        // With a coil model the driver's voltage limit is the physical slew
+        // limit (in `drive_for`); the configured one stands in for it otherwise.
+        let max_step_a = if self.coil_alpha < 1.0 {
+            f32::INFINITY
+        } else {
+            cfg.slew_a_per_s * cfg.period_s
+        };
         let current_a = math::clamp(
             clamped_a,
             self.last_current_a - max_step_a,
@@ -265,10 +389,87 @@ impl ImpactLaw {
             self.last_compression_current_a = current_a;
         }
         Command {
-            current_a,
+            current_a: self.drive_for(current_a),
             target_force_n,
             branch,
             flags,
         }
+    }
+
+    fn set_coil_tau(&mut self, tau_s: f32) {
+        self.coil_tau_s = tau_s;
+        // Table validation keeps τ finite and ≥ 0; 0 → no lag (α = 1).
+        self.coil_alpha = if tau_s > 0.0 {
+            1.0 - math::exp_precise(-self.cfg.period_s / tau_s)
+        } else {
+            1.0
+        };
+        for (lead, k) in self.lead_s.iter_mut().zip(LEAD_TAU) {
+            *lead = k * tau_s;
+        }
+    }
+
+    /// The wanted current now, so that a coil that can only decay at the
+    /// driver's limit (`i(t+Δ) ≥ u_min + (i(t) − u_min)·e^{−Δ/τ}`) is no
+    /// higher than the law's wanted current at the states `Δ` ahead
+    /// ([`LEAD_TAU`]) along its own plan (constant deceleration under
+    /// `force_n`): `min(i_now, u_min + (i_Δ − u_min)·e^{Δ/τ})`.
+    fn anticipate(&self, table: &Table, x_mm: f32, v_m_s: f32, force_n: f32, now_a: f32) -> f32 {
+        let cfg = &self.cfg;
+        let a_m_s2 = cfg.gravity_m_s2 - force_n / cfg.mass_kg;
+        let u_min = cfg.drive_min_a;
+        let mut wanted_a = now_a;
+        for (&lead_s, &growth) in self.lead_s.iter().zip(&LEAD_GROWTH) {
+            // Even the lowest current ahead bounds no lower than this: skip
+            // the inverse when the wanted current is already below it.
+            if wanted_a <= u_min + (cfg.current_min_a - u_min) * growth {
+                continue;
+            }
+            let v_ahead = v_m_s + a_m_s2 * lead_s;
+            if v_ahead <= 0.0 {
+                break;
+            }
+            let x_ahead = x_mm + (v_m_s * lead_s + 0.5 * a_m_s2 * lead_s * lead_s) * 1.0e3;
+            let ahead = table.current_for_branch_v(x_ahead, v_ahead, Branch::Compression, force_n);
+            let ahead_a = math::clamp(ahead.current_a, cfg.current_min_a, cfg.current_max_a);
+            let bound_a = u_min + (ahead_a - u_min) * growth;
+            if bound_a < wanted_a {
+                wanted_a = bound_a;
+            }
+        }
+        wanted_a
+    }
+
+    /// The drive that takes the modelled coil current to `wanted_a` in one
+    /// period (the inverse of the first-order lag), clamped to the driver.
+    #[inline]
+    fn drive_for(&mut self, wanted_a: f32) -> f32 {
+        if self.coil_alpha >= 1.0 {
+            self.coil_a = wanted_a;
+            return wanted_a;
+        }
+        let drive = self.coil_a + (wanted_a - self.coil_a) / self.coil_alpha;
+        let drive = math::clamp(drive, self.cfg.drive_min_a, self.cfg.drive_max_a);
+        self.coil_a += self.coil_alpha * (drive - self.coil_a);
+        drive
+    }
+
+    /// x (mm) and v `delay_s` ahead of the samples, with the model's
+    /// deceleration at the modelled coil current (on contact only: before
+    /// it the mass is free).
+    fn predict(&self, table: &Table, x_mm: f32, v_m_s: f32, delay_s: f32) -> (f32, f32) {
+        let force_n = if x_mm > 0.0 {
+            table
+                .force_on_branch_v(x_mm, v_m_s, Branch::from_velocity(v_m_s), self.coil_a)
+                .force_n
+                .max(0.0)
+        } else {
+            0.0
+        };
+        let a_m_s2 = self.cfg.gravity_m_s2 - force_n / self.cfg.mass_kg;
+        (
+            x_mm + (v_m_s * delay_s + 0.5 * a_m_s2 * delay_s * delay_s) * 1.0e3,
+            v_m_s + a_m_s2 * delay_s,
+        )
     }
 }

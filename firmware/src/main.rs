@@ -21,7 +21,22 @@ mod fw {
     use crate::board;
     use embassy_executor::Spawner;
     use mre_core::control::{ControlConfig, Controller, DEFAULT_RATE_HZ};
-    use mre_core::table::{Table, PAPER_TABLE4};
+    use mre_core::table::Table;
+
+    /// The table this image flies: by default the one `mre tables` generated
+    /// from the committed model (`firmware/src/generated_table.rs`); with the
+    /// `table-paper` feature the paper's Table 4.
+    #[cfg(not(feature = "table-paper"))]
+    mod flown {
+        pub use mre_core::generated_table::{GENERATED_TABLE as IMAGE, SOURCE_DATASET_SHA256};
+        pub const NAME: &str = "generated";
+    }
+    #[cfg(feature = "table-paper")]
+    mod flown {
+        pub use mre_core::table::PAPER_TABLE4 as IMAGE;
+        pub const SOURCE_DATASET_SHA256: &str = "";
+        pub const NAME: &str = "paper Table 4";
+    }
 
     /// Control rate: 10 kHz, or 20 kHz with the `rate-20khz` feature.
     const RATE_HZ: u32 = if cfg!(feature = "rate-20khz") {
@@ -41,19 +56,23 @@ mod fw {
 
         // A rejected table is not fatal: the controller latches TABLE_FAULT
         // and commands the fail-safe current every period.
-        let table = Table::from_image(&PAPER_TABLE4);
+        let table = Table::from_image(&flown::IMAGE);
         match &table {
             Ok(t) => defmt::info!(
-                "table v{=u16}: {=usize} currents, CRC {=u32:#010x} OK",
+                "table {=str} format v{=u16}: {=usize} currents, CRC {=u32:#010x} OK, data set sha256 {=str}",
+                flown::NAME,
                 t.version(),
                 t.entries().len(),
-                t.crc32()
+                t.crc32(),
+                flown::SOURCE_DATASET_SHA256
             ),
             Err(e) => defmt::error!(
-                "table v{=u16} stored CRC {=u32:#010x} REJECTED: {}",
-                PAPER_TABLE4.version,
-                PAPER_TABLE4.crc32,
-                defmt::Debug2Format(e)
+                "table {=str} format v{=u16} stored CRC {=u32:#010x} REJECTED: {}, data set sha256 {=str}",
+                flown::NAME,
+                flown::IMAGE.version,
+                flown::IMAGE.crc32,
+                defmt::Debug2Format(e),
+                flown::SOURCE_DATASET_SHA256
             ),
         }
 

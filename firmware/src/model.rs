@@ -7,7 +7,10 @@
 //! - Each quartic is evaluated with Horner's scheme.
 //! - Between tabulated currents the force is interpolated linearly in current
 //!   (the paper's Eq. X, written correctly):
-//!   `F(I) = F_k + (I − I_k)/(I_{k+1} − I_k) · (F_{k+1} − F_k)`.
+//!   `F(I) = F_k + (I − I_k)/(I_{k+1} − I_k) · (F_{k+1} − F_k)`. A version 2
+//!   table with a saturation current `I_s` interpolates linearly in
+//!   `w = tanh(I/I_s)` instead (magnetic saturation), and adds each entry's
+//!   viscous term `c_k·v` to its quartic before interpolating.
 //! - Outside the table's current range the current is clamped
 //!   (`CURRENT_CLAMPED`). Outside an entry's fitted stroke, x is clamped to it
 //!   (`X_CLAMPED`): a quartic extrapolated beyond its data is meaningless.
@@ -16,6 +19,32 @@
 use crate::flags::Flags;
 use crate::math;
 use crate::table::{CurrentEntry, Table};
+
+/// The variable the interpolation between currents is linear in: `I`, or
+/// `tanh(I/I_s)` when `saturation_current_a > 0`.
+#[inline]
+pub fn interpolation_variable(current_a: f32, saturation_current_a: f32) -> f32 {
+    if saturation_current_a > 0.0 {
+        math::tanh(current_a / saturation_current_a)
+    } else {
+        current_a
+    }
+}
+
+/// Fastest velocity the viscous term takes (m/s): beyond any drop test, and
+/// keeps `c·v` finite for any finite v.
+pub const VISCOUS_V_LIMIT_M_S: f32 = 100.0;
+
+/// The velocity the viscous term uses: clamped to ±[`VISCOUS_V_LIMIT_M_S`],
+/// NaN → 0.
+#[inline]
+pub fn viscous_velocity(v_m_s: f32) -> f32 {
+    if v_m_s.is_nan() {
+        0.0
+    } else {
+        math::clamp(v_m_s, -VISCOUS_V_LIMIT_M_S, VISCOUS_V_LIMIT_M_S)
+    }
+}
 
 /// Which of an entry's two quartics applies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -156,10 +185,13 @@ impl Table {
             };
         }
         // lo < current_a < hi, so some pair brackets it.
+        let w = interpolation_variable(current_a, self.terms().saturation_current_a);
         for (k, pair) in entries.windows(2).enumerate() {
-            if let [a, b] = pair {
+            if let [_, b] = pair {
                 if current_a < b.current_a {
-                    let t = (current_a - a.current_a) / (b.current_a - a.current_a);
+                    let (w0, w1) = (self.knot(k), self.knot(k + 1));
+                    // In [0, 1) even if the approximate tanh strays by an ulp.
+                    let t = math::clamp((w - w0) / (w1 - w0), 0.0, 1.0);
                     return CurrentSegment {
                         lower: k,
                         t,
@@ -175,12 +207,25 @@ impl Table {
         }
     }
 
-    /// Force on a given branch at `x_mm` and `current_a` (interpolated).
+    /// Force on a given branch at `x_mm` and `current_a` (interpolated), at
+    /// rest: a version 2 table's viscous term is left out (see
+    /// [`Table::force_on_branch_v`]).
     pub fn force_on_branch(&self, x_mm: f32, branch: Branch, current_a: f32) -> ForceResult {
+        self.force_on_branch_v(x_mm, 0.0, branch, current_a)
+    }
+
+    /// Force on a given branch at `x_mm`, velocity `v_m_s` (for the viscous
+    /// term only, see [`viscous_velocity`]) and `current_a`.
+    pub fn force_on_branch_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, current_a: f32) -> ForceResult {
         let seg = self.segment(current_a);
         let entries = self.entries();
+        let v = viscous_velocity(v_m_s);
         let lower = match entries.get(seg.lower) {
-            Some(e) => e.force_n(x_mm, branch),
+            Some(e) => {
+                let mut r = e.force_n(x_mm, branch);
+                r.force_n += self.viscous(seg.lower) * v;
+                r
+            }
             None => {
                 return ForceResult {
                     force_n: 0.0,
@@ -193,17 +238,19 @@ impl Table {
             Some(upper_entry) if seg.t > 0.0 => {
                 let upper = upper_entry.force_n(x_mm, branch);
                 flags |= upper.flags;
-                lower.force_n + seg.t * (upper.force_n - lower.force_n)
+                let upper_n = upper.force_n + self.viscous(seg.lower + 1) * v;
+                lower.force_n + seg.t * (upper_n - lower.force_n)
             }
             _ => lower.force_n,
         };
         ForceResult { force_n, flags }
     }
 
-    /// The paper's model: force at `x_mm` with the branch picked from the sign
-    /// of `v_m_s` (no hysteresis; the controller uses [`BranchSelector`]).
+    /// The model: force at `x_mm` with the branch picked from the sign of
+    /// `v_m_s` (no hysteresis; the controller uses [`BranchSelector`]), plus
+    /// a version 2 table's viscous term.
     pub fn force(&self, x_mm: f32, v_m_s: f32, current_a: f32) -> ForceResult {
-        let mut r = self.force_on_branch(x_mm, Branch::from_velocity(v_m_s), current_a);
+        let mut r = self.force_on_branch_v(x_mm, v_m_s, Branch::from_velocity(v_m_s), current_a);
         if !v_m_s.is_finite() {
             r.flags |= Flags::NON_FINITE_INPUT;
         }

@@ -7,17 +7,95 @@
 //! Tables are stored in flash as a [`TableImage`] (version + entries + CRC-32)
 //! and only become a usable [`Table`] through a validating constructor, so a
 //! corrupt or inconsistent table is never evaluated.
+use crate::model::Branch;
 use crc::{Crc, CRC_32_ISO_HDLC};
 
 /// Most currents one table can hold (fixed size: no heap on the board).
 pub const MAX_CURRENTS: usize = 8;
-/// Format version written into every table image and covered by its CRC.
-pub const FORMAT_VERSION: u16 = 1;
+/// The newest format version, written by [`Table::with_terms`]: version 2
+/// adds [`ModelTerms`]. Version 1 images (quartics only, as the paper) still
+/// load, and [`Table::new`] still seals version 1. The version is covered by
+/// the CRC.
+pub const FORMAT_VERSION: u16 = 2;
+/// The paper's format: per-current quartics and their strokes only.
+pub const FORMAT_VERSION_1: u16 = 1;
+/// Longest delay or time constant a table may carry (s): beyond it the value
+/// is a unit mistake, not a damper.
+pub const MAX_TERM_TIME_S: f32 = 0.1;
 
 const CRC32: Crc<u32> = Crc::<u32>::new(&CRC_32_ISO_HDLC);
 /// Bytes hashed per entry: current, x range, 2 × 5 coefficients, all f32.
 const ENTRY_BYTES: usize = 13 * 4;
-const IMAGE_BYTES: usize = 3 + MAX_CURRENTS * ENTRY_BYTES;
+/// Version 2 appends, as f32: saturation current, sensor delay, coil time
+/// constant and one viscous coefficient per entry.
+const TERMS_BYTES: usize = (3 + MAX_CURRENTS) * 4;
+const IMAGE_BYTES: usize = 3 + MAX_CURRENTS * ENTRY_BYTES + TERMS_BYTES;
+
+/// What format version 2 adds to the paper's model: the terms `mre diagnose`
+/// identifies that matter to control. All zero = the paper's model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModelTerms {
+    /// Viscous coefficient per entry (N·s/m, same index as the entries): the
+    /// force gains `c(I)·v`, with `c` interpolated between currents like the
+    /// quartics. Entries past the table's length are ignored (keep them 0).
+    pub viscous_n_s_per_m: [f32; MAX_CURRENTS],
+    /// Magnetic saturation: interpolate between currents linearly in
+    /// `w = tanh(I / I_s)` instead of in `I`. 0 = linear in I.
+    pub saturation_current_a: f32,
+    /// How far the displacement and velocity the controller samples lag the
+    /// true motion (s); the law predicts across it. 0 = none.
+    pub sensor_delay_s: f32,
+    /// The coil current's first-order time constant L/R behind its drive
+    /// command (s); the law inverts it. 0 = the current follows at once.
+    pub coil_tau_s: f32,
+}
+
+impl ModelTerms {
+    /// The paper's model: no extra term.
+    pub const NONE: ModelTerms = ModelTerms {
+        viscous_n_s_per_m: [0.0; MAX_CURRENTS],
+        saturation_current_a: 0.0,
+        sensor_delay_s: 0.0,
+        coil_tau_s: 0.0,
+    };
+
+    /// Every term at once (coil τ 2 ms, sensor delay 0.1 ms, a viscous term
+    /// on the second entry, saturation at 1.5 A): the longest path through
+    /// the model and the law, which the instruction-count bench and the PIL
+    /// agreement test fly.
+    pub const EVERY_TERM: ModelTerms = ModelTerms {
+        viscous_n_s_per_m: [0.0, 30.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        saturation_current_a: 1.5,
+        sensor_delay_s: 1.0e-4,
+        coil_tau_s: 2.0e-3,
+    };
+
+    pub fn is_none(&self) -> bool {
+        *self == Self::NONE
+    }
+
+    fn validate(&self) -> Result<(), TableError> {
+        if !self.viscous_n_s_per_m.iter().all(|c| c.is_finite()) {
+            return Err(TableError::BadTerm {
+                term: "viscous_n_s_per_m",
+            });
+        }
+        let i_s = self.saturation_current_a;
+        if !(i_s.is_finite() && i_s >= 0.0) {
+            return Err(TableError::BadTerm {
+                term: "saturation_current_a",
+            });
+        }
+        let time_ok = |t: f32| t.is_finite() && (0.0..=MAX_TERM_TIME_S).contains(&t);
+        if !time_ok(self.sensor_delay_s) {
+            return Err(TableError::BadTerm { term: "sensor_delay_s" });
+        }
+        if !time_ok(self.coil_tau_s) {
+            return Err(TableError::BadTerm { term: "coil_tau_s" });
+        }
+        Ok(())
+    }
+}
 
 /// `F(x) = c[0]·x⁴ + c[1]·x³ + c[2]·x² + c[3]·x + c[4]` (highest power first,
 /// as the paper prints it).
@@ -69,6 +147,8 @@ impl CurrentEntry {
 pub struct TableImage<'a> {
     pub version: u16,
     pub entries: &'a [CurrentEntry],
+    /// Version 1 images must carry [`ModelTerms::NONE`].
+    pub terms: ModelTerms,
     pub crc32: u32,
 }
 
@@ -97,6 +177,11 @@ pub enum TableError {
         stored: u32,
         computed: u32,
     },
+    /// A version 2 term is non-finite or out of range (or a version 1 image
+    /// carries terms).
+    BadTerm {
+        term: &'static str,
+    },
 }
 
 impl core::fmt::Display for TableError {
@@ -109,7 +194,7 @@ impl core::fmt::Display for TableError {
             TableError::UnsupportedVersion { version } => {
                 write!(
                     f,
-                    "table format version {version} is not supported (expected {FORMAT_VERSION})"
+                    "table format version {version} is not supported (expected {FORMAT_VERSION_1}..={FORMAT_VERSION})"
                 )
             }
             TableError::UnsortedCurrents { index } => {
@@ -127,6 +212,9 @@ impl core::fmt::Display for TableError {
                     "table CRC mismatch: stored {stored:#010x}, computed {computed:#010x}"
                 )
             }
+            TableError::BadTerm { term } => {
+                write!(f, "model term {term} is non-finite or out of range")
+            }
         }
     }
 }
@@ -139,39 +227,105 @@ pub struct Table {
     len: usize,
     entries: [CurrentEntry; MAX_CURRENTS],
     crc32: u32,
+    terms: ModelTerms,
+    /// Each entry's interpolation knot: its current, or `tanh(I/I_s)` under
+    /// saturation (computed once here, not per period).
+    knots: [f32; MAX_CURRENTS],
+    has_viscous: bool,
     /// The stroke every entry was fitted on (the intersection of their
     /// ranges; empty if they share none). Inside it no x needs clamping, which
     /// lets the inverse skip per-entry clamps on its hot path.
     shared_x_min_mm: f32,
     shared_x_max_mm: f32,
+    /// Each entry's force at the ends of its stroke, `[compression,
+    /// extension]` at x_min and at x_max: what it gives for any clamped x,
+    /// computed once (by the same Horner evaluation) so that a clamped entry
+    /// costs a load instead of a clamp and a quartic on the hot path.
+    end_low_n: [[f32; 2]; MAX_CURRENTS],
+    end_high_n: [[f32; 2]; MAX_CURRENTS],
 }
 
 impl Table {
-    /// Validates `entries` and seals them with the current format version and CRC.
+    /// Validates `entries` and seals them as a version 1 table (the paper's
+    /// model, no extra terms).
     pub fn new(entries: &[CurrentEntry]) -> Result<Self, TableError> {
+        Self::build(FORMAT_VERSION_1, entries, ModelTerms::NONE)
+    }
+
+    /// Validates `entries` and `terms` and seals them as a version 2 table.
+    pub fn with_terms(entries: &[CurrentEntry], terms: ModelTerms) -> Result<Self, TableError> {
+        Self::build(FORMAT_VERSION, entries, terms)
+    }
+
+    fn build(version: u16, entries: &[CurrentEntry], terms: ModelTerms) -> Result<Self, TableError> {
         validate_entries(entries)?;
+        terms.validate()?;
+        if version == FORMAT_VERSION_1 && !terms.is_none() {
+            return Err(TableError::BadTerm {
+                term: "terms in a version 1 table",
+            });
+        }
         let mut table = Table {
-            version: FORMAT_VERSION,
+            version,
             len: entries.len(),
             entries: [CurrentEntry::ZERO; MAX_CURRENTS],
-            crc32: content_crc(FORMAT_VERSION, entries),
+            crc32: content_crc(version, entries, &terms),
+            terms,
+            knots: [0.0; MAX_CURRENTS],
+            has_viscous: terms.viscous_n_s_per_m.iter().take(entries.len()).any(|c| *c != 0.0),
             shared_x_min_mm: f32::NEG_INFINITY,
             shared_x_max_mm: f32::INFINITY,
+            end_low_n: [[0.0; 2]; MAX_CURRENTS],
+            end_high_n: [[0.0; 2]; MAX_CURRENTS],
         };
-        for (slot, entry) in table.entries.iter_mut().zip(entries) {
+        let ends = table.end_low_n.iter_mut().zip(table.end_high_n.iter_mut());
+        for (((slot, knot), entry), (low, high)) in table
+            .entries
+            .iter_mut()
+            .zip(table.knots.iter_mut())
+            .zip(entries)
+            .zip(ends)
+        {
             *slot = *entry;
+            *low = [
+                entry.compression.eval(entry.x_min_mm),
+                entry.extension.eval(entry.x_min_mm),
+            ];
+            *high = [
+                entry.compression.eval(entry.x_max_mm),
+                entry.extension.eval(entry.x_max_mm),
+            ];
+            *knot = crate::model::interpolation_variable(entry.current_a, terms.saturation_current_a);
             table.shared_x_min_mm = table.shared_x_min_mm.max(entry.x_min_mm);
             table.shared_x_max_mm = table.shared_x_max_mm.min(entry.x_max_mm);
+        }
+        // tanh flattens: far above I_s neighbouring knots can round to the same
+        // value, and the interpolation would divide by zero.
+        let knots = table.knots.get(..table.len).unwrap_or(&[]);
+        let flat = knots.windows(2).any(|w| match w {
+            // Not strictly ascending, NaN included.
+            [a, b] => b.partial_cmp(a) != Some(core::cmp::Ordering::Greater),
+            _ => false,
+        });
+        // The inverse needs atanh of every knot: none may round to ±1.
+        let saturated_to_one = terms.saturation_current_a > 0.0
+            && knots
+                .iter()
+                .any(|k| crate::math::abs(*k).partial_cmp(&1.0) != Some(core::cmp::Ordering::Less));
+        if flat || saturated_to_one {
+            return Err(TableError::BadTerm {
+                term: "saturation_current_a",
+            });
         }
         Ok(table)
     }
 
     /// Validates a stored image, including its version and CRC.
     pub fn from_image(image: &TableImage<'_>) -> Result<Self, TableError> {
-        if image.version != FORMAT_VERSION {
+        if image.version != FORMAT_VERSION && image.version != FORMAT_VERSION_1 {
             return Err(TableError::UnsupportedVersion { version: image.version });
         }
-        let table = Self::new(image.entries)?;
+        let table = Self::build(image.version, image.entries, image.terms)?;
         if table.crc32 != image.crc32 {
             return Err(TableError::CrcMismatch {
                 stored: image.crc32,
@@ -199,11 +353,60 @@ impl Table {
         self.crc32
     }
 
+    /// The version 2 terms ([`ModelTerms::NONE`] for a version 1 table).
+    #[inline]
+    pub fn terms(&self) -> &ModelTerms {
+        &self.terms
+    }
+
+    /// Entry `index`'s interpolation knot (its current, or `tanh(I/I_s)`).
+    #[inline]
+    pub(crate) fn knot(&self, index: usize) -> f32 {
+        self.knots.get(index).copied().unwrap_or(0.0)
+    }
+
+    /// True when some entry has a viscous term (else the model skips it).
+    #[inline]
+    pub fn has_viscous(&self) -> bool {
+        self.has_viscous
+    }
+
+    /// Entry `index`'s viscous coefficient (N·s/m).
+    #[inline]
+    pub(crate) fn viscous(&self, index: usize) -> f32 {
+        self.terms.viscous_n_s_per_m.get(index).copied().unwrap_or(0.0)
+    }
+
     /// True when `x_mm` lies in every entry's fitted stroke (so no entry
     /// clamps it). False for NaN.
     #[inline]
     pub fn in_shared_stroke(&self, x_mm: f32) -> bool {
         x_mm >= self.shared_x_min_mm && x_mm <= self.shared_x_max_mm
+    }
+
+    /// Entry `index` (= `e`)'s force on `branch` at `x_mm` clamped to its
+    /// stroke, the clamped ends from the precomputed table. The caller maps
+    /// a non-finite x to −∞ (it then counts as x_min, as in the forward
+    /// model); a NaN that slips through gets the x_min end too.
+    #[inline(always)]
+    pub(crate) fn clamped_force_n(&self, index: usize, e: &CurrentEntry, branch: Branch, x_mm: f32) -> f32 {
+        let b = match branch {
+            Branch::Compression => 0,
+            Branch::Extension => 1,
+        };
+        let end = |ends: &[[f32; 2]; MAX_CURRENTS]| ends.get(index).and_then(|f| f.get(b)).copied().unwrap_or(0.0);
+        // Past the end first: beyond the stiff entries' strokes it is the
+        // common case.
+        if x_mm > e.x_max_mm {
+            end(&self.end_high_n)
+        } else if x_mm >= e.x_min_mm {
+            match branch {
+                Branch::Compression => e.compression.eval(x_mm),
+                Branch::Extension => e.extension.eval(x_mm),
+            }
+        } else {
+            end(&self.end_low_n)
+        }
     }
 
     /// Lowest and highest tabulated current.
@@ -245,12 +448,15 @@ fn validate_entries(entries: &[CurrentEntry]) -> Result<(), TableError> {
 
 /// CRC-32 (ISO-HDLC, as zlib) over the version (u16 LE), the entry count (u8)
 /// and every entry's f32 fields in little-endian order: current, x_min, x_max,
-/// compression c0..c4, extension c0..c4. `const`, so flash images carry a CRC
+/// compression c0..c4, extension c0..c4; from version 2 on, then the terms:
+/// saturation current, sensor delay, coil τ and the entries' viscous
+/// coefficients (version 1 images hash exactly as before version 2 existed).
+/// `const`, so flash images carry a CRC
 /// computed by the compiler; the host's table generator writes the same value.
 // Indexing is bounded by construction (count ≤ MAX_CURRENTS, so `at` ≤
 // IMAGE_BYTES); iterators are not available in `const fn`.
 #[allow(clippy::indexing_slicing)]
-pub const fn content_crc(version: u16, entries: &[CurrentEntry]) -> u32 {
+pub const fn content_crc(version: u16, entries: &[CurrentEntry], terms: &ModelTerms) -> u32 {
     let mut buf = [0u8; IMAGE_BYTES];
     let count = if entries.len() > MAX_CURRENTS {
         MAX_CURRENTS
@@ -275,20 +481,40 @@ pub const fn content_crc(version: u16, entries: &[CurrentEntry]) -> u32 {
             fields[8 + k] = e.extension.coeffs[k];
             k += 1;
         }
-        let mut f = 0;
-        while f < 13 {
-            let b = fields[f].to_bits().to_le_bytes();
-            buf[at] = b[0];
-            buf[at + 1] = b[1];
-            buf[at + 2] = b[2];
-            buf[at + 3] = b[3];
-            at += 4;
-            f += 1;
-        }
+        at = push_le(&mut buf, at, &fields, 13);
         i += 1;
+    }
+    if version >= FORMAT_VERSION {
+        let mut fields = [0f32; 3 + MAX_CURRENTS];
+        fields[0] = terms.saturation_current_a;
+        fields[1] = terms.sensor_delay_s;
+        fields[2] = terms.coil_tau_s;
+        let mut k = 0;
+        while k < count {
+            fields[3 + k] = terms.viscous_n_s_per_m[k];
+            k += 1;
+        }
+        at = push_le(&mut buf, at, &fields, 3 + count);
     }
     let (used, _) = buf.split_at(at);
     CRC32.checksum(used)
+}
+
+/// Writes `fields[..n]` as little-endian f32 into `buf` from `at`; returns
+/// the end. Callers keep `at + 4·n ≤ IMAGE_BYTES` (see `content_crc`).
+#[allow(clippy::indexing_slicing)]
+const fn push_le(buf: &mut [u8; IMAGE_BYTES], mut at: usize, fields: &[f32], n: usize) -> usize {
+    let mut f = 0;
+    while f < n {
+        let b = fields[f].to_bits().to_le_bytes();
+        buf[at] = b[0];
+        buf[at + 1] = b[1];
+        buf[at + 2] = b[2];
+        buf[at + 3] = b[3];
+        at += 4;
+        f += 1;
+    }
+    at
 }
 
 const fn paper_entry(current_a: f32, c: [f32; 5], e: [f32; 5], x_max_mm: f32) -> CurrentEntry {
@@ -342,7 +568,8 @@ pub const PAPER_TABLE4_ENTRIES: [CurrentEntry; 5] = [
 
 /// The built-in default table as a flash image, CRC computed at compile time.
 pub static PAPER_TABLE4: TableImage<'static> = TableImage {
-    version: FORMAT_VERSION,
+    version: FORMAT_VERSION_1,
     entries: &PAPER_TABLE4_ENTRIES,
-    crc32: content_crc(FORMAT_VERSION, &PAPER_TABLE4_ENTRIES),
+    terms: ModelTerms::NONE,
+    crc32: content_crc(FORMAT_VERSION_1, &PAPER_TABLE4_ENTRIES, &ModelTerms::NONE),
 };

@@ -11,6 +11,8 @@
 //!    and a diagnosis of the real MR damper data (whole amplitude–frequency
 //!    pairs held out, 0.5 A predicted).
 //! 4. The closed-loop drop test: passive 0 A, passive 2 A, controlled by the core.
+//!    Then the chain from recordings to flash on `data/drop-coil_lag`
+//!    (`control_bench::demo_step`).
 //! 5. The same with the firmware in QEMU closing the loop (`mre pil`), when
 //!    `qemu-system-arm` is installed; otherwise it says how to install it.
 use anyhow::{Context, Result};
@@ -258,6 +260,7 @@ fn run_steps(options: &DemoOptions) -> Result<Vec<DemoStep>> {
         diagnosis(data, out, options.seed)?,
         real_data_diagnosis(data, out, options.seed)?,
         closed_loop(out, options.seed)?,
+        crate::control_bench::demo_step::recordings_to_flash(data, out)?,
         processor_in_the_loop(out, options.seed)?,
     ];
     Ok(steps)

@@ -125,6 +125,10 @@ enum Command {
         /// Replace an existing non-empty folder.
         #[arg(long)]
         force: bool,
+        /// Choose a drop height per current so every current's fastest test
+        /// reaches this stroke (mm), instead of the paper's velocities at all.
+        #[arg(long)]
+        full_stroke_mm: Option<f64>,
     },
     /// Locate model-vs-recording mismatch, name the missing physics, model it, show the fit improve.
     Diagnose {
@@ -153,6 +157,15 @@ enum Command {
         validate_current: Vec<f64>,
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Also write the final model (format 2 table file) for `mre tables`.
+        #[arg(long)]
+        model_out: Option<PathBuf>,
+    },
+    /// Controllers (a) paper table, (b) `mre fit`, (c) `mre diagnose` against the physical limit.
+    BenchControl {
+        /// Folder for report.md and report.json.
+        #[arg(long, default_value = "out/bench-control")]
+        out: PathBuf,
     },
     /// Blind benchmark of `diagnose` on `mre synth --effect random` cases.
     BenchDiagnose {
@@ -404,8 +417,14 @@ fn run(cli: Cli) -> Result<()> {
             out,
             key,
             force,
+            full_stroke_mm,
         } => {
-            let output = mre_host::plant::synth::write_synth(&effect, seed, &out, key.as_deref(), force)?;
+            let plan = match full_stroke_mm {
+                Some(mm) => mre_host::plant::synth::SynthPlan::full_stroke(mm),
+                None => mre_host::plant::synth::SynthPlan::default(),
+            };
+            let output =
+                mre_host::plant::synth::write_synth_with_plan(&effect, seed, &plan, &out, key.as_deref(), force)?;
             let key_path = key.unwrap_or_else(|| mre_host::plant::synth::default_key_path(&out));
             println!(
                 "wrote {} recordings to {} (key: {})",
@@ -424,14 +443,28 @@ fn run(cli: Cli) -> Result<()> {
             folds,
             validate_current,
             seed,
+            model_out,
         } => {
             let opts = mre_host::diagnose::options_from_cli(model.as_deref(), folds_by, folds, validate_current, seed)?;
             let progress = mre_host::progress::spinner("diagnosing");
-            let out = mre_host::diagnose::run_to_files(&dataset, &opts, &report, &json, &predictions)?;
+            let out = match &model_out {
+                Some(path) => {
+                    use mre_host::diagnose::model_out::run_to_files_with_model;
+                    let (out, _) = run_to_files_with_model(&dataset, &opts, &report, &json, &predictions, path)?;
+                    println!("final model: {}", path.display());
+                    out
+                }
+                None => mre_host::diagnose::run_to_files(&dataset, &opts, &report, &json, &predictions)?,
+            };
             std::mem::drop(progress);
             println!("{}", mre_host::diagnose::summary_line(&out));
             println!("report: {}", report.join("report.md").display());
             println!("page: {}", report.join("index.html").display());
+        }
+        Command::BenchControl { out } => {
+            let outcomes = mre_host::control_bench::run_to_files(&mre_host::control_bench::default_cases(), &out)?;
+            print!("{}", mre_host::control_bench::markdown(&outcomes));
+            println!("\nreport: {}", out.join("report.md").display());
         }
         Command::BenchDiagnose { cases, seed, json } => {
             let opts = mre_host::diagnose::DiagnoseOptions::default();

@@ -1,13 +1,18 @@
 //! The table file format (TOML) that host tools read and write.
 //!
 //! ```toml
-//! format_version = 1            # optional; 1 is the only version so far
+//! format_version = 2            # optional; 1 (default, the paper's model) or 2
+//! [terms]                       # version 2 only; every key optional, 0 = absent
+//! saturation_current_a = 0.8    # interpolate in tanh(I/I_s) instead of I
+//! sensor_delay_s = 0.0002       # the controller's x/v samples lag the motion
+//! coil_tau_s = 0.002            # coil current lags its drive command (L/R)
 //! [[current]]
 //! current_a = 0.0               # ascending, at most 8 entries
 //! compression = [a1, a2, a3, a4, a5]   # F = a1·x⁴ + … + a5, highest power first
 //! extension   = [a1, a2, a3, a4, a5]   # x in mm, F in N
 //! x_min_mm = 0.0                # fitted stroke (optional, see below)
 //! x_max_mm = 1.1531
+//! viscous_n_s_per_m = 0.0       # version 2 only: + c(I)·v, interpolated like the quartics
 //! ```
 //!
 //! If `x_min_mm`/`x_max_mm` are absent (as in the paper's `table4.toml`), the
@@ -23,7 +28,19 @@ use std::path::Path;
 #[derive(Debug, Deserialize)]
 struct TableToml {
     format_version: Option<u16>,
+    terms: Option<TermsToml>,
     current: Vec<CurrentToml>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TermsToml {
+    #[serde(default)]
+    saturation_current_a: f64,
+    #[serde(default)]
+    sensor_delay_s: f64,
+    #[serde(default)]
+    coil_tau_s: f64,
 }
 
 #[derive(Debug, Deserialize)]
@@ -34,6 +51,7 @@ struct CurrentToml {
     extension: [f64; 5],
     x_min_mm: Option<f64>,
     x_max_mm: Option<f64>,
+    viscous_n_s_per_m: Option<f64>,
     /// Fit metadata written by `mre fit`; not part of the flash table.
     #[serde(default)]
     #[allow(dead_code)]
@@ -53,15 +71,44 @@ pub fn read_table_file(path: &Path) -> Result<Table> {
     parse_table_toml(&text).with_context(|| format!("in table file {}", path.display()))
 }
 
-pub fn parse_table_toml(text: &str) -> Result<Table> {
-    let doc: TableToml = toml::from_str(text)?;
-    if let Some(v) = doc.format_version {
-        if v != mre_core::table::FORMAT_VERSION {
+/// The `[model] input_sha256` a model file records (the hash of the data
+/// set it was fitted on), if it has one. A plain table file has none.
+pub fn read_dataset_sha256(path: &Path) -> Result<Option<String>> {
+    #[derive(Deserialize)]
+    struct Doc {
+        model: Option<Meta>,
+    }
+    #[derive(Deserialize)]
+    struct Meta {
+        input_sha256: Option<String>,
+    }
+    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read table file {}", path.display()))?;
+    let doc: Doc = toml::from_str(&text).with_context(|| format!("in table file {}", path.display()))?;
+    let sha = doc.model.and_then(|m| m.input_sha256);
+    if let Some(s) = &sha {
+        if s.len() != 64 || !s.bytes().all(|b| b.is_ascii_hexdigit()) {
             bail!(
-                "format_version = {v} is not supported (expected {})",
-                mre_core::table::FORMAT_VERSION
+                "in table file {}: [model] input_sha256 is not 64 hex digits",
+                path.display()
             );
         }
+    }
+    Ok(sha)
+}
+
+pub fn parse_table_toml(text: &str) -> Result<Table> {
+    use mre_core::table::{ModelTerms, FORMAT_VERSION, FORMAT_VERSION_1, MAX_CURRENTS};
+    let doc: TableToml = toml::from_str(text)?;
+    let version = doc.format_version.unwrap_or(FORMAT_VERSION_1);
+    if version != FORMAT_VERSION_1 && version != FORMAT_VERSION {
+        bail!("format_version = {version} is not supported (expected {FORMAT_VERSION_1} or {FORMAT_VERSION})");
+    }
+    let has_viscous = doc.current.iter().any(|c| c.viscous_n_s_per_m.is_some());
+    if version == FORMAT_VERSION_1 && (doc.terms.is_some() || has_viscous) {
+        bail!("[terms] and viscous_n_s_per_m need format_version = {FORMAT_VERSION}");
+    }
+    if doc.current.len() > MAX_CURRENTS {
+        bail!("{} [[current]] entries, at most {MAX_CURRENTS} fit", doc.current.len());
     }
     let mut entries = Vec::with_capacity(doc.current.len());
     for (i, c) in doc.current.iter().enumerate() {
@@ -90,17 +137,43 @@ pub fn parse_table_toml(text: &str) -> Result<Table> {
             x_max_mm: x_max_mm as f32,
         });
     }
-    Table::new(&entries).map_err(|e| anyhow::anyhow!("invalid table: {e}"))
+    let table = if version == FORMAT_VERSION_1 {
+        Table::new(&entries)
+    } else {
+        let t = doc.terms.unwrap_or_default();
+        let mut terms = ModelTerms {
+            saturation_current_a: t.saturation_current_a as f32,
+            sensor_delay_s: t.sensor_delay_s as f32,
+            coil_tau_s: t.coil_tau_s as f32,
+            ..ModelTerms::NONE
+        };
+        for (slot, c) in terms.viscous_n_s_per_m.iter_mut().zip(&doc.current) {
+            *slot = c.viscous_n_s_per_m.unwrap_or(0.0) as f32;
+        }
+        Table::with_terms(&entries, terms)
+    };
+    table.map_err(|e| anyhow::anyhow!("invalid table: {e}"))
 }
 
 /// Renders a table in this format (round-trips through [`parse_table_toml`]).
 pub fn table_to_toml(table: &Table) -> String {
     let mut s = format!("format_version = {}\n", table.version());
-    for e in table.entries() {
+    let v2 = table.version() >= mre_core::table::FORMAT_VERSION;
+    let t = table.terms();
+    if v2 {
+        s.push_str(&format!(
+            "\n[terms]\nsaturation_current_a = {:?}\nsensor_delay_s = {:?}\ncoil_tau_s = {:?}\n",
+            t.saturation_current_a, t.sensor_delay_s, t.coil_tau_s
+        ));
+    }
+    for (e, c) in table.entries().iter().zip(t.viscous_n_s_per_m) {
         s.push_str(&format!(
             "\n[[current]]\ncurrent_a = {:?}\ncompression = {:?}\nextension = {:?}\nx_min_mm = {:?}\nx_max_mm = {:?}\n",
             e.current_a, e.compression.coeffs, e.extension.coeffs, e.x_min_mm, e.x_max_mm
         ));
+        if v2 {
+            s.push_str(&format!("viscous_n_s_per_m = {c:?}\n"));
+        }
     }
     s
 }

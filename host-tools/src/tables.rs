@@ -1,7 +1,7 @@
 //! `mre tables MODEL`: the firmware's flash table as Rust source, generated
 //! into the firmware crate (`firmware/src/generated_table.rs`), with the CRC
 //! the core computes (`mre_core::table::content_crc`).
-use crate::table_file::read_table_file;
+use crate::table_file::{read_dataset_sha256, read_table_file};
 use anyhow::Result;
 use mre_core::table::Table;
 use std::fmt::Write;
@@ -13,7 +13,7 @@ pub const DEFAULT_OUT: &str = "firmware/src/generated_table.rs";
 /// The Rust source of a `TableImage` static holding `table`. `source` names
 /// the model file in the header comment (keep it a stable relative path so the
 /// output is reproducible).
-pub fn generate_table_source(source: &str, table: &Table) -> String {
+pub fn generate_table_source(source: &str, table: &Table, dataset_sha256: Option<&str>) -> String {
     let entries = table.entries();
     let mut s = String::new();
     let _ = writeln!(
@@ -24,7 +24,10 @@ pub fn generate_table_source(source: &str, table: &Table) -> String {
         s,
         "//! A host test (`host-tools/tests/tables.rs`) fails if this file drifts from the model."
     );
-    let _ = writeln!(s, "use crate::table::{{CurrentEntry, Quartic, TableImage}};");
+    let _ = writeln!(
+        s,
+        "use crate::table::{{CurrentEntry, ModelTerms, Quartic, TableImage}};"
+    );
     let _ = writeln!(s);
     let _ = writeln!(s, "/// The fitted entries, currents ascending (x in mm, F in N).");
     let _ = writeln!(s, "pub const GENERATED_ENTRIES: [CurrentEntry; {}] = [", entries.len());
@@ -41,11 +44,32 @@ pub fn generate_table_source(source: &str, table: &Table) -> String {
     let _ = writeln!(s);
     let _ = writeln!(
         s,
+        "/// SHA-256 of the data set the model was fitted on (the model file's `[model] input_sha256`; empty if it has none)."
+    );
+    let _ = writeln!(
+        s,
+        "pub const SOURCE_DATASET_SHA256: &str = {:?};",
+        dataset_sha256.unwrap_or("")
+    );
+    let _ = writeln!(s);
+    let _ = writeln!(
+        s,
         "/// The table image; `Table::from_image` checks this CRC-32 against the entries."
     );
     let _ = writeln!(s, "pub static GENERATED_TABLE: TableImage<'static> = TableImage {{");
     let _ = writeln!(s, "    version: {},", table.version());
     let _ = writeln!(s, "    entries: &GENERATED_ENTRIES,");
+    let t = table.terms();
+    if t.is_none() {
+        let _ = writeln!(s, "    terms: ModelTerms::NONE,");
+    } else {
+        let _ = writeln!(s, "    terms: ModelTerms {{");
+        let _ = writeln!(s, "        viscous_n_s_per_m: {:?},", t.viscous_n_s_per_m);
+        let _ = writeln!(s, "        saturation_current_a: {:?},", t.saturation_current_a);
+        let _ = writeln!(s, "        sensor_delay_s: {:?},", t.sensor_delay_s);
+        let _ = writeln!(s, "        coil_tau_s: {:?},", t.coil_tau_s);
+        let _ = writeln!(s, "    }},");
+    }
     let _ = writeln!(s, "    crc32: {:#010x},", table.crc32());
     let _ = writeln!(s, "}};");
     s
@@ -54,7 +78,8 @@ pub fn generate_table_source(source: &str, table: &Table) -> String {
 /// Reads a model (or any table) file and writes the generated source atomically.
 pub fn run_tables(model: &Path, out: &Path) -> Result<Table> {
     let table = read_table_file(model)?;
-    let source = generate_table_source(&model.display().to_string(), &table);
+    let sha = read_dataset_sha256(model)?;
+    let source = generate_table_source(&model.display().to_string(), &table, sha.as_deref());
     crate::atomic_write::write_atomic(out, source.as_bytes())?;
     Ok(table)
 }

@@ -1,11 +1,13 @@
 //! The committed flash table (`firmware/src/generated_table.rs`) must be what
-//! `mre tables` generates from the committed model (`models/mr-damper-mts.toml`).
+//! `mre tables` generates from the committed model (`models/drop-full-stroke.toml`),
+//! and that model must be what `mre fit` makes of the bundled drop tests.
 use mre_core::table::Table;
-use mre_host::table_file::read_table_file;
+use mre_host::table_file::{read_dataset_sha256, read_table_file};
 use mre_host::tables::generate_table_source;
 use std::path::Path;
 
-const MODEL: &str = "models/mr-damper-mts.toml";
+const MODEL: &str = "models/drop-full-stroke.toml";
+const DATASET: &str = "data/drop-full-stroke";
 
 fn root() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
@@ -14,7 +16,8 @@ fn root() -> &'static Path {
 #[test]
 fn committed_generated_table_matches_the_committed_model() {
     let table = read_table_file(&root().join(MODEL)).unwrap();
-    let generated = generate_table_source(MODEL, &table);
+    let sha = read_dataset_sha256(&root().join(MODEL)).unwrap();
+    let generated = generate_table_source(MODEL, &table, sha.as_deref());
     let committed = include_str!("../../firmware/src/generated_table.rs");
     assert!(
         generated == committed,
@@ -27,7 +30,41 @@ fn generated_image_validates_and_equals_the_model() {
     let from_flash = Table::from_image(&mre_core::generated_table::GENERATED_TABLE).unwrap();
     let from_model = read_table_file(&root().join(MODEL)).unwrap();
     assert_eq!(from_flash, from_model);
-    assert_eq!(from_flash.entries().len(), 3);
+    // The drop tests' five fit currents, 0–2 A.
+    assert_eq!(from_flash.current_range_a(), (0.0, 2.0));
+    assert_eq!(from_flash.entries().len(), 5);
+}
+
+#[test]
+fn committed_model_is_the_fit_of_the_bundled_drop_tests() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("model.toml");
+    let options = mre_host::fit::FitOptions {
+        method: mre_host::fit::Method::Lsq,
+        ..Default::default()
+    };
+    mre_host::fit::run_fit(&root().join(DATASET), &options, &[], &out).unwrap();
+    assert_eq!(
+        read_table_file(&out).unwrap(),
+        read_table_file(&root().join(MODEL)).unwrap()
+    );
+    // The flash image names the data set it came from.
+    assert_eq!(
+        read_dataset_sha256(&out).unwrap().as_deref(),
+        Some(mre_core::generated_table::SOURCE_DATASET_SHA256)
+    );
+}
+
+#[test]
+fn generated_table_covers_the_usable_stroke() {
+    // The full-stroke campaign drops every current hard enough to reach
+    // 15 mm (data/generate.sh), so every entry's quartic covers the 12 mm
+    // usable stroke the law plans over: no entry is clamped inside it.
+    let t = Table::from_image(&mre_core::generated_table::GENERATED_TABLE).unwrap();
+    for e in t.entries() {
+        assert!(e.x_max_mm >= 12.0, "{} A covers only {} mm", e.current_a, e.x_max_mm);
+    }
+    assert!(t.entries().iter().all(|e| e.x_min_mm <= 0.0));
 }
 
 #[test]
@@ -49,8 +86,54 @@ fn paper_table_generates_source_with_its_known_crc() {
     // The paper table's CRC is computed by the core at compile time; the
     // generator must print the same value.
     let paper = Table::paper().unwrap();
-    let src = generate_table_source("paper", &paper);
+    let src = generate_table_source("paper", &paper, None);
     assert!(src.contains(&format!("crc32: {:#010x},", mre_core::table::PAPER_TABLE4.crc32)));
     assert!(src.contains("current_a: 2.0,"));
     assert!(src.contains("compression: Quartic::new([-6619.6, 19772.0, -24021.0, 19016.0, -105.53]),"));
+}
+
+#[test]
+fn version_1_model_files_still_load_and_version_2_files_carry_their_terms() {
+    use mre_host::table_file::{parse_table_toml, table_to_toml};
+    // The real MR damper model was written before version 2.
+    let v1 = read_table_file(&root().join("models/mr-damper-mts.toml")).unwrap();
+    assert_eq!(v1.version(), 1);
+    assert!(v1.terms().is_none());
+    let v2_text = r#"
+format_version = 2
+[terms]
+saturation_current_a = 0.8
+coil_tau_s = 0.002
+[[current]]
+current_a = 0.0
+compression = [0.0, 0.0, 0.0, 100.0, 0.0]
+extension = [0.0, 0.0, 0.0, 50.0, 0.0]
+x_min_mm = 0.0
+x_max_mm = 12.0
+viscous_n_s_per_m = 40.0
+[[current]]
+current_a = 2.0
+compression = [0.0, 0.0, 0.0, 900.0, 0.0]
+extension = [0.0, 0.0, 0.0, 450.0, 0.0]
+x_min_mm = 0.0
+x_max_mm = 4.0
+"#;
+    let t = parse_table_toml(v2_text).unwrap();
+    assert_eq!(t.version(), 2);
+    assert_eq!(t.terms().saturation_current_a, 0.8);
+    assert_eq!(t.terms().sensor_delay_s, 0.0);
+    assert_eq!(t.terms().coil_tau_s, 0.002);
+    assert_eq!(t.terms().viscous_n_s_per_m[..2], [40.0, 0.0]);
+    assert_eq!(parse_table_toml(&table_to_toml(&t)).unwrap(), t);
+    // Terms need version 2; a version 1 file with them is an error, not ignored.
+    let err = format!(
+        "{:#}",
+        parse_table_toml(&v2_text.replace("format_version = 2", "format_version = 1")).unwrap_err()
+    );
+    assert!(err.contains("format_version = 2"), "{err}");
+    let err = format!(
+        "{:#}",
+        parse_table_toml(&v2_text.replace("0.002", "-0.002")).unwrap_err()
+    );
+    assert!(err.contains("coil_tau_s"), "{err}");
 }

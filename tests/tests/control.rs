@@ -65,15 +65,16 @@ fn rate_config_sets_period_and_refuses_out_of_range_rates() {
 
 #[test]
 fn slew_limit_per_period_follows_the_rate() {
-    // 5.5 kg at 3 m/s with 14.8 mm left needs 5.5·9/(2·0.0148) + 5.5·9.81
-    // = 1726.25 N. At x = 0.2 mm Table 4 gives 862 N at 0.5 A and 2254 N at
-    // 1 A (compression), so about 0.81 A is wanted and the command ramps at
-    // 2000 A/s from 0 A.
-    for (rate_hz, first_step_a) in [(10_000, 0.2f32), (20_000, 0.1)] {
+    // The law plans for where the period ends: at 3 m/s, 0.3 mm on at
+    // 10 kHz and 0.15 mm at 20 kHz. From x = 0.2 mm that leaves 14.5 and
+    // 14.65 mm: 5.5·9/(2·0.0145) + 5.5·9.81 = 1760.852 N and
+    // 5.5·9/(2·0.01465) + 53.955 = 1743.372 N. Table 4 needs more than the
+    // first slew step for either, so the command ramps at 2000 A/s from 0 A.
+    for (rate_hz, first_step_a, target_n) in [(10_000, 0.2f32, 1760.852f32), (20_000, 0.1, 1743.372)] {
         let mut c = controller(rate_hz);
         let cmd = c.step_sample(0.2, Some(3.0));
         assert_eq!(cmd.branch, Branch::Compression);
-        assert!((cmd.target_force_n - 1726.25).abs() < 0.05, "{}", cmd.target_force_n);
+        assert!((cmd.target_force_n - target_n).abs() < 0.05, "{}", cmd.target_force_n);
         assert!(cmd.flags.contains(Flags::SLEW_LIMITED));
         assert!(
             (cmd.current_a - first_step_a).abs() < 1e-6,
@@ -88,9 +89,10 @@ fn slew_limit_per_period_follows_the_rate() {
 #[test]
 fn step_reads_sensors_and_commands_the_coil_with_the_returned_current() {
     let mut c = controller(10_000);
-    // At 4 m/s the stopping force (about 3 kN) needs 1.9–2 A at these x.
+    // At 4 m/s the law plans 0.4 mm ahead (one period), at 0.2–0.23 mm,
+    // where the stopping force (about 3 kN) needs 1.9–2 A.
     let mut x = ScriptX {
-        xs: vec![0.2, 0.21, 0.22, 0.23],
+        xs: vec![-0.2, -0.19, -0.18, -0.17],
         at: 0,
     };
     let mut v = ConstV(Some(4.0));

@@ -34,10 +34,11 @@ fn compression_command_produces_the_stopping_force() {
         ..fast_config()
     };
     let mut law = ImpactLaw::new(cfg).expect("valid config");
-    // x = 0.5 mm, v = 1.0 m/s: F* = 0.5·5.5·1.0/0.0007 + 53.955 = 3982.5 N,
+    // Sampled at x = 0.4 mm, v = 1.0 m/s, the law plans for the end of the
+    // 100 µs period, x = 0.5 mm: F* = 0.5·5.5·1.0/0.0007 + 53.955 = 3982.5 N,
     // which the paper's table reaches between 0.5 A (2532.6 N) and 1 A
     // (4826.2 N) at x = 0.5 mm.
-    let cmd = law.step(&t, 0.5, 1.0);
+    let cmd = law.step(&t, 0.4, 1.0);
     let expected_force = 0.5 * 5.5 * 1.0 / 0.0007 + 5.5 * 9.81;
     assert!(
         (cmd.target_force_n - expected_force).abs() < 0.5,
@@ -118,16 +119,26 @@ fn branch_hysteresis_ignores_noise_around_zero_velocity() {
 }
 
 #[test]
-fn exhausted_stroke_commands_the_maximum() {
+fn the_last_tenth_of_a_millimetre_is_planned_as_a_tenth_left() {
     let t = paper();
-    let mut law = ImpactLaw::new(LawConfig {
+    let cfg = LawConfig {
         stroke_max_mm: 5.0,
         ..fast_config()
-    })
-    .expect("valid config");
+    };
+    let mut law = ImpactLaw::new(cfg).expect("valid config");
+    // At the end at 0.5 m/s: ½·5.5·0.25/0.1e-3 + 5.5·9.81 = 6875 + 53.955 N,
+    // not the unbounded force of stopping in no stroke.
     let cmd = law.step(&t, 5.0, 0.5);
-    assert_eq!(cmd.current_a, 2.0);
+    assert!((cmd.target_force_n - 6928.955).abs() < 0.5, "{}", cmd.target_force_n);
     assert!(cmd.flags.contains(Flags::STROKE_EXHAUSTED));
+    // Beyond the end, the same; a fast arrival still gets the maximum.
+    let mut law = ImpactLaw::new(cfg).expect("valid config");
+    let cmd = law.step(&t, 5.3, 3.0);
+    assert_eq!(cmd.current_a, 2.0);
+    assert!(cmd.flags.contains(Flags::STROKE_EXHAUSTED | Flags::SATURATED_HIGH));
+    // Before the terminal zone the plan uses the real remaining stroke.
+    let mut law = ImpactLaw::new(cfg).expect("valid config");
+    assert!(!law.step(&t, 4.8, 0.5).flags.contains(Flags::STROKE_EXHAUSTED));
 }
 
 #[test]

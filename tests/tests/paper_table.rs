@@ -5,7 +5,8 @@
 //! quartic is just the sum of its coefficients, which is checked by hand too.
 use mre_core::model::Branch;
 use mre_core::table::{
-    content_crc, CurrentEntry, Quartic, Table, TableError, TableImage, FORMAT_VERSION, PAPER_TABLE4_ENTRIES,
+    content_crc, CurrentEntry, ModelTerms, Quartic, Table, TableError, TableImage, FORMAT_VERSION, FORMAT_VERSION_1,
+    PAPER_TABLE4_ENTRIES,
 };
 use mre_tests::crc32_reference;
 
@@ -193,9 +194,10 @@ fn corrupt_or_inconsistent_tables_are_rejected() {
 #[test]
 fn a_flipped_bit_in_a_stored_table_fails_its_crc() {
     let good = TableImage {
-        version: FORMAT_VERSION,
+        version: FORMAT_VERSION_1,
         entries: &PAPER_TABLE4_ENTRIES,
-        crc32: content_crc(FORMAT_VERSION, &PAPER_TABLE4_ENTRIES),
+        terms: ModelTerms::NONE,
+        crc32: content_crc(FORMAT_VERSION_1, &PAPER_TABLE4_ENTRIES, &ModelTerms::NONE),
     };
     assert!(Table::from_image(&good).is_ok());
     let mut corrupt = PAPER_TABLE4_ENTRIES;
@@ -227,16 +229,104 @@ fn crc_is_the_standard_crc32_of_the_documented_byte_layout() {
         "reference implementation self-check"
     );
     let entries = [entry(0.0), entry(1.0)];
-    let mut bytes = vec![];
-    bytes.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
-    bytes.push(2);
-    for e in &entries {
-        for v in [e.current_a, e.x_min_mm, e.x_max_mm] {
-            bytes.extend_from_slice(&v.to_le_bytes());
+    let layout = |version: u16| {
+        let mut bytes = vec![];
+        bytes.extend_from_slice(&version.to_le_bytes());
+        bytes.push(2);
+        for e in &entries {
+            for v in [e.current_a, e.x_min_mm, e.x_max_mm] {
+                bytes.extend_from_slice(&v.to_le_bytes());
+            }
+            for v in e.compression.coeffs.iter().chain(&e.extension.coeffs) {
+                bytes.extend_from_slice(&v.to_le_bytes());
+            }
         }
-        for v in e.compression.coeffs.iter().chain(&e.extension.coeffs) {
-            bytes.extend_from_slice(&v.to_le_bytes());
-        }
+        bytes
+    };
+    let none = ModelTerms::NONE;
+    assert_eq!(
+        content_crc(FORMAT_VERSION_1, &entries, &none),
+        crc32_reference(&layout(FORMAT_VERSION_1))
+    );
+    // Version 2 appends I_s, sensor delay, coil τ and one viscous term per entry.
+    let mut terms = ModelTerms {
+        saturation_current_a: 0.75,
+        sensor_delay_s: 2.0e-4,
+        coil_tau_s: 3.0e-3,
+        ..none
+    };
+    terms.viscous_n_s_per_m[0] = 120.0;
+    terms.viscous_n_s_per_m[1] = 240.0;
+    terms.viscous_n_s_per_m[5] = 99.0; // past the entries: not hashed
+    let mut bytes = layout(FORMAT_VERSION);
+    for v in [0.75f32, 2.0e-4, 3.0e-3, 120.0, 240.0] {
+        bytes.extend_from_slice(&v.to_le_bytes());
     }
-    assert_eq!(content_crc(FORMAT_VERSION, &entries), crc32_reference(&bytes));
+    assert_eq!(content_crc(FORMAT_VERSION, &entries, &terms), crc32_reference(&bytes));
+}
+
+#[test]
+fn version_2_images_carry_their_terms_and_version_1_images_may_not() {
+    let entries = [entry(0.0), entry(1.0)];
+    let mut terms = ModelTerms {
+        coil_tau_s: 2.0e-3,
+        ..ModelTerms::NONE
+    };
+    terms.viscous_n_s_per_m[1] = 50.0;
+    let v2 = Table::with_terms(&entries, terms).unwrap();
+    assert_eq!(v2.version(), FORMAT_VERSION);
+    let image = TableImage {
+        version: FORMAT_VERSION,
+        entries: &entries,
+        terms,
+        crc32: v2.crc32(),
+    };
+    assert_eq!(Table::from_image(&image), Ok(v2));
+    // A changed term breaks the CRC.
+    let changed = TableImage {
+        terms: ModelTerms {
+            coil_tau_s: 2.5e-3,
+            ..terms
+        },
+        ..image
+    };
+    assert!(matches!(
+        Table::from_image(&changed),
+        Err(TableError::CrcMismatch { .. })
+    ));
+    // Terms in a version 1 image are refused, whatever its CRC.
+    let v1_with_terms = TableImage {
+        version: FORMAT_VERSION_1,
+        crc32: content_crc(FORMAT_VERSION_1, &entries, &terms),
+        ..image
+    };
+    assert!(matches!(
+        Table::from_image(&v1_with_terms),
+        Err(TableError::BadTerm { .. })
+    ));
+    // Out-of-range terms are refused.
+    for bad in [
+        ModelTerms {
+            coil_tau_s: -1.0e-3,
+            ..terms
+        },
+        ModelTerms {
+            sensor_delay_s: f32::NAN,
+            ..terms
+        },
+        ModelTerms {
+            saturation_current_a: -0.5,
+            ..terms
+        },
+        // tanh(2 A / 0.01 A) rounds to 1: the knots collapse.
+        ModelTerms {
+            saturation_current_a: 0.01,
+            ..terms
+        },
+    ] {
+        assert!(
+            matches!(Table::with_terms(&entries, bad), Err(TableError::BadTerm { .. })),
+            "{bad:?}"
+        );
+    }
 }

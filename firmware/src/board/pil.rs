@@ -336,7 +336,8 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
 pub mod icount {
     use core::hint::black_box;
     use mre_core::control::Controller;
-    use mre_core::Branch;
+    use mre_core::table::ModelTerms;
+    use mre_core::{Branch, Table};
 
     #[inline(never)]
     #[no_mangle]
@@ -352,40 +353,41 @@ pub mod icount {
         cortex_m::asm::nop();
     }
 
-    /// Model step cases: (x_mm, target_force_n) on the compression branch.
-    /// Table 4 at these x brackets the targets in different segments; the
-    /// last is above every current (saturated: the longest path).
-    const MODEL_CASES: [(f32, f32); 4] = [(0.1, 600.0), (0.2, 1726.25), (0.5, 3000.0), (0.9, 9000.0)];
-    /// Law step cases: (x_mm, v_m_s), the first two control cases.
-    const LAW_CASES: [(f32, f32); 2] = [(0.2, 3.0), (0.5, 2.0)];
-    /// Control step cases: (x_mm, velocity sensor) from one impact.
-    const CONTROL_CASES: [(f32, Option<f32>); 4] = [(0.2, Some(3.0)), (0.5, Some(2.0)), (0.8, None), (0.3, Some(-1.0))];
+    /// Model step cases over the whole usable stroke, (x_mm, v_m_s,
+    /// target_force_n) on the compression branch: inside every entry's
+    /// stroke, beyond the stiff entries' strokes (x ≥ 4 mm: clamped), at the
+    /// end, and saturated (above every current: the longest scan).
+    const MODEL_CASES: [(f32, f32, f32); 6] = [
+        (0.5, 2.2, 900.0),
+        (2.0, 2.0, 1300.0),
+        (3.5, 1.9, 1250.0),
+        (6.0, 1.5, 1250.0),
+        (10.0, 0.9, 1300.0),
+        (12.0, 0.3, 90_000.0),
+    ];
+    /// Control step cases over one impact: (x_mm, velocity sensor).
+    const CONTROL_CASES: [(f32, Option<f32>); 6] = [
+        (0.5, Some(2.2)),
+        (3.0, Some(1.9)),
+        (6.0, Some(1.5)),
+        (10.0, None),
+        (11.95, Some(0.2)),
+        (6.0, Some(-1.0)),
+    ];
 
-    pub fn run(ctl: &mut Controller) {
-        // No SysTick interrupts inside the measured windows.
-        // SAFETY: only SYST is touched; the executor has not started yet.
-        let mut syst = unsafe { cortex_m::Peripherals::steal() }.SYST;
-        syst.disable_interrupt();
-        syst.disable_counter();
-        if let Some(table) = ctl.table().copied() {
-            for &(x_mm, force_n) in &MODEL_CASES {
-                let (x_mm, force_n) = (black_box(x_mm), black_box(force_n));
-                mre_mark_begin();
-                let r = table.current_for_branch(x_mm, Branch::Compression, force_n);
-                mre_mark_end();
-                black_box(r);
-            }
+    /// The model step (the inverse at the law's target) over [`MODEL_CASES`].
+    fn model_steps(table: &mre_core::Table) {
+        for &(x_mm, v_m_s, force_n) in &MODEL_CASES {
+            let (x_mm, v_m_s, force_n) = (black_box(x_mm), black_box(v_m_s), black_box(force_n));
+            mre_mark_begin();
+            let r = table.current_for_branch_v(x_mm, v_m_s, Branch::Compression, force_n);
+            mre_mark_end();
+            black_box(r);
         }
-        // The law alone (no estimator, stuck check or fault accounting).
-        if let (Some(table), Ok(mut law)) = (ctl.table().copied(), mre_core::law::ImpactLaw::new(ctl.config().law)) {
-            for &(x_mm, v_m_s) in &LAW_CASES {
-                let (x_mm, v_m_s) = (black_box(x_mm), black_box(v_m_s));
-                mre_mark_begin();
-                let cmd = law.step(&table, x_mm, v_m_s);
-                mre_mark_end();
-                black_box(cmd);
-            }
-        }
+    }
+
+    /// The whole control step (estimator, law, faults) over [`CONTROL_CASES`].
+    fn control_steps(ctl: &mut Controller) {
         for &(x_mm, v) in &CONTROL_CASES {
             let (x_mm, v) = (black_box(x_mm), black_box(v));
             mre_mark_begin();
@@ -393,6 +395,31 @@ pub mod icount {
             mre_mark_end();
             black_box(cmd);
         }
+    }
+
+    /// The flown table, then the same entries with every version 2 term
+    /// (coil τ, sensor delay, viscous, saturation): the worst path.
+    pub fn run(ctl: &mut Controller) {
+        // No SysTick interrupts inside the measured windows.
+        // SAFETY: only SYST is touched; the executor has not started yet.
+        let mut syst = unsafe { cortex_m::Peripherals::steal() }.SYST;
+        syst.disable_interrupt();
+        syst.disable_counter();
+        let Some(flown) = ctl.table().copied() else {
+            defmt::error!("icount: no table");
+            semihosting::process::exit(1)
+        };
+        model_steps(&flown);
+        control_steps(ctl);
+        let with_terms = Table::with_terms(flown.entries(), ModelTerms::EVERY_TERM);
+        let Ok(mut ctl_terms) = Controller::new(*ctl.config(), with_terms) else {
+            defmt::error!("icount: terms table refused");
+            semihosting::process::exit(1)
+        };
+        if let Some(t) = ctl_terms.table().copied() {
+            model_steps(&t);
+        }
+        control_steps(&mut ctl_terms);
         defmt::info!("icount bench done");
         semihosting::process::exit(0)
     }

@@ -9,6 +9,7 @@ pub mod bench;
 pub mod candidates;
 pub mod design;
 pub mod locate;
+pub mod model_out;
 pub mod parameters;
 pub mod plots;
 pub mod prepared;

@@ -27,7 +27,7 @@
 use super::link::PilLink;
 use super::qemu::{qemu_binary, Qemu, INSTALL_HINT};
 use super::sim::{control_config, PilRequest};
-use crate::plant::closed_loop::{fit_controller_table, setup_for};
+use crate::plant::closed_loop::setup_for;
 use crate::plant::stepper::{simulate, CurrentSource};
 use anyhow::{anyhow, bail, ensure, Context, Result};
 use mre_core::control::{ControlConfig, Controller};
@@ -316,7 +316,7 @@ fn words_of(table: &mre_core::table::Table, cfg: &ControlConfig) -> Vec<u32> {
 /// the same `Controller` in process on the same readings as the reference.
 pub fn run_faults(request: &PilRequest, plan: &FaultPlan) -> Result<FaultReport> {
     let setup = setup_for(&request.sim)?;
-    let table = fit_controller_table(&setup.plant, &setup.impact, setup.usable_stroke_mm)?;
+    let table = crate::control_bench::diagnosed_table(&setup.plant, setup.impact.noise_seed)?;
     let cfg = control_config(&setup)?;
     let elf = match &request.elf {
         Some(p) => p.clone(),

@@ -35,10 +35,13 @@ pub struct InProcess {
 }
 
 impl InProcess {
-    /// The firmware's configuration: built-in Table 4 at the default rate.
+    /// The firmware's configuration: the flown (generated) table at the
+    /// default rate, as the `pil` image boots.
     pub fn firmware_default() -> Result<Self> {
         let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).map_err(|e| anyhow::anyhow!("control config: {e:?}"))?;
-        Self::new(cfg, Table::paper().map_err(|e| anyhow::anyhow!("{e}"))?)
+        let table =
+            Table::from_image(&mre_core::generated_table::GENERATED_TABLE).map_err(|e| anyhow::anyhow!("{e}"))?;
+        Self::new(cfg, table)
     }
 
     pub fn new(cfg: ControlConfig, table: Table) -> Result<Self> {

@@ -6,7 +6,7 @@
 use super::link::PilLink;
 use super::qemu::{qemu_binary, Qemu, INSTALL_HINT};
 use crate::plant::closed_loop::{
-    fit_controller_table, law_config, run_passive, setup_for, Comparison, RunResult, RunSpec, SimRequest, SimSetup,
+    controlled_impact, law_config, run_passive, setup_for, Comparison, RunResult, RunSpec, SimRequest, SimSetup,
     DEFAULT_RUNS,
 };
 use crate::plant::stepper::{simulate, CurrentSource, Trajectory};
@@ -77,7 +77,7 @@ pub fn run_in_process(setup: &SimSetup, table: &Table, cfg: &ControlConfig) -> R
     };
     simulate(
         &setup.plant,
-        &setup.impact,
+        &controlled_impact(setup, table),
         CurrentSource::Controller(Box::new(controller)),
     )
 }
@@ -110,7 +110,7 @@ pub fn run_firmware(setup: &SimSetup, table: &Table, cfg: &ControlConfig, elf: &
         };
         simulate(
             &setup.plant,
-            &setup.impact,
+            &controlled_impact(setup, table),
             CurrentSource::Controller(Box::new(controller)),
         )?
     };
@@ -165,7 +165,7 @@ pub fn run_pil(request: &PilRequest, report_dir: &Path) -> Result<PilOutcome> {
         Some(p) => p.clone(),
         None => super::qemu::build_firmware()?,
     };
-    let table = fit_controller_table(&setup.plant, &setup.impact, setup.usable_stroke_mm)?;
+    let table = crate::control_bench::diagnosed_table(&setup.plant, setup.impact.noise_seed)?;
     let cfg = control_config(&setup)?;
 
     let (firmware, frames) = run_firmware(&setup, &table, &cfg, &elf)?;

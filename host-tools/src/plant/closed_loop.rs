@@ -1,18 +1,14 @@
 //! `mre sim`: the drop test with the core's impact-mitigation law in the loop
 //! (in process), compared with the passive damper at 0 A and 2 A.
 //!
-//! The controller needs a table that describes *this* plant, so one is fitted
-//! here the way a user would: passive drops at each tabulated current, hard
-//! enough to use the whole usable stroke, and one least-squares quartic per
-//! current and branch (`mre_host::linalg::solve`), sealed into a core
-//! [`Table`].
-use super::law::GAIN_KNOT_CURRENTS_A;
+//! The controller flies the table a user would make for *this* plant:
+//! controller (c) of `mre bench-control` — the plant's recorded campaign,
+//! `mre diagnose --model-out`, its model file
+//! ([`crate::control_bench::diagnosed_table`]).
 use super::stepper::{simulate, CurrentSource, ImpactConfig, ImpactSummary, Plant, Trajectory};
-use crate::linalg::solve;
 use anyhow::{bail, Context, Result};
 use mre_core::law::{ImpactLaw, LawConfig};
-use mre_core::{CurrentEntry, Quartic, Table};
-use nalgebra::{DMatrix, DVector};
+use mre_core::Table;
 use serde::Serialize;
 
 /// Stroke the damper may use (mm): the elastomer's rated compression. The
@@ -102,80 +98,6 @@ pub struct Comparison {
     pub controlled_vs_passive: Option<(String, f64)>,
 }
 
-/// Impact speed at which a passive drop at `current_a` just uses `stroke_mm`.
-fn velocity_for_stroke(plant: &Plant, impact: &ImpactConfig, current_a: f64, stroke_mm: f64) -> Result<f64> {
-    let stroke_at = |v: f64| -> Result<f64> {
-        let cfg = ImpactConfig {
-            impact_velocity_m_s: v,
-            ..impact.clone()
-        };
-        Ok(simulate(plant, &cfg, CurrentSource::Constant(current_a))?
-            .summary
-            .max_stroke_mm)
-    };
-    let (mut lo, mut hi): (f64, f64) = (0.05, 50.0);
-    if stroke_at(hi)? < stroke_mm {
-        bail!("{current_a} A: even {hi} m/s does not reach {stroke_mm} mm");
-    }
-    for _ in 0..30 {
-        let mid: f64 = (lo * hi).sqrt();
-        if stroke_at(mid)? < stroke_mm {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    Ok(hi)
-}
-
-/// Least-squares quartic `F(x)` (highest power first, as the core stores it).
-fn fit_quartic(points: &[(f64, f64)]) -> Result<Quartic> {
-    let a = DMatrix::from_fn(points.len(), 5, |r, c| points[r].0.powi(4 - c as i32));
-    let y = DVector::from_iterator(points.len(), points.iter().map(|p| p.1));
-    let fit = solve(&a, &y)?;
-    let mut coeffs = [0f32; 5];
-    for (dst, src) in coeffs.iter_mut().zip(&fit.coeffs) {
-        *dst = *src as f32;
-    }
-    Ok(Quartic::new(coeffs))
-}
-
-/// The controller's table for `plant`: at each tabulated current a passive
-/// drop that just covers 110 % of the usable stroke, sampled at 100 kHz with
-/// the plant's instrument, split into branches by the measured velocity's
-/// sign, one quartic per branch.
-pub fn fit_controller_table(plant: &Plant, impact: &ImpactConfig, usable_stroke_mm: f64) -> Result<Table> {
-    let mut fine = plant.clone();
-    fine.measurement.sample_period_s = 10.0e-6;
-    let cover_mm = 1.1 * usable_stroke_mm;
-    let mut entries = Vec::new();
-    for (k, &current_a) in GAIN_KNOT_CURRENTS_A.iter().enumerate() {
-        let v = velocity_for_stroke(&fine, impact, current_a, cover_mm)?;
-        let cfg = ImpactConfig {
-            impact_velocity_m_s: v,
-            noise_seed: impact.noise_seed.wrapping_add(1000 + k as u64),
-            ..impact.clone()
-        };
-        let t = simulate(&fine, &cfg, CurrentSource::Constant(current_a))?;
-        let branch = |loading: bool| -> Vec<(f64, f64)> {
-            t.samples
-                .iter()
-                .filter(|s| (s.v_m_s > 0.0) == loading)
-                .map(|s| (s.x_mm, s.force_n))
-                .collect()
-        };
-        let x_max_mm = t.samples.iter().map(|s| s.x_mm).fold(0.0, f64::max);
-        entries.push(CurrentEntry {
-            current_a: current_a as f32,
-            compression: fit_quartic(&branch(true))?,
-            extension: fit_quartic(&branch(false))?,
-            x_min_mm: 0.0,
-            x_max_mm: x_max_mm as f32,
-        });
-    }
-    Table::new(&entries).map_err(|e| anyhow::anyhow!("fitted table rejected: {e}"))
-}
-
 /// The core law's settings for this plant and drop.
 pub fn law_config(setup: &SimSetup) -> LawConfig {
     LawConfig {
@@ -187,24 +109,32 @@ pub fn law_config(setup: &SimSetup) -> LawConfig {
     }
 }
 
-/// Runs the drop with the core's `ImpactLaw` and `table` in the loop.
+/// Runs the drop with the core's `ImpactLaw` and `table` in the loop. When
+/// the table carries a coil time constant the law pre-energises the coil
+/// while idle, so the drop starts with the coil settled at that current.
 pub fn run_controlled(setup: &SimSetup, table: &Table) -> Result<Trajectory> {
     let mut law = ImpactLaw::new(law_config(setup)).map_err(|e| anyhow::anyhow!("law configuration: {e:?}"))?;
+    let impact = controlled_impact(setup, table);
     let controller = move |x_mm: f32, v_m_s: f32| law.step(table, x_mm, v_m_s).current_a;
-    simulate(
-        &setup.plant,
-        &setup.impact,
-        CurrentSource::Controller(Box::new(controller)),
-    )
+    simulate(&setup.plant, &impact, CurrentSource::Controller(Box::new(controller)))
+}
+
+/// The drop of a controlled run: the coil starts at the current the law
+/// held while idle ([`ImpactLaw::idle_current_a`]).
+pub fn controlled_impact(setup: &SimSetup, table: &Table) -> ImpactConfig {
+    let idle_a = ImpactLaw::new(law_config(setup)).map_or(0.0, |law| law.idle_current_a(table));
+    ImpactConfig {
+        initial_current_a: f64::from(idle_a),
+        ..setup.impact.clone()
+    }
 }
 
 /// Runs every spec and compares them.
 pub fn run_comparison(setup: &SimSetup, specs: &[RunSpec]) -> Result<Comparison> {
     let table = if specs.contains(&RunSpec::Controlled) {
-        Some(fit_controller_table(
+        Some(crate::control_bench::diagnosed_table(
             &setup.plant,
-            &setup.impact,
-            setup.usable_stroke_mm,
+            setup.impact.noise_seed,
         )?)
     } else {
         None
@@ -301,7 +231,7 @@ pub const DEFAULT_RUNS: [RunSpec; 3] = [RunSpec::Passive(0.0), RunSpec::Passive(
 /// The calibrated plant with the requested effect (parameters drawn from the
 /// seed, sized as `mre synth` sizes them), and the drop.
 pub fn setup_for(request: &SimRequest) -> Result<SimSetup> {
-    use super::effects::draw_effect;
+    use super::effects::{draw_effect, Effect};
     use super::synth::{effect_scale, resolve_effect_name, SynthPlan};
     use rand::SeedableRng;
     let name = resolve_effect_name(&request.effect, request.seed)?;
@@ -309,7 +239,12 @@ pub fn setup_for(request: &SimRequest) -> Result<SimSetup> {
     let scale = effect_scale(&base, &SynthPlan::default())?;
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(request.seed);
     rng.set_stream(3);
-    let plant = base.with_effect(draw_effect(name, &mut rng, scale)?);
+    let mut plant = base.with_effect(draw_effect(name, &mut rng, scale)?);
+    // `--coil-lag-ms` on a plant without an effect is the coil_lag effect,
+    // so the campaign controller (c) is made from shows it too.
+    if let (Some(tau_s), Effect::None) = (request.coil_lag_s, &plant.effect) {
+        plant = plant.with_effect(Effect::CoilLag { time_constant_s: tau_s });
+    }
     let impact = ImpactConfig {
         mass_kg: request.mass_kg,
         impact_velocity_m_s: request.impact_velocity_m_s,

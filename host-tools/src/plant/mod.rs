@@ -21,4 +21,4 @@ pub mod synth;
 pub use effects::{Effect, EFFECT_NAMES};
 pub use law::LawParams;
 pub use measure::MeasurementModel;
-pub use stepper::{simulate, CurrentSource, ImpactConfig, ImpactSummary, Plant, PlantStepper, Sample, Trajectory};
+pub use stepper::{simulate, CoilDriver, CurrentSource, ImpactConfig, ImpactSummary, Plant, PlantStepper, Sample, Trajectory};

@@ -88,6 +88,12 @@ pub fn force_time_png(cmp: &Comparison, path: &Path) -> Result<()> {
 
 /// Measured force against measured displacement, with the usable stroke.
 pub fn force_displacement_png(cmp: &Comparison, path: &Path) -> Result<()> {
+    force_displacement_with_limit_png(cmp, None, path)
+}
+
+/// [`force_displacement_png`] with a horizontal line at `limit_n` (the
+/// physical limit of `mre bench-control`), if given.
+pub fn force_displacement_with_limit_png(cmp: &Comparison, limit_n: Option<f64>, path: &Path) -> Result<()> {
     let all = || cmp.runs.iter().flat_map(|r| r.trajectory.samples.iter());
     let (_, x_max) = bounds(all().map(|s| s.x_mm));
     let (_, f_max) = bounds(all().map(|s| s.force_n));
@@ -121,6 +127,19 @@ pub fn force_displacement_png(cmp: &Comparison, path: &Path) -> Result<()> {
             .map_err(|e| anyhow!("{e}"))?
             .label(format!("usable stroke {stroke:.0} mm"))
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey.stroke_width(2)));
+        if let Some(limit) = limit_n {
+            let black = RGBColor(0, 0, 0);
+            chart
+                .draw_series(DashedLineSeries::new(
+                    vec![(0.0, limit), (x_hi, limit)],
+                    4,
+                    4,
+                    black.stroke_width(2),
+                ))
+                .map_err(|e| anyhow!("{e}"))?
+                .label(format!("physical limit {limit:.0} N"))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], black.stroke_width(2)));
+        }
         legend(&mut chart, SeriesLabelPosition::UpperLeft)
     })
 }

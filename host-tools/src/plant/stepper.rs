@@ -77,6 +77,9 @@ pub struct ImpactConfig {
     pub max_duration_s: f64,
     /// First-order coil time constant L/R (s); `None` = the current follows the command at once.
     pub coil_lag_s: Option<f64>,
+    /// The coil driver: with a coil lag the command (A) is the driver's
+    /// voltage over R, limited by its supply.
+    pub driver: CoilDriver,
     /// Coil current at contact (before the first command).
     pub initial_current_a: f64,
     /// Position of this test in the run order (1 = first), for history effects.
@@ -96,10 +99,46 @@ impl Default for ImpactConfig {
             control_period_s: 1.0e-4,
             max_duration_s: 0.5,
             coil_lag_s: None,
+            driver: CoilDriver::default(),
             initial_current_a: 0.0,
             sequence: 1,
             noise_seed: 0,
         }
+    }
+}
+
+/// A voltage-source coil driver: `L·di/dt = V − R·i` with `V = R·command`
+/// limited to the supply, so with `τ = L/R` the current follows the command
+/// through a first-order lag whose input saturates at `±V_s/R`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct CoilDriver {
+    pub resistance_ohm: f64,
+    pub supply_v: f64,
+    /// A half bridge can drive −V_s (fast decay); a low-side switch only 0 V.
+    pub reverse: bool,
+}
+
+impl Default for CoilDriver {
+    /// The board's coil drive (firmware/README.md): 12 V half bridge, 4 Ω coil.
+    fn default() -> Self {
+        Self {
+            resistance_ohm: 4.0,
+            supply_v: 12.0,
+            reverse: true,
+        }
+    }
+}
+
+impl CoilDriver {
+    /// The command range (A) the supply allows: `[−V_s/R or 0, V_s/R]`.
+    pub fn command_range_a(&self) -> (f64, f64) {
+        let max = self.supply_v / self.resistance_ohm;
+        (if self.reverse { -max } else { 0.0 }, max)
+    }
+
+    /// Inductance (H) of a coil with time constant `tau_s`.
+    pub fn inductance_h(&self, tau_s: f64) -> f64 {
+        tau_s * self.resistance_ohm
     }
 }
 
@@ -123,6 +162,9 @@ pub struct ImpactSummary {
     pub peak_force_n: f64,
     /// Largest deceleration of the mass, `F/m − g` (m/s²).
     pub peak_deceleration_m_s2: f64,
+    /// Largest jerk `|Δ(F/m)|/T` (m/s³) between control-period boundaries
+    /// (T = the control period): what an occupant feels, on the true force.
+    pub peak_jerk_m_s3: f64,
     pub max_stroke_mm: f64,
     /// Speed at which the mass leaves the damper (m/s, ≥ 0), if it did.
     pub rebound_velocity_m_s: Option<f64>,
@@ -215,6 +257,11 @@ impl PlantStepper {
         if let Some(tau) = cfg.coil_lag_s {
             ensure!(tau.is_finite() && tau > 0.0, "coil lag must be positive");
         }
+        let d = &cfg.driver;
+        ensure!(
+            d.resistance_ohm.is_finite() && d.resistance_ohm > 0.0 && d.supply_v.is_finite() && d.supply_v > 0.0,
+            "coil driver needs a positive resistance and supply voltage: {d:?}"
+        );
         let steps_per_period = whole_steps(cfg.control_period_s, cfg.step_s, "control period")?;
         let steps_per_sample = whole_steps(plant.measurement.sample_period_s, cfg.step_s, "sample period")?;
         ensure!(
@@ -240,6 +287,7 @@ impl PlantStepper {
             summary: ImpactSummary {
                 peak_force_n: 0.0,
                 peak_deceleration_m_s2: -cfg.gravity_m_s2,
+                peak_jerk_m_s3: 0.0,
                 max_stroke_mm: 0.0,
                 rebound_velocity_m_s: None,
                 contact_time_s: 0.0,
@@ -306,7 +354,12 @@ impl PlantStepper {
 
     fn update_coil(&mut self) {
         self.current_a = match self.cfg.coil_lag_s {
-            Some(tau) => self.current_a + (self.command_a - self.current_a) * (1.0 - (-self.cfg.step_s / tau).exp()),
+            Some(tau) => {
+                // The voltage the supply can give, over R: the current's target.
+                let (lo, hi) = self.cfg.driver.command_range_a();
+                let drive_a = self.command_a.clamp(lo, hi);
+                self.current_a + (drive_a - self.current_a) * (1.0 - (-self.cfg.step_s / tau).exp())
+            }
             None => self.command_a,
         };
     }
@@ -359,6 +412,11 @@ impl PlantStepper {
             .peak_deceleration_m_s2
             .max(force_n / self.cfg.mass_kg - self.cfg.gravity_m_s2);
         s.max_stroke_mm = s.max_stroke_mm.max(self.state.x_m * 1.0e3);
+        if self.step.is_multiple_of(self.steps_per_period) {
+            let previous_n = self.force_history_n[(self.step - self.steps_per_period) as usize];
+            let jerk = (force_n - previous_n).abs() / (self.cfg.mass_kg * self.cfg.control_period_s);
+            s.peak_jerk_m_s3 = s.peak_jerk_m_s3.max(jerk);
+        }
         let state_bad = !(self.state.x_m.is_finite() && self.state.v_m_s.is_finite());
         if !self.finished && (self.time_s() >= self.cfg.max_duration_s || state_bad) {
             self.summary.contact_time_s = self.time_s();

@@ -47,6 +47,12 @@ pub struct SynthPlan {
     pub controlled: Vec<ControlledImpact>,
     /// Time after contact at which the controlled impacts' command steps (s).
     pub step_at_s: f64,
+    /// A drop height per current: when set, each constant-current test's
+    /// velocities are scaled so that the fastest one reaches this stroke
+    /// (mm) on the plant, so the stiff currents are recorded over the whole
+    /// stroke as the soft ones are (see [`SynthPlan::full_stroke`]). `None`:
+    /// the same velocities at every current (the paper's drop test).
+    pub full_stroke_mm: Option<f64>,
 }
 
 impl Default for SynthPlan {
@@ -79,8 +85,58 @@ impl Default for SynthPlan {
             // the shortest compression of any plant synth draws is 2.65 ms
             // (2 A, stiffest law).
             step_at_s: 0.8e-3,
+            full_stroke_mm: None,
         }
     }
+}
+
+impl SynthPlan {
+    /// The default campaign with a drop height per current chosen so that
+    /// the fastest test of every current reaches `stroke_mm`: a model fitted
+    /// on it covers the whole usable stroke at every current instead of
+    /// being clamped beyond where the stiff currents stop the paper's drop.
+    pub fn full_stroke(stroke_mm: f64) -> Self {
+        Self {
+            full_stroke_mm: Some(stroke_mm),
+            ..Self::default()
+        }
+    }
+}
+
+/// The impact velocity (m/s, to 0.01) at which a drop of `mass_kg` at
+/// constant `current_a` reaches `stroke_mm` on `plant`: bisection on the
+/// velocity (the peak stroke grows with it).
+pub fn velocity_reaching(plant: &Plant, mass_kg: f64, current_a: f64, stroke_mm: f64) -> Result<f64> {
+    ensure!(
+        stroke_mm.is_finite() && stroke_mm > 0.0,
+        "the full stroke must be positive, got {stroke_mm} mm"
+    );
+    let reach = |v: f64| -> Result<f64> {
+        let cfg = ImpactConfig {
+            mass_kg,
+            impact_velocity_m_s: v,
+            initial_current_a: current_a,
+            ..ImpactConfig::default()
+        };
+        Ok(simulate(plant, &cfg, CurrentSource::Constant(current_a))?
+            .summary
+            .max_stroke_mm)
+    };
+    let (mut lo, mut hi) = (0.1f64, 30.0f64);
+    ensure!(
+        reach(hi)? >= stroke_mm,
+        "{current_a} A: even {hi} m/s does not reach {stroke_mm} mm"
+    );
+    // 0.1–30 m/s to 0.005 m/s: 13 halvings.
+    while hi - lo > 0.005 {
+        let mid = 0.5 * (lo + hi);
+        if reach(mid)? >= stroke_mm {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok((hi * 100.0).ceil() / 100.0)
 }
 
 /// Decimal places written per column: below each channel's resolution.
@@ -232,7 +288,8 @@ impl Test {
     }
 }
 
-fn plan_tests(plan: &SynthPlan, seed: u64) -> Result<Vec<Test>> {
+/// `plant`: the plant the drop heights of a full-stroke plan are chosen on.
+fn plan_tests(plan: &SynthPlan, seed: u64, plant: &Plant) -> Result<Vec<Test>> {
     ensure!(plan.repeats >= 1, "at least one repeat");
     ensure!(!plan.velocities_m_s.is_empty(), "at least one impact velocity");
     ensure!(
@@ -244,9 +301,17 @@ fn plan_tests(plan: &SynthPlan, seed: u64) -> Result<Vec<Test>> {
         (Role::Fit, &plan.fit_currents_a),
         (Role::Validate, &plan.validate_currents_a),
     ];
+    let fastest = plan.velocities_m_s.iter().copied().fold(0.0, f64::max);
     for (role, currents) in roles {
         for &current_a in currents.iter() {
+            // The same drop heights at every current, or scaled per current
+            // so the fastest reaches the full stroke.
+            let scale = match plan.full_stroke_mm {
+                Some(stroke_mm) => velocity_reaching(plant, plan.mass_kg, current_a, stroke_mm)? / fastest,
+                None => 1.0,
+            };
             for &v in &plan.velocities_m_s {
+                let v = (v * scale * 100.0).round() / 100.0;
                 for repeat in 1..=plan.repeats {
                     tests.push(Test::new(current_a, None, role, v, repeat));
                 }
@@ -313,8 +378,12 @@ pub fn synthesize(effect: &str, seed: u64) -> Result<SynthOutput> {
 
 /// Synthesises a whole data set in memory (no disk).
 pub fn synthesize_with_plan(effect: &str, seed: u64, plan: &SynthPlan) -> Result<SynthOutput> {
-    let plant = draw_plant(effect, seed, plan)?;
-    let tests = plan_tests(plan, seed)?;
+    synthesize_plant(draw_plant(effect, seed, plan)?, seed, plan)
+}
+
+/// The campaign of `plan` recorded on a given plant (`mre bench-control` sets the coil τ).
+pub fn synthesize_plant(plant: Plant, seed: u64, plan: &SynthPlan) -> Result<SynthOutput> {
+    let tests = plan_tests(plan, seed, &plant)?;
     let recordings = tests
         .par_iter()
         .map(|test| {
@@ -398,6 +467,18 @@ pub fn default_key_path(out: &Path) -> PathBuf {
 /// `mre synth`: writes the data set to `out` and its key to `key_path`
 /// (default [`default_key_path`]). The key may not be inside `out`.
 pub fn write_synth(effect: &str, seed: u64, out: &Path, key_path: Option<&Path>, force: bool) -> Result<SynthOutput> {
+    write_synth_with_plan(effect, seed, &SynthPlan::default(), out, key_path, force)
+}
+
+/// [`write_synth`] with a given campaign plan (`mre synth --full-stroke-mm`).
+pub fn write_synth_with_plan(
+    effect: &str,
+    seed: u64,
+    plan: &SynthPlan,
+    out: &Path,
+    key_path: Option<&Path>,
+    force: bool,
+) -> Result<SynthOutput> {
     let key_path = key_path.map_or_else(|| default_key_path(out), Path::to_path_buf);
     let inside = |p: &Path| -> bool {
         let abs = |q: &Path| std::path::absolute(q).unwrap_or_else(|_| q.to_path_buf());
@@ -414,7 +495,7 @@ pub fn write_synth(effect: &str, seed: u64, out: &Path, key_path: Option<&Path>,
         "the key file {} exists; pass --force to replace it",
         key_path.display()
     );
-    let output = synthesize(effect, seed)?;
+    let output = synthesize_with_plan(effect, seed, plan)?;
     let options = WriteOptions {
         force,
         precision: SYNTH_PRECISION,

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Fails when the firmware exceeds its budgets (issue 11):
+#   model step ≤ 150 and control step ≤ 400 executed instructions on the
+#   worst path (firmware/bench/icount.sh, QEMU), flash ≤ 64 KiB and
+#   RAM ≤ 16 KiB (static: .data + .bss + .uninit) for the `cargo fw` image.
+# Usage: bash firmware/bench/budgets.sh   (from the repository root; builds
+# the images it measures)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+MODEL_MAX=150 CONTROL_MAX=400 FLASH_MAX=$((64 * 1024)) RAM_MAX=$((16 * 1024))
+
+COUNTS=$(bash firmware/bench/icount.sh)
+echo "$COUNTS"
+cargo build --release -q -p mre-firmware --bin mre-firmware --target thumbv7em-none-eabihf
+ELF=target/thumbv7em-none-eabihf/release/mre-firmware
+SIZES=$(llvm-size -A "$ELF")
+
+echo "$COUNTS" | awk -v m="$MODEL_MAX" -v c="$CONTROL_MAX" '
+  { n = $(NF - 1) }
+  /model x=/   { if (n > mm) mm = n }
+  /control x=/ { if (n > cm) cm = n }
+  END {
+    printf "model step worst %d / %d instructions, control step worst %d / %d\n", mm, m, cm, c
+    if (mm == 0 || cm == 0) { print "no instruction counts" > "/dev/stderr"; exit 1 }
+    if (mm > m || cm > c) { print "BUDGET EXCEEDED: instructions per step" > "/dev/stderr"; exit 1 }
+  }'
+echo "$SIZES" | awk -v f="$FLASH_MAX" -v r="$RAM_MAX" '
+  $1 ~ /^\.(vector_table|text|rodata|data)$/ { flash += $2 }
+  $1 ~ /^\.(data|bss|uninit)$/ { ram += $2 }
+  END {
+    printf "flash %d / %d bytes, static RAM %d / %d bytes\n", flash, f, ram, r
+    if (flash == 0) { print "no sections measured" > "/dev/stderr"; exit 1 }
+    if (flash > f || ram > r) { print "BUDGET EXCEEDED: memory" > "/dev/stderr"; exit 1 }
+  }'

@@ -1,0 +1,347 @@
+//! `mre bench-control`: the controllers a user can build, on plants with each
+//! concealed effect and with coil lags, judged against the physical limit.
+//!
+//! Per case: the plant records the standard campaign (`mre synth`'s plan);
+//! then, on the paper's drop (5.5 kg at 2.24 m/s, 12 mm usable stroke):
+//! - (a) the law with the paper's Table 4;
+//! - (b) the law with the table `mre fit` (least squares) makes of the campaign;
+//! - (c) the law with the model and terms `mre diagnose` finds on it
+//!   (`--model-out`), so it compensates coil lag;
+//! - anchor: soft landing at a constant deceleration fixed at impact
+//!   (the constant-Bingham-number control of MR energy absorbers), on
+//!   model (c), its command advanced by the identified coil lag (the
+//!   time-lag correction of Choi & Wereley's analysis), no re-planning.
+pub mod demo_step;
+pub mod limit;
+
+use crate::dataset::write::{write_dataset, WriteOptions};
+use crate::dataset::Dataset;
+use crate::plant::closed_loop::{law_config, run_controlled, SimSetup, USABLE_STROKE_MM};
+use crate::plant::effects::Effect;
+use crate::plant::stepper::{simulate, CurrentSource, ImpactConfig, ImpactSummary, Plant};
+use crate::plant::synth::{draw_base_plant, draw_plant, synthesize_plant, SynthPlan, SYNTH_PRECISION};
+use anyhow::{anyhow, Context, Result};
+use limit::{physical_limit, Limit};
+use mre_core::law::stopping_force_n;
+use mre_core::model::Branch;
+use mre_core::Table;
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// A plant to test on.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum Case {
+    /// A concealed effect with parameters drawn from the seed (`mre synth`).
+    Effect { name: String, seed: u64 },
+    /// The seed's base plant with a coil of this time constant (0 = none).
+    CoilTau { tau_ms: f64, seed: u64 },
+}
+
+impl Case {
+    pub fn label(&self) -> String {
+        match self {
+            Case::Effect { name, seed } => format!("{name} (seed {seed})"),
+            Case::CoilTau { tau_ms, seed } => format!("coil τ = {tau_ms} ms (seed {seed})"),
+        }
+    }
+
+    fn plant(&self, plan: &SynthPlan) -> Result<Plant> {
+        match self {
+            Case::Effect { name, seed } => draw_plant(name, *seed, plan),
+            Case::CoilTau { tau_ms, seed } => {
+                let base = draw_base_plant(*seed);
+                Ok(if *tau_ms > 0.0 {
+                    base.with_effect(Effect::CoilLag {
+                        time_constant_s: tau_ms * 1e-3,
+                    })
+                } else {
+                    base
+                })
+            }
+        }
+    }
+
+    fn seed(&self) -> u64 {
+        match self {
+            Case::Effect { seed, .. } | Case::CoilTau { seed, .. } => *seed,
+        }
+    }
+
+    /// The target for controller (c), as a multiple of the limit.
+    pub fn target_ratio(&self) -> f64 {
+        match self {
+            Case::Effect { name, .. } if name == "none" => 1.10,
+            Case::CoilTau { tau_ms, .. } if *tau_ms == 0.0 => 1.10,
+            Case::CoilTau { tau_ms, .. } if *tau_ms > 2.0 => 1.5,
+            _ => 1.25,
+        }
+    }
+}
+
+/// The default cases: every effect on the seeds of the bundled data sets
+/// (`data/generate.sh`), and coil τ ∈ {0, 1, 2, 5} ms.
+pub fn default_cases() -> Vec<Case> {
+    let mut cases: Vec<Case> = crate::plant::EFFECT_NAMES
+        .iter()
+        .zip(101u64..)
+        .map(|(name, seed)| Case::Effect {
+            name: (*name).to_owned(),
+            seed,
+        })
+        .collect();
+    cases.extend(
+        [0.0, 1.0, 2.0, 5.0]
+            .iter()
+            .zip(201u64..)
+            .map(|(&tau_ms, seed)| Case::CoilTau { tau_ms, seed }),
+    );
+    cases
+}
+
+/// One controller's drop.
+#[derive(Clone, Debug, Serialize)]
+pub struct RunOutcome {
+    pub controller: String,
+    pub peak_force_n: f64,
+    /// Peak force / the limit's `envelope_n`.
+    pub over_limit: f64,
+    pub max_stroke_mm: f64,
+    pub bottomed_out: bool,
+    pub peak_deceleration_m_s2: f64,
+    pub peak_jerk_m_s3: f64,
+    pub rebound_velocity_m_s: Option<f64>,
+}
+
+impl RunOutcome {
+    pub fn new(controller: &str, s: &ImpactSummary, limit: &Limit, stroke_mm: f64) -> Self {
+        RunOutcome {
+            controller: controller.to_owned(),
+            peak_force_n: s.peak_force_n,
+            over_limit: s.peak_force_n / limit.envelope_n,
+            max_stroke_mm: s.max_stroke_mm,
+            bottomed_out: s.max_stroke_mm > stroke_mm,
+            peak_deceleration_m_s2: s.peak_deceleration_m_s2,
+            peak_jerk_m_s3: s.peak_jerk_m_s3,
+            rebound_velocity_m_s: s.rebound_velocity_m_s,
+        }
+    }
+}
+
+/// One case's outcome.
+#[derive(Clone, Debug, Serialize)]
+pub struct CaseOutcome {
+    pub case: Case,
+    pub label: String,
+    pub limit: Limit,
+    /// What diagnose found on the campaign.
+    pub diagnosed: Vec<String>,
+    pub identified_coil_tau_s: f32,
+    /// (a), (b), (c), anchor.
+    pub runs: Vec<RunOutcome>,
+    pub target_ratio: f64,
+    /// (c) within the stroke, at most `target_ratio` × the limit, and no
+    /// higher a peak than (a) (nor bottoming out where (a) does not).
+    pub target_met: bool,
+}
+
+/// The three tables of a case.
+pub struct Controllers {
+    pub paper: Table,
+    pub fitted: Table,
+    pub diagnosed: Table,
+    pub findings: Vec<String>,
+}
+
+/// (b) and (c) from the campaign as loaded from disk, as a user would make
+/// them (`mre fit`'s model file, `mre diagnose --model-out`'s model file).
+pub fn controllers_for(campaign: &Dataset) -> Result<Controllers> {
+    let options = crate::fit::FitOptions {
+        method: crate::fit::Method::Lsq,
+        ..Default::default()
+    };
+    let run = crate::fit::fit_dataset(campaign, &options)?;
+    let fitted = crate::table_file::parse_table_toml(&crate::fit::model_file::to_toml(&run.model)?)
+        .context("(b): the fitted model")?;
+    let d = crate::diagnose::diagnose(campaign, &crate::diagnose::DiagnoseOptions::default())?;
+    let (_, text) = crate::diagnose::model_out::model_file(&d, campaign).context("(c): the final model")?;
+    let diagnosed = crate::table_file::parse_table_toml(&text).context("(c): the model file")?;
+    Ok(Controllers {
+        paper: Table::paper().map_err(|e| anyhow!("{e}"))?,
+        fitted,
+        diagnosed,
+        findings: d.findings.iter().map(|f| f.effect.name().to_owned()).collect(),
+    })
+}
+
+/// The drop every controller of a case flies: the paper's test, right after
+/// the campaign (so a softening plant is as the campaign left it).
+pub fn drop_setup(plant: &Plant, campaign_len: usize, seed: u64) -> SimSetup {
+    SimSetup {
+        plant: plant.clone(),
+        impact: ImpactConfig {
+            coil_lag_s: plant.effect.coil_lag_s(),
+            sequence: campaign_len as u32 + 1,
+            noise_seed: seed,
+            ..ImpactConfig::default()
+        },
+        usable_stroke_mm: USABLE_STROKE_MM,
+    }
+}
+
+/// The anchor: the force that stops the mass at a constant deceleration
+/// within the stroke is fixed from the first sample's speed (soft landing,
+/// constant Bingham number); each period commands the model's current for
+/// it at the displacement one coil τ ahead, without inverting the lag.
+pub fn run_anchor(setup: &SimSetup, table: &Table) -> Result<ImpactSummary> {
+    let cfg = law_config(setup);
+    let tau_s = table.terms().coil_tau_s;
+    let mut force_n: Option<f32> = None;
+    let controller = move |x_mm: f32, v_m_s: f32| -> f32 {
+        let target = *force_n.get_or_insert_with(|| {
+            stopping_force_n(cfg.mass_kg, cfg.gravity_m_s2, v_m_s, cfg.stroke_max_mm - x_mm).unwrap_or(0.0)
+        });
+        if v_m_s <= 0.0 {
+            return cfg.current_min_a;
+        }
+        let x_ahead = x_mm + v_m_s * tau_s * 1.0e3;
+        let r = table.current_for_branch_v(x_ahead, v_m_s, Branch::Compression, target);
+        r.current_a.clamp(cfg.current_min_a, cfg.current_max_a)
+    };
+    Ok(simulate(
+        &setup.plant,
+        &setup.impact,
+        CurrentSource::Controller(Box::new(controller)),
+    )?
+    .summary)
+}
+
+/// `plant`'s campaign (`mre synth`'s plan) written as recording files into a
+/// temporary folder and loaded back, as a user's recordings would be.
+pub fn record_campaign(plant: &Plant, seed: u64) -> Result<(tempfile::TempDir, Dataset)> {
+    let recorded = synthesize_plant(plant.clone(), seed, &SynthPlan::default())?.dataset;
+    let dir = tempfile::tempdir()?;
+    let options = WriteOptions {
+        force: true,
+        precision: SYNTH_PRECISION,
+    };
+    write_dataset(&recorded, dir.path(), &options)?;
+    let campaign = Dataset::load(dir.path())?;
+    Ok((dir, campaign))
+}
+
+/// Controller (c)'s table for a simulated plant: its campaign, then
+/// `mre diagnose --model-out`'s model file (what `mre sim --controlled` and
+/// `mre pil` fly).
+pub fn diagnosed_table(plant: &Plant, seed: u64) -> Result<Table> {
+    let (_dir, campaign) = record_campaign(plant, seed)?;
+    let d = crate::diagnose::diagnose(&campaign, &crate::diagnose::DiagnoseOptions::default())?;
+    let (_, text) = crate::diagnose::model_out::model_file(&d, &campaign)?;
+    crate::table_file::parse_table_toml(&text).context("(c): the model file")
+}
+
+/// Runs one case end to end.
+pub fn run_case(case: &Case) -> Result<CaseOutcome> {
+    let plant = case.plant(&SynthPlan::default())?;
+    let (_dir, campaign) = record_campaign(&plant, case.seed())?;
+    let ctl = controllers_for(&campaign)?;
+    let setup = drop_setup(&plant, campaign.recordings.len(), case.seed());
+    let limit = physical_limit(&plant, &setup.impact, (0.0, 2.0), setup.usable_stroke_mm)?;
+    let stroke = setup.usable_stroke_mm;
+    let mut runs = Vec::new();
+    for (name, table) in [
+        ("(a) paper", &ctl.paper),
+        ("(b) fit", &ctl.fitted),
+        ("(c) diagnose", &ctl.diagnosed),
+    ] {
+        let t = run_controlled(&setup, table)?;
+        runs.push(RunOutcome::new(name, &t.summary, &limit, stroke));
+    }
+    runs.push(RunOutcome::new(
+        "anchor",
+        &run_anchor(&setup, &ctl.diagnosed)?,
+        &limit,
+        stroke,
+    ));
+    let (a, c) = (&runs[0], &runs[2]);
+    let target_ratio = case.target_ratio();
+    let no_worse_than_a = a.bottomed_out || c.peak_force_n <= a.peak_force_n;
+    let target_met = !c.bottomed_out && c.over_limit <= target_ratio && no_worse_than_a;
+    Ok(CaseOutcome {
+        label: case.label(),
+        case: case.clone(),
+        limit,
+        diagnosed: ctl.findings,
+        identified_coil_tau_s: ctl.diagnosed.terms().coil_tau_s,
+        runs,
+        target_ratio,
+        target_met,
+    })
+}
+
+/// Every case (in parallel), in order.
+pub fn run_bench(cases: &[Case]) -> Result<Vec<CaseOutcome>> {
+    cases
+        .par_iter()
+        .map(|c| run_case(c).with_context(|| c.label()))
+        .collect()
+}
+
+/// The results as a Markdown table.
+pub fn markdown(outcomes: &[CaseOutcome]) -> String {
+    let mut s = String::from(
+        "| case | diagnosed | limit (N) | ceiling-only (N) | controller | peak (N) | × limit | stroke (mm) | bottomed | peak decel (g) | peak jerk (km/s³) | rebound (m/s) |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for o in outcomes {
+        for (k, r) in o.runs.iter().enumerate() {
+            let head = if k == 0 {
+                format!(
+                    "| {} | {} | {:.0} | {:.0} |",
+                    o.label,
+                    if o.diagnosed.is_empty() {
+                        "–".to_owned()
+                    } else {
+                        o.diagnosed.join(", ")
+                    },
+                    o.limit.envelope_n,
+                    o.limit.ceiling_only_n
+                )
+            } else {
+                "| | | | |".to_owned()
+            };
+            s.push_str(&format!(
+                "{head} {} | {:.0} | {:.2} | {:.2} | {} | {:.1} | {:.0} | {} |\n",
+                r.controller,
+                r.peak_force_n,
+                r.over_limit,
+                r.max_stroke_mm,
+                if r.bottomed_out { "yes" } else { "no" },
+                r.peak_deceleration_m_s2 / 9.81,
+                r.peak_jerk_m_s3 / 1e3,
+                r.rebound_velocity_m_s.map_or("–".to_owned(), |v| format!("{v:.2}"))
+            ));
+        }
+    }
+    s.push_str("\n| case | target for (c) | (c) × limit | met |\n|---|---|---|---|\n");
+    for o in outcomes {
+        s.push_str(&format!(
+            "| {} | ≤ {:.2}× and ≤ (a) | {:.2} | {} |\n",
+            o.label,
+            o.target_ratio,
+            o.runs[2].over_limit,
+            if o.target_met { "yes" } else { "**no**" }
+        ));
+    }
+    s
+}
+
+/// `mre bench-control --out DIR`: runs the cases, writes `report.md` and
+/// `report.json` (atomically, after every case succeeded).
+pub fn run_to_files(cases: &[Case], out: &std::path::Path) -> Result<Vec<CaseOutcome>> {
+    let outcomes = run_bench(cases)?;
+    let md = markdown(&outcomes);
+    let json = serde_json::to_string_pretty(&outcomes)?;
+    crate::atomic_write::write_atomic(&out.join("report.json"), json.as_bytes())?;
+    crate::atomic_write::write_atomic(&out.join("report.md"), md.as_bytes())?;
+    Ok(outcomes)
+}

@@ -1,0 +1,77 @@
+//! From recordings to flash: `mre diagnose --model-out`, the physical limit
+//! of `mre bench-control`, and one bench case end to end.
+use mre_host::control_bench::limit::physical_limit;
+use mre_host::control_bench::{run_case, Case};
+use mre_host::plant::{ImpactConfig, LawParams, Plant};
+use std::path::Path;
+
+fn root() -> &'static Path {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+}
+
+#[test]
+fn model_out_carries_the_coil_lag_the_answer_key_holds() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = dir.path().join("final.toml");
+    let (_, table) = mre_host::diagnose::model_out::run_to_files_with_model(
+        &root().join("data/drop-coil_lag"),
+        &mre_host::diagnose::DiagnoseOptions::default(),
+        &dir.path().join("report"),
+        &dir.path().join("report.json"),
+        &dir.path().join("predictions"),
+        &model,
+    )
+    .unwrap();
+    let key: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(root().join("data/keys/drop-coil_lag.json")).unwrap()).unwrap();
+    let true_tau_s = key["parameters"]["time_constant_s"].as_f64().unwrap();
+    let tau_s = f64::from(table.terms().coil_tau_s);
+    assert!(
+        (tau_s - true_tau_s).abs() < 0.25 * true_tau_s,
+        "{tau_s} vs {true_tau_s}"
+    );
+    assert_eq!(table.version(), 2);
+    // The file is what `mre tables` flashes: it reads back as the same table,
+    // and the generated source carries τ and the data set's hash.
+    let read = mre_host::table_file::read_table_file(&model).unwrap();
+    assert_eq!(read, table);
+    let source = dir.path().join("generated_table.rs");
+    mre_host::tables::run_tables(&model, &source).unwrap();
+    let text = std::fs::read_to_string(&source).unwrap();
+    assert!(text.contains("coil_tau_s: ") && text.contains("version: 2,"));
+    let sha = mre_host::table_file::read_dataset_sha256(&model).unwrap().unwrap();
+    assert!(text.contains(&sha));
+}
+
+#[test]
+fn without_a_floor_and_with_a_stiff_coil_the_limit_is_the_constant_stopping_force() {
+    // A coil so strong that 2 A reaches any force within a micrometre: the
+    // ceiling-only limit is the constant force that stops m at v in s with
+    // gravity still pushing, m·v²/(2s) + m·g = 5.5·2.24²/0.024 + 53.955
+    // = 1203.99 N.
+    let mut plant = Plant::nominal();
+    plant.law = LawParams {
+        gain_knots: [1.0, 2.0e4, 4.0e4, 6.0e4, 8.0e4],
+        ..LawParams::nominal()
+    };
+    let impact = ImpactConfig::default();
+    let limit = physical_limit(&plant, &impact, (0.0, 2.0), 12.0).unwrap();
+    assert!((limit.ceiling_only_n - 1203.99).abs() < 2.0, "{:?}", limit);
+    // The 0 A floor only adds force late in the stroke: the full limit is
+    // at least the ceiling-only one, and at most the floor's force at the
+    // end of the stroke (66·12 + 0.08·12³ = 930.2 N, ×1.5 while loading).
+    assert!(limit.envelope_n >= limit.ceiling_only_n - 1.0);
+    assert!(limit.envelope_n <= 1.5 * 930.24 + 1.0, "{:?}", limit);
+}
+
+#[test]
+fn controller_c_meets_its_target_on_a_2_ms_coil_and_beats_the_paper_table() {
+    let out = run_case(&Case::CoilTau { tau_ms: 2.0, seed: 203 }).unwrap();
+    let (a, b, c) = (&out.runs[0], &out.runs[1], &out.runs[2]);
+    // diagnose finds the lag from the campaign's controlled impacts.
+    assert_eq!(out.diagnosed, vec!["coil_lag".to_owned()]);
+    assert!((f64::from(out.identified_coil_tau_s) - 2.0e-3).abs() < 0.5e-3);
+    assert!(!c.bottomed_out && c.over_limit <= 1.25, "{c:?}");
+    assert!(c.peak_force_n < a.peak_force_n && c.peak_force_n < b.peak_force_n);
+    assert!(out.target_met);
+}

@@ -1,0 +1,161 @@
+//! The version 2 (augmented) model: per-current viscous terms and the
+//! saturating interpolation variable, forward and inverse, with no panic.
+use mre_core::model::Branch;
+use mre_core::table::ModelTerms;
+use mre_core::{CurrentEntry, Flags, Quartic, Table};
+use proptest::prelude::*;
+
+/// Two linear "quartics": 0 A gives 100·x N, 1 A gives 300·x N (both
+/// branches), fitted on 0–10 mm.
+fn linear_entries() -> [CurrentEntry; 2] {
+    let e = |current_a: f32, k: f32| CurrentEntry {
+        current_a,
+        compression: Quartic::new([0.0, 0.0, 0.0, k, 0.0]),
+        extension: Quartic::new([0.0, 0.0, 0.0, k, 0.0]),
+        x_min_mm: 0.0,
+        x_max_mm: 10.0,
+    };
+    [e(0.0, 100.0), e(1.0, 300.0)]
+}
+
+fn augmented() -> Table {
+    let mut terms = ModelTerms {
+        saturation_current_a: 0.5,
+        ..ModelTerms::NONE
+    };
+    terms.viscous_n_s_per_m[0] = 10.0;
+    terms.viscous_n_s_per_m[1] = 50.0;
+    Table::with_terms(&linear_entries(), terms).unwrap()
+}
+
+#[test]
+fn forward_interpolates_in_tanh_and_adds_the_viscous_term() {
+    // By hand: at x = 2 mm, v = 1 m/s, I = 0.5 A: the entries give
+    // 100·2 + 10·1 = 210 N and 300·2 + 50·1 = 650 N; the interpolation
+    // fraction is tanh(0.5/0.5)/tanh(1/0.5) = 0.761594/0.964028 = 0.790008,
+    // so F = 210 + 0.790008·440 = 557.603 N (linear in I it would be 430 N).
+    let t = augmented();
+    let f = t.force(2.0, 1.0, 0.5);
+    assert_eq!(f.flags, Flags::NONE);
+    assert!((f.force_n - 557.603).abs() < 0.5, "{}", f.force_n);
+    // At rest the viscous term is gone: 200 + 0.790008·400 = 516.003 N.
+    let at_rest = t.force_on_branch(2.0, Branch::Compression, 0.5).force_n;
+    assert!((at_rest - 516.003).abs() < 0.5, "{at_rest}");
+    // On a tabulated current the interpolation is exact.
+    assert_eq!(t.force(2.0, 1.0, 1.0).force_n, 650.0);
+    assert_eq!(t.force(2.0, -1.0, 0.0).force_n, 190.0);
+}
+
+#[test]
+fn inverse_undoes_tanh_and_the_viscous_term() {
+    let t = augmented();
+    let r = t.current_for_branch_v(2.0, 1.0, Branch::Compression, 557.603);
+    assert_eq!(r.flags, Flags::NONE);
+    assert!((r.current_a - 0.5).abs() < 2e-3, "{}", r.current_a);
+    // Tabulated forces map back to the tabulated currents exactly.
+    assert_eq!(
+        t.current_for_branch_v(2.0, 1.0, Branch::Compression, 650.0).current_a,
+        1.0
+    );
+    assert_eq!(
+        t.current_for_branch_v(2.0, 1.0, Branch::Compression, 210.0).current_a,
+        0.0
+    );
+    // Beyond 1 A's force: saturated at 1 A.
+    let high = t.current_for_branch_v(2.0, 1.0, Branch::Compression, 700.0);
+    assert_eq!(high.current_a, 1.0);
+    assert!(high.flags.contains(Flags::SATURATED_HIGH));
+}
+
+#[test]
+fn a_version_1_table_is_the_paper_model_whatever_the_velocity() {
+    let plain = Table::new(&linear_entries()).unwrap();
+    assert_eq!(plain.terms(), &ModelTerms::NONE);
+    // 100·2 + 0.5·(600 − 200) = 400 N at any velocity.
+    assert_eq!(plain.force(2.0, 3.0, 0.5).force_n, 400.0);
+    assert_eq!(
+        plain
+            .current_for_branch_v(2.0, 3.0, Branch::Compression, 400.0)
+            .current_a,
+        0.5
+    );
+}
+
+fn terms_strategy() -> impl Strategy<Value = ModelTerms> {
+    (
+        prop::array::uniform8(-500.0f32..2000.0),
+        prop_oneof![Just(0.0f32), 0.3f32..5.0],
+        0.0f32..0.01,
+        0.0f32..0.01,
+    )
+        .prop_map(|(viscous, i_s, delay, tau)| ModelTerms {
+            viscous_n_s_per_m: viscous,
+            saturation_current_a: i_s,
+            sensor_delay_s: delay,
+            coil_tau_s: tau,
+        })
+}
+
+fn generated_with(terms: ModelTerms) -> Table {
+    Table::with_terms(&mre_core::generated_table::GENERATED_ENTRIES, terms).unwrap()
+}
+
+proptest! {
+    /// A force produced by some current is given back by the inverse: the
+    /// current it returns (no higher than the one that made it) reproduces
+    /// it, with the viscous term and the saturating variable in play.
+    #[test]
+    fn augmented_inverse_of_forward_returns_the_force(
+        terms in terms_strategy(),
+        x_mm in 0.0f32..3.9,
+        v_m_s in -3.0f32..3.0,
+        current_a in 0.0f32..=2.0,
+        compression in any::<bool>(),
+    ) {
+        let t = generated_with(terms);
+        let branch = if compression { Branch::Compression } else { Branch::Extension };
+        let target = t.force_on_branch_v(x_mm, v_m_s, branch, current_a).force_n;
+        let r = t.current_for_branch_v(x_mm, v_m_s, branch, target);
+        prop_assert!(!r.flags.intersects(Flags::SATURATED_HIGH | Flags::SATURATED_LOW), "{:?}", r);
+        prop_assert!(r.current_a <= current_a + 2e-3, "{} > {}", r.current_a, current_a);
+        let back = t.force_on_branch_v(x_mm, v_m_s, branch, r.current_a).force_n;
+        // micromath's tanh/atanh agree to ~1e-4 relative: allow that of the
+        // segment's force span (a few kN) plus f32 rounding.
+        prop_assert!((back - target).abs() <= 1.0 + 1e-3 * target.abs(), "{back} vs {target}");
+    }
+
+    /// Any input, finite or not, gives a finite force and a current within
+    /// the table's range: no panic, no NaN.
+    #[test]
+    fn augmented_model_is_total(
+        terms in terms_strategy(),
+        x_mm in prop::num::f32::ANY,
+        v_m_s in prop::num::f32::ANY,
+        current_a in prop::num::f32::ANY,
+        target_n in prop::num::f32::ANY,
+        compression in any::<bool>(),
+    ) {
+        let t = generated_with(terms);
+        let branch = if compression { Branch::Compression } else { Branch::Extension };
+        let f = t.force(x_mm, v_m_s, current_a);
+        prop_assert!(f.force_n.is_finite(), "{f:?}");
+        let r = t.current_for_branch_v(x_mm, v_m_s, branch, target_n);
+        prop_assert!(r.current_a.is_finite() && (0.0..=2.0).contains(&r.current_a), "{r:?}");
+    }
+}
+
+#[test]
+fn a_version_2_table_uploads_to_the_pil_firmware_with_its_terms() {
+    use mre_core::control::ControlConfig;
+    use mre_core::frame::{decode_config, encode_config, CONFIG_MAX_WORDS};
+    let table = augmented();
+    let cfg = ControlConfig::at_rate(10_000).unwrap();
+    let mut words = [0u32; CONFIG_MAX_WORDS];
+    let n = encode_config(&table, &cfg, &mut words);
+    // The version 1 layout (2 + 13 per current + 13 law + 7 control) plus
+    // I_s, delay, τ and one viscous term per current.
+    assert_eq!(n, 2 + 13 * 2 + (3 + 2) + 13 + 7);
+    let (back, _) = decode_config(&words[..n]).unwrap();
+    assert_eq!(back, table);
+    assert_eq!(back.terms().viscous_n_s_per_m[1], 50.0);
+}
