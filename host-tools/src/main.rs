@@ -160,6 +160,15 @@ enum Command {
         /// Also write every case and the summary as JSON.
         #[arg(long)]
         json: Option<PathBuf>,
+        /// Inject effects into these real recordings instead (data set folder).
+        #[arg(long)]
+        real: Option<PathBuf>,
+        /// With --real: one cross-validation fold per value of this tag.
+        #[arg(long)]
+        folds_by: Option<String>,
+        /// With --real: treat recordings at this current (A) as `validate`; repeatable.
+        #[arg(long)]
+        validate_current: Vec<f64>,
     },
     /// Simulate the drop test: passive 0 A, passive 2 A and the core's impact law in the loop.
     Sim {
@@ -394,7 +403,34 @@ fn run(cli: Cli) -> Result<()> {
             println!("{}", mre_host::diagnose::summary_line(&out));
             println!("report: {}", report.join("report.md").display());
         }
-        Command::BenchDiagnose { cases, seed, json } => {
+        Command::BenchDiagnose {
+            cases,
+            seed,
+            json,
+            real: Some(real),
+            folds_by,
+            validate_current,
+        } => {
+            let opts = mre_host::diagnose::options_from_cli(None, folds_by, 5, validate_current, seed)?;
+            let ds = mre_host::dataset::Dataset::load(&real)?;
+            let summary = mre_host::diagnose::bench_real::run_real_bench(&ds, cases, seed, &opts, |c| {
+                eprintln!(
+                    "case {:>3}: {} at {:.1} % {:?}: found {:?} ({:.2} s); tested {:?}",
+                    c.case + 1,
+                    c.injection.effect,
+                    100.0 * c.injection.achieved_strength,
+                    c.injection.parameters,
+                    c.found,
+                    c.seconds,
+                    c.tested
+                )
+            })?;
+            print!("{}", mre_host::diagnose::bench_real::format_real_summary(&summary));
+            if let Some(path) = json {
+                mre_host::atomic_write::write_atomic(&path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
+            }
+        }
+        Command::BenchDiagnose { cases, seed, json, .. } => {
             let opts = mre_host::diagnose::DiagnoseOptions::default();
             let summary = mre_host::diagnose::bench::run_bench(cases, seed, &opts, |k, c| {
                 eprintln!(

@@ -95,6 +95,20 @@ fn spread_within_currents(prep: &Prepared, q: impl Fn(usize) -> f64) -> f64 {
     best
 }
 
+/// Lowest and highest displacement over the fit recordings (mm).
+fn stroke_ends_mm(prep: &Prepared) -> (f64, f64) {
+    prep.fit_indices()
+        .iter()
+        .flat_map(|&i| prep.recs[i].x_mm.iter().copied())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)))
+}
+
+/// A stroke that reaches well into both signs of x (a sinusoid about the
+/// middle), not a drop that starts at contact (x ≥ 0 up to noise).
+fn two_sided(xmin_mm: f64, xmax_mm: f64) -> bool {
+    xmin_mm < -0.3 * xmax_mm.abs() && xmax_mm > 0.0
+}
+
 fn distinct_sequences(prep: &Prepared) -> usize {
     let mut s: Vec<f64> = prep
         .fit_indices()
@@ -148,7 +162,14 @@ pub fn identifiable(prep: &Prepared, effect: Effect) -> Result<(), String> {
             }
         }
         Effect::EndStop => {
-            if spread_within_currents(prep, |i| prep.recs[i].max_x_mm()) >= 0.1 {
+            let (xmin, xmax) = stroke_ends_mm(prep);
+            let upper = spread_within_currents(prep, |i| prep.recs[i].max_x_mm());
+            let lower = if two_sided(xmin, xmax) {
+                spread_within_currents(prep, |i| -prep.recs[i].min_x_mm())
+            } else {
+                0.0
+            };
+            if upper.max(lower) >= 0.1 {
                 Ok(())
             } else {
                 Err("recordings at one current that reach different maximum strokes".into())
@@ -291,14 +312,23 @@ pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
             }
         }
         Effect::EndStop => {
-            let xmax = fit
-                .iter()
-                .map(|&i| prep.recs[i].max_x_mm())
-                .fold(f64::NEG_INFINITY, f64::max);
-            [0.3, 0.4, 0.5, 0.6, 0.7, 0.75, 0.8, 0.85, 0.9, 0.94]
-                .iter()
-                .map(|f| with(&|t| t.end_stop_x_mm = Some(f * xmax)))
-                .collect()
+            let (xmin, xmax) = stroke_ends_mm(prep);
+            let fractions = [0.3, 0.4, 0.5, 0.6, 0.7, 0.75, 0.8, 0.85, 0.9, 0.94];
+            let upper = fractions.iter().map(|f| {
+                with(&|t| {
+                    t.end_stop_x_mm = Some(f * xmax);
+                    t.end_stop_lower = false;
+                })
+            });
+            // The extension end only where the stroke is two-sided (a shaker
+            // or MTS test), not a drop's few noisy samples below x = 0.
+            let lower = fractions.iter().filter(|_| two_sided(xmin, xmax)).map(|f| {
+                with(&|t| {
+                    t.end_stop_x_mm = Some(f * xmin);
+                    t.end_stop_lower = true;
+                })
+            });
+            upper.chain(lower).collect()
         }
         Effect::MagneticSaturation => {
             let imax = prep.currents_a[prep.currents_a.len() - 1].abs().max(1e-3);

@@ -138,6 +138,10 @@ pub struct Terms {
     pub delay_s: Option<f64>,
     pub viscous: Option<Viscous>,
     pub end_stop_x_mm: Option<f64>,
+    /// The stop sits at the extension end (x below `end_stop_x_mm`, pushing
+    /// back with negative force) instead of the compression end: on a shaker
+    /// or MTS test the stroke is two-sided.
+    pub end_stop_lower: bool,
     pub inertia: bool,
     /// Law and its fitted Δ (Δ is solved, not searched).
     pub softening: Option<SofteningLaw>,
@@ -245,6 +249,19 @@ pub fn effective_current_a(rec: &Rec, coil_lag_s: Option<f64>) -> Vec<f64> {
         out.push(i_eff);
     }
     out
+}
+
+/// The end stop's force per unit stiffness: `max(0, x − x_e)²` at the
+/// compression end, `−max(0, x_e − x)²` at the extension end (the stop pushes
+/// back towards the middle of the stroke either way).
+pub fn end_stop_shape(x_mm: f64, x_e_mm: f64, lower: bool) -> f64 {
+    if lower {
+        let d = (x_e_mm - x_mm).max(0.0);
+        -d * d
+    } else {
+        let d = (x_mm - x_e_mm).max(0.0);
+        d * d
+    }
 }
 
 /// Linear interpolation of a recording's channel at time `t` (clamped).
@@ -526,8 +543,7 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
             }
         }
         if let (Some(at), Some(xe)) = (layout.end_stop_at, terms.end_stop_x_mm) {
-            let d = (x - xe).max(0.0);
-            a[(t, local(at))] = d * d;
+            a[(t, local(at))] = end_stop_shape(x, xe, terms.end_stop_lower);
         }
         if let Some(at) = layout.inertia_at {
             a[(t, local(at))] = acc;

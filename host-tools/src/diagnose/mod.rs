@@ -6,6 +6,7 @@
 //! (forward selection on held-out data) → [`report`].
 pub mod baseline;
 pub mod bench;
+pub mod bench_real;
 pub mod candidates;
 pub mod design;
 pub mod locate;

@@ -50,6 +50,8 @@ pub fn extract(prep: &Prepared, effect: Effect, terms: &Terms, sol: &Solution) -
             if let (Some(at), Some(xe)) = (layout.end_stop_at, terms.end_stop_x_mm) {
                 push("k_e_n_per_mm2".into(), sol.beta[at], "N/mm²");
                 push("x_e_mm".into(), xe, "mm");
+                // 1: the stop acts at the extension end (x < x_e); 0: the compression end.
+                push("lower_end".into(), f64::from(u8::from(terms.end_stop_lower)), "1");
             }
         }
         Effect::MagneticSaturation => {
