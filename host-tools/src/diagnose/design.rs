@@ -152,6 +152,10 @@ pub struct Terms {
     /// Turn-around memory length δ (mm): not a vocabulary effect but part of
     /// the reference model (see [`memory_feature`]).
     pub memory_mm: Option<f64>,
+    /// Yield / dry-friction knee v0 (m/s) of `f(I)·tanh(v/v0)`: a force that
+    /// changes sign at turn-around and is the same at every speed tested
+    /// (rate-independent: part of `hysteresis_memory`, not viscous damping).
+    pub friction_v0_m_s: Option<f64>,
 }
 
 /// Global column layout of a [`Terms`] over a table of currents.
@@ -162,6 +166,7 @@ pub struct Layout {
     pub end_stop_at: Option<usize>,
     pub inertia_at: Option<usize>,
     pub memory_at: Option<usize>,
+    pub friction_at: Option<usize>,
     pub n_cols: usize,
 }
 
@@ -177,12 +182,14 @@ impl Layout {
         let end_stop_at = terms.end_stop_x_mm.map(|_| next(1));
         let inertia_at = terms.inertia.then(|| next(1));
         let memory_at = terms.memory_mm.map(|_| next(2 * MEMORY_TERMS * n_currents));
+        let friction_at = terms.friction_v0_m_s.map(|_| next(n_currents));
         Layout {
             n_currents,
             viscous_at,
             end_stop_at,
             inertia_at,
             memory_at,
+            friction_at,
             n_cols: n,
         }
     }
@@ -469,6 +476,9 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
         if let Some(at) = layout.viscous_at {
             cols.push(at + k);
         }
+        if let Some(at) = layout.friction_at {
+            cols.push(at + k);
+        }
     }
     for comp in [true, false] {
         for j in 0..MEMORY_TERMS {
@@ -523,6 +533,9 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
                     Viscous::Saturating { v0_m_s } => v0_m_s * (v / v0_m_s).tanh(),
                 };
                 a[(t, local(at + k))] += w * phi;
+            }
+            if let (Some(at), Some(v0)) = (layout.friction_at, terms.friction_v0_m_s) {
+                a[(t, local(at + k))] += w * (v / v0).tanh();
             }
         }
         if let (Some((m, dir)), Some(delta)) = (&memory, terms.memory_mm) {

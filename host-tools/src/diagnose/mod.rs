@@ -98,10 +98,12 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
     let loc = locate::locate(&prep, &baseline_pred);
     let selection = select::forward_select(&prep, &opts.thresholds)?;
     let mut findings = Vec::new();
-    let mut before = selection.reference.clone();
-    for round in &selection.rounds {
-        let Some(k) = round.accepted else { break };
-        let c = &round.tested[k];
+    // Rate-independent hysteresis memory, when accepted, is the first finding
+    // (the reference every other candidate was tested against).
+    let accepted_memory = selection.memory.iter().filter(|c| c.accepted);
+    let rounds = selection.rounds.iter().map_while(|r| r.accepted.map(|k| &r.tested[k]));
+    let mut before = selection.baseline.clone();
+    for c in accepted_memory.chain(rounds) {
         let Some(effect) = c.effect else { break };
         let pred_before = predictions(&prep, &before);
         let pred_after = predictions(&prep, &c.scored);
@@ -162,6 +164,7 @@ fn signature_of(effect: Effect) -> &'static str {
         Effect::MagneticSaturation => "current_a",
         Effect::Inertia => "acceleration",
         Effect::CoilLag => locate::CURRENT_NOT_FOLLOWED,
+        Effect::HysteresisMemory => "peak stroke",
     }
 }
 

@@ -64,6 +64,18 @@ pub fn extract(prep: &Prepared, effect: Effect, terms: &Terms, sol: &Solution) -
                 push("m_s_kg".into(), sol.beta[at], "kg");
             }
         }
+        Effect::HysteresisMemory => {
+            if let Some(delta) = terms.memory_mm {
+                push("delta_mm".into(), delta, "mm");
+            }
+            if let (Some(at), Some(v0)) = (layout.friction_at, terms.friction_v0_m_s) {
+                // The yield / dry-friction force reached beyond the knee.
+                for (k, c) in prep.currents_a.iter().enumerate() {
+                    push(format!("f_yield_at_{c}a_n"), sol.beta[at + k], "N");
+                }
+                push("v0_m_s".into(), v0, "m/s");
+            }
+        }
         Effect::CoilLag => {
             if let Some(tau) = terms.coil_lag_s {
                 push("time_constant_s".into(), tau, "s");
@@ -156,7 +168,7 @@ pub fn with_intervals(
             .collect();
         let is_searched = matches!(
             name.as_str(),
-            "tau_s" | "x_e_mm" | "v0_m_s" | "n0" | "i_s_a" | "time_constant_s"
+            "tau_s" | "x_e_mm" | "v0_m_s" | "n0" | "i_s_a" | "time_constant_s" | "delta_mm"
         );
         let mut samples = if is_searched { from_search } else { from_linear };
         let ci95 = if samples.is_empty() {

@@ -376,9 +376,9 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
     // show it (a structural limit of one quartic per branch, not missing
     // physics from the vocabulary). Candidates are tested against it.
     let memory = score(prep, &candidates::memory_variants(prep))
-        .map_err(|e| eprintln!("memory: {e:#}"))
+        .map_err(|e| eprintln!("hysteresis_memory: {e:#}"))
         .ok()
-        .map(|after| compare(prep, &baseline, after, None, th));
+        .map(|after| compare(prep, &baseline, after, Some(Effect::HysteresisMemory), th));
     let reference = match &memory {
         Some(c) if c.accepted => c.scored.clone(),
         _ => baseline.clone(),
