@@ -9,6 +9,7 @@
 //! - [`measure`]: the instrument (sampling, noise, quantisation).
 //! - [`stepper`]: RK4 drop simulation, one control period at a time
 //!   ([`PlantStepper`]) or a whole impact ([`simulate`]).
+pub mod base_laws;
 pub mod closed_loop;
 pub mod effects;
 pub mod law;
@@ -17,6 +18,7 @@ pub mod plots;
 pub mod sim_report;
 pub mod stepper;
 pub mod synth;
+pub mod synth_mts;
 
 pub use effects::{Effect, EFFECT_NAMES};
 pub use law::LawParams;
