@@ -122,6 +122,10 @@ enum Command {
         /// Replace an existing non-empty folder.
         #[arg(long)]
         force: bool,
+        /// `drop` (drop impacts, the paper's law) or `mts` (sinusoidal shaker/MTS tests, a Dahl or
+        /// Bouc–Wen base law; effects none, viscous_damping, sensor_delay, end_stop, inertia).
+        #[arg(long, default_value = "drop")]
+        campaign: String,
     },
     /// Locate model-vs-recording mismatch, name the missing physics, model it, show the fit improve.
     Diagnose {
@@ -377,7 +381,25 @@ fn run(cli: Cli) -> Result<()> {
             out,
             key,
             force,
+            campaign,
+        } if campaign == "mts" => {
+            let output = mre_host::plant::synth_mts::write_synth_mts(&effect, seed, &out, key.as_deref(), force)?;
+            println!(
+                "wrote {} recordings to {} ({:?} base law)",
+                output.dataset.recordings.len(),
+                out.display(),
+                output.law.hysteresis
+            );
+        }
+        Command::Synth {
+            effect,
+            seed,
+            out,
+            key,
+            force,
+            campaign,
         } => {
+            anyhow::ensure!(campaign == "drop", "unknown campaign `{campaign}`; expected drop or mts");
             let output = mre_host::plant::synth::write_synth(&effect, seed, &out, key.as_deref(), force)?;
             let key_path = key.unwrap_or_else(|| mre_host::plant::synth::default_key_path(&out));
             println!(

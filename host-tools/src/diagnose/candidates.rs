@@ -76,11 +76,14 @@ pub fn memory_variants(prep: &Prepared) -> Vec<Terms> {
         .iter()
         .flat_map(|&i| prep.recs[i].x_mm.iter().copied())
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)));
-    let memory = Terms {
-        memory_mm: Some(0.025 * (span.1 - span.0).max(1e-9)),
+    let memory = |f: f64| Terms {
+        memory_mm: Some(f * (span.1 - span.0).max(1e-9)),
         ..Terms::default()
     };
-    let mut out = vec![memory];
+    // δ from 1.25 % to 5 % of the stroke span: the basis' lengths 0.4–2.5 δ
+    // then cover a switching length from 0.5 % to 12 % of it.
+    let lengths = [0.0125, 0.025, 0.05];
+    let mut out: Vec<Terms> = lengths.iter().map(|&f| memory(f)).collect();
     let (lo, hi) = tested_speeds_m_s(prep);
     for f in KNEE_FRACTIONS {
         let v0 = f * hi;
@@ -89,10 +92,10 @@ pub fn memory_variants(prep: &Prepared) -> Vec<Terms> {
                 friction_v0_m_s: Some(v0),
                 ..Terms::default()
             });
-            out.push(Terms {
+            out.extend(lengths.iter().map(|&f| Terms {
                 friction_v0_m_s: Some(v0),
-                ..memory
-            });
+                ..memory(f)
+            }));
         }
     }
     out

@@ -91,18 +91,34 @@ pub fn memory_feature(x: &[f64], delta_mm: f64) -> (Vec<Option<(f64, f64)>>, Vec
 /// model would spike. Noise flips of the sign near a turn-around only move
 /// the anchor within the noise of the extreme, and those samples are not
 /// scored (their branch is chance).
-pub fn memory_feature_on_branches(x: &[f64], v: &[f64]) -> (Vec<Option<(f64, f64)>>, Vec<bool>) {
+pub fn memory_feature_on_branches(time_s: &[f64], x: &[f64], v: &[f64]) -> (Vec<Option<(f64, f64)>>, Vec<bool>) {
     let compressing: Vec<bool> = v.iter().map(|v| *v > 0.0).collect();
-    let mut anchor: Option<usize> = None;
+    let mut anchor: Option<f64> = None;
     let feature = (0..x.len())
         .map(|t| {
             if t > 0 && compressing[t] != compressing[t - 1] {
-                anchor = Some(t);
+                anchor = Some(turning_point_mm(time_s, x, v, t));
             }
-            anchor.map(|a| ((x[t] - x[a]).abs(), a as f64))
+            anchor.map(|x_r| ((x[t] - x_r).abs(), x_r))
         })
         .collect();
     (feature, compressing)
+}
+
+/// Where x turned around between samples `t − 1` and `t` (v changes sign):
+/// v taken linear across the interval, x at its zero crossing. Anchoring at
+/// the sample after the crossing instead puts every reversal half a sample
+/// late on average, which on coarsely sampled sinusoids (5 ms at 5 Hz) a
+/// sensor-delay term then "explains".
+fn turning_point_mm(time_s: &[f64], x: &[f64], v: &[f64], t: usize) -> f64 {
+    let (v0, v1) = (v[t - 1], v[t]);
+    let dt = time_s[t] - time_s[t - 1];
+    if v0 == v1 || dt <= 0.0 {
+        return x[t];
+    }
+    let phi = (v0 / (v0 - v1)).clamp(0.0, 1.0);
+    // x in mm, v in m/s.
+    x[t - 1] + 1e3 * 0.5 * v0 * phi * dt
 }
 
 /// Rate dependence `c(I)·φ(v)`.
@@ -513,7 +529,9 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
             }),
         None => (rec.x_mm.clone(), rec.v_m_s.clone(), rec.a_m_s2.clone()),
     };
-    let memory = terms.memory_mm.map(|_| memory_feature_on_branches(&xs, &vs));
+    let memory = terms
+        .memory_mm
+        .map(|_| memory_feature_on_branches(&rec.time_s, &xs, &vs));
     for t in 0..n {
         let (x, v, acc) = (xs[t], vs[t], accs[t]);
         let comp = v > 0.0;
@@ -539,8 +557,7 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
             }
         }
         if let (Some((m, dir)), Some(delta)) = (&memory, terms.memory_mm) {
-            if let Some((d, at)) = m[t] {
-                let x_r = xs[at as usize];
+            if let Some((d, x_r)) = m[t] {
                 for (l, len) in MEMORY_LENGTHS.iter().enumerate() {
                     let e = (-d / (len * delta)).exp();
                     for &(k, w) in weights {

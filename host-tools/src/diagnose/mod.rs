@@ -98,28 +98,29 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
     let loc = locate::locate(&prep, &baseline_pred);
     let selection = select::forward_select(&prep, &opts.thresholds)?;
     let mut findings = Vec::new();
-    let finding = |effect: Effect, c: &select::Comparison, before: &Scored, after: &Scored, variant_sse| -> Result<Finding> {
-        let pred_before = predictions(&prep, before);
-        let pred_after = predictions(&prep, after);
-        Ok(Finding {
-            effect,
-            parameters: parameters::with_intervals(
-                &prep,
+    let finding =
+        |effect: Effect, c: &select::Comparison, before: &Scored, after: &Scored, variant_sse| -> Result<Finding> {
+            let pred_before = predictions(&prep, before);
+            let pred_after = predictions(&prep, after);
+            Ok(Finding {
                 effect,
-                &selection.final_model.terms,
-                &selection.final_model.solution,
-                variant_sse,
-                opts.parameter_resamples,
-                opts.thresholds.seed,
-            )?,
-            evidence: evidence_for(&prep, effect, &pred_before, &pred_after, c),
-            rmse_n_before: c.rmse_before_n,
-            rmse_n_after: c.rmse_after_n,
-            heldout_improvement: c.ratio,
-            ratio_ci95: c.ratio_ci95,
-            delta_bic: c.delta_bic,
-        })
-    };
+                parameters: parameters::with_intervals(
+                    &prep,
+                    effect,
+                    &selection.final_model.terms,
+                    &selection.final_model.solution,
+                    variant_sse,
+                    opts.parameter_resamples,
+                    opts.thresholds.seed,
+                )?,
+                evidence: evidence_for(&prep, effect, &pred_before, &pred_after, c),
+                rmse_n_before: c.rmse_before_n,
+                rmse_n_after: c.rmse_after_n,
+                heldout_improvement: c.ratio,
+                ratio_ci95: c.ratio_ci95,
+                delta_bic: c.delta_bic,
+            })
+        };
     // Rate-independent hysteresis memory, when accepted, is the first finding
     // (the reference every other candidate was tested against). Its held-out
     // figure is its share on top of every other accepted effect when there
@@ -131,7 +132,13 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
         };
         if let Some(c) = kept {
             let effect = Effect::HysteresisMemory;
-            findings.push(finding(effect, c, &selection.baseline, &selection.reference, &first.scored.variant_sse)?);
+            findings.push(finding(
+                effect,
+                c,
+                &selection.baseline,
+                &selection.reference,
+                &first.scored.variant_sse,
+            )?);
         }
     }
     let mut before = selection.reference.clone();

@@ -2,9 +2,9 @@
 use super::candidates::Effect;
 use super::design::{Designs, Layout, SofteningLaw, Solution, Terms, Viscous};
 use super::prepared::Prepared;
+use anyhow::bail;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use anyhow::bail;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 

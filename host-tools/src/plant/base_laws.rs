@@ -12,10 +12,10 @@ use serde::Serialize;
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Hysteresis {
-    /// `dz/dx = (sgn(ẋ) − z)/x_y`: exponential approach to ±1 over x_y.
+    /// `dz/d|x| = (sgn(ẋ) − z)/x_y`: exponential approach to ±1 over x_y.
     Dahl,
     /// Bouc–Wen with A = 1, n = 2, β = γ = ½:
-    /// `dz/dx = (1 − sgn(ẋ)·β·z|z| − γ·z²)/x_y`, a sharper knee than Dahl.
+    /// `dz/d|x| = (sgn(ẋ) − β·z|z| − γ·sgn(ẋ)·z²)/x_y`, a sharper knee than Dahl.
     BoucWen,
 }
 
@@ -40,17 +40,18 @@ impl HystereticLaw {
         1.0 + self.gain_per_a * current_a.max(0.0)
     }
 
-    /// `dz/dx` (1/mm) for travel direction `dir` (±1).
-    fn dz_dx(&self, z: f64, dir: f64) -> f64 {
+    /// `dz/d|x|` (1/mm), the change per unit travel in direction `dir` (±1).
+    fn dz_per_travel(&self, z: f64, dir: f64) -> f64 {
         match self.hysteresis {
+            // Exponential approach to ±1 over x_y.
             Hysteresis::Dahl => (dir - z) / self.x_y_mm,
-            // ż = ẋ − β|ẋ|·z|z| − γ·ẋ·z² (A = 1, n = 2) divided by ẋ.
-            Hysteresis::BoucWen => (1.0 - dir * 0.5 * z * z.abs() - 0.5 * z * z) / self.x_y_mm,
+            // ż = ẋ − β|ẋ|·z|z| − γ·ẋ·z² (A = 1, n = 2, β = γ = ½), per |ẋ|.
+            Hysteresis::BoucWen => (dir - 0.5 * z * z.abs() - 0.5 * dir * z * z) / self.x_y_mm,
         }
     }
 
     /// Advances z over the displacement step `dx_mm` (sub-stepped so each
-    /// piece is at most x_y/20), staying in [−1, 1].
+    /// piece is at most x_y/20, midpoint rule), staying in [−1, 1].
     pub fn advance(&self, z: f64, dx_mm: f64) -> f64 {
         if dx_mm == 0.0 {
             return z;
@@ -60,9 +61,8 @@ impl HystereticLaw {
         let h = dx_mm.abs() / pieces as f64;
         let mut z = z;
         for _ in 0..pieces {
-            // Midpoint rule in |x| (dz/d|x| = dir·dz/dx).
-            let k1 = dir * self.dz_dx(z, dir);
-            let k2 = dir * self.dz_dx(z + 0.5 * h * k1, dir);
+            let k1 = self.dz_per_travel(z, dir);
+            let k2 = self.dz_per_travel(z + 0.5 * h * k1, dir);
             z = (z + h * k2).clamp(-1.0, 1.0);
         }
         z

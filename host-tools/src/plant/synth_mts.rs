@@ -36,12 +36,22 @@ pub const MTS_CYCLES: f64 = 2.5;
 pub enum MtsEffect {
     None,
     /// True viscosity `c(I)·v` on top of the rate-independent law.
-    ViscousDamping { c0_n_s_per_m: f64 },
-    SensorDelay { delay_s: f64 },
+    ViscousDamping {
+        c0_n_s_per_m: f64,
+    },
+    SensorDelay {
+        delay_s: f64,
+    },
     /// Two-sided stroke: the stop may sit at either end.
-    EndStop { x_e_mm: f64, k_e_n_per_mm2: f64, lower_end: bool },
+    EndStop {
+        x_e_mm: f64,
+        k_e_n_per_mm2: f64,
+        lower_end: bool,
+    },
     /// The load cell also carries `m·a`.
-    Inertia { m_s_kg: f64 },
+    Inertia {
+        m_s_kg: f64,
+    },
 }
 
 impl MtsEffect {
@@ -118,7 +128,10 @@ pub fn draw_mts_effect(name: &str, rng: &mut ChaCha8Rng, law: &HystereticLaw) ->
         "inertia" => MtsEffect::Inertia {
             m_s_kg: law.f_y_n * rng.random_range(0.1..0.2) / 2.0,
         },
-        other => bail!("unknown MTS effect `{other}`; expected one of {}", MTS_EFFECT_NAMES.join(", ")),
+        other => bail!(
+            "unknown MTS effect `{other}`; expected one of {}",
+            MTS_EFFECT_NAMES.join(", ")
+        ),
     })
 }
 
@@ -154,8 +167,15 @@ pub fn synthesize_mts_with(law: &HystereticLaw, effect: &MtsEffect, seed: u64) -
             let v: Vec<f64> = time_s.iter().map(|t| 1e-3 * amp_mm * w * (w * t).cos()).collect();
             let a: Vec<f64> = time_s.iter().map(|t| -1e-3 * amp_mm * w * w * (w * t).sin()).collect();
             // The true force, with the effect, evaluated at the true time.
+            // The rig cycles before it records: the law runs one whole cycle
+            // first, so z starts on the steady loop, not the virgin curve.
+            let pre = (1.0 / f_hz / dt_s).round() as usize;
             let true_force = |x: &[f64], v: &[f64], a: &[f64]| -> Vec<f64> {
-                let mut f = law.forces_n(x, v, current_a);
+                let shifted = |k: usize| k as f64 * dt_s - pre as f64 * dt_s;
+                let x0: Vec<f64> = (0..pre).map(|k| amp_mm * (w * shifted(k)).sin()).collect();
+                let warm: Vec<f64> = x0.iter().chain(x).copied().collect();
+                let vw: Vec<f64> = vec![0.0; pre].into_iter().chain(v.iter().copied()).collect();
+                let mut f = law.forces_n(&warm, &vw, current_a).split_off(pre);
                 for (k, fk) in f.iter_mut().enumerate() {
                     *fk += match *effect {
                         MtsEffect::EndStop {
@@ -223,4 +243,34 @@ pub fn synthesize_mts_with(law: &HystereticLaw, effect: &MtsEffect, seed: u64) -
         effect: effect.clone(),
         key,
     })
+}
+
+/// `mre synth --campaign mts`: writes the campaign to `out` and its key to
+/// `key_path` (default beside the folder, never inside it).
+pub fn write_synth_mts(
+    effect: &str,
+    seed: u64,
+    out: &std::path::Path,
+    key_path: Option<&std::path::Path>,
+    force: bool,
+) -> Result<MtsOutput> {
+    use crate::dataset::write::{write_dataset, WriteOptions};
+    let key_path = key_path.map_or_else(|| super::synth::default_key_path(out), std::path::Path::to_path_buf);
+    let abs = |q: &std::path::Path| std::path::absolute(q).unwrap_or_else(|_| q.to_path_buf());
+    anyhow::ensure!(
+        !abs(&key_path).starts_with(abs(out)),
+        "the key file {} must not be inside the data set folder {} (the diagnosis must be blind)",
+        key_path.display(),
+        out.display()
+    );
+    let output = synthesize_mts(effect, seed)?;
+    let options = WriteOptions {
+        force,
+        precision: super::synth::SYNTH_PRECISION,
+    };
+    write_dataset(&output.dataset, out, &options)?;
+    let mut key_text = serde_json::to_string_pretty(&output.key)?;
+    key_text.push('\n');
+    crate::atomic_write::write_atomic(&key_path, key_text.as_bytes())?;
+    Ok(output)
 }
