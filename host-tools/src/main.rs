@@ -164,6 +164,9 @@ enum Command {
         /// Also write every case and the summary as JSON.
         #[arg(long)]
         json: Option<PathBuf>,
+        /// Also run this many shaker/MTS cases from a rate-independent base law (Dahl / Bouc–Wen).
+        #[arg(long, default_value_t = 10)]
+        mts_cases: usize,
         /// Inject effects into these real recordings instead (data set folder).
         #[arg(long)]
         real: Option<PathBuf>,
@@ -432,6 +435,7 @@ fn run(cli: Cli) -> Result<()> {
             real: Some(real),
             folds_by,
             validate_current,
+            ..
         } => {
             let opts = mre_host::diagnose::options_from_cli(None, folds_by, 5, validate_current, seed)?;
             let ds = mre_host::dataset::Dataset::load(&real)?;
@@ -452,9 +456,15 @@ fn run(cli: Cli) -> Result<()> {
                 mre_host::atomic_write::write_atomic(&path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
             }
         }
-        Command::BenchDiagnose { cases, seed, json, .. } => {
+        Command::BenchDiagnose {
+            cases,
+            mts_cases,
+            seed,
+            json,
+            ..
+        } => {
             let opts = mre_host::diagnose::DiagnoseOptions::default();
-            let summary = mre_host::diagnose::bench::run_bench(cases, seed, &opts, |k, c| {
+            let summary = mre_host::diagnose::bench::run_bench(cases, mts_cases, seed, &opts, |k, c| {
                 eprintln!(
                     "case {:>3} seed {}: truth {:<20} diagnosed {:?} ({:.2} s); first round {:?}",
                     k + 1,
