@@ -155,7 +155,9 @@ pub fn run_mts_case(seed: u64) -> Result<BenchCase> {
     let beyond_base: Vec<&String> = found.iter().filter(|n| *n != "hysteresis_memory").collect();
     Ok(BenchCase {
         seed,
-        top1: beyond_base.first().map_or_else(|| "none".to_string(), |n| n.to_string()),
+        top1: beyond_base
+            .first()
+            .map_or_else(|| "none".to_string(), |n| n.to_string()),
         heldout_improvement: (truth != "none").then(|| {
             d.findings
                 .iter()
