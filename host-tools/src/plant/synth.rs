@@ -104,7 +104,8 @@ pub struct SynthOutput {
     pub key: serde_json::Value,
 }
 
-fn stream(seed: u64, id: u64) -> ChaCha8Rng {
+/// A seed's independent random stream `id`.
+pub(crate) fn stream(seed: u64, id: u64) -> ChaCha8Rng {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(id);
     rng
@@ -398,6 +399,21 @@ pub fn default_key_path(out: &Path) -> PathBuf {
 /// `mre synth`: writes the data set to `out` and its key to `key_path`
 /// (default [`default_key_path`]). The key may not be inside `out`.
 pub fn write_synth(effect: &str, seed: u64, out: &Path, key_path: Option<&Path>, force: bool) -> Result<SynthOutput> {
+    write_blind(out, key_path, force, || {
+        let output = synthesize(effect, seed)?;
+        Ok((output.dataset.clone(), output.key.clone(), output))
+    })
+}
+
+/// Writes a synthesised data set to `out` and its key to `key_path`
+/// (default [`default_key_path`]), refusing a key inside `out` before
+/// anything is synthesised or written.
+pub fn write_blind<T>(
+    out: &Path,
+    key_path: Option<&Path>,
+    force: bool,
+    make: impl FnOnce() -> Result<(Dataset, serde_json::Value, T)>,
+) -> Result<T> {
     let key_path = key_path.map_or_else(|| default_key_path(out), Path::to_path_buf);
     let inside = |p: &Path| -> bool {
         let abs = |q: &Path| std::path::absolute(q).unwrap_or_else(|_| q.to_path_buf());
@@ -409,13 +425,13 @@ pub fn write_synth(effect: &str, seed: u64, out: &Path, key_path: Option<&Path>,
         key_path.display(),
         out.display()
     );
-    let output = synthesize(effect, seed)?;
+    let (dataset, key, output) = make()?;
     let options = WriteOptions {
         force,
         precision: SYNTH_PRECISION,
     };
-    write_dataset(&output.dataset, out, &options)?;
-    let mut key_text = serde_json::to_string_pretty(&output.key)?;
+    write_dataset(&dataset, out, &options)?;
+    let mut key_text = serde_json::to_string_pretty(&key)?;
     key_text.push('\n');
     write_atomic(&key_path, key_text.as_bytes())?;
     Ok(output)

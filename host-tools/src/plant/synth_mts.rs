@@ -4,9 +4,10 @@
 //! ([`super::base_laws`]: Dahl or Bouc–Wen hysteresis), with one concealed
 //! effect or none. As for drops, the answer goes to a key beside the folder.
 use super::base_laws::{Hysteresis, HystereticLaw};
+use super::synth::stream;
 use crate::dataset::{Dataset, Recording, Role, Samples, TagValue};
 use anyhow::{bail, Result};
-use rand::{Rng, SeedableRng};
+use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use std::collections::BTreeMap;
@@ -73,12 +74,6 @@ pub struct MtsOutput {
     pub law: HystereticLaw,
     pub effect: MtsEffect,
     pub key: serde_json::Value,
-}
-
-fn stream(seed: u64, id: u64) -> ChaCha8Rng {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    rng.set_stream(id);
-    rng
 }
 
 /// The base law for a seed: Dahl or Bouc–Wen, parameters around an MR
@@ -254,23 +249,8 @@ pub fn write_synth_mts(
     key_path: Option<&std::path::Path>,
     force: bool,
 ) -> Result<MtsOutput> {
-    use crate::dataset::write::{write_dataset, WriteOptions};
-    let key_path = key_path.map_or_else(|| super::synth::default_key_path(out), std::path::Path::to_path_buf);
-    let abs = |q: &std::path::Path| std::path::absolute(q).unwrap_or_else(|_| q.to_path_buf());
-    anyhow::ensure!(
-        !abs(&key_path).starts_with(abs(out)),
-        "the key file {} must not be inside the data set folder {} (the diagnosis must be blind)",
-        key_path.display(),
-        out.display()
-    );
-    let output = synthesize_mts(effect, seed)?;
-    let options = WriteOptions {
-        force,
-        precision: super::synth::SYNTH_PRECISION,
-    };
-    write_dataset(&output.dataset, out, &options)?;
-    let mut key_text = serde_json::to_string_pretty(&output.key)?;
-    key_text.push('\n');
-    crate::atomic_write::write_atomic(&key_path, key_text.as_bytes())?;
-    Ok(output)
+    super::synth::write_blind(out, key_path, force, || {
+        let output = synthesize_mts(effect, seed)?;
+        Ok((output.dataset.clone(), output.key.clone(), output))
+    })
 }
