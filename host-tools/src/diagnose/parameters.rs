@@ -187,7 +187,7 @@ pub fn with_intervals(
         let mut samples = if is_searched { from_search } else { from_linear };
         // Set by design, not estimated (the stop's side; a searched value
         // with a single alternative): no interval, said so.
-        let fixed = matches!(name.as_str(), "lower_end" | "delta_mm") || (is_searched && variant_sse.len() <= 1);
+        let fixed = name == "lower_end" || (is_searched && variant_sse.len() <= 1);
         let ci95 = if fixed {
             [*value, *value]
         } else if samples.is_empty() && is_searched {

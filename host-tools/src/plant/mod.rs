@@ -7,6 +7,9 @@
 //!   `README.md` beside this file.
 //! - [`effects`]: concealed effects from `shared/spec/effects.md`.
 //! - [`measure`]: the instrument (sampling, noise, quantisation).
+//! - [`base_laws`], [`synth_mts`]: shaker/MTS campaigns (`mre synth --campaign
+//!   mts`) from a rate-independent Dahl or Bouc–Wen base law, outside the
+//!   paper's class.
 //! - [`stepper`]: RK4 drop simulation, one control period at a time
 //!   ([`PlantStepper`]) or a whole impact ([`simulate`]).
 pub mod base_laws;
