@@ -11,15 +11,7 @@ fn names(d: &Diagnosis) -> Vec<&'static str> {
 }
 
 fn law(hysteresis: Hysteresis, viscous_n_s_per_m: f64) -> HystereticLaw {
-    HystereticLaw {
-        hysteresis,
-        k1_n_per_mm: 2.0,
-        k3_n_per_mm3: 0.001,
-        f_y_n: 150.0,
-        x_y_mm: 0.5,
-        gain_per_a: 5.0,
-        viscous_n_s_per_m,
-    }
+    HystereticLaw::example(hysteresis, viscous_n_s_per_m)
 }
 
 fn diagnose_mts(law: &HystereticLaw, effect: &MtsEffect, seed: u64) -> Diagnosis {

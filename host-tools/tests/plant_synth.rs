@@ -599,15 +599,7 @@ fn mts_campaign_loops_do_not_depend_on_speed_without_viscosity() {
     use mre_host::plant::base_laws::{Hysteresis, HystereticLaw};
     use mre_host::plant::synth_mts::{synthesize_mts_with, MtsEffect};
     for hysteresis in [Hysteresis::Dahl, Hysteresis::BoucWen] {
-        let law = HystereticLaw {
-            hysteresis,
-            k1_n_per_mm: 2.0,
-            k3_n_per_mm3: 0.001,
-            f_y_n: 150.0,
-            x_y_mm: 0.5,
-            gain_per_a: 5.0,
-            viscous_n_s_per_m: 0.0,
-        };
+        let law = HystereticLaw::example(hysteresis, 0.0);
         for (effect, c) in [
             (MtsEffect::None, 0.0),
             (MtsEffect::ViscousDamping { c0_n_s_per_m: 1000.0 }, 1000.0),

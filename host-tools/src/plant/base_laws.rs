@@ -36,6 +36,20 @@ pub struct HystereticLaw {
 }
 
 impl HystereticLaw {
+    /// A fixed MR-damper-like law for tests and examples: 150 N yield over
+    /// 0.5 mm, 2 N/mm + 0.001 N/mm³ backbone, gain 1 + 5·I.
+    pub fn example(hysteresis: Hysteresis, viscous_n_s_per_m: f64) -> Self {
+        HystereticLaw {
+            hysteresis,
+            k1_n_per_mm: 2.0,
+            k3_n_per_mm3: 0.001,
+            f_y_n: 150.0,
+            x_y_mm: 0.5,
+            gain_per_a: 5.0,
+            viscous_n_s_per_m,
+        }
+    }
+
     pub fn gain(&self, current_a: f64) -> f64 {
         1.0 + self.gain_per_a * current_a.max(0.0)
     }
