@@ -129,6 +129,10 @@ enum Command {
         /// reaches this stroke (mm), instead of the paper's velocities at all.
         #[arg(long)]
         full_stroke_mm: Option<f64>,
+        /// `drop` (drop impacts, the paper's law) or `mts` (sinusoidal shaker/MTS tests, a Dahl or
+        /// Bouc–Wen base law; effects none, viscous_damping, sensor_delay, end_stop, inertia).
+        #[arg(long, default_value = "drop")]
+        campaign: String,
     },
     /// Locate model-vs-recording mismatch, name the missing physics, model it, show the fit improve.
     Diagnose {
@@ -176,6 +180,18 @@ enum Command {
         /// Also write every case and the summary as JSON.
         #[arg(long)]
         json: Option<PathBuf>,
+        /// Also run this many shaker/MTS cases from a rate-independent base law (Dahl / Bouc–Wen).
+        #[arg(long, default_value_t = 10)]
+        mts_cases: usize,
+        /// Inject effects into these real recordings instead (data set folder).
+        #[arg(long)]
+        real: Option<PathBuf>,
+        /// With --real: one cross-validation fold per value of this tag.
+        #[arg(long)]
+        folds_by: Option<String>,
+        /// With --real: treat recordings at this current (A) as `validate`; repeatable.
+        #[arg(long)]
+        validate_current: Vec<f64>,
     },
     /// Simulate the drop test: passive 0 A, passive 2 A and the core's impact law in the loop.
     Sim {
@@ -417,8 +433,27 @@ fn run(cli: Cli) -> Result<()> {
             out,
             key,
             force,
+            campaign,
+            ..
+        } if campaign == "mts" => {
+            let output = mre_host::plant::synth_mts::write_synth_mts(&effect, seed, &out, key.as_deref(), force)?;
+            println!(
+                "wrote {} recordings to {} ({:?} base law)",
+                output.dataset.recordings.len(),
+                out.display(),
+                output.law.hysteresis
+            );
+        }
+        Command::Synth {
+            effect,
+            seed,
+            out,
+            key,
+            force,
+            campaign,
             full_stroke_mm,
         } => {
+            anyhow::ensure!(campaign == "drop", "unknown campaign `{campaign}`; expected drop or mts");
             let plan = match full_stroke_mm {
                 Some(mm) => mre_host::plant::synth::SynthPlan::full_stroke(mm),
                 None => mre_host::plant::synth::SynthPlan::default(),
@@ -466,10 +501,44 @@ fn run(cli: Cli) -> Result<()> {
             print!("{}", mre_host::control_bench::markdown(&outcomes));
             println!("\nreport: {}", out.join("report.md").display());
         }
-        Command::BenchDiagnose { cases, seed, json } => {
+        Command::BenchDiagnose {
+            cases,
+            seed,
+            json,
+            real: Some(real),
+            folds_by,
+            validate_current,
+            ..
+        } => {
+            let opts = mre_host::diagnose::options_from_cli(None, folds_by, 5, validate_current, seed)?;
+            let ds = mre_host::dataset::Dataset::load(&real)?;
+            let summary = mre_host::diagnose::bench_real::run_real_bench(&ds, cases, seed, &opts, |c| {
+                eprintln!(
+                    "case {:>3}: {} at {:.1} % {:?}: found {:?} ({:.2} s); tested {:?}",
+                    c.case + 1,
+                    c.injection.effect,
+                    100.0 * c.injection.achieved_strength,
+                    c.injection.parameters,
+                    c.found,
+                    c.seconds,
+                    c.tested
+                )
+            })?;
+            print!("{}", mre_host::diagnose::bench_real::format_real_summary(&summary));
+            if let Some(path) = json {
+                mre_host::atomic_write::write_atomic(&path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
+            }
+        }
+        Command::BenchDiagnose {
+            cases,
+            mts_cases,
+            seed,
+            json,
+            ..
+        } => {
             let opts = mre_host::diagnose::DiagnoseOptions::default();
             let progress = mre_host::progress::bar(cases as u64, "cases");
-            let summary = mre_host::diagnose::bench::run_bench(cases, seed, &opts, |k, c| {
+            let summary = mre_host::diagnose::bench::run_bench(cases, mts_cases, seed, &opts, |k, c| {
                 progress.inc();
                 progress.println(&format!(
                     "case {:>3} seed {}: truth {:<20} diagnosed {:?} ({:.2} s); first round {:?}",

@@ -590,3 +590,39 @@ fn controlled_step_lands_early_in_compression_for_every_plant_synth_draws() {
         }
     }
 }
+
+/// `mre synth --campaign mts`: the base law is rate-independent, so the two
+/// 25 mm tests (0.1 and 0.25 Hz, 2.5× apart in speed) trace the same loop;
+/// with concealed viscosity they differ by c·Δv.
+#[test]
+fn mts_campaign_loops_do_not_depend_on_speed_without_viscosity() {
+    use mre_host::plant::base_laws::{Hysteresis, HystereticLaw};
+    use mre_host::plant::synth_mts::{synthesize_mts_with, MtsEffect};
+    for hysteresis in [Hysteresis::Dahl, Hysteresis::BoucWen] {
+        let law = HystereticLaw::example(hysteresis, 0.0);
+        for (effect, c) in [
+            (MtsEffect::None, 0.0),
+            (MtsEffect::ViscousDamping { c0_n_s_per_m: 1000.0 }, 1000.0),
+        ] {
+            let out = synthesize_mts_with(&law, &effect, 7).unwrap();
+            let rec = |name: &str| out.dataset.recordings.iter().find(|r| r.file == name).unwrap();
+            let (slow, fast) = (rec("25mm0.1Hz0A.csv"), rec("25mm0.25Hz0A.csv"));
+            // Force at mid-stroke (|x| < 1 mm, far past any switching) on the
+            // loading branch, averaged: x = A·sin ωt, v = A·ω at x = 0.
+            let mean_at_zero = |r: &mre_host::dataset::Recording| {
+                let s = &r.samples;
+                let f: Vec<f64> = (0..s.len())
+                    .filter(|&i| s.x_mm[i].abs() < 1.0 && s.v_m_s[i] > 0.0)
+                    .map(|i| s.force_n[i] - 2.0 * s.x_mm[i] - 0.001 * s.x_mm[i].powi(3))
+                    .collect();
+                f.iter().sum::<f64>() / f.len() as f64
+            };
+            let v = |f_hz: f64| 25e-3 * 2.0 * std::f64::consts::PI * f_hz;
+            // Expected difference: c·(v_fast − v_slow) at x = 0 (gain 1 at 0 A),
+            // the yield force f_y·z (z = 1 on loading after 24 mm of travel) cancels.
+            let want = c * (v(0.25) - v(0.1));
+            let got = mean_at_zero(fast) - mean_at_zero(slow);
+            assert!((got - want).abs() < 3.0, "{hysteresis:?} c = {c}: {got} vs {want}");
+        }
+    }
+}

@@ -13,6 +13,10 @@ pub enum Effect {
     MagneticSaturation,
     Inertia,
     CoilLag,
+    /// Rate-independent hysteresis with memory (turn-around memory, with dry
+    /// friction / yield as its limiting case): tested first, as the
+    /// reference the other candidates must beat.
+    HysteresisMemory,
 }
 
 impl Effect {
@@ -35,11 +39,15 @@ impl Effect {
             Effect::MagneticSaturation => "magnetic_saturation",
             Effect::Inertia => "inertia",
             Effect::CoilLag => "coil_lag",
+            Effect::HysteresisMemory => "hysteresis_memory",
         }
     }
 
     pub fn from_name(name: &str) -> Option<Effect> {
-        Effect::ALL.into_iter().find(|e| e.name() == name)
+        Effect::ALL
+            .into_iter()
+            .chain([Effect::HysteresisMemory])
+            .find(|e| e.name() == name)
     }
 
     /// Is the term already in the model?
@@ -52,26 +60,72 @@ impl Effect {
             Effect::MagneticSaturation => t.saturation_i_a.is_some(),
             Effect::Inertia => t.inertia,
             Effect::CoilLag => t.coil_lag_s.is_some(),
+            Effect::HysteresisMemory => t.memory_mm.is_some() || t.friction_v0_m_s.is_some(),
         }
     }
 }
 
-/// The reference model's turn-around memory at each searched length δ,
-/// as fractions of the largest stroke.
+/// `hysteresis_memory`, tested first as the reference model: the
+/// turn-around memory (length δ a fraction of the largest stroke), a yield /
+/// dry-friction force `f(I)·tanh(v/v0)` at each knee v0 that is
+/// rate-independent over the speeds tested ([`rate_dependent`] false), and
+/// each knee with the memory.
 pub fn memory_variants(prep: &Prepared) -> Vec<Terms> {
     let fit = prep.fit_indices();
     let span = fit
         .iter()
         .flat_map(|&i| prep.recs[i].x_mm.iter().copied())
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)));
-    let span = (span.1 - span.0).max(1e-9);
-    [0.025]
+    let memory = |f: f64| Terms {
+        memory_mm: Some(f * (span.1 - span.0).max(1e-9)),
+        ..Terms::default()
+    };
+    // δ from 1.25 % to 5 % of the stroke span: the basis' lengths 0.4–2.5 δ
+    // then cover a switching length from 0.5 % to 12 % of it.
+    let lengths = [0.0125, 0.025, 0.05];
+    let mut out: Vec<Terms> = lengths.iter().map(|&f| memory(f)).collect();
+    let (lo, hi) = tested_speeds_m_s(prep);
+    for f in KNEE_FRACTIONS {
+        let v0 = f * hi;
+        if v0 > 0.0 && !rate_dependent(v0, lo, hi) {
+            out.push(Terms {
+                friction_v0_m_s: Some(v0),
+                ..Terms::default()
+            });
+            out.extend(lengths.iter().map(|&f| Terms {
+                friction_v0_m_s: Some(v0),
+                ..memory(f)
+            }));
+        }
+    }
+    out
+}
+
+/// Knees v0 of the saturating rate terms, as fractions of the fastest test's
+/// peak speed.
+pub const KNEE_FRACTIONS: [f64; 4] = [0.05, 0.15, 0.4, 1.0];
+
+/// The slowest and fastest peak speed of the fit recordings (m/s).
+pub fn tested_speeds_m_s(prep: &Prepared) -> (f64, f64) {
+    prep.fit_indices()
         .iter()
-        .map(|f| Terms {
-            memory_mm: Some(f * span),
-            ..Terms::default()
-        })
-        .collect()
+        .map(|&i| prep.recs[i].max_abs_v_m_s())
+        .fold((f64::INFINITY, 0.0), |(l, h), v| (l.min(v), h.max(v)))
+}
+
+/// How much `v0·tanh(v/v0)` grows from the slowest to the fastest test's
+/// peak speed (a linear term grows by `hi/lo`, a yield force by 1).
+pub fn knee_growth(v0_m_s: f64, lo_m_s: f64, hi_m_s: f64) -> f64 {
+    let phi = |v: f64| (v / v0_m_s).tanh();
+    phi(hi_m_s) / phi(lo_m_s).max(1e-300)
+}
+
+/// Is the saturating term `v0·tanh(v/v0)` rate-dependent over the speeds
+/// tested? Only if it grows by at least half the linear growth on a log
+/// scale, `√(hi/lo)`: a knee well below the slowest test makes a force that
+/// is the same at every speed, i.e. a yield or dry-friction force.
+pub fn rate_dependent(v0_m_s: f64, lo_m_s: f64, hi_m_s: f64) -> bool {
+    lo_m_s > 0.0 && hi_m_s > lo_m_s && knee_growth(v0_m_s, lo_m_s, hi_m_s) >= (hi_m_s / lo_m_s).sqrt()
 }
 
 /// Relative spread `(max − min)/max` of a per-recording quantity within each
@@ -93,6 +147,20 @@ fn spread_within_currents(prep: &Prepared, q: impl Fn(usize) -> f64) -> f64 {
         }
     }
     best
+}
+
+/// Lowest and highest displacement over the fit recordings (mm).
+fn stroke_ends_mm(prep: &Prepared) -> (f64, f64) {
+    prep.fit_indices()
+        .iter()
+        .flat_map(|&i| prep.recs[i].x_mm.iter().copied())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)))
+}
+
+/// A stroke that reaches well into both signs of x (a sinusoid about the
+/// middle), not a drop that starts at contact (x ≥ 0 up to noise).
+fn two_sided(xmin_mm: f64, xmax_mm: f64) -> bool {
+    xmin_mm < -0.3 * xmax_mm.abs() && xmax_mm > 0.0
 }
 
 fn distinct_sequences(prep: &Prepared) -> usize {
@@ -148,7 +216,14 @@ pub fn identifiable(prep: &Prepared, effect: Effect) -> Result<(), String> {
             }
         }
         Effect::EndStop => {
-            if spread_within_currents(prep, |i| prep.recs[i].max_x_mm()) >= 0.1 {
+            let (xmin, xmax) = stroke_ends_mm(prep);
+            let upper = spread_within_currents(prep, |i| prep.recs[i].max_x_mm());
+            let lower = if two_sided(xmin, xmax) {
+                spread_within_currents(prep, |i| -prep.recs[i].min_x_mm())
+            } else {
+                0.0
+            };
+            if upper.max(lower) >= 0.1 {
                 Ok(())
             } else {
                 Err("recordings at one current that reach different maximum strokes".into())
@@ -173,6 +248,7 @@ pub fn identifiable(prep: &Prepared, effect: Effect) -> Result<(), String> {
                 Ok(())
             }
         }
+        Effect::HysteresisMemory => Ok(()),
         Effect::CoilLag => {
             let n = stepped_validate_count(prep);
             if n >= 2 {
@@ -258,11 +334,15 @@ pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
         t
     };
     match effect {
+        // Only knees under which the term still grows with speed over the
+        // tests: a lower knee is a yield force (`hysteresis_memory`).
         Effect::ViscousDamping => {
-            let vmax = fit.iter().map(|&i| prep.recs[i].max_abs_v_m_s()).fold(0.0, f64::max);
+            let (lo, vmax) = tested_speeds_m_s(prep);
             let mut out = vec![with(&|t| t.viscous = Some(Viscous::Linear))];
-            for f in [0.05, 0.15, 0.4] {
-                out.push(with(&|t| t.viscous = Some(Viscous::Saturating { v0_m_s: f * vmax })));
+            for f in KNEE_FRACTIONS {
+                if rate_dependent(f * vmax, lo, vmax) {
+                    out.push(with(&|t| t.viscous = Some(Viscous::Saturating { v0_m_s: f * vmax })));
+                }
             }
             out
         }
@@ -291,14 +371,23 @@ pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
             }
         }
         Effect::EndStop => {
-            let xmax = fit
-                .iter()
-                .map(|&i| prep.recs[i].max_x_mm())
-                .fold(f64::NEG_INFINITY, f64::max);
-            [0.3, 0.4, 0.5, 0.6, 0.7, 0.75, 0.8, 0.85, 0.9, 0.94]
-                .iter()
-                .map(|f| with(&|t| t.end_stop_x_mm = Some(f * xmax)))
-                .collect()
+            let (xmin, xmax) = stroke_ends_mm(prep);
+            let fractions = [0.3, 0.4, 0.5, 0.6, 0.7, 0.75, 0.8, 0.85, 0.9, 0.94];
+            let upper = fractions.iter().map(|f| {
+                with(&|t| {
+                    t.end_stop_x_mm = Some(f * xmax);
+                    t.end_stop_lower = false;
+                })
+            });
+            // The extension end only where the stroke is two-sided (a shaker
+            // or MTS test), not a drop's few noisy samples below x = 0.
+            let lower = fractions.iter().filter(|_| two_sided(xmin, xmax)).map(|f| {
+                with(&|t| {
+                    t.end_stop_x_mm = Some(f * xmin);
+                    t.end_stop_lower = true;
+                })
+            });
+            upper.chain(lower).collect()
         }
         Effect::MagneticSaturation => {
             let imax = prep.currents_a[prep.currents_a.len() - 1].abs().max(1e-3);
@@ -308,6 +397,15 @@ pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
                 .collect()
         }
         Effect::Inertia => vec![with(&|t| t.inertia = true)],
+        Effect::HysteresisMemory => memory_variants(prep)
+            .into_iter()
+            .map(|m| {
+                with(&|t| {
+                    t.memory_mm = m.memory_mm;
+                    t.friction_v0_m_s = m.friction_v0_m_s;
+                })
+            })
+            .collect(),
         // From one sample period to about 90 (√2 steps): an L/R from well
         // under the sampling time to longer than an impact.
         Effect::CoilLag => {

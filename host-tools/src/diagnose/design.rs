@@ -91,18 +91,34 @@ pub fn memory_feature(x: &[f64], delta_mm: f64) -> (Vec<Option<(f64, f64)>>, Vec
 /// model would spike. Noise flips of the sign near a turn-around only move
 /// the anchor within the noise of the extreme, and those samples are not
 /// scored (their branch is chance).
-pub fn memory_feature_on_branches(x: &[f64], v: &[f64]) -> (Vec<Option<(f64, f64)>>, Vec<bool>) {
+pub fn memory_feature_on_branches(time_s: &[f64], x: &[f64], v: &[f64]) -> (Vec<Option<(f64, f64)>>, Vec<bool>) {
     let compressing: Vec<bool> = v.iter().map(|v| *v > 0.0).collect();
-    let mut anchor: Option<usize> = None;
+    let mut anchor: Option<f64> = None;
     let feature = (0..x.len())
         .map(|t| {
             if t > 0 && compressing[t] != compressing[t - 1] {
-                anchor = Some(t);
+                anchor = Some(turning_point_mm(time_s, x, v, t));
             }
-            anchor.map(|a| ((x[t] - x[a]).abs(), a as f64))
+            anchor.map(|x_r| ((x[t] - x_r).abs(), x_r))
         })
         .collect();
     (feature, compressing)
+}
+
+/// Where x turned around between samples `t − 1` and `t` (v changes sign):
+/// v taken linear across the interval, x at its zero crossing. Anchoring at
+/// the sample after the crossing instead puts every reversal half a sample
+/// late on average, which on coarsely sampled sinusoids (5 ms at 5 Hz) a
+/// sensor-delay term then "explains".
+fn turning_point_mm(time_s: &[f64], x: &[f64], v: &[f64], t: usize) -> f64 {
+    let (v0, v1) = (v[t - 1], v[t]);
+    let dt = time_s[t] - time_s[t - 1];
+    if v0 == v1 || dt <= 0.0 {
+        return x[t];
+    }
+    let phi = (v0 / (v0 - v1)).clamp(0.0, 1.0);
+    // x in mm, v in m/s.
+    x[t - 1] + 1e3 * 0.5 * v0 * phi * dt
 }
 
 /// Rate dependence `c(I)·φ(v)`.
@@ -138,6 +154,10 @@ pub struct Terms {
     pub delay_s: Option<f64>,
     pub viscous: Option<Viscous>,
     pub end_stop_x_mm: Option<f64>,
+    /// The stop sits at the extension end (x below `end_stop_x_mm`, pushing
+    /// back with negative force) instead of the compression end: on a shaker
+    /// or MTS test the stroke is two-sided.
+    pub end_stop_lower: bool,
     pub inertia: bool,
     /// Law and its fitted Δ (Δ is solved, not searched).
     pub softening: Option<SofteningLaw>,
@@ -148,6 +168,10 @@ pub struct Terms {
     /// Turn-around memory length δ (mm): not a vocabulary effect but part of
     /// the reference model (see [`memory_feature`]).
     pub memory_mm: Option<f64>,
+    /// Yield / dry-friction knee v0 (m/s) of `f(I)·tanh(v/v0)`: a force that
+    /// changes sign at turn-around and is the same at every speed tested
+    /// (rate-independent: part of `hysteresis_memory`, not viscous damping).
+    pub friction_v0_m_s: Option<f64>,
 }
 
 /// Global column layout of a [`Terms`] over a table of currents.
@@ -158,6 +182,7 @@ pub struct Layout {
     pub end_stop_at: Option<usize>,
     pub inertia_at: Option<usize>,
     pub memory_at: Option<usize>,
+    pub friction_at: Option<usize>,
     pub n_cols: usize,
 }
 
@@ -173,12 +198,14 @@ impl Layout {
         let end_stop_at = terms.end_stop_x_mm.map(|_| next(1));
         let inertia_at = terms.inertia.then(|| next(1));
         let memory_at = terms.memory_mm.map(|_| next(2 * MEMORY_TERMS * n_currents));
+        let friction_at = terms.friction_v0_m_s.map(|_| next(n_currents));
         Layout {
             n_currents,
             viscous_at,
             end_stop_at,
             inertia_at,
             memory_at,
+            friction_at,
             n_cols: n,
         }
     }
@@ -245,6 +272,19 @@ pub fn effective_current_a(rec: &Rec, coil_lag_s: Option<f64>) -> Vec<f64> {
         out.push(i_eff);
     }
     out
+}
+
+/// The end stop's force per unit stiffness: `max(0, x − x_e)²` at the
+/// compression end, `−max(0, x_e − x)²` at the extension end (the stop pushes
+/// back towards the middle of the stroke either way).
+pub fn end_stop_shape(x_mm: f64, x_e_mm: f64, lower: bool) -> f64 {
+    if lower {
+        let d = (x_e_mm - x_mm).max(0.0);
+        -d * d
+    } else {
+        let d = (x_mm - x_e_mm).max(0.0);
+        d * d
+    }
 }
 
 /// Linear interpolation of a recording's channel at time `t` (clamped).
@@ -452,6 +492,9 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
         if let Some(at) = layout.viscous_at {
             cols.push(at + k);
         }
+        if let Some(at) = layout.friction_at {
+            cols.push(at + k);
+        }
     }
     for comp in [true, false] {
         for j in 0..MEMORY_TERMS {
@@ -486,7 +529,9 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
             }),
         None => (rec.x_mm.clone(), rec.v_m_s.clone(), rec.a_m_s2.clone()),
     };
-    let memory = terms.memory_mm.map(|_| memory_feature_on_branches(&xs, &vs));
+    let memory = terms
+        .memory_mm
+        .map(|_| memory_feature_on_branches(&rec.time_s, &xs, &vs));
     for t in 0..n {
         let (x, v, acc) = (xs[t], vs[t], accs[t]);
         let comp = v > 0.0;
@@ -507,10 +552,12 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
                 };
                 a[(t, local(at + k))] += w * phi;
             }
+            if let (Some(at), Some(v0)) = (layout.friction_at, terms.friction_v0_m_s) {
+                a[(t, local(at + k))] += w * (v / v0).tanh();
+            }
         }
         if let (Some((m, dir)), Some(delta)) = (&memory, terms.memory_mm) {
-            if let Some((d, at)) = m[t] {
-                let x_r = xs[at as usize];
+            if let Some((d, x_r)) = m[t] {
                 for (l, len) in MEMORY_LENGTHS.iter().enumerate() {
                     let e = (-d / (len * delta)).exp();
                     for &(k, w) in weights {
@@ -526,8 +573,7 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
             }
         }
         if let (Some(at), Some(xe)) = (layout.end_stop_at, terms.end_stop_x_mm) {
-            let d = (x - xe).max(0.0);
-            a[(t, local(at))] = d * d;
+            a[(t, local(at))] = end_stop_shape(x, xe, terms.end_stop_lower);
         }
         if let Some(at) = layout.inertia_at {
             a[(t, local(at))] = acc;

@@ -6,6 +6,7 @@
 //! (forward selection on held-out data) → [`report`].
 pub mod baseline;
 pub mod bench;
+pub mod bench_real;
 pub mod candidates;
 pub mod design;
 pub mod locate;
@@ -98,33 +99,55 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
     let loc = locate::locate(&prep, &baseline_pred);
     let selection = select::forward_select(&prep, &opts.thresholds)?;
     let mut findings = Vec::new();
+    let finding =
+        |effect: Effect, c: &select::Comparison, before: &Scored, after: &Scored, variant_sse| -> Result<Finding> {
+            let pred_before = predictions(&prep, before);
+            let pred_after = predictions(&prep, after);
+            Ok(Finding {
+                effect,
+                parameters: parameters::with_intervals(
+                    &prep,
+                    effect,
+                    &selection.final_model.terms,
+                    &selection.final_model.solution,
+                    variant_sse,
+                    opts.parameter_resamples,
+                    opts.thresholds.seed,
+                )?,
+                evidence: evidence_for(&prep, effect, &pred_before, &pred_after, c),
+                rmse_n_before: c.rmse_before_n,
+                rmse_n_after: c.rmse_after_n,
+                heldout_improvement: c.ratio,
+                ratio_ci95: c.ratio_ci95,
+                delta_bic: c.delta_bic,
+            })
+        };
+    // Rate-independent hysteresis memory, when accepted, is the first finding
+    // (the reference every other candidate was tested against). Its held-out
+    // figure is its share on top of every other accepted effect when there
+    // are any; it is left out when that share no longer passes.
+    if let Some(first) = selection.memory.as_ref().filter(|c| c.accepted) {
+        let kept = match &selection.memory_share {
+            Some(share) => share.accepted.then_some(share),
+            None => Some(first),
+        };
+        if let Some(c) = kept {
+            let effect = Effect::HysteresisMemory;
+            findings.push(finding(
+                effect,
+                c,
+                &selection.baseline,
+                &selection.reference,
+                &first.scored.variant_sse,
+            )?);
+        }
+    }
     let mut before = selection.reference.clone();
     for round in &selection.rounds {
         let Some(k) = round.accepted else { break };
         let c = &round.tested[k];
         let Some(effect) = c.effect else { break };
-        let pred_before = predictions(&prep, &before);
-        let pred_after = predictions(&prep, &c.scored);
-        let evidence = evidence_for(&prep, effect, &pred_before, &pred_after, c);
-        let params = parameters::with_intervals(
-            &prep,
-            effect,
-            &selection.final_model.terms,
-            &selection.final_model.solution,
-            &c.scored.variant_sse,
-            opts.parameter_resamples,
-            opts.thresholds.seed,
-        );
-        findings.push(Finding {
-            effect,
-            parameters: params,
-            evidence,
-            rmse_n_before: c.rmse_before_n,
-            rmse_n_after: c.rmse_after_n,
-            heldout_improvement: c.ratio,
-            ratio_ci95: c.ratio_ci95,
-            delta_bic: c.delta_bic,
-        });
+        findings.push(finding(effect, c, &before, &c.scored, &c.scored.variant_sse)?);
         before = c.scored.clone();
     }
     let final_pred = if findings.is_empty() {
@@ -162,6 +185,7 @@ fn signature_of(effect: Effect) -> &'static str {
         Effect::MagneticSaturation => "current_a",
         Effect::Inertia => "acceleration",
         Effect::CoilLag => locate::CURRENT_NOT_FOLLOWED,
+        Effect::HysteresisMemory => "peak stroke",
     }
 }
 

@@ -2,6 +2,7 @@
 use super::candidates::Effect;
 use super::design::{Designs, Layout, SofteningLaw, Solution, Terms, Viscous};
 use super::prepared::Prepared;
+use anyhow::bail;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -13,6 +14,8 @@ pub struct Param {
     pub unit: String,
     /// 95 % bootstrap interval (resampling recordings).
     pub ci95: [f64; 2],
+    /// Set by the search design rather than estimated (`ci95` is then `[value, value]`).
+    pub fixed: bool,
 }
 
 /// `(name, value, unit)` of an effect's parameters in a fitted model.
@@ -50,6 +53,8 @@ pub fn extract(prep: &Prepared, effect: Effect, terms: &Terms, sol: &Solution) -
             if let (Some(at), Some(xe)) = (layout.end_stop_at, terms.end_stop_x_mm) {
                 push("k_e_n_per_mm2".into(), sol.beta[at], "N/mm²");
                 push("x_e_mm".into(), xe, "mm");
+                // 1: the stop acts at the extension end (x < x_e); 0: the compression end.
+                push("lower_end".into(), f64::from(u8::from(terms.end_stop_lower)), "1");
             }
         }
         Effect::MagneticSaturation => {
@@ -60,6 +65,18 @@ pub fn extract(prep: &Prepared, effect: Effect, terms: &Terms, sol: &Solution) -
         Effect::Inertia => {
             if let Some(at) = layout.inertia_at {
                 push("m_s_kg".into(), sol.beta[at], "kg");
+            }
+        }
+        Effect::HysteresisMemory => {
+            if let Some(delta) = terms.memory_mm {
+                push("delta_mm".into(), delta, "mm");
+            }
+            if let (Some(at), Some(v0)) = (layout.friction_at, terms.friction_v0_m_s) {
+                // The yield / dry-friction force reached beyond the knee.
+                for (k, c) in prep.currents_a.iter().enumerate() {
+                    push(format!("f_yield_at_{c}a_n"), sol.beta[at + k], "N");
+                }
+                push("v0_m_s".into(), v0, "m/s");
             }
         }
         Effect::CoilLag => {
@@ -88,7 +105,7 @@ pub fn with_intervals(
     variant_sse: &[(Terms, Vec<f64>)],
     resamples: usize,
     seed: u64,
-) -> BTreeMap<String, Param> {
+) -> anyhow::Result<BTreeMap<String, Param>> {
     let point = extract(prep, effect, terms, sol);
     let designs = Designs::build(prep, terms);
     let fit = prep.fit_indices();
@@ -98,9 +115,9 @@ pub fn with_intervals(
     } else {
         resamples
     };
-    let boot: Vec<Vec<(String, f64, String)>> = (0..resamples_linear)
+    let boot: Vec<Option<Vec<(String, f64, String)>>> = (0..resamples_linear)
         .into_par_iter()
-        .filter_map(|b| {
+        .map(|b| {
             let mut rng = ChaCha8Rng::seed_from_u64(seed.wrapping_add(b as u64));
             // Resampled within each current, so every resample keeps every
             // tabulated current (a missing one would zero its coefficients).
@@ -120,6 +137,17 @@ pub fn with_intervals(
                 .map(|s| extract(prep, effect, terms, &s))
         })
         .collect();
+    let failed = boot.iter().filter(|b| b.is_none()).count();
+    // A few singular resamples (a resample that left out every recording of
+    // one branch at some current) are expected; more and the interval would
+    // describe a different population: fail loudly instead.
+    if resamples_linear > 0 && failed * 10 > resamples_linear {
+        bail!(
+            "{}: {failed} of {resamples_linear} bootstrap resamples could not be fitted; no interval",
+            effect.name()
+        );
+    }
+    let boot: Vec<Vec<(String, f64, String)>> = boot.into_iter().flatten().collect();
     // Searched parameter: which variant wins on resampled recordings.
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
     let m = prep.recs.len();
@@ -154,11 +182,28 @@ pub fn with_intervals(
             .collect();
         let is_searched = matches!(
             name.as_str(),
-            "tau_s" | "x_e_mm" | "v0_m_s" | "n0" | "i_s_a" | "time_constant_s"
+            "tau_s" | "x_e_mm" | "v0_m_s" | "n0" | "i_s_a" | "time_constant_s" | "delta_mm"
         );
         let mut samples = if is_searched { from_search } else { from_linear };
-        let ci95 = if samples.is_empty() {
+        // Set by design, not estimated (the stop's side; a searched value
+        // with a single alternative): no interval, said so.
+        let fixed = name == "lower_end" || (is_searched && variant_sse.len() <= 1);
+        let ci95 = if fixed {
             [*value, *value]
+        } else if samples.is_empty() && is_searched {
+            // No resample chose a form with this parameter: the data do not
+            // pin it, so the interval is the whole searched range.
+            let all: Vec<f64> = variant_sse
+                .iter()
+                .filter_map(|(t, _)| extract(prep, effect, t, sol).into_iter().find(|q| &q.0 == name))
+                .map(|q| q.1)
+                .collect();
+            [
+                all.iter().copied().fold(*value, f64::min),
+                all.iter().copied().fold(*value, f64::max),
+            ]
+        } else if samples.is_empty() {
+            bail!("{}: no bootstrap resample gave `{name}`; no interval", effect.name());
         } else {
             [percentile(&mut samples, 0.025), percentile(&mut samples, 0.975)]
         };
@@ -168,8 +213,9 @@ pub fn with_intervals(
                 value: *value,
                 unit: unit.clone(),
                 ci95,
+                fixed,
             },
         );
     }
-    out
+    Ok(out)
 }

@@ -130,6 +130,10 @@ impl Rec {
         self.x_mm.iter().copied().fold(f64::NEG_INFINITY, f64::max)
     }
 
+    pub fn min_x_mm(&self) -> f64 {
+        self.x_mm.iter().copied().fold(f64::INFINITY, f64::min)
+    }
+
     /// Median sample period.
     pub fn dt_s(&self) -> f64 {
         let mut d: Vec<f64> = self.time_s.windows(2).map(|w| w[1] - w[0]).collect();

@@ -7,8 +7,12 @@
 //!   `README.md` beside this file.
 //! - [`effects`]: concealed effects from `shared/spec/effects.md`.
 //! - [`measure`]: the instrument (sampling, noise, quantisation).
+//! - [`base_laws`], [`synth_mts`]: shaker/MTS campaigns (`mre synth --campaign
+//!   mts`) from a rate-independent Dahl or Bouc–Wen base law, outside the
+//!   paper's class.
 //! - [`stepper`]: RK4 drop simulation, one control period at a time
 //!   ([`PlantStepper`]) or a whole impact ([`simulate`]).
+pub mod base_laws;
 pub mod closed_loop;
 pub mod effects;
 pub mod law;
@@ -17,6 +21,7 @@ pub mod plots;
 pub mod sim_report;
 pub mod stepper;
 pub mod synth;
+pub mod synth_mts;
 
 pub use effects::{Effect, EFFECT_NAMES};
 pub use law::LawParams;

@@ -160,7 +160,8 @@ pub struct SynthOutput {
     pub key: serde_json::Value,
 }
 
-fn stream(seed: u64, id: u64) -> ChaCha8Rng {
+/// A seed's independent random stream `id`.
+pub(crate) fn stream(seed: u64, id: u64) -> ChaCha8Rng {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(id);
     rng
@@ -479,6 +480,21 @@ pub fn write_synth_with_plan(
     key_path: Option<&Path>,
     force: bool,
 ) -> Result<SynthOutput> {
+    write_blind(out, key_path, force, || {
+        let output = synthesize_with_plan(effect, seed, plan)?;
+        Ok((output.dataset.clone(), output.key.clone(), output))
+    })
+}
+
+/// Writes a synthesised data set to `out` and its key to `key_path`
+/// (default [`default_key_path`]), refusing a key inside `out` before
+/// anything is synthesised or written.
+pub fn write_blind<T>(
+    out: &Path,
+    key_path: Option<&Path>,
+    force: bool,
+    make: impl FnOnce() -> Result<(Dataset, serde_json::Value, T)>,
+) -> Result<T> {
     let key_path = key_path.map_or_else(|| default_key_path(out), Path::to_path_buf);
     let inside = |p: &Path| -> bool {
         let abs = |q: &Path| std::path::absolute(q).unwrap_or_else(|_| q.to_path_buf());
@@ -495,13 +511,13 @@ pub fn write_synth_with_plan(
         "the key file {} exists; pass --force to replace it",
         key_path.display()
     );
-    let output = synthesize_with_plan(effect, seed, plan)?;
+    let (dataset, key, output) = make()?;
     let options = WriteOptions {
         force,
         precision: SYNTH_PRECISION,
     };
-    write_dataset(&output.dataset, out, &options)?;
-    let mut key_text = serde_json::to_string_pretty(&output.key)?;
+    write_dataset(&dataset, out, &options)?;
+    let mut key_text = serde_json::to_string_pretty(&key)?;
     key_text.push('\n');
     write_atomic(&key_path, key_text.as_bytes())?;
     Ok(output)

@@ -1,0 +1,519 @@
+//! `mre bench-diagnose --real DATASET`: the diagnosis proven on real
+//! recordings. Each case injects one effect that can honestly be added to a
+//! measured force (a delay in time units, an end stop at either end of the
+//! stroke, softening over a random recorded run order, inertia, saturation
+//! where validate currents sit between the tabulated ones, or nothing) at a
+//! random strength of 3–15 % of the force RMS, diagnoses the result blind,
+//! and scores it against what the untouched recordings already give.
+use super::{baseline, diagnose, prepared, DiagnoseOptions};
+use crate::dataset::Dataset;
+use anyhow::{bail, Result};
+use mre_core::model::Branch;
+use rand::seq::SliceRandom;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::time::Instant;
+
+/// Injected strengths: RMS of the added force over RMS of the force, all samples.
+pub const STRENGTH_RANGE: std::ops::Range<f64> = 0.03..0.15;
+/// Strength from which the target (≥ 90 % found) applies.
+pub const TARGET_STRENGTH: f64 = 0.05;
+
+/// One injection with the parameters that realise its strength.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Injection {
+    pub effect: String,
+    /// Requested strength (fraction of the force RMS).
+    pub strength: f64,
+    /// Strength actually reached (saturation is bounded by the data).
+    pub achieved_strength: f64,
+    pub parameters: BTreeMap<String, f64>,
+}
+
+/// One real-data case.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct RealCase {
+    pub case: usize,
+    pub injection: Injection,
+    /// Every accepted effect, in order of acceptance.
+    pub found: Vec<String>,
+    /// Accepted effects the untouched recordings do not give.
+    pub new_found: Vec<String>,
+    /// First of `new_found`, or `none`.
+    pub top1: String,
+    pub found_at_all: bool,
+    /// `new_found` other than the injected effect.
+    pub false_positives: Vec<String>,
+    /// Held-out RMSE ratio of the injected effect's term (absent when not found or `none`).
+    pub heldout_improvement: Option<f64>,
+    /// Every candidate tested, per round: `name ratio [ci lo, ci hi] ΔBIC`.
+    pub tested: Vec<Vec<String>>,
+    pub seconds: f64,
+}
+
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct RealSummary {
+    pub dataset: String,
+    /// What the untouched recordings give (not counted as false positives).
+    pub untouched: Vec<String>,
+    pub cases: Vec<RealCase>,
+    /// Over injected (non-`none`) cases at strength ≥ [`TARGET_STRENGTH`].
+    pub found_rate_at_target: f64,
+    pub top1_rate_at_target: f64,
+    /// Over every injected case.
+    pub found_rate: f64,
+    pub top1_rate: f64,
+    /// Share of `none` cases with any effect beyond the untouched data's.
+    pub false_positive_rate_none: f64,
+    /// Share of injected cases with an effect beyond the truth and the untouched data's.
+    pub false_positive_rate_injected: f64,
+    pub median_improvement: BTreeMap<String, f64>,
+    pub max_seconds: f64,
+}
+
+/// Force RMS over every sample of every recording.
+pub fn force_rms_n(ds: &Dataset) -> f64 {
+    let (s, n) = ds
+        .recordings
+        .iter()
+        .flat_map(|r| r.samples.force_n.iter())
+        .fold((0.0, 0usize), |(s, n), f| (s + f * f, n + 1));
+    (s / n.max(1) as f64).sqrt()
+}
+
+/// RMS over every sample of a per-recording added force.
+fn added_rms_n(added: &[Vec<f64>]) -> f64 {
+    let (s, n) = added
+        .iter()
+        .flatten()
+        .fold((0.0, 0usize), |(s, n), f| (s + f * f, n + 1));
+    (s / n.max(1) as f64).sqrt()
+}
+
+/// Bisection for the parameter `p` in `[lo, hi]` at which the (increasing)
+/// strength `f(p)` equals `target`.
+fn solve_increasing(f: &dyn Fn(f64) -> f64, target: f64, mut lo: f64, mut hi: f64) -> f64 {
+    for _ in 0..40 {
+        let mid = 0.5 * (lo + hi);
+        if f(mid) < target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// `F(t − τ)` of each recording, linearly interpolated in time (the first
+/// sample held before the start): a delay in seconds, whatever the rate.
+pub fn delayed_force(ds: &Dataset, delay_s: f64) -> Vec<Vec<f64>> {
+    ds.recordings
+        .iter()
+        .map(|r| {
+            let s = &r.samples;
+            let mut hint = 0;
+            s.time_s
+                .iter()
+                .map(|&t| super::design::sample_at(&s.time_s, &s.force_n, t - delay_s, &mut hint))
+                .collect()
+        })
+        .collect()
+}
+
+/// Acceleration from the displacement channel (m/s²): a second difference
+/// over about `span_s` on each side, so it is not the diagnosis's own
+/// regressor (the derivative of the velocity channel).
+pub fn acceleration_from_x(time_s: &[f64], x_mm: &[f64], span_s: f64) -> Vec<f64> {
+    let n = x_mm.len();
+    let dt = {
+        let mut d: Vec<f64> = time_s.windows(2).map(|w| w[1] - w[0]).collect();
+        d.sort_by(f64::total_cmp);
+        d.get(d.len() / 2).copied().unwrap_or(0.0)
+    };
+    if dt <= 0.0 || n < 3 {
+        return vec![0.0; n];
+    }
+    let h = ((span_s / dt).round() as usize).clamp(1, (n - 1) / 2);
+    (0..n)
+        .map(|t| {
+            let (a, b) = (t.saturating_sub(h), (t + h).min(n - 1));
+            let m = (a + b) / 2;
+            let (ta, tm, tb) = (time_s[a], time_s[m], time_s[b]);
+            if tb - tm <= 0.0 || tm - ta <= 0.0 {
+                return 0.0;
+            }
+            let slope_hi = (x_mm[b] - x_mm[m]) / (tb - tm);
+            let slope_lo = (x_mm[m] - x_mm[a]) / (tm - ta);
+            1e-3 * (slope_hi - slope_lo) / (0.5 * (tb - ta))
+        })
+        .collect()
+}
+
+/// The effects that can be injected into this data set under `opts`.
+pub fn injectable(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Vec<&'static str>> {
+    let mut out = vec!["sensor_delay", "end_stop", "stress_softening", "inertia"];
+    if saturation_pairs(ds, opts)?.len() >= 2 {
+        out.push("magnetic_saturation");
+    }
+    out.push("none");
+    Ok(out)
+}
+
+/// Validate recordings strictly between two fit currents, with the bracket.
+fn saturation_pairs(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Vec<(usize, f64, f64)>> {
+    let prep = prepared::prepare(ds, &opts.folds, &opts.validate_currents_a)?;
+    let c = &prep.currents_a;
+    Ok(prep
+        .validate_indices()
+        .into_iter()
+        .filter_map(|i| {
+            let cur = prep.recs[i].current_a;
+            let k = c.iter().rposition(|&x| x < cur - 1e-9)?;
+            let hi = *c.get(k + 1)?;
+            (hi > cur + 1e-9).then_some((prep.recs[i].index, c[k], hi))
+        })
+        .collect())
+}
+
+/// Injects `effect` at `strength` (RMS of the added force over the force RMS).
+pub fn inject(
+    ds: &Dataset,
+    effect: &str,
+    strength: f64,
+    rng: &mut ChaCha8Rng,
+    opts: &DiagnoseOptions,
+) -> Result<(Dataset, Injection)> {
+    let target = strength * force_rms_n(ds);
+    let mut out = ds.clone();
+    let mut params = BTreeMap::new();
+    let added: Vec<Vec<f64>> = match effect {
+        "none" => ds.recordings.iter().map(|r| vec![0.0; r.samples.len()]).collect(),
+        "sensor_delay" => {
+            let diff = |tau: f64| -> Vec<Vec<f64>> {
+                delayed_force(ds, tau)
+                    .into_iter()
+                    .zip(&ds.recordings)
+                    .map(|(d, r)| d.iter().zip(&r.samples.force_n).map(|(a, b)| a - b).collect())
+                    .collect()
+            };
+            let tau = solve_increasing(&|tau| added_rms_n(&diff(tau)), target, 0.0, 0.05);
+            params.insert("delay_s".into(), tau);
+            diff(tau)
+        }
+        "end_stop" => {
+            let (lo, hi) = ds
+                .recordings
+                .iter()
+                .flat_map(|r| r.samples.x_mm.iter().copied())
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)));
+            let two_sided = lo < -0.3 * hi.abs();
+            let lower = two_sided && rng.random_bool(0.5);
+            let x_e = rng.random_range(0.6..0.85) * if lower { lo } else { hi };
+            let shape: Vec<Vec<f64>> = ds
+                .recordings
+                .iter()
+                .map(|r| {
+                    r.samples
+                        .x_mm
+                        .iter()
+                        .map(|&x| super::design::end_stop_shape(x, x_e, lower))
+                        .collect()
+                })
+                .collect();
+            let k = target / added_rms_n(&shape).max(1e-300);
+            params.insert("x_e_mm".into(), x_e);
+            params.insert("k_e_n_per_mm2".into(), k);
+            params.insert("lower_end".into(), f64::from(u8::from(lower)));
+            shape
+                .into_iter()
+                .map(|v| v.into_iter().map(|s| k * s).collect())
+                .collect()
+        }
+        "stress_softening" => {
+            // The run order is assigned to every case (below); here the force
+            // of test n is scaled by 1 − Δ·(1 − e^{−(n−1)/n0}).
+            let n0 = rng.random_range(2.0..8.0);
+            let order = run_order(ds.recordings.len(), rng);
+            for (r, n) in out.recordings.iter_mut().zip(&order) {
+                r.sequence = Some(*n);
+            }
+            let g: Vec<f64> = order
+                .iter()
+                .map(|&n| 1.0 - (-(f64::from(n) - 1.0) / n0).exp())
+                .collect();
+            let unit: Vec<Vec<f64>> = ds
+                .recordings
+                .iter()
+                .zip(&g)
+                .map(|(r, g)| r.samples.force_n.iter().map(|f| -g * f).collect())
+                .collect();
+            let depth = (target / added_rms_n(&unit).max(1e-300)).min(0.6);
+            params.insert("depth".into(), depth);
+            params.insert("tests_n0".into(), n0);
+            unit.into_iter()
+                .map(|v| v.into_iter().map(|s| depth * s).collect())
+                .collect()
+        }
+        "inertia" => {
+            let acc: Vec<Vec<f64>> = ds
+                .recordings
+                .iter()
+                .map(|r| acceleration_from_x(&r.samples.time_s, &r.samples.x_mm, 5e-3))
+                .collect();
+            let m = target / added_rms_n(&acc).max(1e-300);
+            params.insert("m_s_kg".into(), m);
+            acc.into_iter()
+                .map(|v| v.into_iter().map(|a| m * a).collect())
+                .collect()
+        }
+        "magnetic_saturation" => {
+            let pairs = saturation_pairs(ds, opts)?;
+            let prep = prepared::prepare(ds, &opts.folds, &opts.validate_currents_a)?;
+            let table = baseline::fit_table(&prep)?;
+            // Per affected recording: the fitted table's force difference
+            // between the bracketing currents at each sample.
+            let spans: Vec<(usize, f64, f64, f64, Vec<f64>)> = pairs
+                .iter()
+                .map(|&(i, lo, hi)| {
+                    let r = &ds.recordings[i];
+                    let s = &r.samples;
+                    let span: Vec<f64> = (0..s.len())
+                        .map(|t| {
+                            let b = Branch::from_velocity(s.v_m_s[t] as f32);
+                            let f = |c: f64| f64::from(table.force_on_branch(s.x_mm[t] as f32, b, c as f32).force_n);
+                            f(hi) - f(lo)
+                        })
+                        .collect();
+                    (i, r.current_a, lo, hi, span)
+                })
+                .collect();
+            let build = |i_s: f64| -> Vec<Vec<f64>> {
+                let mut added: Vec<Vec<f64>> = ds.recordings.iter().map(|r| vec![0.0; r.samples.len()]).collect();
+                for (i, cur, lo, hi, span) in &spans {
+                    let u = |c: f64| (c / i_s).tanh();
+                    let w = (u(*cur) - u(*lo)) / (u(*hi) - u(*lo)) - (cur - lo) / (hi - lo);
+                    added[*i] = span.iter().map(|d| w * d).collect();
+                }
+                added
+            };
+            // Smaller I_s saturates harder: strength falls as I_s grows.
+            let imax = ds
+                .recordings
+                .iter()
+                .map(|r| r.current_a.abs())
+                .fold(0.0, f64::max)
+                .max(1e-3);
+            let i_s = imax / solve_increasing(&|p| added_rms_n(&build(imax / p)), target, 0.2, 200.0);
+            params.insert("i_s_a".into(), i_s);
+            build(i_s)
+        }
+        other => bail!("cannot inject `{other}` into real recordings"),
+    };
+    for (r, a) in out.recordings.iter_mut().zip(&added) {
+        for (f, d) in r.samples.force_n.iter_mut().zip(a) {
+            *f += d;
+        }
+    }
+    if effect != "stress_softening" {
+        // Every case records a run order, so softening is always testable
+        // and a `none` case checks that a random order invents nothing.
+        let order = run_order(ds.recordings.len(), rng);
+        for (r, n) in out.recordings.iter_mut().zip(order) {
+            r.sequence = Some(n);
+        }
+    }
+    let achieved_strength = added_rms_n(&added) / force_rms_n(ds).max(1e-300);
+    Ok((
+        out,
+        Injection {
+            effect: effect.to_string(),
+            strength,
+            achieved_strength,
+            parameters: params,
+        },
+    ))
+}
+
+fn run_order(n: usize, rng: &mut ChaCha8Rng) -> Vec<u32> {
+    let mut order: Vec<u32> = (1..=n as u32).collect();
+    order.shuffle(rng);
+    order
+}
+
+/// Runs `n_cases` cases on `ds`, the effects taken in turn, strengths drawn
+/// from `seed`; `progress` is told about each case as it finishes.
+pub fn run_real_bench(
+    ds: &Dataset,
+    n_cases: usize,
+    seed: u64,
+    opts: &DiagnoseOptions,
+    mut progress: impl FnMut(&RealCase),
+) -> Result<RealSummary> {
+    let effects = injectable(ds, opts)?;
+    let untouched: Vec<String> = diagnose(ds, opts)?
+        .findings
+        .iter()
+        .map(|f| f.effect.name().to_string())
+        .collect();
+    let mut cases = Vec::with_capacity(n_cases);
+    for k in 0..n_cases {
+        let mut rng = ChaCha8Rng::seed_from_u64(super::bench::case_seed(seed, k));
+        let effect = effects[k % effects.len()];
+        let strength = rng.random_range(STRENGTH_RANGE);
+        let (injected, injection) = inject(ds, effect, strength, &mut rng, opts)?;
+        let start = Instant::now();
+        let d = diagnose(&injected, opts)?;
+        let seconds = start.elapsed().as_secs_f64();
+        let found: Vec<String> = d.findings.iter().map(|f| f.effect.name().to_string()).collect();
+        let new_found: Vec<String> = found.iter().filter(|n| !untouched.contains(n)).cloned().collect();
+        let truth = effect.to_string();
+        let c = RealCase {
+            case: k,
+            top1: new_found.first().cloned().unwrap_or_else(|| "none".into()),
+            found_at_all: truth == "none" || found.contains(&truth),
+            false_positives: new_found.iter().filter(|n| **n != truth).cloned().collect(),
+            heldout_improvement: d
+                .findings
+                .iter()
+                .find(|f| f.effect.name() == truth)
+                .map(|f| f.heldout_improvement),
+            tested: d
+                .selection
+                .rounds
+                .iter()
+                .map(|r| {
+                    r.tested
+                        .iter()
+                        .map(|c| {
+                            format!(
+                                "{} {:.3} [{:.3}, {:.3}] {:.0}",
+                                c.effect.map_or("memory", |e| e.name()),
+                                c.ratio,
+                                c.ratio_ci95[0],
+                                c.ratio_ci95[1],
+                                c.delta_bic
+                            )
+                        })
+                        .collect()
+                })
+                .collect(),
+            injection,
+            found,
+            new_found,
+            seconds,
+        };
+        progress(&c);
+        cases.push(c);
+    }
+    Ok(summarize(&ds.name, untouched, cases))
+}
+
+fn rate(cases: &[&RealCase], ok: impl Fn(&RealCase) -> bool) -> f64 {
+    if cases.is_empty() {
+        return f64::NAN;
+    }
+    cases.iter().filter(|c| ok(c)).count() as f64 / cases.len() as f64
+}
+
+pub fn summarize(dataset: &str, untouched: Vec<String>, cases: Vec<RealCase>) -> RealSummary {
+    let injected: Vec<&RealCase> = cases.iter().filter(|c| c.injection.effect != "none").collect();
+    let at_target: Vec<&RealCase> = injected
+        .iter()
+        .copied()
+        .filter(|c| c.injection.achieved_strength >= TARGET_STRENGTH)
+        .collect();
+    let none: Vec<&RealCase> = cases.iter().filter(|c| c.injection.effect == "none").collect();
+    let mut median_improvement = BTreeMap::new();
+    for c in &injected {
+        median_improvement
+            .entry(c.injection.effect.clone())
+            .or_insert_with(Vec::new)
+            .push(c.heldout_improvement.unwrap_or(1.0));
+    }
+    let median_improvement = median_improvement
+        .into_iter()
+        .map(|(k, mut v)| {
+            v.sort_by(f64::total_cmp);
+            (k, v[v.len() / 2])
+        })
+        .collect();
+    RealSummary {
+        dataset: dataset.to_string(),
+        found_rate_at_target: rate(&at_target, |c| c.found_at_all),
+        top1_rate_at_target: rate(&at_target, |c| c.top1 == c.injection.effect),
+        found_rate: rate(&injected, |c| c.found_at_all),
+        top1_rate: rate(&injected, |c| c.top1 == c.injection.effect),
+        false_positive_rate_none: rate(&none, |c| !c.false_positives.is_empty()),
+        false_positive_rate_injected: rate(&injected, |c| !c.false_positives.is_empty()),
+        median_improvement,
+        max_seconds: cases.iter().map(|c| c.seconds).fold(0.0, f64::max),
+        untouched,
+        cases,
+    }
+}
+
+/// The printed summary: one row per effect, then the target figures.
+pub fn format_real_summary(s: &RealSummary) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "real recordings: {}", s.dataset);
+    let _ = writeln!(
+        out,
+        "untouched data give: {:?} (not counted as false positives)",
+        s.untouched
+    );
+    let _ = writeln!(
+        out,
+        "{:<20} {:>5} {:>14} {:>14} {:>10} {:>16}",
+        "injected", "cases", "found (≥5 %)", "top-1 (≥5 %)", "found all", "median held-out"
+    );
+    let mut names: Vec<&str> = s.cases.iter().map(|c| c.injection.effect.as_str()).collect();
+    names.sort();
+    names.dedup();
+    for name in names {
+        let all: Vec<&RealCase> = s.cases.iter().filter(|c| c.injection.effect == name).collect();
+        // `none` has no strength: its row counts cases with nothing invented.
+        let strong: Vec<&RealCase> = all
+            .iter()
+            .copied()
+            .filter(|c| name == "none" || c.injection.achieved_strength >= TARGET_STRENGTH)
+            .collect();
+        let ok = |c: &RealCase| {
+            if name == "none" {
+                c.false_positives.is_empty()
+            } else {
+                c.found_at_all
+            }
+        };
+        let count = |v: &[&RealCase], ok: &dyn Fn(&RealCase) -> bool| {
+            format!("{}/{}", v.iter().filter(|c| ok(c)).count(), v.len())
+        };
+        let _ = writeln!(
+            out,
+            "{:<20} {:>5} {:>14} {:>14} {:>10} {:>15.2}×",
+            name,
+            all.len(),
+            count(&strong, &ok),
+            count(&strong, &|c| c.top1 == name),
+            count(&all, &ok),
+            s.median_improvement.get(name).copied().unwrap_or(1.0)
+        );
+    }
+    let _ = writeln!(
+        out,
+        "found at strength ≥ 5 %: {:.1} %; top-1: {:.1} %; all strengths: found {:.1} %, top-1 {:.1} %",
+        100.0 * s.found_rate_at_target,
+        100.0 * s.top1_rate_at_target,
+        100.0 * s.found_rate,
+        100.0 * s.top1_rate
+    );
+    let _ = writeln!(
+        out,
+        "false positives: {:.1} % of none cases, {:.1} % of injected cases; slowest diagnosis {:.2} s",
+        100.0 * s.false_positive_rate_none,
+        100.0 * s.false_positive_rate_injected,
+        s.max_seconds
+    );
+    out
+}
