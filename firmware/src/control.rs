@@ -60,6 +60,13 @@ impl VelocitySensor for NoVelocitySensor {
 pub const RATE_MIN_HZ: u32 = 1_000;
 pub const RATE_MAX_HZ: u32 = 40_000;
 pub const DEFAULT_RATE_HZ: u32 = 10_000;
+/// The velocity transducer's rated range, ±5 m/s (firmware/README.md, "Wiring").
+pub const V_SENSOR_FULL_SCALE_M_S: f32 = 5.0;
+/// Velocity cross-check defaults: the estimator lags an impact's
+/// deceleration (hundreds of m/s²) by a few tenths of a m/s, so 5 ms (at
+/// 10 kHz) more than 1 m/s apart is a lying sensor.
+pub const DISAGREE_M_S: f32 = 1.0;
+pub const DISAGREE_SAMPLES: u16 = 50;
 
 /// Everything the control step needs besides the law's own parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -79,6 +86,15 @@ pub struct ControlConfig {
     /// latch `OVERRUN`.
     pub overrun_limit: u16,
     pub overrun_window: u16,
+    /// The velocity sensor's rated full scale: a measured |v| at or beyond it
+    /// is a range fault. The ADC rails read ±5.5 m/s (firmware/README.md), so
+    /// a broken wire is caught here, not taken as a rebound.
+    pub v_sensor_full_scale_m_s: f32,
+    /// A measured velocity further than this from the estimator's (derived
+    /// from x) for `disagree_samples` periods in a row latches `SENSOR_DISAGREE`;
+    /// 0 samples disables the check.
+    pub disagree_m_s: f32,
+    pub disagree_samples: u16,
 }
 
 /// Why a control configuration was refused.
@@ -116,6 +132,9 @@ impl ControlConfig {
             stuck_min_speed_m_s: 0.05,
             overrun_limit: 10,
             overrun_window: 1000,
+            v_sensor_full_scale_m_s: V_SENSOR_FULL_SCALE_M_S,
+            disagree_m_s: DISAGREE_M_S,
+            disagree_samples: DISAGREE_SAMPLES,
         };
         cfg.validate()?;
         Ok(cfg)
@@ -143,6 +162,10 @@ impl ControlConfig {
             || self.overrun_window < self.overrun_limit
             || !self.stuck_min_speed_m_s.is_finite()
             || self.stuck_min_speed_m_s < 0.0
+            || self.v_sensor_full_scale_m_s.is_nan()
+            || self.v_sensor_full_scale_m_s <= 0.0
+            || self.disagree_m_s.is_nan()
+            || self.disagree_m_s <= 0.0
         {
             return Err(ControlConfigError::Counts);
         }
@@ -189,6 +212,7 @@ pub struct Controller {
     bad_samples: u16,
     last_x_mm: f32,
     unchanged_moving: u16,
+    disagreeing: u16,
     window_periods: u16,
     window_overruns: u16,
     stats: Stats,
@@ -209,6 +233,7 @@ impl Controller {
             bad_samples: 0,
             last_x_mm: f32::NAN,
             unchanged_moving: 0,
+            disagreeing: 0,
             window_periods: 0,
             window_overruns: 0,
             stats: Stats::default(),
@@ -250,6 +275,7 @@ impl Controller {
         self.latched = Flags(self.latched.0 & Flags::TABLE_FAULT.0);
         self.bad_samples = 0;
         self.unchanged_moving = 0;
+        self.disagreeing = 0;
         self.window_periods = 0;
         self.window_overruns = 0;
     }
@@ -301,11 +327,21 @@ impl Controller {
         let (v_est_m_s, _) = self.estimator.update(x_mm);
         let v_m_s = v_measured_m_s.unwrap_or(v_est_m_s);
         self.check_stuck(x_mm, v_measured_m_s);
+        self.check_disagree(x_mm, v_measured_m_s, v_est_m_s);
+        // A reading at the sensor's full scale is a rail (broken wire), not
+        // a speed: the law's own plausibility limit is far wider.
+        let at_full_scale = v_measured_m_s.is_some_and(|v| math::abs(v) >= self.cfg.v_sensor_full_scale_m_s);
 
         let mut cmd = match &self.table {
+            Some(_) if at_full_scale && !self.latched.is_fault() => self.law.fail_safe(Flags::SENSOR_RANGE),
             Some(table) if !self.latched.is_fault() => self.law.step(table, x_mm, v_m_s),
             _ => self.law.fail_safe(self.latched),
         };
+        // The law flags a non-finite result of the table (it cannot happen
+        // with a validated table): the table is not to be trusted again.
+        if cmd.flags.contains(Flags::TABLE_FAULT) {
+            self.latch(Flags::TABLE_FAULT);
+        }
 
         let input_fault = Flags(cmd.flags.0 & (Flags::SENSOR_RANGE.0 | Flags::NON_FINITE_INPUT.0));
         if input_fault != Flags::NONE && cmd.flags.contains(Flags::FAIL_SAFE) {
@@ -341,6 +377,23 @@ impl Controller {
             }
         } else {
             self.unchanged_moving = 0;
+        }
+    }
+
+    fn check_disagree(&mut self, x_mm: f32, v_measured_m_s: Option<f32>, v_est_m_s: f32) {
+        let Some(v_m_s) = v_measured_m_s else { return };
+        if self.cfg.disagree_samples == 0 || !x_mm.is_finite() || !v_m_s.is_finite() {
+            // Non-finite samples are the range check's business.
+            self.disagreeing = 0;
+            return;
+        }
+        if math::abs(v_m_s - v_est_m_s) > self.cfg.disagree_m_s {
+            self.disagreeing = self.disagreeing.saturating_add(1);
+            if self.disagreeing >= self.cfg.disagree_samples {
+                self.latch(Flags::SENSOR_DISAGREE);
+            }
+        } else {
+            self.disagreeing = 0;
         }
     }
 

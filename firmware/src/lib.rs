@@ -9,6 +9,7 @@
 #![cfg_attr(not(test), no_std)]
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::indexing_slicing)]
 
+pub mod boot;
 pub mod control;
 pub mod estimate;
 pub mod flags;
@@ -18,6 +19,7 @@ pub mod inverse;
 pub mod law;
 pub mod math;
 pub mod model;
+pub mod pacing;
 pub mod table;
 
 pub use flags::Flags;
