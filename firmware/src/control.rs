@@ -39,7 +39,7 @@ pub trait VelocitySensor {
     fn read_v_m_s(&mut self) -> Option<f32>;
 }
 
-/// The coil driver: PWM open loop or a PI current loop behind it.
+/// The coil driver (PWM, open loop: see `open_loop_duty`).
 pub trait Coil {
     fn set_current_a(&mut self, current_a: f32);
 }
@@ -443,47 +443,4 @@ pub fn open_loop_duty(current_a: f32, full_scale_a: f32) -> f32 {
         return 0.0;
     }
     math::clamp(current_a / full_scale_a, 0.0, 1.0)
-}
-
-/// PI current loop: coil current setpoint and measured current in, PWM duty
-/// out. Feed-forward is the open-loop duty, so the integrator only trims the
-/// coil's resistance drift and supply sag. Anti-windup: the integral is
-/// clamped so that feed-forward + integral stays within the duty range.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CurrentLoop {
-    kp_per_a: f32,
-    ki_per_a_s: f32,
-    period_s: f32,
-    full_scale_a: f32,
-    integral: f32,
-}
-
-impl CurrentLoop {
-    /// Non-finite or negative gains become 0 (pure feed-forward).
-    pub fn new(kp_per_a: f32, ki_per_a_s: f32, period_s: f32, full_scale_a: f32) -> Self {
-        let sane = |g: f32| if g.is_finite() && g > 0.0 { g } else { 0.0 };
-        Self {
-            kp_per_a: sane(kp_per_a),
-            ki_per_a_s: sane(ki_per_a_s),
-            period_s: sane(period_s),
-            full_scale_a: sane(full_scale_a),
-            integral: 0.0,
-        }
-    }
-
-    /// Duty ∈ [0, 1]. A non-finite measurement falls back to feed-forward
-    /// and freezes the integrator.
-    pub fn update(&mut self, setpoint_a: f32, measured_a: f32) -> f32 {
-        let ff = open_loop_duty(setpoint_a, self.full_scale_a);
-        if !measured_a.is_finite() || !setpoint_a.is_finite() {
-            return ff;
-        }
-        let error_a = setpoint_a - measured_a;
-        self.integral = math::clamp(self.integral + self.ki_per_a_s * self.period_s * error_a, -ff, 1.0 - ff);
-        math::clamp(ff + self.kp_per_a * error_a + self.integral, 0.0, 1.0)
-    }
-
-    pub fn integral(&self) -> f32 {
-        self.integral
-    }
 }

@@ -47,6 +47,8 @@ mod fw {
 
     #[embassy_executor::main]
     async fn main(spawner: Spawner) {
+        // Before anything else: the coil pin comes out of reset pulled high.
+        board::coil_output_off_at_boot();
         let board = board::init(RATE_HZ);
         defmt::info!(
             "mre-firmware on {=str}, core clock {=u32} Hz",
@@ -117,6 +119,7 @@ mod fw {
     #[embassy_executor::task]
     async fn control_task(mut ctl: Controller, mut board: board::Board) {
         let mut last = ctl.stats();
+        let mut known_faults = ctl.latched();
         board.start();
         loop {
             board.io.next_period(&mut ctl).await;
@@ -127,6 +130,17 @@ mod fw {
             ctl.end_period(overran);
             // Fed here only: a stalled control loop must reset the chip.
             board.watchdog.pet();
+            if overran {
+                defmt::warn!("overrun in period {=u32}", ctl.stats().periods);
+            }
+            if ctl.latched() != known_faults {
+                known_faults = ctl.latched();
+                defmt::error!(
+                    "fault latched: {=u16:#06x} in period {=u32}; coil at the fail-safe",
+                    known_faults.0,
+                    ctl.stats().periods
+                );
+            }
 
             let s = ctl.stats();
             if s.periods.wrapping_sub(last.periods) >= ctl.config().rate_hz {

@@ -1,7 +1,7 @@
 //! The control step against mock I/O: fault handling, fail-safe, overrun
-//! accounting, rate config, stats and the coil current loop.
+//! accounting, rate config, stats and the coil duty.
 use mre_core::control::{
-    open_loop_duty, Coil, ControlConfig, ControlConfigError, Controller, CurrentLoop, DisplacementSensor,
+    open_loop_duty, Coil, ControlConfig, ControlConfigError, Controller, DisplacementSensor,
     NoVelocitySensor, VelocitySensor, DEFAULT_RATE_HZ,
 };
 use mre_core::estimate::AlphaBeta;
@@ -297,24 +297,6 @@ fn open_loop_duty_scales_and_clamps() {
     assert_eq!(open_loop_duty(-1.0, 3.0), 0.0);
     assert_eq!(open_loop_duty(f32::NAN, 3.0), 0.0);
     assert_eq!(open_loop_duty(1.0, 0.0), 0.0);
-}
-
-#[test]
-fn pi_current_loop_trims_error_and_does_not_wind_up() {
-    // kp 0.2/A, ki 100/(A·s), 10 kHz, 3 A full scale.
-    let mut pi = CurrentLoop::new(0.2, 100.0, 1.0e-4, 3.0);
-    // On target: duty is the feed-forward 1.5/3.
-    assert!((pi.update(1.5, 1.5) - 0.5).abs() < 1e-6);
-    // 0.5 A short: 0.5 + 0.2·0.5 + 100·1e-4·0.5 = 0.605.
-    assert!((pi.update(1.5, 1.0) - 0.605).abs() < 1e-6);
-    // A coil that never responds: the integral stops at 1 − ff, duty at 1.
-    for _ in 0..100_000 {
-        pi.update(1.5, 0.0);
-    }
-    assert!((pi.integral() - 0.5).abs() < 1e-6);
-    assert_eq!(pi.update(1.5, 0.0), 1.0);
-    // Broken sense channel: pure feed-forward.
-    assert!((pi.update(0.3, f32::NAN) - 0.1).abs() < 1e-7);
 }
 
 #[test]

@@ -24,3 +24,23 @@ pub use stm32l4::*;
 mod pil;
 #[cfg(feature = "pil")]
 pub use pil::*;
+
+/// The coil PWM pin, D5 = PB4 on both boards (and in QEMU's model).
+const COIL_PIN: usize = 4;
+
+/// Drives the coil output off (PB4 low, pull-down) through the PAC: the
+/// first thing `main` does, before clocks or embassy. After every reset PB4
+/// is NJTRST with an internal pull-up, so until this runs the driver input
+/// floats high (100 % duty, 3 A). Only the gate pull-down on the driver
+/// board (firmware/README.md, "Wiring") covers the microseconds from reset
+/// to here. Off (0 A) is the only state a bare GPIO can hold; the 2 A
+/// fail-safe follows once TIM3 runs the PWM in `init`.
+pub fn coil_output_off_at_boot() {
+    use embassy_stm32::pac;
+    use embassy_stm32::pac::gpio::vals::{Moder, Pupdr};
+    pac::RCC.ahb2enr().modify(|w| w.set_gpioben(true));
+    // Output level first, then the mode: the pin never drives high.
+    pac::GPIOB.bsrr().write(|w| w.set_br(COIL_PIN, true));
+    pac::GPIOB.pupdr().modify(|w| w.set_pupdr(COIL_PIN, Pupdr::PULL_DOWN));
+    pac::GPIOB.moder().modify(|w| w.set_moder(COIL_PIN, Moder::OUTPUT));
+}

@@ -1,47 +1,47 @@
-//! Real STM32L4 boards (B-L475E-IOT01A, NUCLEO-L476RG): 80 MHz PLL, three
-//! ADCs (displacement, velocity, coil current), TIM3 PWM coil drive, IWDG,
-//! DWT cycle counter. Pins and scaling are documented in `firmware/README.md`;
+//! Real STM32L4 boards (B-L475E-IOT01A, NUCLEO-L476RG): 80 MHz PLL, two
+//! ADCs (displacement, velocity), TIM3 PWM coil drive, IWDG, DWT cycle
+//! counter. Pins and scaling are documented in `firmware/README.md`;
 //! the per-board difference is only the pin table below.
 use defmt_rtt as _;
 use panic_probe as _;
 
 use embassy_stm32::adc::{Adc, AdcChannel, AnyAdcChannel, SampleTime};
 use embassy_stm32::gpio::OutputType;
-use embassy_stm32::peripherals::{ADC1, ADC2, ADC3, IWDG, TIM3};
+use embassy_stm32::peripherals::{ADC1, ADC2, IWDG, TIM3};
 use embassy_stm32::time::khz;
 use embassy_stm32::timer::low_level::CountingMode;
 use embassy_stm32::timer::simple_pwm::{PwmPin, SimplePwm, SimplePwmChannel};
 use embassy_stm32::wdg::IndependentWatchdog;
 use embassy_time::{Duration, Instant, Ticker};
-use mre_core::control::{open_loop_duty, Coil, Controller, CurrentLoop, DisplacementSensor, VelocitySensor};
+use mre_core::boot::ResetCause;
+use mre_core::control::{open_loop_duty, Coil, Controller, DisplacementSensor, VelocitySensor};
 use mre_core::law::{Command, LawConfig};
+use mre_core::pacing::Pacer;
 
 #[cfg(feature = "board-b-l475e-iot01a")]
 pub const NAME: &str = "B-L475E-IOT01A";
 /// Arduino A0 = PC5 (ADC1_IN14) displacement, A1 = PC4 (ADC2_IN13) velocity,
-/// A2 = PC3 (ADC3_IN4) coil current, D5 = PB4 (TIM3_CH1, AF2) coil PWM.
+/// D5 = PB4 (TIM3_CH1, AF2) coil PWM.
 #[cfg(feature = "board-b-l475e-iot01a")]
 macro_rules! board_pins {
     ($p:ident) => {
-        ($p.PC5, $p.PC4, $p.PC3, $p.PB4)
+        ($p.PC5, $p.PC4, $p.PB4)
     };
 }
 
 #[cfg(feature = "board-nucleo-l476rg")]
 pub const NAME: &str = "NUCLEO-L476RG";
 /// Arduino A0 = PA0 (ADC1_IN5) displacement, A1 = PA1 (ADC2_IN6) velocity,
-/// A4 = PC1 (ADC3_IN2) coil current, D5 = PB4 (TIM3_CH1, AF2) coil PWM.
+/// D5 = PB4 (TIM3_CH1, AF2) coil PWM.
 #[cfg(feature = "board-nucleo-l476rg")]
 macro_rules! board_pins {
     ($p:ident) => {
-        ($p.PA0, $p.PA1, $p.PC1, $p.PB4)
+        ($p.PA0, $p.PA1, $p.PB4)
     };
 }
 
-/// What is wired: a velocity transducer on the velocity channel, and a coil
-/// current sense amplifier for the PI current loop (cargo features).
+/// What is wired: a velocity transducer on the velocity channel (cargo feature).
 pub const HAS_VELOCITY_SENSOR: bool = cfg!(feature = "velocity-sensor");
-pub const HAS_CURRENT_SENSE: bool = cfg!(feature = "current-loop");
 
 // Scaling (firmware/README.md, "Wiring"). 12-bit ADC, 3.3 V reference.
 const VREF_V: f32 = 3.3;
@@ -53,14 +53,9 @@ const X_MM_PER_V: f32 = 25.0 / 2.7;
 /// Velocity transducer conditioned to 1.65 V ± 1.5 V for ±5 m/s (+ = compression).
 const V_ZERO_V: f32 = 1.65;
 const V_M_S_PER_V: f32 = 5.0 / 1.5;
-/// Coil current sense: 0.1 Ω shunt, gain 10: 1 V per A.
-const I_A_PER_V: f32 = 1.0;
 /// Coil driver: 12 V into a 4 Ω coil, so 100 % duty is 3 A on average.
 const COIL_FULL_SCALE_A: f32 = 3.0;
 const PWM_KHZ: u32 = 20;
-/// PI current loop gains (duty per A, duty per A·s).
-const CURRENT_KP_PER_A: f32 = 0.2;
-const CURRENT_KI_PER_A_S: f32 = 100.0;
 /// 24.5 + 12.5 ADC cycles at 80 MHz: 0.46 µs per conversion.
 const SAMPLE_TIME: SampleTime = SampleTime::CYCLES24_5;
 /// 50 periods at 10 kHz: long enough for the 1 Hz stats log, short enough
@@ -106,13 +101,11 @@ pub struct Io {
     adc_x: Adc<'static, ADC1>,
     ch_x: AnyAdcChannel<'static, ADC1>,
     velocity: Option<(Adc<'static, ADC2>, AnyAdcChannel<'static, ADC2>)>,
-    sense: Option<(Adc<'static, ADC3>, AnyAdcChannel<'static, ADC3>)>,
     pwm: SimplePwmChannel<'static, TIM3>,
     max_duty: u32,
-    current_loop: CurrentLoop,
     ticker: Ticker,
     period: Duration,
-    next_tick: Instant,
+    pacer: Pacer,
 }
 
 pub struct Board {
@@ -121,8 +114,20 @@ pub struct Board {
 }
 
 pub fn init(rate_hz: u32) -> Board {
+    // Read and clear the reset flags before anything can reset again.
+    let csr = embassy_stm32::pac::RCC.csr().read().0;
+    embassy_stm32::pac::RCC.csr().modify(|w| w.set_rmvf(true));
+    let cause = ResetCause::from_rcc_csr(csr);
+    if cause.is_fault() {
+        defmt::warn!("reset cause: {=str} (RCC_CSR {=u32:#010x})", cause.name(), csr);
+    } else {
+        defmt::info!("reset cause: {=str} (RCC_CSR {=u32:#010x})", cause.name(), csr);
+    }
+    // A halted core (breakpoint) must not be reset by the watchdog.
+    embassy_stm32::pac::DBGMCU.apb1fzr1().modify(|w| w.set_iwdg(true));
+
     let p = embassy_stm32::init(clock_config());
-    let (pin_x, pin_v, pin_i, pin_pwm) = board_pins!(p);
+    let (pin_x, pin_v, pin_pwm) = board_pins!(p);
 
     // SAFETY: only DCB/DWT are touched, once, before anything else uses them.
     let mut core = unsafe { cortex_m::Peripherals::steal() };
@@ -143,24 +148,18 @@ pub fn init(rate_hz: u32) -> Board {
     ch.enable();
 
     let period = Duration::from_hz(u64::from(rate_hz));
-    let period_s = 1.0 / rate_hz as f32;
     let mut io = Io {
         adc_x: Adc::new(p.ADC1),
         ch_x: pin_x.degrade_adc(),
         velocity: HAS_VELOCITY_SENSOR.then(|| (Adc::new(p.ADC2), pin_v.degrade_adc())),
-        sense: HAS_CURRENT_SENSE.then(|| (Adc::new(p.ADC3), pin_i.degrade_adc())),
         pwm: ch,
         max_duty,
-        current_loop: CurrentLoop::new(CURRENT_KP_PER_A, CURRENT_KI_PER_A_S, period_s, COIL_FULL_SCALE_A),
         ticker: Ticker::every(period),
         period,
-        next_tick: Instant::now(),
+        pacer: Pacer::start(Instant::now().as_ticks(), period.as_ticks()),
     };
     // Until the loop runs, hold the fail-safe current (stiffest damper).
-    io.set_duty(open_loop_duty(
-        LawConfig::default().failsafe_current_a,
-        COIL_FULL_SCALE_A,
-    ));
+    io.set_duty(fail_safe_duty());
     let watchdog = IndependentWatchdog::new(p.IWDG, WATCHDOG_TIMEOUT_US);
     Board { io, watchdog }
 }
@@ -169,21 +168,24 @@ impl Board {
     /// Starts the ticker and the watchdog right before the first period.
     pub fn start(&mut self) {
         self.io.ticker.reset();
-        // The first tick is one period from now; its deadline one more.
-        self.io.next_tick = Instant::now() + self.io.period;
+        self.io.pacer = Pacer::start(Instant::now().as_ticks(), self.io.period.as_ticks());
         self.watchdog.unleash();
     }
 }
 
-/// Holds the fail-safe coil current forever (configuration refused).
+/// Holds the fail-safe coil current until the watchdog resets the chip
+/// (configuration refused): started here and never fed, so a fatal fault
+/// at boot retries from reset instead of sleeping for ever.
 pub fn halt_fail_safe(mut board: Board) -> ! {
-    board.io.set_duty(open_loop_duty(
-        LawConfig::default().failsafe_current_a,
-        COIL_FULL_SCALE_A,
-    ));
+    board.io.set_duty(fail_safe_duty());
+    board.watchdog.unleash();
     loop {
         cortex_m::asm::wfi();
     }
+}
+
+fn fail_safe_duty() -> f32 {
+    open_loop_duty(LawConfig::default().failsafe_current_a, COIL_FULL_SCALE_A)
 }
 
 impl Io {
@@ -192,15 +194,22 @@ impl Io {
         self.pwm.set_duty_cycle((duty * self.max_duty as f32) as u32);
     }
 
-    /// Waits for the next tick of the control rate.
-    pub async fn next_period(&mut self, _ctl: &mut Controller) {
+    /// Waits for the next tick of the control rate. Ticks skipped by a
+    /// stall are counted as overruns and the ticker re-phased, instead of
+    /// letting it catch up with periods microseconds apart.
+    pub async fn next_period(&mut self, ctl: &mut Controller) {
         self.ticker.next().await;
-        self.next_tick += self.period;
+        let missed = self.pacer.wake(Instant::now().as_ticks());
+        if missed > 0 {
+            self.ticker.reset();
+            ctl.record_missed_periods(missed);
+            defmt::warn!("{=u32} control periods missed", missed);
+        }
     }
 
     /// True when this period's work ended after the next tick was due.
     pub fn finish_period(&mut self, _cmd: &Command, _ctl: &Controller) -> bool {
-        Instant::now() >= self.next_tick
+        self.pacer.overran(Instant::now().as_ticks())
     }
 
     pub fn link_summary(&self) -> &'static str {
@@ -225,14 +234,7 @@ impl VelocitySensor for Io {
 
 impl Coil for Io {
     fn set_current_a(&mut self, current_a: f32) {
-        let duty = match self.sense.as_mut() {
-            Some((adc, ch)) => {
-                let measured_a = volts(adc.blocking_read(ch, SAMPLE_TIME)) * I_A_PER_V;
-                self.current_loop.update(current_a, measured_a)
-            }
-            None => open_loop_duty(current_a, COIL_FULL_SCALE_A),
-        };
-        self.set_duty(duty);
+        self.set_duty(open_loop_duty(current_a, COIL_FULL_SCALE_A));
     }
 }
 
