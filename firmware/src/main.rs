@@ -5,7 +5,12 @@
 //! One embassy task runs the control loop: wait for the period (a `Ticker`
 //! on hardware, the next sample frame in PIL), run the core's
 //! [`Controller::step_io`](mre_core::control::Controller::step_io), account
-//! for overruns, feed the watchdog, and log statistics once a second.
+//! for overruns, feed the watchdog. On hardware it runs on an
+//! `InterruptExecutor` (UART4's vector, which nothing else uses) at high
+//! priority; it never logs itself but posts events to a channel that the
+//! thread-mode main task drains into defmt, so a stalled log reader (RTT
+//! buffer full) can never hold up a control period. Events that do not fit
+//! are counted and reported with the next stats line.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(not(target_os = "none"))]
@@ -19,9 +24,47 @@ mod board;
 #[cfg(target_os = "none")]
 mod fw {
     use crate::board;
+    use core::sync::atomic::{AtomicU32, Ordering};
     use embassy_executor::Spawner;
-    use mre_core::control::{ControlConfig, Controller, DEFAULT_RATE_HZ};
+    use embassy_sync::blocking_mutex::raw::CriticalSectionRawMutex;
+    use embassy_sync::channel::Channel;
+    use mre_core::control::{ControlConfig, Controller, Stats, DEFAULT_RATE_HZ};
+    use mre_core::frame::LinkStats;
     use mre_core::table::Table;
+
+    // Log lines carry embassy-time's µs since boot.
+    defmt::timestamp!("{=u64:us}", embassy_time::Instant::now().as_micros());
+
+    /// What the control task reports; logged in thread mode.
+    enum Event {
+        Overrun { period: u32 },
+        Missed { ticks: u32, period: u32 },
+        FaultLatched { latched: u16, period: u32 },
+        Stats { stats: Stats, new_periods: u32, link: Option<LinkStats> },
+    }
+    static EVENTS: Channel<CriticalSectionRawMutex, Event, 16> = Channel::new();
+    static DROPPED_EVENTS: AtomicU32 = AtomicU32::new(0);
+
+    /// Never blocks: a full channel drops the event and counts it.
+    fn post(event: Event) {
+        if EVENTS.try_send(event).is_err() {
+            DROPPED_EVENTS.fetch_add(1, Ordering::Relaxed);
+        }
+    }
+
+    #[cfg(feature = "hw")]
+    static CONTROL_EXECUTOR: embassy_executor::InterruptExecutor = embassy_executor::InterruptExecutor::new();
+
+    #[cfg(feature = "hw")]
+    use embassy_stm32::interrupt;
+
+    #[cfg(feature = "hw")]
+    #[interrupt]
+    #[allow(non_snake_case)]
+    unsafe fn UART4() {
+        // SAFETY: the executor was started on this vector in `main`.
+        unsafe { CONTROL_EXECUTOR.on_interrupt() }
+    }
 
     /// The table this image flies: by default the one `mre tables` generated
     /// from the committed model (`firmware/src/generated_table.rs`); with the
@@ -109,10 +152,61 @@ mod fw {
             cfg.law.stroke_max_mm,
             cfg.law.mass_kg
         );
+        #[cfg(feature = "hw")]
+        let _ = spawner; // the control task gets its own executor
         // The task pool holds one control task and this is its only spawn.
         match control_task(ctl, board) {
+            #[cfg(feature = "hw")]
+            Ok(token) => {
+                use interrupt::{InterruptExt, Priority};
+                // Above everything but the time driver's alarm (P0).
+                interrupt::UART4.set_priority(Priority::P1);
+                CONTROL_EXECUTOR.start(interrupt::UART4).spawn(token);
+            }
+            // PIL: simulated time, one executor in thread mode.
+            #[cfg(not(feature = "hw"))]
             Ok(token) => spawner.spawn(token),
             Err(_) => defmt::error!("control task already running"),
+        }
+        log_events().await
+    }
+
+    /// Thread mode: turns the control task's events into defmt lines.
+    async fn log_events() -> ! {
+        let mut reported_dropped = 0;
+        loop {
+            match EVENTS.receive().await {
+                Event::Overrun { period } => defmt::warn!("overrun in period {=u32}", period),
+                Event::Missed { ticks, period } => {
+                    defmt::warn!("{=u32} control periods missed before period {=u32}", ticks, period)
+                }
+                Event::FaultLatched { latched, period } => defmt::error!(
+                    "fault latched: {=u16:#06x} in period {=u32}; coil at the fail-safe",
+                    latched,
+                    period
+                ),
+                Event::Stats {
+                    stats: s,
+                    new_periods,
+                    link,
+                } => {
+                    let dropped = DROPPED_EVENTS.load(Ordering::Relaxed);
+                    defmt::info!(
+                        "stats: periods {=u32} (+{=u32}), overruns {=u32}, fail-safe periods {=u32}, latched {=u16:#06x}, step cycles min/mean/max {=u32}/{=u32}/{=u32}, log events dropped {=u32}{}",
+                        s.periods,
+                        new_periods,
+                        s.overruns,
+                        s.failsafe_periods,
+                        s.latched.0,
+                        s.step_cycles_min,
+                        s.step_cycles_mean(),
+                        s.step_cycles_max,
+                        dropped.wrapping_sub(reported_dropped),
+                        board::LinkSummary(link)
+                    );
+                    reported_dropped = dropped;
+                }
+            }
         }
     }
 
@@ -122,7 +216,13 @@ mod fw {
         let mut known_faults = ctl.latched();
         board.start();
         loop {
-            board.io.next_period(&mut ctl).await;
+            let missed = board.io.next_period(&mut ctl).await;
+            if missed > 0 {
+                post(Event::Missed {
+                    ticks: missed,
+                    period: ctl.stats().periods,
+                });
+            }
             let t0 = board::cycles();
             let cmd = ctl.step_io(&mut board.io);
             ctl.record_step_cycles(board::cycles().wrapping_sub(t0));
@@ -131,31 +231,25 @@ mod fw {
             // Fed here only: a stalled control loop must reset the chip.
             board.watchdog.pet();
             if overran {
-                defmt::warn!("overrun in period {=u32}", ctl.stats().periods);
+                post(Event::Overrun {
+                    period: ctl.stats().periods,
+                });
             }
             if ctl.latched() != known_faults {
                 known_faults = ctl.latched();
-                defmt::error!(
-                    "fault latched: {=u16:#06x} in period {=u32}; coil at the fail-safe",
-                    known_faults.0,
-                    ctl.stats().periods
-                );
+                post(Event::FaultLatched {
+                    latched: known_faults.0,
+                    period: ctl.stats().periods,
+                });
             }
 
             let s = ctl.stats();
             if s.periods.wrapping_sub(last.periods) >= ctl.config().rate_hz {
-                defmt::info!(
-                    "stats: periods {=u32} (+{=u32}), overruns {=u32}, fail-safe periods {=u32}, latched {=u16:#06x}, step cycles min/mean/max {=u32}/{=u32}/{=u32}{}",
-                    s.periods,
-                    s.periods.wrapping_sub(last.periods),
-                    s.overruns,
-                    s.failsafe_periods,
-                    s.latched.0,
-                    s.step_cycles_min,
-                    s.step_cycles_mean(),
-                    s.step_cycles_max,
-                    board.io.link_summary()
-                );
+                post(Event::Stats {
+                    stats: s,
+                    new_periods: s.periods.wrapping_sub(last.periods),
+                    link: board.io.link_stats(),
+                });
                 #[cfg(all(feature = "bench", feature = "hw"))]
                 crate::board::bench_model_step(ctl.table());
                 last = s;

@@ -7,7 +7,7 @@
 //! Every layer exports the same items: `NAME`, `Board { io, watchdog }`,
 //! `init(rate_hz)`, `Board::start`, `core_clock_hz`, `cycles`,
 //! `halt_fail_safe`, and an `io` with `next_period`, `finish_period` and
-//! `link_summary`.
+//! `link_stats`.
 #[cfg(all(feature = "hw", feature = "pil"))]
 compile_error!("enable one board: `pil` needs `--no-default-features`");
 #[cfg(all(feature = "board-b-l475e-iot01a", feature = "board-nucleo-l476rg"))]
@@ -43,4 +43,23 @@ pub fn coil_output_off_at_boot() {
     pac::GPIOB.bsrr().write(|w| w.set_br(COIL_PIN, true));
     pac::GPIOB.pupdr().modify(|w| w.set_pupdr(COIL_PIN, Pupdr::PULL_DOWN));
     pac::GPIOB.moder().modify(|w| w.set_moder(COIL_PIN, Moder::OUTPUT));
+}
+
+/// The PIL frame link's counters in a log line (nothing on hardware).
+pub struct LinkSummary(pub Option<mre_core::frame::LinkStats>);
+impl defmt::Format for LinkSummary {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        if let Some(s) = &self.0 {
+            defmt::write!(
+                f,
+                ", frames ok {=u32} crc {=u32} kind {=u32} order {=u32} dup {=u32} lost {=u32}",
+                s.accepted,
+                s.crc_errors,
+                s.bad_kind,
+                s.out_of_order,
+                s.duplicates,
+                s.lost
+            );
+        }
+    }
 }

@@ -175,14 +175,7 @@ impl Board {
     /// firmware is still booting.
     pub fn start(&mut self) {
         defmt::info!("PIL link up on USART1: waiting for sample frames");
-        let hello = CommandFrame {
-            seq: HELLO_SEQ,
-            current_a: 0.0,
-            target_force_n: 0.0,
-            flags: Flags::NONE,
-            rejected: 0,
-        };
-        usart_write(&hello.encode());
+        send_hello(Flags::NONE);
     }
 }
 
@@ -204,7 +197,8 @@ pub fn halt_fail_safe(_board: Board) -> ! {
 impl Io {
     /// Waits for the next valid sample frame (one control period). An
     /// uploaded configuration (config frames + commit) replaces `ctl`.
-    pub async fn next_period(&mut self, ctl: &mut Controller) {
+    /// Simulated time never skips a period: returns 0 missed ticks.
+    pub async fn next_period(&mut self, ctl: &mut Controller) -> u32 {
         loop {
             let mut idle_polls = 0u32;
             while idle_polls < SPIN_POLLS {
@@ -236,7 +230,7 @@ impl Io {
                     Some(Ok(Incoming::Sample(sample))) if sample.seq == END_OF_RUN_SEQ => end_of_run(self.rx.stats()),
                     Some(Ok(Incoming::Sample(sample))) => {
                         self.sample = sample;
-                        return;
+                        return 0;
                     }
                     // A host retry: answer again without a second step.
                     Some(Err(FrameError::Duplicate { .. })) => {
@@ -275,30 +269,13 @@ impl Io {
         false
     }
 
-    pub fn link_summary(&self) -> LinkSummary {
-        LinkSummary(self.rx.stats())
-    }
-}
-
-pub struct LinkSummary(LinkStats);
-impl defmt::Format for LinkSummary {
-    fn format(&self, f: defmt::Formatter<'_>) {
-        let s = &self.0;
-        defmt::write!(
-            f,
-            ", frames ok {=u32} crc {=u32} kind {=u32} order {=u32} dup {=u32} lost {=u32}",
-            s.accepted,
-            s.crc_errors,
-            s.bad_kind,
-            s.out_of_order,
-            s.duplicates,
-            s.lost
-        );
+    pub fn link_stats(&self) -> Option<LinkStats> {
+        Some(self.rx.stats())
     }
 }
 
 fn end_of_run(stats: LinkStats) -> ! {
-    defmt::info!("PIL end of run{}", LinkSummary(stats));
+    defmt::info!("PIL end of run{}", super::LinkSummary(Some(stats)));
     semihosting::process::exit(0)
 }
 

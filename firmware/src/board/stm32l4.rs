@@ -197,14 +197,15 @@ impl Io {
     /// Waits for the next tick of the control rate. Ticks skipped by a
     /// stall are counted as overruns and the ticker re-phased, instead of
     /// letting it catch up with periods microseconds apart.
-    pub async fn next_period(&mut self, ctl: &mut Controller) {
+    /// Returns the number of ticks missed.
+    pub async fn next_period(&mut self, ctl: &mut Controller) -> u32 {
         self.ticker.next().await;
         let missed = self.pacer.wake(Instant::now().as_ticks());
         if missed > 0 {
             self.ticker.reset();
             ctl.record_missed_periods(missed);
-            defmt::warn!("{=u32} control periods missed", missed);
         }
+        missed
     }
 
     /// True when this period's work ended after the next tick was due.
@@ -212,8 +213,9 @@ impl Io {
         self.pacer.overran(Instant::now().as_ticks())
     }
 
-    pub fn link_summary(&self) -> &'static str {
-        ""
+    /// No frame link on hardware.
+    pub fn link_stats(&self) -> Option<mre_core::frame::LinkStats> {
+        None
     }
 }
 
