@@ -37,10 +37,22 @@ mod fw {
 
     /// What the control task reports; logged in thread mode.
     enum Event {
-        Overrun { period: u32 },
-        Missed { ticks: u32, period: u32 },
-        FaultLatched { latched: u16, period: u32 },
-        Stats { stats: Stats, new_periods: u32, link: Option<LinkStats> },
+        Overrun {
+            period: u32,
+        },
+        Missed {
+            ticks: u32,
+            period: u32,
+        },
+        FaultLatched {
+            latched: u16,
+            period: u32,
+        },
+        Stats {
+            stats: Stats,
+            new_periods: u32,
+            link: Option<LinkStats>,
+        },
     }
     static EVENTS: Channel<CriticalSectionRawMutex, Event, 16> = Channel::new();
     static DROPPED_EVENTS: AtomicU32 = AtomicU32::new(0);
@@ -154,7 +166,7 @@ mod fw {
         );
         #[cfg(feature = "hw")]
         let _ = spawner; // the control task gets its own executor
-        // The task pool holds one control task and this is its only spawn.
+                         // The task pool holds one control task and this is its only spawn.
         match control_task(ctl, board) {
             #[cfg(feature = "hw")]
             Ok(token) => {
