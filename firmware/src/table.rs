@@ -134,10 +134,12 @@ impl Quartic {
 
 /// Largest force (N) a table may produce anywhere in its fitted stroke, and
 /// the largest |x| (mm), |current| (A) and viscous coefficient (N·s/m) it may
-/// hold. The damper makes a few kN; these bounds keep every Horner step and
-/// the inverse's arithmetic far from f32 overflow (3.4e38), so an extreme
-/// (e.g. uploaded) table is refused instead of making the inverse NaN.
-pub const MAX_TABLE_FORCE_N: f32 = 1.0e7;
+/// hold. The damper makes a few kN; quartics extrapolated over a long fitted
+/// stroke reach 1e8 N (Table 4 at 10× its stroke), so the force bound sits
+/// above that and still 29 orders below f32 overflow (3.4e38): every Horner
+/// step and the inverse's arithmetic stay finite, and an extreme (e.g.
+/// uploaded) table is refused instead of making the inverse NaN.
+pub const MAX_TABLE_FORCE_N: f32 = 1.0e9;
 pub const MAX_TABLE_X_MM: f32 = 1.0e3;
 pub const MAX_TABLE_CURRENT_A: f32 = 100.0;
 pub const MAX_VISCOUS_N_S_PER_M: f32 = 1.0e5;

@@ -27,17 +27,17 @@ fn finite_but_overflowing_coefficients_are_refused() {
 
 #[test]
 fn the_bound_is_the_largest_force_over_the_fitted_stroke() {
-    // x⁴ reaches 1e7 N at x = 1e7^(1/4) = 56.23 mm.
-    assert!(Table::new(&[entry(0.0, [1.0, 0.0, 0.0, 0.0, 0.0], 56.0)]).is_ok());
+    // x⁴ reaches 1e9 N at x = 1e9^(1/4) = 177.8 mm.
+    assert!(Table::new(&[entry(0.0, [1.0, 0.0, 0.0, 0.0, 0.0], 177.0)]).is_ok());
     assert_eq!(
-        Table::new(&[entry(0.0, [1.0, 0.0, 0.0, 0.0, 0.0], 56.5)]),
+        Table::new(&[entry(0.0, [1.0, 0.0, 0.0, 0.0, 0.0], 178.5)]),
         Err(TableError::TooLarge { index: 0 })
     );
-    // Signs do not cancel in the bound: x⁴ − 9.8e6 is small at 56 mm, but
-    // its terms are not (9.8e6 + 9.83e6 > 1e7), and Horner's partials are
-    // bounded only by the sum of the magnitudes.
+    // Signs do not cancel in the bound: x⁴ − 9.8e8 is small at 177 mm
+    // (177⁴ = 9.815e8), but its terms are not (9.8e8 + 9.815e8 > 1e9), and
+    // Horner's partials are bounded only by the sum of the magnitudes.
     assert_eq!(
-        Table::new(&[entry(0.0, [1.0, 0.0, 0.0, 0.0, -9.8e6], 56.0)]),
+        Table::new(&[entry(0.0, [1.0, 0.0, 0.0, 0.0, -9.8e8], 177.0)]),
         Err(TableError::TooLarge { index: 0 })
     );
     // A constant at the bound passes, just above it fails.
