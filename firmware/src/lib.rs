@@ -10,6 +10,7 @@
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::indexing_slicing)]
 
 pub mod boot;
+pub mod calibration;
 pub mod control;
 pub mod estimate;
 pub mod flags;

@@ -44,6 +44,7 @@ macro_rules! board_pins {
 pub const HAS_VELOCITY_SENSOR: bool = cfg!(feature = "velocity-sensor");
 
 // Scaling (firmware/README.md, "Wiring"). 12-bit ADC, 3.3 V reference.
+/// Nominal VDDA; boot calibration measures it against VREFINT.
 const VREF_V: f32 = 3.3;
 const ADC_FULL_SCALE: f32 = 4095.0;
 /// Displacement: 0.3 V at 0 mm … 3.0 V at 25 mm. The ADC rails (a broken or
@@ -92,9 +93,8 @@ pub fn cycles() -> u32 {
     cortex_m::peripheral::DWT::cycle_count()
 }
 
-fn volts(code: u16) -> f32 {
-    f32::from(code) * (VREF_V / ADC_FULL_SCALE)
-}
+/// Samples per boot zero (50 µs apart: 3.2 ms at rest).
+const CAL_SAMPLES: usize = 64;
 
 /// Sensors, coil and pacing: implements the core's I/O traits.
 pub struct Io {
@@ -106,6 +106,10 @@ pub struct Io {
     ticker: Ticker,
     period: Duration,
     pacer: Pacer,
+    /// From boot calibration (nominal if it was refused).
+    v_per_lsb: f32,
+    x_offset_mm: f32,
+    v_zero_m_s: f32,
 }
 
 pub struct Board {
@@ -157,9 +161,13 @@ pub fn init(rate_hz: u32) -> Board {
         ticker: Ticker::every(period),
         period,
         pacer: Pacer::start(Instant::now().as_ticks(), period.as_ticks()),
+        v_per_lsb: VREF_V / ADC_FULL_SCALE,
+        x_offset_mm: 0.0,
+        v_zero_m_s: 0.0,
     };
     // Until the loop runs, hold the fail-safe current (stiffest damper).
     io.set_duty(fail_safe_duty());
+    io.calibrate();
     let watchdog = IndependentWatchdog::new(p.IWDG, WATCHDOG_TIMEOUT_US);
     Board { io, watchdog }
 }
@@ -189,6 +197,68 @@ fn fail_safe_duty() -> f32 {
 }
 
 impl Io {
+    fn volts(&self, code: u16) -> f32 {
+        f32::from(code) * self.v_per_lsb
+    }
+
+    /// Boot calibration (firmware/README.md): VDDA from VREFINT, then the
+    /// displacement offset and the velocity zero with the mass at rest. Each
+    /// result is range-checked (`mre_core::calibration`) and logged; a
+    /// refused one leaves the nominal scaling.
+    fn calibrate(&mut self) {
+        use mre_core::calibration::{rest_offset, vdda_v, V_REST, X_REST};
+        let mut vref = self.adc_x.enable_vrefint();
+        let raw = self.adc_x.blocking_read(&mut vref, SampleTime::CYCLES247_5);
+        match vdda_v(raw, vref.calibrated_value()) {
+            Ok(vdda) => {
+                self.v_per_lsb = vdda / ADC_FULL_SCALE;
+                defmt::info!(
+                    "calibration: VDDA {=f32} V (VREFINT {=u16}, cal {=u16})",
+                    vdda,
+                    raw,
+                    vref.calibrated_value()
+                );
+            }
+            Err(e) => defmt::warn!(
+                "calibration: VDDA refused ({}), assuming {=f32} V",
+                defmt::Debug2Format(&e),
+                VREF_V
+            ),
+        }
+        let mut samples = [0.0f32; CAL_SAMPLES];
+        for s in samples.iter_mut() {
+            *s = self.read_x_mm();
+            embassy_time::block_for(Duration::from_micros(50));
+        }
+        match rest_offset(&samples, 0.0, X_REST) {
+            Ok(offset) => {
+                self.x_offset_mm = offset;
+                defmt::info!("calibration: x offset {=f32} mm", offset);
+            }
+            Err(e) => defmt::warn!(
+                "calibration: x offset refused ({}), using 0 mm",
+                defmt::Debug2Format(&e)
+            ),
+        }
+        if self.velocity.is_none() {
+            return;
+        }
+        for s in samples.iter_mut() {
+            *s = self.read_v_m_s().unwrap_or(f32::NAN);
+            embassy_time::block_for(Duration::from_micros(50));
+        }
+        match rest_offset(&samples, 0.0, V_REST) {
+            Ok(zero) => {
+                self.v_zero_m_s = zero;
+                defmt::info!("calibration: velocity zero {=f32} m/s", zero);
+            }
+            Err(e) => defmt::warn!(
+                "calibration: velocity zero refused ({}), using 0 m/s",
+                defmt::Debug2Format(&e)
+            ),
+        }
+    }
+
     fn set_duty(&mut self, duty: f32) {
         // duty ∈ [0, 1] by construction; `as` saturates anyway.
         self.pwm.set_duty_cycle((duty * self.max_duty as f32) as u32);
@@ -222,7 +292,7 @@ impl Io {
 impl DisplacementSensor for Io {
     fn read_x_mm(&mut self) -> f32 {
         let code = self.adc_x.blocking_read(&mut self.ch_x, SAMPLE_TIME);
-        (volts(code) - X_ZERO_V) * X_MM_PER_V
+        (self.volts(code) - X_ZERO_V) * X_MM_PER_V - self.x_offset_mm
     }
 }
 
@@ -230,7 +300,7 @@ impl VelocitySensor for Io {
     fn read_v_m_s(&mut self) -> Option<f32> {
         let (adc, ch) = self.velocity.as_mut()?;
         let code = adc.blocking_read(ch, SAMPLE_TIME);
-        Some((volts(code) - V_ZERO_V) * V_M_S_PER_V)
+        Some((self.volts(code) - V_ZERO_V) * V_M_S_PER_V - self.v_zero_m_s)
     }
 }
 
