@@ -60,6 +60,8 @@ impl VelocitySensor for NoVelocitySensor {
 pub const RATE_MIN_HZ: u32 = 1_000;
 pub const RATE_MAX_HZ: u32 = 40_000;
 pub const DEFAULT_RATE_HZ: u32 = 10_000;
+/// Displacement (mm) within which the damper counts as at rest for a fault clear.
+pub const REST_X_MM: f32 = 0.5;
 /// The velocity transducer's rated range, ±5 m/s (firmware/README.md, "Wiring").
 pub const V_SENSOR_FULL_SCALE_M_S: f32 = 5.0;
 /// Velocity cross-check defaults: the estimator lags an impact's
@@ -213,6 +215,8 @@ pub struct Controller {
     last_x_mm: f32,
     unchanged_moving: u16,
     disagreeing: u16,
+    /// The latest displacement sample (for the at-rest test of a fault clear).
+    sample_x_mm: f32,
     window_periods: u16,
     window_overruns: u16,
     stats: Stats,
@@ -234,6 +238,7 @@ impl Controller {
             last_x_mm: f32::NAN,
             unchanged_moving: 0,
             disagreeing: 0,
+            sample_x_mm: f32::NAN,
             window_periods: 0,
             window_overruns: 0,
             stats: Stats::default(),
@@ -280,6 +285,19 @@ impl Controller {
         self.window_overruns = 0;
     }
 
+    /// The button's fault clear: only with the damper at rest (the latest
+    /// displacement within `REST_X_MM` of 0 and the estimated speed below
+    /// `stuck_min_speed_m_s`), never mid-impact. True if it cleared. A fault
+    /// whose cause persists latches again.
+    pub fn clear_faults_if_at_rest(&mut self) -> bool {
+        let at_rest = math::abs(self.sample_x_mm) <= REST_X_MM
+            && math::abs(self.estimator.velocity_m_s()) < self.cfg.stuck_min_speed_m_s;
+        if at_rest {
+            self.clear_faults();
+        }
+        at_rest
+    }
+
     fn latch(&mut self, fault: Flags) {
         if !self.latched.contains(fault) {
             self.stats.fault_latches = self.stats.fault_latches.saturating_add(1);
@@ -322,6 +340,7 @@ impl Controller {
     /// inside the law's output range.
     pub fn step_sample(&mut self, x_mm: f32, v_measured_m_s: Option<f32>) -> Command {
         self.stats.periods = self.stats.periods.wrapping_add(1);
+        self.sample_x_mm = x_mm;
         // The estimator runs every period so it is settled if the velocity
         // sensor is ever dropped; a non-finite x only predicts.
         let (v_est_m_s, _) = self.estimator.update(x_mm);

@@ -21,6 +21,7 @@ pub mod law;
 pub mod math;
 pub mod model;
 pub mod pacing;
+pub mod status;
 pub mod table;
 
 pub use flags::Flags;
