@@ -33,7 +33,7 @@ pub fn blink_code(latched: Flags) -> u32 {
 /// LED state in slot `slot` (counts up every `SLOT_MS`).
 pub fn led_on(latched: Flags, slot: u32) -> bool {
     match blink_code(latched) {
-        0 => slot % HEARTBEAT_SLOTS == 0,
+        0 => slot.is_multiple_of(HEARTBEAT_SLOTS),
         code => {
             let k = slot % CYCLE_SLOTS;
             k < 4 * code && k % 4 < 2
