@@ -24,7 +24,7 @@ mod board;
 #[cfg(target_os = "none")]
 mod fw {
     use crate::board;
-    use core::sync::atomic::{AtomicU32, Ordering};
+    use core::sync::atomic::{AtomicBool, AtomicU16, AtomicU32, Ordering};
     use embassy_executor::Spawner;
     use embassy_sync::blocking_mutex::raw::CriticalSectionRawMutex;
     use embassy_sync::channel::Channel;
@@ -37,6 +37,11 @@ mod fw {
 
     /// What the control task reports; logged in thread mode.
     enum Event {
+        /// B1 pressed: faults cleared (at rest) or the clear refused.
+        ClearRequest {
+            cleared: bool,
+            latched: u16,
+        },
         Overrun {
             period: u32,
         },
@@ -56,6 +61,10 @@ mod fw {
     }
     static EVENTS: Channel<CriticalSectionRawMutex, Event, 16> = Channel::new();
     static DROPPED_EVENTS: AtomicU32 = AtomicU32::new(0);
+    /// Latched faults for the status LED (written by the control task).
+    static LATCHED: AtomicU16 = AtomicU16::new(0);
+    /// Set by a press of B1, taken by the control task.
+    static CLEAR_REQUEST: AtomicBool = AtomicBool::new(false);
 
     /// Never blocks: a full channel drops the event and counts it.
     fn post(event: Event) {
@@ -104,7 +113,7 @@ mod fw {
     async fn main(spawner: Spawner) {
         // Before anything else: the coil pin comes out of reset pulled high.
         board::coil_output_off_at_boot();
-        let board = board::init(RATE_HZ);
+        let (board, status) = board::init(RATE_HZ);
         defmt::info!(
             "mre-firmware on {=str}, core clock {=u32} Hz",
             board::NAME,
@@ -164,9 +173,11 @@ mod fw {
             cfg.law.stroke_max_mm,
             cfg.law.mass_kg
         );
-        #[cfg(feature = "hw")]
-        let _ = spawner; // the control task gets its own executor
-                         // The task pool holds one control task and this is its only spawn.
+        match status_task(status) {
+            Ok(token) => spawner.spawn(token),
+            Err(_) => defmt::error!("status task already running"),
+        }
+        // The task pool holds one control task and this is its only spawn.
         match control_task(ctl, board) {
             #[cfg(feature = "hw")]
             Ok(token) => {
@@ -189,6 +200,16 @@ mod fw {
         loop {
             match EVENTS.receive().await {
                 Event::Overrun { period } => defmt::warn!("overrun in period {=u32}", period),
+                Event::ClearRequest { cleared: true, latched } => {
+                    defmt::info!("B1: faults cleared at rest (still latched: {=u16:#06x})", latched)
+                }
+                Event::ClearRequest {
+                    cleared: false,
+                    latched,
+                } => defmt::warn!(
+                    "B1: faults not cleared, the damper is not at rest (latched {=u16:#06x})",
+                    latched
+                ),
                 Event::Missed { ticks, period } => {
                     defmt::warn!("{=u32} control periods missed before period {=u32}", ticks, period)
                 }
@@ -222,6 +243,26 @@ mod fw {
         }
     }
 
+    /// Thread mode, every 50 ms: the status LED (heartbeat or the latched
+    /// fault's blink code) and B1, whose press asks the control task to
+    /// clear latched faults.
+    #[embassy_executor::task]
+    async fn status_task(mut status: board::Status) {
+        use mre_core::status::{led_on, SLOT_MS};
+        let mut ticker = embassy_time::Ticker::every(embassy_time::Duration::from_millis(u64::from(SLOT_MS)));
+        let (mut slot, mut was_pressed) = (0u32, false);
+        loop {
+            ticker.next().await;
+            status.set_led(led_on(mre_core::Flags(LATCHED.load(Ordering::Relaxed)), slot));
+            let pressed = status.button_pressed();
+            if pressed && !was_pressed {
+                CLEAR_REQUEST.store(true, Ordering::Relaxed);
+            }
+            was_pressed = pressed;
+            slot = slot.wrapping_add(1);
+        }
+    }
+
     #[embassy_executor::task]
     async fn control_task(mut ctl: Controller, mut board: board::Board) {
         let mut last = ctl.stats();
@@ -247,6 +288,15 @@ mod fw {
                     period: ctl.stats().periods,
                 });
             }
+            if CLEAR_REQUEST.swap(false, Ordering::Relaxed) {
+                let cleared = ctl.clear_faults_if_at_rest();
+                known_faults = ctl.latched();
+                post(Event::ClearRequest {
+                    cleared,
+                    latched: known_faults.0,
+                });
+            }
+            LATCHED.store(ctl.latched().0, Ordering::Relaxed);
             if ctl.latched() != known_faults {
                 known_faults = ctl.latched();
                 post(Event::FaultLatched {

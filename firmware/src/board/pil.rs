@@ -141,7 +141,18 @@ pub struct Io {
     last_rejected: u16,
 }
 
-pub fn init(_rate_hz: u32) -> Board {
+/// QEMU's model has no LED or button to speak of: nothing shown, never pressed.
+pub struct Status;
+
+impl Status {
+    pub fn set_led(&mut self, _on: bool) {}
+
+    pub fn button_pressed(&self) -> bool {
+        false
+    }
+}
+
+pub fn init(_rate_hz: u32) -> (Board, Status) {
     // SAFETY: the only user of the core peripherals, once, at boot.
     let core = unsafe { cortex_m::Peripherals::steal() };
     let mut syst = core.SYST;
@@ -151,22 +162,25 @@ pub fn init(_rate_hz: u32) -> Board {
     syst.enable_interrupt();
     syst.enable_counter();
     usart_init();
-    Board {
-        io: Io {
-            rx: SampleReceiver::new(),
-            config: ConfigCollector::new(),
-            sample: SampleFrame {
-                seq: 0,
-                x_mm: f32::NAN,
-                v_m_s: None,
-                force_n: None,
+    (
+        Board {
+            io: Io {
+                rx: SampleReceiver::new(),
+                config: ConfigCollector::new(),
+                sample: SampleFrame {
+                    seq: 0,
+                    x_mm: f32::NAN,
+                    v_m_s: None,
+                    force_n: None,
+                },
+                current_a: 0.0,
+                last_reply: None,
+                last_rejected: 0,
             },
-            current_a: 0.0,
-            last_reply: None,
-            last_rejected: 0,
+            watchdog: Watchdog,
         },
-        watchdog: Watchdog,
-    }
+        Status,
+    )
 }
 
 impl Board {

@@ -6,7 +6,7 @@ use defmt_rtt as _;
 use panic_probe as _;
 
 use embassy_stm32::adc::{Adc, AdcChannel, AnyAdcChannel, SampleTime};
-use embassy_stm32::gpio::OutputType;
+use embassy_stm32::gpio::{Input, Level, Output, OutputType, Pull, Speed};
 use embassy_stm32::peripherals::{ADC1, ADC2, IWDG, TIM3};
 use embassy_stm32::time::khz;
 use embassy_stm32::timer::low_level::CountingMode;
@@ -21,22 +21,22 @@ use mre_core::pacing::Pacer;
 #[cfg(feature = "board-b-l475e-iot01a")]
 pub const NAME: &str = "B-L475E-IOT01A";
 /// Arduino A0 = PC5 (ADC1_IN14) displacement, A1 = PC4 (ADC2_IN13) velocity,
-/// D5 = PB4 (TIM3_CH1, AF2) coil PWM.
+/// D5 = PB4 (TIM3_CH1, AF2) coil PWM; LED2 = PB14 (green), B1 = PC13.
 #[cfg(feature = "board-b-l475e-iot01a")]
 macro_rules! board_pins {
     ($p:ident) => {
-        ($p.PC5, $p.PC4, $p.PB4)
+        ($p.PC5, $p.PC4, $p.PB4, $p.PB14, $p.PC13)
     };
 }
 
 #[cfg(feature = "board-nucleo-l476rg")]
 pub const NAME: &str = "NUCLEO-L476RG";
 /// Arduino A0 = PA0 (ADC1_IN5) displacement, A1 = PA1 (ADC2_IN6) velocity,
-/// D5 = PB4 (TIM3_CH1, AF2) coil PWM.
+/// D5 = PB4 (TIM3_CH1, AF2) coil PWM; LD2 = PA5 (green), B1 = PC13.
 #[cfg(feature = "board-nucleo-l476rg")]
 macro_rules! board_pins {
     ($p:ident) => {
-        ($p.PA0, $p.PA1, $p.PB4)
+        ($p.PA0, $p.PA1, $p.PB4, $p.PA5, $p.PC13)
     };
 }
 
@@ -117,7 +117,23 @@ pub struct Board {
     pub watchdog: IndependentWatchdog<'static, IWDG>,
 }
 
-pub fn init(rate_hz: u32) -> Board {
+/// The status LED and the user button B1 (active low on both boards).
+pub struct Status {
+    led: Output<'static>,
+    button: Input<'static>,
+}
+
+impl Status {
+    pub fn set_led(&mut self, on: bool) {
+        self.led.set_level(if on { Level::High } else { Level::Low });
+    }
+
+    pub fn button_pressed(&self) -> bool {
+        self.button.is_low()
+    }
+}
+
+pub fn init(rate_hz: u32) -> (Board, Status) {
     // Read and clear the reset flags before anything can reset again.
     let csr = embassy_stm32::pac::RCC.csr().read().0;
     embassy_stm32::pac::RCC.csr().modify(|w| w.set_rmvf(true));
@@ -131,7 +147,11 @@ pub fn init(rate_hz: u32) -> Board {
     embassy_stm32::pac::DBGMCU.apb1fzr1().modify(|w| w.set_iwdg(true));
 
     let p = embassy_stm32::init(clock_config());
-    let (pin_x, pin_v, pin_pwm) = board_pins!(p);
+    let (pin_x, pin_v, pin_pwm, pin_led, pin_button) = board_pins!(p);
+    let status = Status {
+        led: Output::new(pin_led, Level::Low, Speed::Low),
+        button: Input::new(pin_button, Pull::None),
+    };
 
     // SAFETY: only DCB/DWT are touched, once, before anything else uses them.
     let mut core = unsafe { cortex_m::Peripherals::steal() };
@@ -169,7 +189,7 @@ pub fn init(rate_hz: u32) -> Board {
     io.set_duty(fail_safe_duty());
     io.calibrate();
     let watchdog = IndependentWatchdog::new(p.IWDG, WATCHDOG_TIMEOUT_US);
-    Board { io, watchdog }
+    (Board { io, watchdog }, status)
 }
 
 impl Board {
