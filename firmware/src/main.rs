@@ -23,7 +23,7 @@ mod board;
 
 #[cfg(target_os = "none")]
 mod fw {
-    use crate::board;
+    use crate::board::{self, BoardIo, StatusIo};
     use core::sync::atomic::{AtomicBool, AtomicU16, AtomicU32, Ordering};
     use embassy_executor::Spawner;
     use embassy_sync::blocking_mutex::raw::CriticalSectionRawMutex;

@@ -144,10 +144,10 @@ pub struct Io {
 /// QEMU's model has no LED or button to speak of: nothing shown, never pressed.
 pub struct Status;
 
-impl Status {
-    pub fn set_led(&mut self, _on: bool) {}
+impl super::StatusIo for Status {
+    fn set_led(&mut self, _on: bool) {}
 
-    pub fn button_pressed(&self) -> bool {
+    fn button_pressed(&self) -> bool {
         false
     }
 }
@@ -208,11 +208,11 @@ pub fn halt_fail_safe(_board: Board) -> ! {
     semihosting::process::exit(2)
 }
 
-impl Io {
+impl super::BoardIo for Io {
     /// Waits for the next valid sample frame (one control period). An
     /// uploaded configuration (config frames + commit) replaces `ctl`.
     /// Simulated time never skips a period: returns 0 missed ticks.
-    pub async fn next_period(&mut self, ctl: &mut Controller) -> u32 {
+    async fn next_period(&mut self, ctl: &mut Controller) -> u32 {
         loop {
             let mut idle_polls = 0u32;
             while idle_polls < SPIN_POLLS {
@@ -262,7 +262,7 @@ impl Io {
     }
 
     /// Sends the answer. Simulated time has no deadline: never an overrun.
-    pub fn finish_period(&mut self, cmd: &Command, _ctl: &Controller) -> bool {
+    fn finish_period(&mut self, cmd: &Command, _ctl: &Controller) -> bool {
         let rejected = self.rx.stats().rejected();
         let mut flags = cmd.flags;
         if rejected != self.last_rejected {
@@ -283,7 +283,7 @@ impl Io {
         false
     }
 
-    pub fn link_stats(&self) -> Option<LinkStats> {
+    fn link_stats(&self) -> Option<LinkStats> {
         Some(self.rx.stats())
     }
 }

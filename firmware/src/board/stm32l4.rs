@@ -123,12 +123,12 @@ pub struct Status {
     button: Input<'static>,
 }
 
-impl Status {
-    pub fn set_led(&mut self, on: bool) {
+impl super::StatusIo for Status {
+    fn set_led(&mut self, on: bool) {
         self.led.set_level(if on { Level::High } else { Level::Low });
     }
 
-    pub fn button_pressed(&self) -> bool {
+    fn button_pressed(&self) -> bool {
         self.button.is_low()
     }
 }
@@ -283,12 +283,14 @@ impl Io {
         // duty ∈ [0, 1] by construction; `as` saturates anyway.
         self.pwm.set_duty_cycle((duty * self.max_duty as f32) as u32);
     }
+}
 
+impl super::BoardIo for Io {
     /// Waits for the next tick of the control rate. Ticks skipped by a
     /// stall are counted as overruns and the ticker re-phased, instead of
     /// letting it catch up with periods microseconds apart.
     /// Returns the number of ticks missed.
-    pub async fn next_period(&mut self, ctl: &mut Controller) -> u32 {
+    async fn next_period(&mut self, ctl: &mut Controller) -> u32 {
         self.ticker.next().await;
         let missed = self.pacer.wake(Instant::now().as_ticks());
         if missed > 0 {
@@ -299,12 +301,12 @@ impl Io {
     }
 
     /// True when this period's work ended after the next tick was due.
-    pub fn finish_period(&mut self, _cmd: &Command, _ctl: &Controller) -> bool {
+    fn finish_period(&mut self, _cmd: &Command, _ctl: &Controller) -> bool {
         self.pacer.overran(Instant::now().as_ticks())
     }
 
     /// No frame link on hardware.
-    pub fn link_stats(&self) -> Option<mre_core::frame::LinkStats> {
+    fn link_stats(&self) -> Option<mre_core::frame::LinkStats> {
         None
     }
 }
