@@ -14,6 +14,7 @@ pub mod calibration;
 pub mod control;
 pub mod estimate;
 pub mod flags;
+pub mod flash_table;
 pub mod frame;
 pub mod generated_table;
 pub mod inverse;
