@@ -226,7 +226,7 @@ impl Io {
     /// result is range-checked (`mre_core::calibration`) and logged; a
     /// refused one leaves the nominal scaling.
     fn calibrate(&mut self) {
-        use mre_core::calibration::{rest_offset, vdda_v, V_REST, X_REST};
+        use mre_core::calibration::{vdda_v, V_REST, X_REST};
         let mut vref = self.adc_x.enable_vrefint();
         let raw = self.adc_x.blocking_read(&mut vref, SampleTime::CYCLES247_5);
         match vdda_v(raw, vref.calibrated_value()) {
@@ -245,37 +245,37 @@ impl Io {
                 VREF_V
             ),
         }
+        self.x_offset_mm = self.rest_zero("x offset (mm)", X_REST, |io| io.read_x_mm());
+        if self.velocity.is_some() {
+            self.v_zero_m_s = self.rest_zero("velocity zero (m/s)", V_REST, |io| io.read_v_m_s().unwrap_or(f32::NAN));
+        }
+    }
+
+    /// The zero of one sensor at rest, 50 µs apart, or 0 if refused (logged).
+    fn rest_zero(
+        &mut self,
+        what: &str,
+        limits: mre_core::calibration::RestLimits,
+        mut read: impl FnMut(&mut Self) -> f32,
+    ) -> f32 {
         let mut samples = [0.0f32; CAL_SAMPLES];
         for s in samples.iter_mut() {
-            *s = self.read_x_mm();
+            *s = read(self);
             embassy_time::block_for(Duration::from_micros(50));
         }
-        match rest_offset(&samples, 0.0, X_REST) {
-            Ok(offset) => {
-                self.x_offset_mm = offset;
-                defmt::info!("calibration: x offset {=f32} mm", offset);
-            }
-            Err(e) => defmt::warn!(
-                "calibration: x offset refused ({}), using 0 mm",
-                defmt::Debug2Format(&e)
-            ),
-        }
-        if self.velocity.is_none() {
-            return;
-        }
-        for s in samples.iter_mut() {
-            *s = self.read_v_m_s().unwrap_or(f32::NAN);
-            embassy_time::block_for(Duration::from_micros(50));
-        }
-        match rest_offset(&samples, 0.0, V_REST) {
+        match mre_core::calibration::rest_offset(&samples, 0.0, limits) {
             Ok(zero) => {
-                self.v_zero_m_s = zero;
-                defmt::info!("calibration: velocity zero {=f32} m/s", zero);
+                defmt::info!("calibration: {=str} {=f32}", what, zero);
+                zero
             }
-            Err(e) => defmt::warn!(
-                "calibration: velocity zero refused ({}), using 0 m/s",
-                defmt::Debug2Format(&e)
-            ),
+            Err(e) => {
+                defmt::warn!(
+                    "calibration: {=str} refused ({}), using 0",
+                    what,
+                    defmt::Debug2Format(&e)
+                );
+                0.0
+            }
         }
     }
 
