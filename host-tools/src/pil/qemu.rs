@@ -126,7 +126,7 @@ impl Qemu {
             TcpStream::connect(("127.0.0.1", self.monitor_port)).context("connecting to QEMU's monitor")?;
         monitor.set_read_timeout(Some(Duration::from_secs(10)))?;
         let mut text = Vec::new();
-        let mut read_until_prompt = |monitor: &mut TcpStream, text: &mut Vec<u8>| -> Result<()> {
+        let read_until_prompt = |monitor: &mut TcpStream, text: &mut Vec<u8>| -> Result<()> {
             let mut buf = [0u8; 512];
             while !String::from_utf8_lossy(text).trim_end().ends_with("(qemu)") {
                 let n = monitor.read(&mut buf).context("reading QEMU's monitor")?;
