@@ -23,6 +23,17 @@ pub enum CalError {
     NotAtRest { spread: f32 },
 }
 
+impl CalError {
+    /// A short reason for logs (no `core::fmt` on the board).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            CalError::NoData => "no data",
+            CalError::OutOfRange(_) => "out of range",
+            CalError::NotAtRest { .. } => "not at rest",
+        }
+    }
+}
+
 /// VDDA (V) from a VREFINT conversion and the factory calibration value,
 /// both 12-bit: VDDA = 3.0 V · cal / raw.
 pub fn vdda_v(vrefint_raw: u16, vrefint_cal: u16) -> Result<f32, CalError> {

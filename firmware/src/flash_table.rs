@@ -54,6 +54,19 @@ pub enum PageError {
     Flash(FlashError),
 }
 
+impl PageError {
+    /// A short reason for logs (no `core::fmt` on the board).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            PageError::Empty => "page empty",
+            PageError::UnsupportedFormat(_) => "unsupported page format",
+            PageError::Corrupt => "page corrupt (length or CRC)",
+            PageError::Refused(_) => "table or configuration refused",
+            PageError::Flash(_) => "flash read failed",
+        }
+    }
+}
+
 impl From<FlashError> for PageError {
     fn from(e: FlashError) -> Self {
         PageError::Flash(e)

@@ -113,7 +113,7 @@ mod fw {
     async fn main(spawner: Spawner) {
         // Before anything else: the coil pin comes out of reset pulled high.
         board::coil_output_off_at_boot();
-        let (board, status) = board::init(RATE_HZ);
+        let (mut board, status) = board::init(RATE_HZ);
         defmt::info!(
             "mre-firmware on {=str}, core clock {=u32} Hz",
             board::NAME,
@@ -122,9 +122,31 @@ mod fw {
 
         // A rejected table is not fatal: the controller latches TABLE_FAULT
         // and commands the fail-safe current every period.
-        let table = Table::from_image(&flown::IMAGE);
-        match &table {
-            Ok(t) => defmt::info!(
+        // An uploaded table (flash page, `mre_core::flash_table`) is preferred;
+        // an erased, torn or invalid page falls back to the built-in one.
+        let uploaded = match board::uploaded_table(&mut board) {
+            Ok((t, c)) => {
+                defmt::info!(
+                    "table uploaded (flash page) format v{=u16}: {=usize} currents, CRC {=u32:#010x} OK, {=u32} Hz",
+                    t.version(),
+                    t.entries().len(),
+                    t.crc32(),
+                    c.rate_hz
+                );
+                Some((t, c))
+            }
+            Err(e) => {
+                defmt::info!("no uploaded table ({=str}): flying the built-in table", e.as_str());
+                None
+            }
+        };
+        let table = match uploaded {
+            Some((t, _)) => Ok(t),
+            None => Table::from_image(&flown::IMAGE),
+        };
+        match (&table, uploaded.is_some()) {
+            (_, true) => {}
+            (Ok(t), false) => defmt::info!(
                 "table {=str} format v{=u16}: {=usize} currents, CRC {=u32:#010x} OK, data set sha256 {=str}",
                 flown::NAME,
                 t.version(),
@@ -132,7 +154,7 @@ mod fw {
                 t.crc32(),
                 flown::SOURCE_DATASET_SHA256
             ),
-            Err(e) => defmt::error!(
+            (Err(e), false) => defmt::error!(
                 "table {=str} format v{=u16} stored CRC {=u32:#010x} REJECTED: {}, data set sha256 {=str}",
                 flown::NAME,
                 flown::IMAGE.version,
@@ -142,9 +164,20 @@ mod fw {
             ),
         }
 
-        let cfg = match ControlConfig::at_rate(RATE_HZ) {
-            Ok(cfg) => cfg,
-            Err(e) => {
+        let cfg = match (uploaded, ControlConfig::at_rate(RATE_HZ)) {
+            // The image's ticker runs at RATE_HZ: an uploaded configuration
+            // for another rate keeps only its table.
+            (Some((_, c)), _) if c.rate_hz == RATE_HZ => c,
+            (Some((_, c)), Ok(cfg)) => {
+                defmt::warn!(
+                    "uploaded configuration is for {=u32} Hz, the image runs {=u32} Hz: using the defaults",
+                    c.rate_hz,
+                    RATE_HZ
+                );
+                cfg
+            }
+            (_, Ok(cfg)) => cfg,
+            (_, Err(e)) => {
                 // Only a build with a bad RATE_HZ gets here: hold the coil at
                 // the fail-safe duty and let the watchdog (never fed) reset.
                 defmt::error!("control config refused: {}", defmt::Debug2Format(&e));

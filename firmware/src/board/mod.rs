@@ -20,14 +20,14 @@ mod stm32l4;
 #[cfg(all(feature = "hw", feature = "bench"))]
 pub use stm32l4::bench_model_step;
 #[cfg(feature = "hw")]
-pub use stm32l4::{core_clock_hz, cycles, halt_fail_safe, init, Board, Status, NAME};
+pub use stm32l4::{core_clock_hz, cycles, halt_fail_safe, init, uploaded_table, Board, Status, NAME};
 
 #[cfg(feature = "pil")]
 mod pil;
 #[cfg(all(feature = "pil", feature = "bench"))]
 pub use pil::icount;
 #[cfg(feature = "pil")]
-pub use pil::{core_clock_hz, cycles, halt_fail_safe, init, Board, Status, NAME};
+pub use pil::{core_clock_hz, cycles, halt_fail_safe, init, uploaded_table, Board, Status, NAME};
 
 use mre_core::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
 use mre_core::frame::LinkStats;

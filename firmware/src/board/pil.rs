@@ -204,6 +204,14 @@ fn send_hello(flags: Flags) {
     usart_write(&hello.encode());
 }
 
+/// PIL uploads its table over the frame link instead (QEMU does not model
+/// the flash controller): the page is always empty here.
+pub fn uploaded_table(
+    _board: &mut Board,
+) -> Result<(mre_core::Table, mre_core::control::ControlConfig), mre_core::flash_table::PageError> {
+    Err(mre_core::flash_table::PageError::Empty)
+}
+
 pub fn halt_fail_safe(_board: Board) -> ! {
     semihosting::process::exit(2)
 }

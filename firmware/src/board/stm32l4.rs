@@ -115,6 +115,41 @@ pub struct Io {
 pub struct Board {
     pub io: Io,
     pub watchdog: IndependentWatchdog<'static, IWDG>,
+    table_page: FlashPage,
+}
+
+/// The flash page reserved for an uploaded table: the last 2 KiB of the
+/// 1 MiB flash (memory.x ends FLASH before it).
+const TABLE_PAGE_OFFSET: u32 = 1024 * 1024 - mre_core::flash_table::PAGE_BYTES as u32;
+
+struct FlashPage(embassy_stm32::flash::Flash<'static, embassy_stm32::flash::Blocking>);
+
+impl mre_core::flash_table::TablePage for FlashPage {
+    fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), mre_core::flash_table::FlashError> {
+        self.0
+            .blocking_read(TABLE_PAGE_OFFSET + offset as u32, buf)
+            .map_err(|_| mre_core::flash_table::FlashError)
+    }
+
+    fn erase(&mut self) -> Result<(), mre_core::flash_table::FlashError> {
+        let end = TABLE_PAGE_OFFSET + mre_core::flash_table::PAGE_BYTES as u32;
+        self.0
+            .blocking_erase(TABLE_PAGE_OFFSET, end)
+            .map_err(|_| mre_core::flash_table::FlashError)
+    }
+
+    fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), mre_core::flash_table::FlashError> {
+        self.0
+            .blocking_write(TABLE_PAGE_OFFSET + offset as u32, data)
+            .map_err(|_| mre_core::flash_table::FlashError)
+    }
+}
+
+/// The table and configuration on the reserved flash page, if valid.
+pub fn uploaded_table(
+    board: &mut Board,
+) -> Result<(mre_core::Table, mre_core::control::ControlConfig), mre_core::flash_table::PageError> {
+    mre_core::flash_table::load(&mut board.table_page)
 }
 
 /// The status LED and the user button B1 (active low on both boards).
@@ -189,7 +224,15 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
     io.set_duty(fail_safe_duty());
     io.calibrate();
     let watchdog = IndependentWatchdog::new(p.IWDG, WATCHDOG_TIMEOUT_US);
-    (Board { io, watchdog }, status)
+    let table_page = FlashPage(embassy_stm32::flash::Flash::new_blocking(p.FLASH));
+    (
+        Board {
+            io,
+            watchdog,
+            table_page,
+        },
+        status,
+    )
 }
 
 impl Board {
@@ -240,8 +283,8 @@ impl Io {
                 );
             }
             Err(e) => defmt::warn!(
-                "calibration: VDDA refused ({}), assuming {=f32} V",
-                defmt::Debug2Format(&e),
+                "calibration: VDDA refused ({=str}), assuming {=f32} V",
+                e.as_str(),
                 VREF_V
             ),
         }
@@ -269,11 +312,7 @@ impl Io {
                 zero
             }
             Err(e) => {
-                defmt::warn!(
-                    "calibration: {=str} refused ({}), using 0",
-                    what,
-                    defmt::Debug2Format(&e)
-                );
+                defmt::warn!("calibration: {=str} refused ({=str}), using 0", what, e.as_str());
                 0.0
             }
         }
