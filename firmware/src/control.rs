@@ -39,7 +39,7 @@ pub trait VelocitySensor {
     fn read_v_m_s(&mut self) -> Option<f32>;
 }
 
-/// The coil driver: PWM open loop or a PI current loop behind it.
+/// The coil driver (PWM, open loop: see `open_loop_duty`).
 pub trait Coil {
     fn set_current_a(&mut self, current_a: f32);
 }
@@ -60,6 +60,15 @@ impl VelocitySensor for NoVelocitySensor {
 pub const RATE_MIN_HZ: u32 = 1_000;
 pub const RATE_MAX_HZ: u32 = 40_000;
 pub const DEFAULT_RATE_HZ: u32 = 10_000;
+/// Displacement (mm) within which the damper counts as at rest for a fault clear.
+pub const REST_X_MM: f32 = 0.5;
+/// The velocity transducer's rated range, ±5 m/s (firmware/README.md, "Wiring").
+pub const V_SENSOR_FULL_SCALE_M_S: f32 = 5.0;
+/// Velocity cross-check defaults: the estimator lags an impact's
+/// deceleration (hundreds of m/s²) by a few tenths of a m/s, so 5 ms (at
+/// 10 kHz) more than 1 m/s apart is a lying sensor.
+pub const DISAGREE_M_S: f32 = 1.0;
+pub const DISAGREE_SAMPLES: u16 = 50;
 
 /// Everything the control step needs besides the law's own parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -79,6 +88,15 @@ pub struct ControlConfig {
     /// latch `OVERRUN`.
     pub overrun_limit: u16,
     pub overrun_window: u16,
+    /// The velocity sensor's rated full scale: a measured |v| at or beyond it
+    /// is a range fault. The ADC rails read ±5.5 m/s (firmware/README.md), so
+    /// a broken wire is caught here, not taken as a rebound.
+    pub v_sensor_full_scale_m_s: f32,
+    /// A measured velocity further than this from the estimator's (derived
+    /// from x) for `disagree_samples` periods in a row latches `SENSOR_DISAGREE`;
+    /// 0 samples disables the check.
+    pub disagree_m_s: f32,
+    pub disagree_samples: u16,
 }
 
 /// Why a control configuration was refused.
@@ -116,6 +134,9 @@ impl ControlConfig {
             stuck_min_speed_m_s: 0.05,
             overrun_limit: 10,
             overrun_window: 1000,
+            v_sensor_full_scale_m_s: V_SENSOR_FULL_SCALE_M_S,
+            disagree_m_s: DISAGREE_M_S,
+            disagree_samples: DISAGREE_SAMPLES,
         };
         cfg.validate()?;
         Ok(cfg)
@@ -143,6 +164,10 @@ impl ControlConfig {
             || self.overrun_window < self.overrun_limit
             || !self.stuck_min_speed_m_s.is_finite()
             || self.stuck_min_speed_m_s < 0.0
+            || self.v_sensor_full_scale_m_s.is_nan()
+            || self.v_sensor_full_scale_m_s <= 0.0
+            || self.disagree_m_s.is_nan()
+            || self.disagree_m_s <= 0.0
         {
             return Err(ControlConfigError::Counts);
         }
@@ -189,6 +214,9 @@ pub struct Controller {
     bad_samples: u16,
     last_x_mm: f32,
     unchanged_moving: u16,
+    disagreeing: u16,
+    /// The latest displacement sample (for the at-rest test of a fault clear).
+    sample_x_mm: f32,
     window_periods: u16,
     window_overruns: u16,
     stats: Stats,
@@ -209,6 +237,8 @@ impl Controller {
             bad_samples: 0,
             last_x_mm: f32::NAN,
             unchanged_moving: 0,
+            disagreeing: 0,
+            sample_x_mm: f32::NAN,
             window_periods: 0,
             window_overruns: 0,
             stats: Stats::default(),
@@ -250,8 +280,22 @@ impl Controller {
         self.latched = Flags(self.latched.0 & Flags::TABLE_FAULT.0);
         self.bad_samples = 0;
         self.unchanged_moving = 0;
+        self.disagreeing = 0;
         self.window_periods = 0;
         self.window_overruns = 0;
+    }
+
+    /// The button's fault clear: only with the damper at rest (the latest
+    /// displacement within `REST_X_MM` of 0 and the estimated speed below
+    /// `stuck_min_speed_m_s`), never mid-impact. True if it cleared. A fault
+    /// whose cause persists latches again.
+    pub fn clear_faults_if_at_rest(&mut self) -> bool {
+        let at_rest = math::abs(self.sample_x_mm) <= REST_X_MM
+            && math::abs(self.estimator.velocity_m_s()) < self.cfg.stuck_min_speed_m_s;
+        if at_rest {
+            self.clear_faults();
+        }
+        at_rest
     }
 
     fn latch(&mut self, fault: Flags) {
@@ -296,16 +340,27 @@ impl Controller {
     /// inside the law's output range.
     pub fn step_sample(&mut self, x_mm: f32, v_measured_m_s: Option<f32>) -> Command {
         self.stats.periods = self.stats.periods.wrapping_add(1);
+        self.sample_x_mm = x_mm;
         // The estimator runs every period so it is settled if the velocity
         // sensor is ever dropped; a non-finite x only predicts.
         let (v_est_m_s, _) = self.estimator.update(x_mm);
         let v_m_s = v_measured_m_s.unwrap_or(v_est_m_s);
         self.check_stuck(x_mm, v_measured_m_s);
+        self.check_disagree(x_mm, v_measured_m_s, v_est_m_s);
+        // A reading at the sensor's full scale is a rail (broken wire), not
+        // a speed: the law's own plausibility limit is far wider.
+        let at_full_scale = v_measured_m_s.is_some_and(|v| math::abs(v) >= self.cfg.v_sensor_full_scale_m_s);
 
         let mut cmd = match &self.table {
+            Some(_) if at_full_scale && !self.latched.is_fault() => self.law.fail_safe(Flags::SENSOR_RANGE),
             Some(table) if !self.latched.is_fault() => self.law.step(table, x_mm, v_m_s),
             _ => self.law.fail_safe(self.latched),
         };
+        // The law flags a non-finite result of the table (it cannot happen
+        // with a validated table): the table is not to be trusted again.
+        if cmd.flags.contains(Flags::TABLE_FAULT) {
+            self.latch(Flags::TABLE_FAULT);
+        }
 
         let input_fault = Flags(cmd.flags.0 & (Flags::SENSOR_RANGE.0 | Flags::NON_FINITE_INPUT.0));
         if input_fault != Flags::NONE && cmd.flags.contains(Flags::FAIL_SAFE) {
@@ -341,6 +396,23 @@ impl Controller {
             }
         } else {
             self.unchanged_moving = 0;
+        }
+    }
+
+    fn check_disagree(&mut self, x_mm: f32, v_measured_m_s: Option<f32>, v_est_m_s: f32) {
+        let Some(v_m_s) = v_measured_m_s else { return };
+        if self.cfg.disagree_samples == 0 || !x_mm.is_finite() || !v_m_s.is_finite() {
+            // Non-finite samples are the range check's business.
+            self.disagreeing = 0;
+            return;
+        }
+        if math::abs(v_m_s - v_est_m_s) > self.cfg.disagree_m_s {
+            self.disagreeing = self.disagreeing.saturating_add(1);
+            if self.disagreeing >= self.cfg.disagree_samples {
+                self.latch(Flags::SENSOR_DISAGREE);
+            }
+        } else {
+            self.disagreeing = 0;
         }
     }
 
@@ -390,47 +462,4 @@ pub fn open_loop_duty(current_a: f32, full_scale_a: f32) -> f32 {
         return 0.0;
     }
     math::clamp(current_a / full_scale_a, 0.0, 1.0)
-}
-
-/// PI current loop: coil current setpoint and measured current in, PWM duty
-/// out. Feed-forward is the open-loop duty, so the integrator only trims the
-/// coil's resistance drift and supply sag. Anti-windup: the integral is
-/// clamped so that feed-forward + integral stays within the duty range.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CurrentLoop {
-    kp_per_a: f32,
-    ki_per_a_s: f32,
-    period_s: f32,
-    full_scale_a: f32,
-    integral: f32,
-}
-
-impl CurrentLoop {
-    /// Non-finite or negative gains become 0 (pure feed-forward).
-    pub fn new(kp_per_a: f32, ki_per_a_s: f32, period_s: f32, full_scale_a: f32) -> Self {
-        let sane = |g: f32| if g.is_finite() && g > 0.0 { g } else { 0.0 };
-        Self {
-            kp_per_a: sane(kp_per_a),
-            ki_per_a_s: sane(ki_per_a_s),
-            period_s: sane(period_s),
-            full_scale_a: sane(full_scale_a),
-            integral: 0.0,
-        }
-    }
-
-    /// Duty ∈ [0, 1]. A non-finite measurement falls back to feed-forward
-    /// and freezes the integrator.
-    pub fn update(&mut self, setpoint_a: f32, measured_a: f32) -> f32 {
-        let ff = open_loop_duty(setpoint_a, self.full_scale_a);
-        if !measured_a.is_finite() || !setpoint_a.is_finite() {
-            return ff;
-        }
-        let error_a = setpoint_a - measured_a;
-        self.integral = math::clamp(self.integral + self.ki_per_a_s * self.period_s * error_a, -ff, 1.0 - ff);
-        math::clamp(ff + self.kp_per_a * error_a + self.integral, 0.0, 1.0)
-    }
-
-    pub fn integral(&self) -> f32 {
-        self.integral
-    }
 }

@@ -37,6 +37,9 @@ impl Flags {
     pub const TABLE_FAULT: Flags = Flags(1 << 13);
     /// A PIL frame was corrupt or out of order.
     pub const FRAME_FAULT: Flags = Flags(1 << 14);
+    /// The velocity sensor and the displacement-based estimate disagree for
+    /// too long: one of the two sensors is lying.
+    pub const SENSOR_DISAGREE: Flags = Flags(1 << 15);
 
     /// Flags that mean the inputs or the system cannot be trusted.
     pub const FAULTS: Flags = Flags(
@@ -45,7 +48,8 @@ impl Flags {
             | Self::SENSOR_STUCK.0
             | Self::OVERRUN.0
             | Self::TABLE_FAULT.0
-            | Self::FRAME_FAULT.0,
+            | Self::FRAME_FAULT.0
+            | Self::SENSOR_DISAGREE.0,
     );
 
     #[inline]

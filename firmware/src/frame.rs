@@ -601,6 +601,10 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
         stuck_min_speed_m_s,
         overrun_limit,
         overrun_window,
+        // Board constants (the sensor's wiring), not uploaded.
+        v_sensor_full_scale_m_s: crate::control::V_SENSOR_FULL_SCALE_M_S,
+        disagree_m_s: crate::control::DISAGREE_M_S,
+        disagree_samples: crate::control::DISAGREE_SAMPLES,
     };
     cfg.validate().map_err(ConfigBlobError::Control)?;
     Ok((table, cfg))

@@ -362,6 +362,11 @@ impl ImpactLaw {
             }
         };
 
+        // A NaN would clamp to the softest current: fail safe instead, and
+        // flag the table (validation bounds its values, so this is a bug).
+        if !wanted_a.is_finite() {
+            return self.fail_safe(flags | Flags::TABLE_FAULT);
+        }
         let clamped_a = math::clamp(wanted_a, cfg.current_min_a, cfg.current_max_a);
         if clamped_a != wanted_a {
             flags |= Flags::OUTPUT_CLAMPED;

@@ -9,15 +9,20 @@
 #![cfg_attr(not(test), no_std)]
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::indexing_slicing)]
 
+pub mod boot;
+pub mod calibration;
 pub mod control;
 pub mod estimate;
 pub mod flags;
+pub mod flash_table;
 pub mod frame;
 pub mod generated_table;
 pub mod inverse;
 pub mod law;
 pub mod math;
 pub mod model;
+pub mod pacing;
+pub mod status;
 pub mod table;
 
 pub use flags::Flags;

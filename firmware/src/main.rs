@@ -5,7 +5,12 @@
 //! One embassy task runs the control loop: wait for the period (a `Ticker`
 //! on hardware, the next sample frame in PIL), run the core's
 //! [`Controller::step_io`](mre_core::control::Controller::step_io), account
-//! for overruns, feed the watchdog, and log statistics once a second.
+//! for overruns, feed the watchdog. On hardware it runs on an
+//! `InterruptExecutor` (UART4's vector, which nothing else uses) at high
+//! priority; it never logs itself but posts events to a channel that the
+//! thread-mode main task drains into defmt, so a stalled log reader (RTT
+//! buffer full) can never hold up a control period. Events that do not fit
+//! are counted and reported with the next stats line.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(not(target_os = "none"))]
@@ -18,10 +23,69 @@ mod board;
 
 #[cfg(target_os = "none")]
 mod fw {
-    use crate::board;
+    use crate::board::{self, BoardIo, StatusIo};
+    use core::sync::atomic::{AtomicBool, AtomicU16, AtomicU32, Ordering};
     use embassy_executor::Spawner;
-    use mre_core::control::{ControlConfig, Controller, DEFAULT_RATE_HZ};
+    use embassy_sync::blocking_mutex::raw::CriticalSectionRawMutex;
+    use embassy_sync::channel::Channel;
+    use mre_core::control::{ControlConfig, Controller, Stats, DEFAULT_RATE_HZ};
+    use mre_core::frame::LinkStats;
     use mre_core::table::Table;
+
+    // Log lines carry embassy-time's µs since boot.
+    defmt::timestamp!("{=u64:us}", embassy_time::Instant::now().as_micros());
+
+    /// What the control task reports; logged in thread mode.
+    enum Event {
+        /// B1 pressed: faults cleared (at rest) or the clear refused.
+        ClearRequest {
+            cleared: bool,
+            latched: u16,
+        },
+        Overrun {
+            period: u32,
+        },
+        Missed {
+            ticks: u32,
+            period: u32,
+        },
+        FaultLatched {
+            latched: u16,
+            period: u32,
+        },
+        Stats {
+            stats: Stats,
+            new_periods: u32,
+            link: Option<LinkStats>,
+        },
+    }
+    static EVENTS: Channel<CriticalSectionRawMutex, Event, 16> = Channel::new();
+    static DROPPED_EVENTS: AtomicU32 = AtomicU32::new(0);
+    /// Latched faults for the status LED (written by the control task).
+    static LATCHED: AtomicU16 = AtomicU16::new(0);
+    /// Set by a press of B1, taken by the control task.
+    static CLEAR_REQUEST: AtomicBool = AtomicBool::new(false);
+
+    /// Never blocks: a full channel drops the event and counts it.
+    fn post(event: Event) {
+        if EVENTS.try_send(event).is_err() {
+            DROPPED_EVENTS.fetch_add(1, Ordering::Relaxed);
+        }
+    }
+
+    #[cfg(feature = "hw")]
+    static CONTROL_EXECUTOR: embassy_executor::InterruptExecutor = embassy_executor::InterruptExecutor::new();
+
+    #[cfg(feature = "hw")]
+    use embassy_stm32::interrupt;
+
+    #[cfg(feature = "hw")]
+    #[interrupt]
+    #[allow(non_snake_case)]
+    unsafe fn UART4() {
+        // SAFETY: the executor was started on this vector in `main`.
+        unsafe { CONTROL_EXECUTOR.on_interrupt() }
+    }
 
     /// The table this image flies: by default the one `mre tables` generated
     /// from the committed model (`firmware/src/generated_table.rs`); with the
@@ -47,7 +111,9 @@ mod fw {
 
     #[embassy_executor::main]
     async fn main(spawner: Spawner) {
-        let board = board::init(RATE_HZ);
+        // Before anything else: the coil pin comes out of reset pulled high.
+        board::coil_output_off_at_boot();
+        let (mut board, status) = board::init(RATE_HZ);
         defmt::info!(
             "mre-firmware on {=str}, core clock {=u32} Hz",
             board::NAME,
@@ -56,9 +122,31 @@ mod fw {
 
         // A rejected table is not fatal: the controller latches TABLE_FAULT
         // and commands the fail-safe current every period.
-        let table = Table::from_image(&flown::IMAGE);
-        match &table {
-            Ok(t) => defmt::info!(
+        // An uploaded table (flash page, `mre_core::flash_table`) is preferred;
+        // an erased, torn or invalid page falls back to the built-in one.
+        let uploaded = match board::uploaded_table(&mut board) {
+            Ok((t, c)) => {
+                defmt::info!(
+                    "table uploaded (flash page) format v{=u16}: {=usize} currents, CRC {=u32:#010x} OK, {=u32} Hz",
+                    t.version(),
+                    t.entries().len(),
+                    t.crc32(),
+                    c.rate_hz
+                );
+                Some((t, c))
+            }
+            Err(e) => {
+                defmt::info!("no uploaded table ({=str}): flying the built-in table", e.as_str());
+                None
+            }
+        };
+        let table = match uploaded {
+            Some((t, _)) => Ok(t),
+            None => Table::from_image(&flown::IMAGE),
+        };
+        match (&table, uploaded.is_some()) {
+            (_, true) => {}
+            (Ok(t), false) => defmt::info!(
                 "table {=str} format v{=u16}: {=usize} currents, CRC {=u32:#010x} OK, data set sha256 {=str}",
                 flown::NAME,
                 t.version(),
@@ -66,7 +154,7 @@ mod fw {
                 t.crc32(),
                 flown::SOURCE_DATASET_SHA256
             ),
-            Err(e) => defmt::error!(
+            (Err(e), false) => defmt::error!(
                 "table {=str} format v{=u16} stored CRC {=u32:#010x} REJECTED: {}, data set sha256 {=str}",
                 flown::NAME,
                 flown::IMAGE.version,
@@ -76,9 +164,20 @@ mod fw {
             ),
         }
 
-        let cfg = match ControlConfig::at_rate(RATE_HZ) {
-            Ok(cfg) => cfg,
-            Err(e) => {
+        let cfg = match (uploaded, ControlConfig::at_rate(RATE_HZ)) {
+            // The image's ticker runs at RATE_HZ: an uploaded configuration
+            // for another rate keeps only its table.
+            (Some((_, c)), _) if c.rate_hz == RATE_HZ => c,
+            (Some((_, c)), Ok(cfg)) => {
+                defmt::warn!(
+                    "uploaded configuration is for {=u32} Hz, the image runs {=u32} Hz: using the defaults",
+                    c.rate_hz,
+                    RATE_HZ
+                );
+                cfg
+            }
+            (_, Ok(cfg)) => cfg,
+            (_, Err(e)) => {
                 // Only a build with a bad RATE_HZ gets here: hold the coil at
                 // the fail-safe duty and let the watchdog (never fed) reset.
                 defmt::error!("control config refused: {}", defmt::Debug2Format(&e));
@@ -107,19 +206,109 @@ mod fw {
             cfg.law.stroke_max_mm,
             cfg.law.mass_kg
         );
+        match status_task(status) {
+            Ok(token) => spawner.spawn(token),
+            Err(_) => defmt::error!("status task already running"),
+        }
         // The task pool holds one control task and this is its only spawn.
         match control_task(ctl, board) {
+            #[cfg(feature = "hw")]
+            Ok(token) => {
+                use interrupt::{InterruptExt, Priority};
+                // Above everything but the time driver's alarm (P0).
+                interrupt::UART4.set_priority(Priority::P1);
+                CONTROL_EXECUTOR.start(interrupt::UART4).spawn(token);
+            }
+            // PIL: simulated time, one executor in thread mode.
+            #[cfg(not(feature = "hw"))]
             Ok(token) => spawner.spawn(token),
             Err(_) => defmt::error!("control task already running"),
+        }
+        log_events().await
+    }
+
+    /// Thread mode: turns the control task's events into defmt lines.
+    async fn log_events() -> ! {
+        let mut reported_dropped = 0;
+        loop {
+            match EVENTS.receive().await {
+                Event::Overrun { period } => defmt::warn!("overrun in period {=u32}", period),
+                Event::ClearRequest { cleared: true, latched } => {
+                    defmt::info!("B1: faults cleared at rest (still latched: {=u16:#06x})", latched)
+                }
+                Event::ClearRequest {
+                    cleared: false,
+                    latched,
+                } => defmt::warn!(
+                    "B1: faults not cleared, the damper is not at rest (latched {=u16:#06x})",
+                    latched
+                ),
+                Event::Missed { ticks, period } => {
+                    defmt::warn!("{=u32} control periods missed before period {=u32}", ticks, period)
+                }
+                Event::FaultLatched { latched, period } => defmt::error!(
+                    "fault latched: {=u16:#06x} in period {=u32}; coil at the fail-safe",
+                    latched,
+                    period
+                ),
+                Event::Stats {
+                    stats: s,
+                    new_periods,
+                    link,
+                } => {
+                    let dropped = DROPPED_EVENTS.load(Ordering::Relaxed);
+                    defmt::info!(
+                        "stats: periods {=u32} (+{=u32}), overruns {=u32}, fail-safe periods {=u32}, latched {=u16:#06x}, step cycles min/mean/max {=u32}/{=u32}/{=u32}, log events dropped {=u32}{}",
+                        s.periods,
+                        new_periods,
+                        s.overruns,
+                        s.failsafe_periods,
+                        s.latched.0,
+                        s.step_cycles_min,
+                        s.step_cycles_mean(),
+                        s.step_cycles_max,
+                        dropped.wrapping_sub(reported_dropped),
+                        board::LinkSummary(link)
+                    );
+                    reported_dropped = dropped;
+                }
+            }
+        }
+    }
+
+    /// Thread mode, every 50 ms: the status LED (heartbeat or the latched
+    /// fault's blink code) and B1, whose press asks the control task to
+    /// clear latched faults.
+    #[embassy_executor::task]
+    async fn status_task(mut status: board::Status) {
+        use mre_core::status::{led_on, SLOT_MS};
+        let mut ticker = embassy_time::Ticker::every(embassy_time::Duration::from_millis(u64::from(SLOT_MS)));
+        let (mut slot, mut was_pressed) = (0u32, false);
+        loop {
+            ticker.next().await;
+            status.set_led(led_on(mre_core::Flags(LATCHED.load(Ordering::Relaxed)), slot));
+            let pressed = status.button_pressed();
+            if pressed && !was_pressed {
+                CLEAR_REQUEST.store(true, Ordering::Relaxed);
+            }
+            was_pressed = pressed;
+            slot = slot.wrapping_add(1);
         }
     }
 
     #[embassy_executor::task]
     async fn control_task(mut ctl: Controller, mut board: board::Board) {
         let mut last = ctl.stats();
+        let mut known_faults = ctl.latched();
         board.start();
         loop {
-            board.io.next_period(&mut ctl).await;
+            let missed = board.io.next_period(&mut ctl).await;
+            if missed > 0 {
+                post(Event::Missed {
+                    ticks: missed,
+                    period: ctl.stats().periods,
+                });
+            }
             let t0 = board::cycles();
             let cmd = ctl.step_io(&mut board.io);
             ctl.record_step_cycles(board::cycles().wrapping_sub(t0));
@@ -127,21 +316,35 @@ mod fw {
             ctl.end_period(overran);
             // Fed here only: a stalled control loop must reset the chip.
             board.watchdog.pet();
+            if overran {
+                post(Event::Overrun {
+                    period: ctl.stats().periods,
+                });
+            }
+            if CLEAR_REQUEST.swap(false, Ordering::Relaxed) {
+                let cleared = ctl.clear_faults_if_at_rest();
+                known_faults = ctl.latched();
+                post(Event::ClearRequest {
+                    cleared,
+                    latched: known_faults.0,
+                });
+            }
+            LATCHED.store(ctl.latched().0, Ordering::Relaxed);
+            if ctl.latched() != known_faults {
+                known_faults = ctl.latched();
+                post(Event::FaultLatched {
+                    latched: known_faults.0,
+                    period: ctl.stats().periods,
+                });
+            }
 
             let s = ctl.stats();
             if s.periods.wrapping_sub(last.periods) >= ctl.config().rate_hz {
-                defmt::info!(
-                    "stats: periods {=u32} (+{=u32}), overruns {=u32}, fail-safe periods {=u32}, latched {=u16:#06x}, step cycles min/mean/max {=u32}/{=u32}/{=u32}{}",
-                    s.periods,
-                    s.periods.wrapping_sub(last.periods),
-                    s.overruns,
-                    s.failsafe_periods,
-                    s.latched.0,
-                    s.step_cycles_min,
-                    s.step_cycles_mean(),
-                    s.step_cycles_max,
-                    board.io.link_summary()
-                );
+                post(Event::Stats {
+                    stats: s,
+                    new_periods: s.periods.wrapping_sub(last.periods),
+                    link: board.io.link_stats(),
+                });
                 #[cfg(all(feature = "bench", feature = "hw"))]
                 crate::board::bench_model_step(ctl.table());
                 last = s;

@@ -75,7 +75,11 @@ impl ModelTerms {
     }
 
     fn validate(&self) -> Result<(), TableError> {
-        if !self.viscous_n_s_per_m.iter().all(|c| c.is_finite()) {
+        if !self
+            .viscous_n_s_per_m
+            .iter()
+            .all(|c| c.is_finite() && crate::math::abs(*c) <= MAX_VISCOUS_N_S_PER_M)
+        {
             return Err(TableError::BadTerm {
                 term: "viscous_n_s_per_m",
             });
@@ -119,7 +123,27 @@ impl Quartic {
     fn is_finite(&self) -> bool {
         self.coeffs.iter().all(|c| c.is_finite())
     }
+
+    /// A bound on |p(x)| and on every Horner partial for |x| ≤ `x_abs_max`
+    /// (≥ 1): Horner over the coefficients' magnitudes. Infinite on overflow.
+    fn magnitude_bound(&self, x_abs_max: f32) -> f32 {
+        self.coeffs
+            .iter()
+            .fold(0.0, |acc, c| acc * x_abs_max + crate::math::abs(*c))
+    }
 }
+
+/// Largest force (N) a table may produce anywhere in its fitted stroke, and
+/// the largest |x| (mm), |current| (A) and viscous coefficient (N·s/m) it may
+/// hold. The damper makes a few kN; quartics extrapolated over a long fitted
+/// stroke reach 1e8 N (Table 4 at 10× its stroke), so the force bound sits
+/// above that and still 29 orders below f32 overflow (3.4e38): every Horner
+/// step and the inverse's arithmetic stay finite, and an extreme (e.g.
+/// uploaded) table is refused instead of making the inverse NaN.
+pub const MAX_TABLE_FORCE_N: f32 = 1.0e9;
+pub const MAX_TABLE_X_MM: f32 = 1.0e3;
+pub const MAX_TABLE_CURRENT_A: f32 = 100.0;
+pub const MAX_VISCOUS_N_S_PER_M: f32 = 1.0e5;
 
 /// One tabulated current: its two branch quartics and their fitted stroke.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -177,6 +201,10 @@ pub enum TableError {
         stored: u32,
         computed: u32,
     },
+    /// A value's magnitude is beyond the `MAX_TABLE_*` bounds.
+    TooLarge {
+        index: usize,
+    },
     /// A version 2 term is non-finite or out of range (or a version 1 image
     /// carries terms).
     BadTerm {
@@ -206,6 +234,10 @@ impl core::fmt::Display for TableError {
             TableError::BadStroke { index } => {
                 write!(f, "entry {index}: fitted stroke needs x_min_mm < x_max_mm")
             }
+            TableError::TooLarge { index } => write!(
+                f,
+                "entry {index}: a value exceeds the table bounds (|force| {MAX_TABLE_FORCE_N} N, |x| {MAX_TABLE_X_MM} mm, |I| {MAX_TABLE_CURRENT_A} A)"
+            ),
             TableError::CrcMismatch { stored, computed } => {
                 write!(
                     f,
@@ -440,6 +472,17 @@ fn validate_entries(entries: &[CurrentEntry]) -> Result<(), TableError> {
         }
         if e.x_min_mm >= e.x_max_mm {
             return Err(TableError::BadStroke { index });
+        }
+        // The inverse evaluates each quartic only inside its stroke.
+        let x_abs_max = crate::math::abs(e.x_min_mm).max(crate::math::abs(e.x_max_mm)).max(1.0);
+        // Infinite on overflow; NaN cannot occur (the values are finite).
+        let too_large = |q: &Quartic| q.magnitude_bound(x_abs_max) > MAX_TABLE_FORCE_N;
+        if x_abs_max > MAX_TABLE_X_MM
+            || crate::math::abs(e.current_a) > MAX_TABLE_CURRENT_A
+            || too_large(&e.compression)
+            || too_large(&e.extension)
+        {
+            return Err(TableError::TooLarge { index });
         }
         previous_current = e.current_a;
     }

@@ -1,7 +1,7 @@
 //! The control step against mock I/O: fault handling, fail-safe, overrun
-//! accounting, rate config, stats and the coil current loop.
+//! accounting, rate config, stats and the coil duty.
 use mre_core::control::{
-    open_loop_duty, Coil, ControlConfig, ControlConfigError, Controller, CurrentLoop, DisplacementSensor,
+    open_loop_duty, Coil, ControlConfig, ControlConfigError, Controller, DisplacementSensor,
     NoVelocitySensor, VelocitySensor, DEFAULT_RATE_HZ,
 };
 use mre_core::estimate::AlphaBeta;
@@ -300,19 +300,54 @@ fn open_loop_duty_scales_and_clamps() {
 }
 
 #[test]
-fn pi_current_loop_trims_error_and_does_not_wind_up() {
-    // kp 0.2/A, ki 100/(A·s), 10 kHz, 3 A full scale.
-    let mut pi = CurrentLoop::new(0.2, 100.0, 1.0e-4, 3.0);
-    // On target: duty is the feed-forward 1.5/3.
-    assert!((pi.update(1.5, 1.5) - 0.5).abs() < 1e-6);
-    // 0.5 A short: 0.5 + 0.2·0.5 + 100·1e-4·0.5 = 0.605.
-    assert!((pi.update(1.5, 1.0) - 0.605).abs() < 1e-6);
-    // A coil that never responds: the integral stops at 1 − ff, duty at 1.
-    for _ in 0..100_000 {
-        pi.update(1.5, 0.0);
+fn a_velocity_sensor_at_its_rail_is_a_range_fault_not_a_rebound() {
+    // The sensor's ADC spans 0..3.3 V = 1.65 V ± 1.65 V at 3.33 m/s per V:
+    // a broken wire reads the rail, (0 − 1.65) · 5/1.5 = −5.5 m/s. Taken at
+    // face value that is a rebound, which commands the *minimum* current
+    // mid-impact; it must command the fail-safe instead and latch.
+    let rail_m_s = (0.0 - 1.65) * (5.0 / 1.5);
+    let mut c = controller(10_000);
+    for k in 0..10 {
+        let cmd = c.step_sample(5.0, Some(rail_m_s));
+        assert_eq!(cmd.current_a, FAILSAFE_A, "period {k}");
+        assert!(
+            cmd.flags.contains(Flags::SENSOR_RANGE | Flags::FAIL_SAFE),
+            "{:?}",
+            cmd.flags
+        );
+        assert!(!cmd.flags.contains(Flags::REBOUND));
     }
-    assert!((pi.integral() - 0.5).abs() < 1e-6);
-    assert_eq!(pi.update(1.5, 0.0), 1.0);
-    // Broken sense channel: pure feed-forward.
-    assert!((pi.update(0.3, f32::NAN) - 0.1).abs() < 1e-7);
+    assert_eq!(c.latched(), Flags::SENSOR_RANGE);
+    // Just inside the rated ±5 m/s is a plausible (fast) rebound.
+    let mut c = controller(10_000);
+    let cmd = c.step_sample(5.0, Some(-4.9));
+    assert!(cmd.flags.contains(Flags::REBOUND) && !cmd.flags.contains(Flags::FAIL_SAFE));
+}
+
+#[test]
+fn a_velocity_sensor_that_contradicts_the_displacement_latches_disagree() {
+    // x rises 0.15 mm per 100 µs period: 1.5 m/s (22.5 mm after 150
+    // periods, inside the stroke), while a sensor stuck at its zero (an open
+    // input biased to 1.65 V) reports 0 m/s.
+    let ramp = |k: usize| 0.15 * k as f32;
+    let mut c = controller(10_000);
+    let mut first_latch = None;
+    for k in 0..150 {
+        let cmd = c.step_sample(ramp(k), Some(0.0));
+        if cmd.flags.contains(Flags::SENSOR_DISAGREE) && first_latch.is_none() {
+            first_latch = Some(k);
+            assert_eq!(cmd.current_a, FAILSAFE_A);
+        }
+    }
+    // The estimator needs a few periods to see the 1 m/s, then 50 periods
+    // more than 1 m/s apart latch: well inside 150 periods, not before 50.
+    let k = first_latch.expect("SENSOR_DISAGREE never latched");
+    assert!((50..150).contains(&k), "latched at period {k}");
+
+    // An honest sensor on the same ramp: no fault.
+    let mut c = controller(10_000);
+    for k in 0..150 {
+        let cmd = c.step_sample(ramp(k), Some(1.5));
+        assert!(!cmd.flags.is_fault(), "period {k}: {:?}", cmd.flags);
+    }
 }

@@ -141,7 +141,18 @@ pub struct Io {
     last_rejected: u16,
 }
 
-pub fn init(_rate_hz: u32) -> Board {
+/// QEMU's model has no LED or button to speak of: nothing shown, never pressed.
+pub struct Status;
+
+impl super::StatusIo for Status {
+    fn set_led(&mut self, _on: bool) {}
+
+    fn button_pressed(&self) -> bool {
+        false
+    }
+}
+
+pub fn init(_rate_hz: u32) -> (Board, Status) {
     // SAFETY: the only user of the core peripherals, once, at boot.
     let core = unsafe { cortex_m::Peripherals::steal() };
     let mut syst = core.SYST;
@@ -151,22 +162,25 @@ pub fn init(_rate_hz: u32) -> Board {
     syst.enable_interrupt();
     syst.enable_counter();
     usart_init();
-    Board {
-        io: Io {
-            rx: SampleReceiver::new(),
-            config: ConfigCollector::new(),
-            sample: SampleFrame {
-                seq: 0,
-                x_mm: f32::NAN,
-                v_m_s: None,
-                force_n: None,
+    (
+        Board {
+            io: Io {
+                rx: SampleReceiver::new(),
+                config: ConfigCollector::new(),
+                sample: SampleFrame {
+                    seq: 0,
+                    x_mm: f32::NAN,
+                    v_m_s: None,
+                    force_n: None,
+                },
+                current_a: 0.0,
+                last_reply: None,
+                last_rejected: 0,
             },
-            current_a: 0.0,
-            last_reply: None,
-            last_rejected: 0,
+            watchdog: Watchdog,
         },
-        watchdog: Watchdog,
-    }
+        Status,
+    )
 }
 
 impl Board {
@@ -175,14 +189,7 @@ impl Board {
     /// firmware is still booting.
     pub fn start(&mut self) {
         defmt::info!("PIL link up on USART1: waiting for sample frames");
-        let hello = CommandFrame {
-            seq: HELLO_SEQ,
-            current_a: 0.0,
-            target_force_n: 0.0,
-            flags: Flags::NONE,
-            rejected: 0,
-        };
-        usart_write(&hello.encode());
+        send_hello(Flags::NONE);
     }
 }
 
@@ -197,14 +204,23 @@ fn send_hello(flags: Flags) {
     usart_write(&hello.encode());
 }
 
+/// PIL uploads its table over the frame link instead (QEMU does not model
+/// the flash controller): the page is always empty here.
+pub fn uploaded_table(
+    _board: &mut Board,
+) -> Result<(mre_core::Table, mre_core::control::ControlConfig), mre_core::flash_table::PageError> {
+    Err(mre_core::flash_table::PageError::Empty)
+}
+
 pub fn halt_fail_safe(_board: Board) -> ! {
     semihosting::process::exit(2)
 }
 
-impl Io {
+impl super::BoardIo for Io {
     /// Waits for the next valid sample frame (one control period). An
     /// uploaded configuration (config frames + commit) replaces `ctl`.
-    pub async fn next_period(&mut self, ctl: &mut Controller) {
+    /// Simulated time never skips a period: returns 0 missed ticks.
+    async fn next_period(&mut self, ctl: &mut Controller) -> u32 {
         loop {
             let mut idle_polls = 0u32;
             while idle_polls < SPIN_POLLS {
@@ -236,7 +252,7 @@ impl Io {
                     Some(Ok(Incoming::Sample(sample))) if sample.seq == END_OF_RUN_SEQ => end_of_run(self.rx.stats()),
                     Some(Ok(Incoming::Sample(sample))) => {
                         self.sample = sample;
-                        return;
+                        return 0;
                     }
                     // A host retry: answer again without a second step.
                     Some(Err(FrameError::Duplicate { .. })) => {
@@ -254,7 +270,7 @@ impl Io {
     }
 
     /// Sends the answer. Simulated time has no deadline: never an overrun.
-    pub fn finish_period(&mut self, cmd: &Command, _ctl: &Controller) -> bool {
+    fn finish_period(&mut self, cmd: &Command, _ctl: &Controller) -> bool {
         let rejected = self.rx.stats().rejected();
         let mut flags = cmd.flags;
         if rejected != self.last_rejected {
@@ -275,30 +291,13 @@ impl Io {
         false
     }
 
-    pub fn link_summary(&self) -> LinkSummary {
-        LinkSummary(self.rx.stats())
-    }
-}
-
-pub struct LinkSummary(LinkStats);
-impl defmt::Format for LinkSummary {
-    fn format(&self, f: defmt::Formatter<'_>) {
-        let s = &self.0;
-        defmt::write!(
-            f,
-            ", frames ok {=u32} crc {=u32} kind {=u32} order {=u32} dup {=u32} lost {=u32}",
-            s.accepted,
-            s.crc_errors,
-            s.bad_kind,
-            s.out_of_order,
-            s.duplicates,
-            s.lost
-        );
+    fn link_stats(&self) -> Option<LinkStats> {
+        Some(self.rx.stats())
     }
 }
 
 fn end_of_run(stats: LinkStats) -> ! {
-    defmt::info!("PIL end of run{}", LinkSummary(stats));
+    defmt::info!("PIL end of run{}", super::LinkSummary(Some(stats)));
     semihosting::process::exit(0)
 }
 

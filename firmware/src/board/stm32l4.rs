@@ -1,49 +1,50 @@
-//! Real STM32L4 boards (B-L475E-IOT01A, NUCLEO-L476RG): 80 MHz PLL, three
-//! ADCs (displacement, velocity, coil current), TIM3 PWM coil drive, IWDG,
-//! DWT cycle counter. Pins and scaling are documented in `firmware/README.md`;
+//! Real STM32L4 boards (B-L475E-IOT01A, NUCLEO-L476RG): 80 MHz PLL, two
+//! ADCs (displacement, velocity), TIM3 PWM coil drive, IWDG, DWT cycle
+//! counter. Pins and scaling are documented in `firmware/README.md`;
 //! the per-board difference is only the pin table below.
 use defmt_rtt as _;
 use panic_probe as _;
 
 use embassy_stm32::adc::{Adc, AdcChannel, AnyAdcChannel, SampleTime};
-use embassy_stm32::gpio::OutputType;
-use embassy_stm32::peripherals::{ADC1, ADC2, ADC3, IWDG, TIM3};
+use embassy_stm32::gpio::{Input, Level, Output, OutputType, Pull, Speed};
+use embassy_stm32::peripherals::{ADC1, ADC2, IWDG, TIM3};
 use embassy_stm32::time::khz;
 use embassy_stm32::timer::low_level::CountingMode;
 use embassy_stm32::timer::simple_pwm::{PwmPin, SimplePwm, SimplePwmChannel};
 use embassy_stm32::wdg::IndependentWatchdog;
 use embassy_time::{Duration, Instant, Ticker};
-use mre_core::control::{open_loop_duty, Coil, Controller, CurrentLoop, DisplacementSensor, VelocitySensor};
+use mre_core::boot::ResetCause;
+use mre_core::control::{open_loop_duty, Coil, Controller, DisplacementSensor, VelocitySensor};
 use mre_core::law::{Command, LawConfig};
+use mre_core::pacing::Pacer;
 
 #[cfg(feature = "board-b-l475e-iot01a")]
 pub const NAME: &str = "B-L475E-IOT01A";
 /// Arduino A0 = PC5 (ADC1_IN14) displacement, A1 = PC4 (ADC2_IN13) velocity,
-/// A2 = PC3 (ADC3_IN4) coil current, D5 = PB4 (TIM3_CH1, AF2) coil PWM.
+/// D5 = PB4 (TIM3_CH1, AF2) coil PWM; LED2 = PB14 (green), B1 = PC13.
 #[cfg(feature = "board-b-l475e-iot01a")]
 macro_rules! board_pins {
     ($p:ident) => {
-        ($p.PC5, $p.PC4, $p.PC3, $p.PB4)
+        ($p.PC5, $p.PC4, $p.PB4, $p.PB14, $p.PC13)
     };
 }
 
 #[cfg(feature = "board-nucleo-l476rg")]
 pub const NAME: &str = "NUCLEO-L476RG";
 /// Arduino A0 = PA0 (ADC1_IN5) displacement, A1 = PA1 (ADC2_IN6) velocity,
-/// A4 = PC1 (ADC3_IN2) coil current, D5 = PB4 (TIM3_CH1, AF2) coil PWM.
+/// D5 = PB4 (TIM3_CH1, AF2) coil PWM; LD2 = PA5 (green), B1 = PC13.
 #[cfg(feature = "board-nucleo-l476rg")]
 macro_rules! board_pins {
     ($p:ident) => {
-        ($p.PA0, $p.PA1, $p.PC1, $p.PB4)
+        ($p.PA0, $p.PA1, $p.PB4, $p.PA5, $p.PC13)
     };
 }
 
-/// What is wired: a velocity transducer on the velocity channel, and a coil
-/// current sense amplifier for the PI current loop (cargo features).
+/// What is wired: a velocity transducer on the velocity channel (cargo feature).
 pub const HAS_VELOCITY_SENSOR: bool = cfg!(feature = "velocity-sensor");
-pub const HAS_CURRENT_SENSE: bool = cfg!(feature = "current-loop");
 
 // Scaling (firmware/README.md, "Wiring"). 12-bit ADC, 3.3 V reference.
+/// Nominal VDDA; boot calibration measures it against VREFINT.
 const VREF_V: f32 = 3.3;
 const ADC_FULL_SCALE: f32 = 4095.0;
 /// Displacement: 0.3 V at 0 mm … 3.0 V at 25 mm. The ADC rails (a broken or
@@ -53,14 +54,9 @@ const X_MM_PER_V: f32 = 25.0 / 2.7;
 /// Velocity transducer conditioned to 1.65 V ± 1.5 V for ±5 m/s (+ = compression).
 const V_ZERO_V: f32 = 1.65;
 const V_M_S_PER_V: f32 = 5.0 / 1.5;
-/// Coil current sense: 0.1 Ω shunt, gain 10: 1 V per A.
-const I_A_PER_V: f32 = 1.0;
 /// Coil driver: 12 V into a 4 Ω coil, so 100 % duty is 3 A on average.
 const COIL_FULL_SCALE_A: f32 = 3.0;
 const PWM_KHZ: u32 = 20;
-/// PI current loop gains (duty per A, duty per A·s).
-const CURRENT_KP_PER_A: f32 = 0.2;
-const CURRENT_KI_PER_A_S: f32 = 100.0;
 /// 24.5 + 12.5 ADC cycles at 80 MHz: 0.46 µs per conversion.
 const SAMPLE_TIME: SampleTime = SampleTime::CYCLES24_5;
 /// 50 periods at 10 kHz: long enough for the 1 Hz stats log, short enough
@@ -97,32 +93,100 @@ pub fn cycles() -> u32 {
     cortex_m::peripheral::DWT::cycle_count()
 }
 
-fn volts(code: u16) -> f32 {
-    f32::from(code) * (VREF_V / ADC_FULL_SCALE)
-}
+/// Samples per boot zero (50 µs apart: 3.2 ms at rest).
+const CAL_SAMPLES: usize = 64;
 
 /// Sensors, coil and pacing: implements the core's I/O traits.
 pub struct Io {
     adc_x: Adc<'static, ADC1>,
     ch_x: AnyAdcChannel<'static, ADC1>,
     velocity: Option<(Adc<'static, ADC2>, AnyAdcChannel<'static, ADC2>)>,
-    sense: Option<(Adc<'static, ADC3>, AnyAdcChannel<'static, ADC3>)>,
     pwm: SimplePwmChannel<'static, TIM3>,
     max_duty: u32,
-    current_loop: CurrentLoop,
     ticker: Ticker,
     period: Duration,
-    next_tick: Instant,
+    pacer: Pacer,
+    /// From boot calibration (nominal if it was refused).
+    v_per_lsb: f32,
+    x_offset_mm: f32,
+    v_zero_m_s: f32,
 }
 
 pub struct Board {
     pub io: Io,
     pub watchdog: IndependentWatchdog<'static, IWDG>,
+    table_page: FlashPage,
 }
 
-pub fn init(rate_hz: u32) -> Board {
+/// The flash page reserved for an uploaded table: the last 2 KiB of the
+/// 1 MiB flash (memory.x ends FLASH before it).
+const TABLE_PAGE_OFFSET: u32 = 1024 * 1024 - mre_core::flash_table::PAGE_BYTES as u32;
+
+struct FlashPage(embassy_stm32::flash::Flash<'static, embassy_stm32::flash::Blocking>);
+
+impl mre_core::flash_table::TablePage for FlashPage {
+    fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), mre_core::flash_table::FlashError> {
+        self.0
+            .blocking_read(TABLE_PAGE_OFFSET + offset as u32, buf)
+            .map_err(|_| mre_core::flash_table::FlashError)
+    }
+
+    fn erase(&mut self) -> Result<(), mre_core::flash_table::FlashError> {
+        let end = TABLE_PAGE_OFFSET + mre_core::flash_table::PAGE_BYTES as u32;
+        self.0
+            .blocking_erase(TABLE_PAGE_OFFSET, end)
+            .map_err(|_| mre_core::flash_table::FlashError)
+    }
+
+    fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), mre_core::flash_table::FlashError> {
+        self.0
+            .blocking_write(TABLE_PAGE_OFFSET + offset as u32, data)
+            .map_err(|_| mre_core::flash_table::FlashError)
+    }
+}
+
+/// The table and configuration on the reserved flash page, if valid.
+pub fn uploaded_table(
+    board: &mut Board,
+) -> Result<(mre_core::Table, mre_core::control::ControlConfig), mre_core::flash_table::PageError> {
+    mre_core::flash_table::load(&mut board.table_page)
+}
+
+/// The status LED and the user button B1 (active low on both boards).
+pub struct Status {
+    led: Output<'static>,
+    button: Input<'static>,
+}
+
+impl super::StatusIo for Status {
+    fn set_led(&mut self, on: bool) {
+        self.led.set_level(if on { Level::High } else { Level::Low });
+    }
+
+    fn button_pressed(&self) -> bool {
+        self.button.is_low()
+    }
+}
+
+pub fn init(rate_hz: u32) -> (Board, Status) {
+    // Read and clear the reset flags before anything can reset again.
+    let csr = embassy_stm32::pac::RCC.csr().read().0;
+    embassy_stm32::pac::RCC.csr().modify(|w| w.set_rmvf(true));
+    let cause = ResetCause::from_rcc_csr(csr);
+    if cause.is_fault() {
+        defmt::warn!("reset cause: {=str} (RCC_CSR {=u32:#010x})", cause.name(), csr);
+    } else {
+        defmt::info!("reset cause: {=str} (RCC_CSR {=u32:#010x})", cause.name(), csr);
+    }
+    // A halted core (breakpoint) must not be reset by the watchdog.
+    embassy_stm32::pac::DBGMCU.apb1fzr1().modify(|w| w.set_iwdg(true));
+
     let p = embassy_stm32::init(clock_config());
-    let (pin_x, pin_v, pin_i, pin_pwm) = board_pins!(p);
+    let (pin_x, pin_v, pin_pwm, pin_led, pin_button) = board_pins!(p);
+    let status = Status {
+        led: Output::new(pin_led, Level::Low, Speed::Low),
+        button: Input::new(pin_button, Pull::None),
+    };
 
     // SAFETY: only DCB/DWT are touched, once, before anything else uses them.
     let mut core = unsafe { cortex_m::Peripherals::steal() };
@@ -143,75 +207,153 @@ pub fn init(rate_hz: u32) -> Board {
     ch.enable();
 
     let period = Duration::from_hz(u64::from(rate_hz));
-    let period_s = 1.0 / rate_hz as f32;
     let mut io = Io {
         adc_x: Adc::new(p.ADC1),
         ch_x: pin_x.degrade_adc(),
         velocity: HAS_VELOCITY_SENSOR.then(|| (Adc::new(p.ADC2), pin_v.degrade_adc())),
-        sense: HAS_CURRENT_SENSE.then(|| (Adc::new(p.ADC3), pin_i.degrade_adc())),
         pwm: ch,
         max_duty,
-        current_loop: CurrentLoop::new(CURRENT_KP_PER_A, CURRENT_KI_PER_A_S, period_s, COIL_FULL_SCALE_A),
         ticker: Ticker::every(period),
         period,
-        next_tick: Instant::now(),
+        pacer: Pacer::start(Instant::now().as_ticks(), period.as_ticks()),
+        v_per_lsb: VREF_V / ADC_FULL_SCALE,
+        x_offset_mm: 0.0,
+        v_zero_m_s: 0.0,
     };
     // Until the loop runs, hold the fail-safe current (stiffest damper).
-    io.set_duty(open_loop_duty(
-        LawConfig::default().failsafe_current_a,
-        COIL_FULL_SCALE_A,
-    ));
+    io.set_duty(fail_safe_duty());
+    io.calibrate();
     let watchdog = IndependentWatchdog::new(p.IWDG, WATCHDOG_TIMEOUT_US);
-    Board { io, watchdog }
+    let table_page = FlashPage(embassy_stm32::flash::Flash::new_blocking(p.FLASH));
+    (
+        Board {
+            io,
+            watchdog,
+            table_page,
+        },
+        status,
+    )
 }
 
 impl Board {
     /// Starts the ticker and the watchdog right before the first period.
     pub fn start(&mut self) {
         self.io.ticker.reset();
-        // The first tick is one period from now; its deadline one more.
-        self.io.next_tick = Instant::now() + self.io.period;
+        self.io.pacer = Pacer::start(Instant::now().as_ticks(), self.io.period.as_ticks());
         self.watchdog.unleash();
     }
 }
 
-/// Holds the fail-safe coil current forever (configuration refused).
+/// Holds the fail-safe coil current until the watchdog resets the chip
+/// (configuration refused): started here and never fed, so a fatal fault
+/// at boot retries from reset instead of sleeping for ever.
 pub fn halt_fail_safe(mut board: Board) -> ! {
-    board.io.set_duty(open_loop_duty(
-        LawConfig::default().failsafe_current_a,
-        COIL_FULL_SCALE_A,
-    ));
+    board.io.set_duty(fail_safe_duty());
+    board.watchdog.unleash();
     loop {
         cortex_m::asm::wfi();
     }
 }
 
+fn fail_safe_duty() -> f32 {
+    open_loop_duty(LawConfig::default().failsafe_current_a, COIL_FULL_SCALE_A)
+}
+
 impl Io {
+    fn volts(&self, code: u16) -> f32 {
+        f32::from(code) * self.v_per_lsb
+    }
+
+    /// Boot calibration (firmware/README.md): VDDA from VREFINT, then the
+    /// displacement offset and the velocity zero with the mass at rest. Each
+    /// result is range-checked (`mre_core::calibration`) and logged; a
+    /// refused one leaves the nominal scaling.
+    fn calibrate(&mut self) {
+        use mre_core::calibration::{vdda_v, V_REST, X_REST};
+        let mut vref = self.adc_x.enable_vrefint();
+        let raw = self.adc_x.blocking_read(&mut vref, SampleTime::CYCLES247_5);
+        match vdda_v(raw, vref.calibrated_value()) {
+            Ok(vdda) => {
+                self.v_per_lsb = vdda / ADC_FULL_SCALE;
+                defmt::info!(
+                    "calibration: VDDA {=f32} V (VREFINT {=u16}, cal {=u16})",
+                    vdda,
+                    raw,
+                    vref.calibrated_value()
+                );
+            }
+            Err(e) => defmt::warn!(
+                "calibration: VDDA refused ({=str}), assuming {=f32} V",
+                e.as_str(),
+                VREF_V
+            ),
+        }
+        self.x_offset_mm = self.rest_zero("x offset (mm)", X_REST, |io| io.read_x_mm());
+        if self.velocity.is_some() {
+            self.v_zero_m_s = self.rest_zero("velocity zero (m/s)", V_REST, |io| io.read_v_m_s().unwrap_or(f32::NAN));
+        }
+    }
+
+    /// The zero of one sensor at rest, 50 µs apart, or 0 if refused (logged).
+    fn rest_zero(
+        &mut self,
+        what: &str,
+        limits: mre_core::calibration::RestLimits,
+        mut read: impl FnMut(&mut Self) -> f32,
+    ) -> f32 {
+        let mut samples = [0.0f32; CAL_SAMPLES];
+        for s in samples.iter_mut() {
+            *s = read(self);
+            embassy_time::block_for(Duration::from_micros(50));
+        }
+        match mre_core::calibration::rest_offset(&samples, 0.0, limits) {
+            Ok(zero) => {
+                defmt::info!("calibration: {=str} {=f32}", what, zero);
+                zero
+            }
+            Err(e) => {
+                defmt::warn!("calibration: {=str} refused ({=str}), using 0", what, e.as_str());
+                0.0
+            }
+        }
+    }
+
     fn set_duty(&mut self, duty: f32) {
         // duty ∈ [0, 1] by construction; `as` saturates anyway.
         self.pwm.set_duty_cycle((duty * self.max_duty as f32) as u32);
     }
+}
 
-    /// Waits for the next tick of the control rate.
-    pub async fn next_period(&mut self, _ctl: &mut Controller) {
+impl super::BoardIo for Io {
+    /// Waits for the next tick of the control rate. Ticks skipped by a
+    /// stall are counted as overruns and the ticker re-phased, instead of
+    /// letting it catch up with periods microseconds apart.
+    /// Returns the number of ticks missed.
+    async fn next_period(&mut self, ctl: &mut Controller) -> u32 {
         self.ticker.next().await;
-        self.next_tick += self.period;
+        let missed = self.pacer.wake(Instant::now().as_ticks());
+        if missed > 0 {
+            self.ticker.reset();
+            ctl.record_missed_periods(missed);
+        }
+        missed
     }
 
     /// True when this period's work ended after the next tick was due.
-    pub fn finish_period(&mut self, _cmd: &Command, _ctl: &Controller) -> bool {
-        Instant::now() >= self.next_tick
+    fn finish_period(&mut self, _cmd: &Command, _ctl: &Controller) -> bool {
+        self.pacer.overran(Instant::now().as_ticks())
     }
 
-    pub fn link_summary(&self) -> &'static str {
-        ""
+    /// No frame link on hardware.
+    fn link_stats(&self) -> Option<mre_core::frame::LinkStats> {
+        None
     }
 }
 
 impl DisplacementSensor for Io {
     fn read_x_mm(&mut self) -> f32 {
         let code = self.adc_x.blocking_read(&mut self.ch_x, SAMPLE_TIME);
-        (volts(code) - X_ZERO_V) * X_MM_PER_V
+        (self.volts(code) - X_ZERO_V) * X_MM_PER_V - self.x_offset_mm
     }
 }
 
@@ -219,20 +361,13 @@ impl VelocitySensor for Io {
     fn read_v_m_s(&mut self) -> Option<f32> {
         let (adc, ch) = self.velocity.as_mut()?;
         let code = adc.blocking_read(ch, SAMPLE_TIME);
-        Some((volts(code) - V_ZERO_V) * V_M_S_PER_V)
+        Some((self.volts(code) - V_ZERO_V) * V_M_S_PER_V - self.v_zero_m_s)
     }
 }
 
 impl Coil for Io {
     fn set_current_a(&mut self, current_a: f32) {
-        let duty = match self.sense.as_mut() {
-            Some((adc, ch)) => {
-                let measured_a = volts(adc.blocking_read(ch, SAMPLE_TIME)) * I_A_PER_V;
-                self.current_loop.update(current_a, measured_a)
-            }
-            None => open_loop_duty(current_a, COIL_FULL_SCALE_A),
-        };
-        self.set_duty(duty);
+        self.set_duty(open_loop_duty(current_a, COIL_FULL_SCALE_A));
     }
 }
 

@@ -57,6 +57,8 @@ pub fn build_firmware() -> Result<PathBuf> {
 /// A running QEMU with the firmware; killed on drop.
 pub struct Qemu {
     child: Child,
+    /// QEMU's human monitor on a local TCP socket (register reads in tests).
+    monitor_port: u16,
 }
 
 impl Qemu {
@@ -72,6 +74,7 @@ impl Qemu {
         }
         // Ask the OS for a free port; QEMU binds it right after.
         let port = TcpListener::bind("127.0.0.1:0")?.local_addr()?.port();
+        let monitor_port = TcpListener::bind("127.0.0.1:0")?.local_addr()?.port();
         let stdout = match log {
             Some(p) => Stdio::from(std::fs::File::create(p).with_context(|| format!("creating {}", p.display()))?),
             None => Stdio::null(),
@@ -79,7 +82,8 @@ impl Qemu {
         // stderr to a file, not a pipe: an undrained pipe could stall QEMU.
         let mut errors = tempfile::tempfile().context("temporary file for QEMU's stderr")?;
         let child = Command::new(qemu)
-            .args(["-M", "b-l475e-iot01a", "-nographic", "-monitor", "none"])
+            .args(["-M", "b-l475e-iot01a", "-nographic", "-monitor"])
+            .arg(format!("tcp:127.0.0.1:{monitor_port},server=on,wait=off"))
             .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
             .arg(elf)
             .arg("-chardev")
@@ -92,7 +96,7 @@ impl Qemu {
             .stderr(Stdio::from(errors.try_clone()?))
             .spawn()
             .with_context(|| format!("starting {}", qemu.display()))?;
-        let mut qemu = Qemu { child };
+        let mut qemu = Qemu { child, monitor_port };
         let deadline = Instant::now() + Duration::from_secs(20);
         loop {
             match TcpStream::connect(("127.0.0.1", port)) {
@@ -112,6 +116,40 @@ impl Qemu {
                 }
             }
         }
+    }
+
+    /// Reads a 32-bit word of the emulated chip's physical address space
+    /// (a peripheral register, too) through QEMU's monitor (`xp`).
+    pub fn read_word(&self, address: u32) -> Result<u32> {
+        use std::io::{Read, Write};
+        let mut monitor =
+            TcpStream::connect(("127.0.0.1", self.monitor_port)).context("connecting to QEMU's monitor")?;
+        monitor.set_read_timeout(Some(Duration::from_secs(10)))?;
+        let mut text = Vec::new();
+        let read_until_prompt = |monitor: &mut TcpStream, text: &mut Vec<u8>| -> Result<()> {
+            let mut buf = [0u8; 512];
+            while !String::from_utf8_lossy(text).trim_end().ends_with("(qemu)") {
+                let n = monitor.read(&mut buf).context("reading QEMU's monitor")?;
+                if n == 0 {
+                    bail!("QEMU's monitor closed");
+                }
+                text.extend_from_slice(buf.get(..n).unwrap_or_default());
+            }
+            Ok(())
+        };
+        read_until_prompt(&mut monitor, &mut text)?;
+        text.clear();
+        monitor.write_all(format!("xp /1wx {address:#010x}\n").as_bytes())?;
+        read_until_prompt(&mut monitor, &mut text)?;
+        let text = String::from_utf8_lossy(&text);
+        // The answer line: `0000000048000400: 0xabcdef01`.
+        let key = format!("{address:016x}: 0x");
+        let value = text
+            .find(&key)
+            .and_then(|at| text.get(at + key.len()..))
+            .and_then(|rest| rest.get(..8))
+            .with_context(|| format!("no value for {address:#010x} in QEMU's answer {text:?}"))?;
+        u32::from_str_radix(value, 16).with_context(|| format!("parsing {value:?}"))
     }
 
     /// Waits for QEMU to exit (after [`PilLink::end_of_run`]).

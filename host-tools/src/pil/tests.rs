@@ -296,3 +296,31 @@ fn mre_pil_flies_controller_c_on_a_lagging_coil() {
         controlled.summary.peak_force_n
     );
 }
+
+#[test]
+fn coil_pin_is_driven_low_first_thing_at_boot() {
+    // After reset PB4 (the coil PWM, D5) is NJTRST: alternate function with
+    // a pull-up (RM0351: GPIOB_MODER reset 0xFFFF_FEBF, PUPDR 0x0000_0100),
+    // so the driver input reads high. The firmware must make it a low output.
+    let Some((qemu, mut link)) = start() else { return };
+    // One exchange: the firmware is past boot and running periods.
+    link.exchange(&SampleFrame {
+        seq: 1,
+        x_mm: 0.0,
+        v_m_s: None,
+        force_n: None,
+    })
+    .unwrap();
+    const GPIOB: u32 = 0x4800_0400;
+    let moder = qemu.read_word(GPIOB).unwrap();
+    let idr = qemu.read_word(GPIOB + 0x10).unwrap();
+    let odr = qemu.read_word(GPIOB + 0x14).unwrap();
+    assert_eq!(
+        (moder >> 8) & 0b11,
+        0b01,
+        "PB4 mode (MODER {moder:#010x}): general-purpose output"
+    );
+    assert_eq!(odr & (1 << 4), 0, "PB4 output level (ODR {odr:#010x})");
+    assert_eq!(idr & (1 << 4), 0, "PB4 pin level (IDR {idr:#010x})");
+    finish(qemu, link);
+}

@@ -1,0 +1,69 @@
+//! Boot facts decoded from raw register values, so the decoding is tested on
+//! the host: why the chip reset (STM32L4 `RCC_CSR`, RM0351 §6.4.29).
+
+/// The reset cause, most specific first (NRST pulses on every reset, so
+/// `PINRSTF` accompanies the others and only counts alone).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ResetCause {
+    /// The independent watchdog fired: the control loop stalled.
+    IndependentWatchdog,
+    WindowWatchdog,
+    LowPower,
+    /// `SYSRESETREQ` (a debugger's reset, or the firmware's own).
+    Software,
+    /// Brown-out or power-on.
+    BrownOutOrPowerOn,
+    OptionByteLoader,
+    Firewall,
+    /// The reset button or the probe's NRST.
+    Pin,
+    Unknown,
+}
+
+impl ResetCause {
+    /// Decodes `RCC_CSR` (bits 31..24: LPWR, WWDG, IWDG, SFT, BOR, PIN, OBL, FW).
+    pub fn from_rcc_csr(csr: u32) -> Self {
+        let bit = |n: u32| csr & (1 << n) != 0;
+        if bit(29) {
+            Self::IndependentWatchdog
+        } else if bit(30) {
+            Self::WindowWatchdog
+        } else if bit(31) {
+            Self::LowPower
+        } else if bit(28) {
+            Self::Software
+        } else if bit(27) {
+            Self::BrownOutOrPowerOn
+        } else if bit(25) {
+            Self::OptionByteLoader
+        } else if bit(24) {
+            Self::Firewall
+        } else if bit(26) {
+            Self::Pin
+        } else {
+            Self::Unknown
+        }
+    }
+
+    /// A reset the firmware should warn about: the loop or the supply failed.
+    pub fn is_fault(self) -> bool {
+        matches!(
+            self,
+            Self::IndependentWatchdog | Self::WindowWatchdog | Self::BrownOutOrPowerOn | Self::Firewall
+        )
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::IndependentWatchdog => "independent watchdog",
+            Self::WindowWatchdog => "window watchdog",
+            Self::LowPower => "low-power",
+            Self::Software => "software",
+            Self::BrownOutOrPowerOn => "brown-out / power-on",
+            Self::OptionByteLoader => "option byte loader",
+            Self::Firewall => "firewall",
+            Self::Pin => "NRST pin",
+            Self::Unknown => "unknown",
+        }
+    }
+}

@@ -1,0 +1,93 @@
+//! Boot calibration arithmetic, range-checked so that a bad reading is
+//! refused (and logged by the board) instead of silently applied:
+//! - VDDA from the internal reference (VREFINT) and its factory value;
+//! - the zero of a sensor read at rest (displacement offset, velocity zero).
+//!
+//! The board samples; this module decides. A refused calibration leaves the
+//! nominal scaling in place.
+
+/// VDDA at which the factory measured `VREFINT_CAL` (RM0351: 3.0 V).
+pub const VREFINT_CAL_VDDA_V: f32 = 3.0;
+/// The boards run VDDA from their 3.3 V regulator: accept ±10 %.
+pub const VDDA_MIN_V: f32 = 2.97;
+pub const VDDA_MAX_V: f32 = 3.63;
+
+/// Why a calibration was refused.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CalError {
+    /// No samples, a zero reference reading, or a non-finite sample.
+    NoData,
+    /// The result lies outside its plausible range (value attached).
+    OutOfRange(f32),
+    /// The samples spread more than allowed: the sensor was not at rest.
+    NotAtRest { spread: f32 },
+}
+
+impl CalError {
+    /// A short reason for logs (no `core::fmt` on the board).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            CalError::NoData => "no data",
+            CalError::OutOfRange(_) => "out of range",
+            CalError::NotAtRest { .. } => "not at rest",
+        }
+    }
+}
+
+/// VDDA (V) from a VREFINT conversion and the factory calibration value,
+/// both 12-bit: VDDA = 3.0 V · cal / raw.
+pub fn vdda_v(vrefint_raw: u16, vrefint_cal: u16) -> Result<f32, CalError> {
+    if vrefint_raw == 0 || vrefint_cal == 0 {
+        return Err(CalError::NoData);
+    }
+    let vdda = VREFINT_CAL_VDDA_V * f32::from(vrefint_cal) / f32::from(vrefint_raw);
+    if (VDDA_MIN_V..=VDDA_MAX_V).contains(&vdda) {
+        Ok(vdda)
+    } else {
+        Err(CalError::OutOfRange(vdda))
+    }
+}
+
+/// Limits for a zero taken at rest.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RestLimits {
+    /// Largest accepted |mean − expected|.
+    pub max_offset: f32,
+    /// Largest accepted max − min of the samples.
+    pub max_spread: f32,
+}
+
+/// Displacement at rest: the sensor should read 0 mm. 1 mm is ~0.1 V of
+/// mounting error; 0.2 mm of spread is ~20 LSB, far above ADC noise.
+pub const X_REST: RestLimits = RestLimits {
+    max_offset: 1.0,
+    max_spread: 0.2,
+};
+/// Velocity at rest: 0 m/s; 0.3 m/s is 90 mV of conditioning offset.
+pub const V_REST: RestLimits = RestLimits {
+    max_offset: 0.3,
+    max_spread: 0.3,
+};
+
+/// The offset (mean − `expected`) of `samples` taken at rest, to subtract
+/// from later readings.
+pub fn rest_offset(samples: &[f32], expected: f32, limits: RestLimits) -> Result<f32, CalError> {
+    if samples.is_empty() || samples.iter().any(|s| !s.is_finite()) {
+        return Err(CalError::NoData);
+    }
+    let (mut lo, mut hi, mut sum) = (f32::INFINITY, f32::NEG_INFINITY, 0.0f32);
+    for &s in samples {
+        lo = lo.min(s);
+        hi = hi.max(s);
+        sum += s;
+    }
+    let spread = hi - lo;
+    if spread > limits.max_spread {
+        return Err(CalError::NotAtRest { spread });
+    }
+    let offset = sum / samples.len() as f32 - expected;
+    if crate::math::abs(offset) > limits.max_offset {
+        return Err(CalError::OutOfRange(offset));
+    }
+    Ok(offset)
+}

@@ -1,0 +1,135 @@
+//! The reserved flash page that holds an uploaded table and configuration,
+//! so a table can change without reflashing the image. The page stores the
+//! same blob the PIL/upload protocol carries (`frame::encode_config`),
+//! behind a small header:
+//!
+//! | bytes | content |
+//! |---|---|
+//! | 0..4 | magic `MRET` (`0x5445_524D` little-endian) |
+//! | 4..8 | page format (1) |
+//! | 8..12 | blob length in words |
+//! | 12..16 | CRC-32 (ISO-HDLC) of the blob's bytes |
+//! | 16.. | the blob, u32 little-endian; padded with 0xFF to 8 bytes |
+//!
+//! Boot loads the page and falls back to the built-in table when it is
+//! erased, torn (CRC) or refused by the blob's own validation
+//! (`Table::from_image`, `ControlConfig::validate`). The board implements
+//! [`TablePage`] over embassy-stm32's flash; the host tests over RAM.
+use crate::control::ControlConfig;
+use crate::frame::{decode_config, encode_config, ConfigBlobError, CONFIG_MAX_WORDS};
+use crate::table::Table;
+use crc::{Crc, CRC_32_ISO_HDLC};
+
+pub const MAGIC: u32 = u32::from_le_bytes(*b"MRET");
+pub const PAGE_FORMAT: u32 = 1;
+const HEADER_BYTES: usize = 16;
+/// STM32L4 flash pages are 2 KiB, written in 8-byte double words.
+pub const PAGE_BYTES: usize = 2048;
+pub const WRITE_ALIGN: usize = 8;
+const MAX_IMAGE_BYTES: usize = HEADER_BYTES + 4 * CONFIG_MAX_WORDS + WRITE_ALIGN;
+const CRC32: Crc<u32> = Crc::<u32>::new(&CRC_32_ISO_HDLC);
+
+/// One erasable flash page (offsets from its start).
+pub trait TablePage {
+    fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), FlashError>;
+    /// Sets every byte of the page to 0xFF.
+    fn erase(&mut self) -> Result<(), FlashError>;
+    /// `offset` and `data.len()` are multiples of [`WRITE_ALIGN`].
+    fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), FlashError>;
+}
+
+/// The flash driver failed (the board maps its error here).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FlashError;
+
+/// Why the page holds no usable table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PageError {
+    /// Never written (erased) or not our page.
+    Empty,
+    UnsupportedFormat(u32),
+    /// Length out of range or CRC mismatch: a torn or corrupt write.
+    Corrupt,
+    Refused(ConfigBlobError),
+    Flash(FlashError),
+}
+
+impl PageError {
+    /// A short reason for logs (no `core::fmt` on the board).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            PageError::Empty => "page empty",
+            PageError::UnsupportedFormat(_) => "unsupported page format",
+            PageError::Corrupt => "page corrupt (length or CRC)",
+            PageError::Refused(_) => "table or configuration refused",
+            PageError::Flash(_) => "flash read failed",
+        }
+    }
+}
+
+impl From<FlashError> for PageError {
+    fn from(e: FlashError) -> Self {
+        PageError::Flash(e)
+    }
+}
+
+/// Loads and validates the stored table and configuration.
+pub fn load<P: TablePage + ?Sized>(page: &mut P) -> Result<(Table, ControlConfig), PageError> {
+    let mut header = [0u8; HEADER_BYTES];
+    page.read(0, &mut header)?;
+    let word = |k: usize| {
+        let mut w = [0u8; 4];
+        if let Some(src) = header.get(4 * k..4 * k + 4) {
+            w.copy_from_slice(src);
+        }
+        u32::from_le_bytes(w)
+    };
+    if word(0) != MAGIC {
+        return Err(PageError::Empty);
+    }
+    if word(1) != PAGE_FORMAT {
+        return Err(PageError::UnsupportedFormat(word(1)));
+    }
+    let n = word(2) as usize;
+    if n == 0 || n > CONFIG_MAX_WORDS {
+        return Err(PageError::Corrupt);
+    }
+    let mut bytes = [0u8; 4 * CONFIG_MAX_WORDS];
+    let blob = bytes.get_mut(..4 * n).ok_or(PageError::Corrupt)?;
+    page.read(HEADER_BYTES, blob)?;
+    if CRC32.checksum(blob) != word(3) {
+        return Err(PageError::Corrupt);
+    }
+    let mut words = [0u32; CONFIG_MAX_WORDS];
+    for (w, b) in words.iter_mut().zip(blob.chunks_exact(4)) {
+        if let Ok(b) = <[u8; 4]>::try_from(b) {
+            *w = u32::from_le_bytes(b);
+        }
+    }
+    decode_config(words.get(..n).unwrap_or(&[])).map_err(PageError::Refused)
+}
+
+/// Erases the page and stores `table` and `cfg`, then reads it back.
+pub fn store<P: TablePage + ?Sized>(page: &mut P, table: &Table, cfg: &ControlConfig) -> Result<(), PageError> {
+    let mut words = [0u32; CONFIG_MAX_WORDS];
+    let n = encode_config(table, cfg, &mut words);
+    let mut image = [0xFFu8; MAX_IMAGE_BYTES];
+    let mut blob_crc = CRC32.digest();
+    for (k, w) in words.iter().take(n).enumerate() {
+        let b = w.to_le_bytes();
+        blob_crc.update(&b);
+        if let Some(dst) = image.get_mut(HEADER_BYTES + 4 * k..HEADER_BYTES + 4 * k + 4) {
+            dst.copy_from_slice(&b);
+        }
+    }
+    let header = [MAGIC, PAGE_FORMAT, n as u32, blob_crc.finalize()];
+    for (k, w) in header.iter().enumerate() {
+        if let Some(dst) = image.get_mut(4 * k..4 * k + 4) {
+            dst.copy_from_slice(&w.to_le_bytes());
+        }
+    }
+    let len = (HEADER_BYTES + 4 * n).div_ceil(WRITE_ALIGN) * WRITE_ALIGN;
+    page.erase()?;
+    page.write(0, image.get(..len).unwrap_or(&[]))?;
+    load(page).map(|_| ())
+}

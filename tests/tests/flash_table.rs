@@ -1,0 +1,99 @@
+//! The uploaded-table flash page, over a RAM page that behaves like STM32L4
+//! flash (erase to 0xFF, 8-byte aligned writes that can only clear bits).
+use mre_core::control::ControlConfig;
+use mre_core::flash_table::{load, store, FlashError, PageError, TablePage, PAGE_BYTES, WRITE_ALIGN};
+use mre_core::table::{Table, PAPER_TABLE4_ENTRIES};
+
+struct RamPage {
+    bytes: Vec<u8>,
+    /// Stop after this many written bytes (a power cut mid-write).
+    cut_after: Option<usize>,
+}
+
+impl RamPage {
+    fn erased() -> Self {
+        Self {
+            bytes: vec![0xFF; PAGE_BYTES],
+            cut_after: None,
+        }
+    }
+}
+
+impl TablePage for RamPage {
+    fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), FlashError> {
+        let src = self.bytes.get(offset..offset + buf.len()).ok_or(FlashError)?;
+        buf.copy_from_slice(src);
+        Ok(())
+    }
+    fn erase(&mut self) -> Result<(), FlashError> {
+        self.bytes.fill(0xFF);
+        Ok(())
+    }
+    fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), FlashError> {
+        assert_eq!(offset % WRITE_ALIGN, 0, "unaligned write offset");
+        assert_eq!(data.len() % WRITE_ALIGN, 0, "unaligned write length");
+        let dst = self.bytes.get_mut(offset..offset + data.len()).ok_or(FlashError)?;
+        for (k, (d, s)) in dst.iter_mut().zip(data).enumerate() {
+            if self.cut_after.is_some_and(|cut| k >= cut) {
+                break;
+            }
+            // NOR flash: programming only clears bits.
+            *d &= *s;
+        }
+        Ok(())
+    }
+}
+
+fn uploaded() -> (Table, ControlConfig) {
+    // Not the built-in table: Table 4 with a longer fitted stroke, at 20 kHz.
+    let mut entries = PAPER_TABLE4_ENTRIES;
+    for e in &mut entries {
+        e.x_max_mm *= 2.0;
+    }
+    (Table::new(&entries).unwrap(), ControlConfig::at_rate(20_000).unwrap())
+}
+
+#[test]
+fn an_erased_page_is_empty_and_the_board_falls_back() {
+    assert_eq!(load(&mut RamPage::erased()).unwrap_err(), PageError::Empty);
+}
+
+#[test]
+fn a_stored_table_loads_back_bit_for_bit() {
+    let (table, cfg) = uploaded();
+    let mut page = RamPage::erased();
+    store(&mut page, &table, &cfg).unwrap();
+    let (t, c) = load(&mut page).unwrap();
+    assert_eq!(t.crc32(), table.crc32());
+    assert_eq!(t.entries(), table.entries());
+    assert_eq!(c, cfg);
+    // Storing again (a second upload) replaces it.
+    let other = Table::paper().unwrap();
+    store(&mut page, &other, &cfg).unwrap();
+    assert_eq!(load(&mut page).unwrap().0.crc32(), other.crc32());
+}
+
+#[test]
+fn a_torn_or_corrupt_page_is_refused() {
+    let (table, cfg) = uploaded();
+    // Power cut after the header and 40 bytes of the blob.
+    let mut page = RamPage::erased();
+    page.cut_after = Some(56);
+    assert_eq!(store(&mut page, &table, &cfg), Err(PageError::Corrupt));
+    assert_eq!(load(&mut page).unwrap_err(), PageError::Corrupt);
+    // One flipped bit in the blob.
+    let mut page = RamPage::erased();
+    store(&mut page, &table, &cfg).unwrap();
+    page.bytes[100] ^= 0x04;
+    assert_eq!(load(&mut page).unwrap_err(), PageError::Corrupt);
+    // An absurd length in the header.
+    let mut page = RamPage::erased();
+    store(&mut page, &table, &cfg).unwrap();
+    page.bytes[8..12].copy_from_slice(&100_000u32.to_le_bytes());
+    assert_eq!(load(&mut page).unwrap_err(), PageError::Corrupt);
+    // Another page format.
+    let mut page = RamPage::erased();
+    store(&mut page, &table, &cfg).unwrap();
+    page.bytes[4..8].copy_from_slice(&9u32.to_le_bytes());
+    assert_eq!(load(&mut page).unwrap_err(), PageError::UnsupportedFormat(9));
+}
