@@ -161,6 +161,29 @@ enum Command {
         #[arg(long)]
         json: Option<PathBuf>,
     },
+    /// Fit the paper's polynomial, the polynomial with diagnose's terms and five
+    /// nonlinear families (GSA + Levenberg–Marquardt) side by side (Fig. 15).
+    Compare {
+        /// Data set folder (holding dataset.toml).
+        dataset: PathBuf,
+        /// Folder for report.json, report.md, predictions/ and plots/.
+        #[arg(long)]
+        report: PathBuf,
+        /// Recordings at these currents are only predicted (held out).
+        #[arg(long, value_delimiter = ',', default_value = "0.5")]
+        hold_out_current: Vec<f64>,
+        /// GSA agents N for the nonlinear families.
+        #[arg(long, default_value_t = 40)]
+        agents: usize,
+        /// GSA iterations T for the nonlinear families.
+        #[arg(long, default_value_t = 150)]
+        iters: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// The demo's reduced budget (N = 30, T = 60, coarser refinement).
+        #[arg(long)]
+        reduced: bool,
+    },
     /// Simulate the drop test: passive 0 A, passive 2 A and the core's impact law in the loop.
     Sim {
         #[command(flatten)]
@@ -414,6 +437,29 @@ fn run(cli: Cli) -> Result<()> {
             if let Some(path) = json {
                 mre_host::atomic_write::write_atomic(&path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
             }
+        }
+        Command::Compare {
+            dataset,
+            report,
+            hold_out_current,
+            agents,
+            iters,
+            seed,
+            reduced,
+        } => {
+            let mut opts = if reduced {
+                mre_host::compare::CompareOptions::reduced()
+            } else {
+                let mut o = mre_host::compare::CompareOptions::default();
+                o.budget.gsa.agents = agents;
+                o.budget.gsa.iters = iters;
+                o
+            };
+            opts.hold_out_a = hold_out_current;
+            opts.seed = seed;
+            let r = mre_host::compare::run_compare(&dataset, &opts, &report)?;
+            println!("{}", mre_host::compare::report::summary_line(&r));
+            println!("report: {}", report.join("report.md").display());
         }
         Command::Sim {
             drop,

@@ -1,0 +1,259 @@
+//! Fitting a nonlinear family: GSA (the project's published algorithm,
+//! [`crate::fit::gsa::minimize_batch`], agents evaluated in parallel) on
+//! decimated recordings, then Levenberg–Marquardt (the `levenberg-marquardt`
+//! crate) from GSA's best on denser recordings.
+//!
+//! Objective: J(θ) = √(mean over recordings of NRMSE²), NRMSE = RMSE / max |F|,
+//! so every recording weighs the same. Both stages run in the search box
+//! normalised to [0, 1] per parameter; LM's steps are projected back into it.
+use super::families::{interpolate_sets, CurrentLaw, Family, Scales};
+use super::tracks::Track;
+use crate::dataset::Role;
+use crate::fit::gsa::{minimize_batch, GsaParams};
+use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
+use nalgebra_lm::{storage::Owned, DMatrix, DVector, Dyn};
+use rayon::prelude::*;
+
+/// How much work a nonlinear fit gets.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Budget {
+    pub gsa: GsaParams,
+    /// Each recording is decimated to about this many samples for GSA.
+    pub gsa_samples_per_track: usize,
+    /// … and to this many for LM (`usize::MAX`: every sample).
+    pub lm_samples_per_track: usize,
+    /// LM stops after this many evaluations per parameter (+1).
+    pub lm_patience: usize,
+}
+
+impl Default for Budget {
+    fn default() -> Self {
+        Budget {
+            gsa: GsaParams {
+                agents: 40,
+                iters: 150,
+                ..GsaParams::default()
+            },
+            gsa_samples_per_track: 600,
+            lm_samples_per_track: 3000,
+            lm_patience: 30,
+        }
+    }
+}
+
+/// A fitted family: one parameter set per fitted current (PerCurrent) or one
+/// set for all (Joint, stored with current NaN).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FittedFamily {
+    pub sets: Vec<(f64, Vec<f64>)>,
+    pub law: CurrentLaw,
+    /// Objective after GSA and after LM, per set (on their own sample grids).
+    pub gsa_objective: Vec<f64>,
+    pub lm_objective: Vec<f64>,
+    pub evaluations: usize,
+}
+
+impl FittedFamily {
+    /// The parameters the model uses at `current_a`.
+    pub fn params_at(&self, current_a: f64) -> Vec<f64> {
+        match self.law {
+            CurrentLaw::Joint => self.sets.first().map(|s| s.1.clone()).unwrap_or_default(),
+            CurrentLaw::PerCurrent => interpolate_sets(&self.sets, current_a),
+        }
+    }
+
+    pub fn n_parameters(&self) -> usize {
+        self.sets.iter().map(|s| s.1.len()).sum()
+    }
+}
+
+/// The model force along a track (NaN everywhere if the parameters are not admissible).
+pub fn predict(family: &dyn Family, fitted: &FittedFamily, track: &Track) -> Vec<f64> {
+    let mut out = Vec::with_capacity(track.len());
+    if !family.simulate(&fitted.params_at(track.current_a), track, &mut out) {
+        out = vec![f64::NAN; track.len()];
+    }
+    out
+}
+
+/// J(θ) over `tracks` (∞ if not admissible).
+pub fn objective(family: &dyn Family, p: &[f64], tracks: &[Track], buf: &mut Vec<f64>) -> f64 {
+    let mut sum = 0.0;
+    for t in tracks {
+        if !family.simulate(p, t, buf) {
+            return f64::INFINITY;
+        }
+        let sse: f64 = t.force_n.iter().zip(buf.iter()).map(|(a, b)| (a - b) * (a - b)).sum();
+        sum += sse / (t.len().max(1) as f64 * t.force_scale_n * t.force_scale_n);
+    }
+    (sum / tracks.len().max(1) as f64).sqrt()
+}
+
+/// Fits `family` to the `fit` tracks (validate tracks are never passed on).
+pub fn fit_family(family: &dyn Family, tracks: &[Track], budget: &Budget, seed: u64) -> FittedFamily {
+    let fit: Vec<&Track> = tracks.iter().filter(|t| t.role == Role::Fit).collect();
+    let scales = Scales::of(fit.iter().copied());
+    let groups: Vec<(f64, Vec<Track>)> = match family.law() {
+        CurrentLaw::Joint => vec![(f64::NAN, fit.iter().map(|t| (*t).clone()).collect())],
+        CurrentLaw::PerCurrent => {
+            let mut currents: Vec<f64> = fit.iter().map(|t| t.current_a).collect();
+            currents.sort_by(f64::total_cmp);
+            currents.dedup();
+            currents
+                .into_iter()
+                .map(|c| (c, fit.iter().filter(|t| t.current_a == c).map(|t| (*t).clone()).collect()))
+                .collect()
+        }
+    };
+    let (lower, upper) = family.bounds(&scales);
+    let fits: Vec<(f64, Vec<f64>, f64, f64, usize)> = groups
+        .par_iter()
+        .enumerate()
+        .map(|(g, (current, group))| {
+            let coarse: Vec<Track> = group.iter().map(|t| t.at_most(budget.gsa_samples_per_track)).collect();
+            let mut rng = crate::fit::branch_rng(seed, g as u64);
+            let r = minimize_batch(
+                &lower,
+                &upper,
+                |agents| {
+                    agents
+                        .par_iter()
+                        .map_init(Vec::new, |buf, p| objective(family, p, &coarse, buf))
+                        .collect()
+                },
+                &budget.gsa,
+                &mut rng,
+                || {},
+            );
+            let dense: Vec<Track> = group.iter().map(|t| t.at_most(budget.lm_samples_per_track)).collect();
+            let (p, lm_value, lm_evals) = refine(family, &r.best, &lower, &upper, &dense, budget.lm_patience);
+            (*current, p, r.best_value, lm_value, r.evaluations + lm_evals)
+        })
+        .collect();
+    FittedFamily {
+        sets: fits.iter().map(|f| (f.0, f.1.clone())).collect(),
+        law: family.law(),
+        gsa_objective: fits.iter().map(|f| f.2).collect(),
+        lm_objective: fits.iter().map(|f| f.3).collect(),
+        evaluations: fits.iter().map(|f| f.4).sum(),
+    }
+}
+
+/// LM from `start`; returns the better of the start and LM's end point, its
+/// objective and the evaluations spent (each Jacobian counts n + 1).
+fn refine(
+    family: &dyn Family,
+    start: &[f64],
+    lower: &[f64],
+    upper: &[f64],
+    tracks: &[Track],
+    patience: usize,
+) -> (Vec<f64>, f64, usize) {
+    let problem = LmProblem {
+        family,
+        tracks,
+        lower,
+        upper,
+        u: DVector::from_iterator(
+            start.len(),
+            start
+                .iter()
+                .zip(lower.iter().zip(upper))
+                .map(|(p, (lo, hi))| if hi > lo { (p - lo) / (hi - lo) } else { 0.0 }),
+        ),
+    };
+    let mut buf = Vec::new();
+    let start_value = objective(family, start, tracks, &mut buf);
+    let (solved, report) = LevenbergMarquardt::new().with_patience(patience).minimize(problem);
+    let p = solved.params_raw();
+    let value = objective(family, &p, tracks, &mut buf);
+    let evals = report.number_of_evaluations * (start.len() + 1);
+    if value <= start_value {
+        (p, value, evals)
+    } else {
+        (start.to_vec(), start_value, evals)
+    }
+}
+
+struct LmProblem<'a> {
+    family: &'a dyn Family,
+    tracks: &'a [Track],
+    lower: &'a [f64],
+    upper: &'a [f64],
+    /// Normalised parameters (0 = lower bound, 1 = upper bound).
+    u: DVector<f64>,
+}
+
+/// Forward-difference step in normalised coordinates.
+const JACOBIAN_STEP: f64 = 1e-6;
+/// Residual scale for inadmissible parameters (as if the model were ten
+/// times the measured force off): LM rejects such a step and shrinks.
+const PENALTY: f64 = 10.0;
+
+impl LmProblem<'_> {
+    fn raw(&self, u: &DVector<f64>) -> Vec<f64> {
+        u.iter()
+            .zip(self.lower.iter().zip(self.upper))
+            .map(|(u, (lo, hi))| lo + u.clamp(0.0, 1.0) * (hi - lo))
+            .collect()
+    }
+
+    fn params_raw(&self) -> Vec<f64> {
+        self.raw(&self.u)
+    }
+
+    /// Residuals (model − measured)/(max|F|·√(n·R)), so Σr² = J².
+    fn residuals_at(&self, u: &DVector<f64>) -> Vec<f64> {
+        let p = self.raw(u);
+        let r = self.tracks.len().max(1) as f64;
+        let per_track: Vec<Vec<f64>> = self
+            .tracks
+            .par_iter()
+            .map(|t| {
+                let w = 1.0 / (t.force_scale_n * (t.len().max(1) as f64 * r).sqrt());
+                let mut out = Vec::with_capacity(t.len());
+                if self.family.simulate(&p, t, &mut out) {
+                    out.iter().zip(&t.force_n).map(|(m, f)| (m - f) * w).collect()
+                } else {
+                    t.force_n.iter().map(|f| -PENALTY * f * w).collect()
+                }
+            })
+            .collect();
+        per_track.concat()
+    }
+}
+
+impl LeastSquaresProblem<f64, Dyn, Dyn> for LmProblem<'_> {
+    type ResidualStorage = Owned<f64, Dyn>;
+    type JacobianStorage = Owned<f64, Dyn, Dyn>;
+    type ParameterStorage = Owned<f64, Dyn>;
+
+    fn set_params(&mut self, u: &DVector<f64>) {
+        self.u = u.map(|v| v.clamp(0.0, 1.0));
+    }
+
+    fn params(&self) -> DVector<f64> {
+        self.u.clone()
+    }
+
+    fn residuals(&self) -> Option<DVector<f64>> {
+        Some(DVector::from_vec(self.residuals_at(&self.u)))
+    }
+
+    fn jacobian(&self) -> Option<DMatrix<f64>> {
+        let base = self.residuals_at(&self.u);
+        let n = self.u.len();
+        let columns: Vec<Vec<f64>> = (0..n)
+            .into_par_iter()
+            .map(|j| {
+                let mut u = self.u.clone();
+                // Step inwards at the upper bound so the difference sees the model.
+                let h = if u[j] + JACOBIAN_STEP > 1.0 { -JACOBIAN_STEP } else { JACOBIAN_STEP };
+                u[j] += h;
+                let shifted = self.residuals_at(&u);
+                shifted.iter().zip(&base).map(|(a, b)| (a - b) / h).collect()
+            })
+            .collect();
+        Some(DMatrix::from_fn(base.len(), n, |i, j| columns[j][i]))
+    }
+}
