@@ -3,10 +3,13 @@
 //! decimated recordings, then Levenberg–Marquardt (the `levenberg-marquardt`
 //! crate) from GSA's best on denser recordings.
 //!
-//! Objective: J(θ) = √(mean over recordings of NRMSE²), NRMSE = RMSE / max |F|,
-//! so every recording weighs the same. Both stages run in the search box
-//! normalised to [0, 1] per parameter; LM's steps are projected back into it.
-use super::families::{interpolate_sets, CurrentLaw, Family, Scales};
+//! Objective: J = √(mean over recordings of NRMSE²), NRMSE = RMSE / max |F|,
+//! so every recording weighs the same. Both stages search only a family's
+//! nonlinear parameters q; for each q the linear ones θ are the exact
+//! weighted least-squares optimum ([`project`], variable projection). Both
+//! run in the box normalised to [0, 1] per parameter; LM's steps are
+//! projected back into it.
+use super::families::{interpolate_sets, Basis, CurrentLaw, Family, Scales};
 use super::tracks::Track;
 use crate::dataset::Role;
 use crate::fit::gsa::{minimize_batch, GsaParams};
@@ -76,17 +79,57 @@ pub fn predict(family: &dyn Family, fitted: &FittedFamily, track: &Track) -> Vec
     out
 }
 
-/// J(θ) over `tracks` (∞ if not admissible).
-pub fn objective(family: &dyn Family, p: &[f64], tracks: &[Track], buf: &mut Vec<f64>) -> f64 {
-    let mut sum = 0.0;
-    for t in tracks {
-        if !family.simulate(p, t, buf) {
-            return f64::INFINITY;
+/// The linear parameters solved for fixed nonlinear ones, and J there.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Projected {
+    pub objective: f64,
+    pub theta: Vec<f64>,
+    /// Weighted residuals (model − measured)·w, w = 1/(max|F|·√(n·R)), so Σr² = J².
+    pub residuals: Vec<f64>,
+}
+
+/// Variable projection at `q` over `tracks` (None if `q` is not admissible
+/// or the columns are rank-deficient).
+pub fn project(family: &dyn Family, q: &[f64], tracks: &[Track], bases: &mut Vec<Basis>) -> Option<Projected> {
+    let k = family.linear_names().len();
+    bases.resize_with(tracks.len(), Basis::default);
+    let mut rows = 0;
+    for (t, b) in tracks.iter().zip(bases.iter_mut()) {
+        if !family.basis(q, t, b) {
+            return None;
         }
-        let sse: f64 = t.force_n.iter().zip(buf.iter()).map(|(a, b)| (a - b) * (a - b)).sum();
-        sum += sse / (t.len().max(1) as f64 * t.force_scale_n * t.force_scale_n);
+        rows += t.len();
     }
-    (sum / tracks.len().max(1) as f64).sqrt()
+    let r = tracks.len().max(1) as f64;
+    let weight = |t: &Track| 1.0 / (t.force_scale_n * (t.len().max(1) as f64 * r).sqrt());
+    let mut a = nalgebra::DMatrix::<f64>::zeros(rows, k);
+    let mut y = nalgebra::DVector::<f64>::zeros(rows);
+    let mut row = 0;
+    for (t, b) in tracks.iter().zip(bases.iter()) {
+        let w = weight(t);
+        for i in 0..t.len() {
+            for (j, c) in b.columns.iter().enumerate() {
+                a[(row + i, j)] = w * c[i];
+            }
+            let offset = b.offset.get(i).copied().unwrap_or(0.0);
+            y[row + i] = w * (t.force_n[i] - offset);
+        }
+        row += t.len();
+    }
+    let ls = crate::linalg::solve(&a, &y).ok()?;
+    let fitted = &a * nalgebra::DVector::from_column_slice(&ls.coeffs);
+    let residuals: Vec<f64> = fitted.iter().zip(y.iter()).map(|(m, f)| m - f).collect();
+    let objective = residuals.iter().map(|e| e * e).sum::<f64>().sqrt();
+    objective.is_finite().then_some(Projected {
+        objective,
+        theta: ls.coeffs,
+        residuals,
+    })
+}
+
+/// J at `q` (∞ if not admissible).
+pub fn objective(family: &dyn Family, q: &[f64], tracks: &[Track], bases: &mut Vec<Basis>) -> f64 {
+    project(family, q, tracks, bases).map_or(f64::INFINITY, |p| p.objective)
 }
 
 /// Fits `family` to the `fit` tracks (validate tracks are never passed on).
@@ -118,7 +161,7 @@ pub fn fit_family(family: &dyn Family, tracks: &[Track], budget: &Budget, seed: 
                 |agents| {
                     agents
                         .par_iter()
-                        .map_init(Vec::new, |buf, p| objective(family, p, &coarse, buf))
+                        .map_init(Vec::new, |bases, q| objective(family, q, &coarse, bases))
                         .collect()
                 },
                 &budget.gsa,
@@ -126,8 +169,11 @@ pub fn fit_family(family: &dyn Family, tracks: &[Track], budget: &Budget, seed: 
                 || {},
             );
             let dense: Vec<Track> = group.iter().map(|t| t.at_most(budget.lm_samples_per_track)).collect();
-            let (p, lm_value, lm_evals) = refine(family, &r.best, &lower, &upper, &dense, budget.lm_patience);
-            (*current, p, r.best_value, lm_value, r.evaluations + lm_evals)
+            let (q, lm_value, lm_evals) = refine(family, &r.best, &lower, &upper, &dense, budget.lm_patience);
+            // θ from the dense samples at the refined q (an admissible q: GSA's best was).
+            let theta = project(family, &q, &dense, &mut Vec::new()).map(|p| p.theta).unwrap_or_default();
+            let full = q.into_iter().chain(theta).collect();
+            (*current, full, r.best_value, lm_value, r.evaluations + lm_evals)
         })
         .collect();
     FittedFamily {
@@ -162,14 +208,14 @@ fn refine(
                 .map(|(p, (lo, hi))| if hi > lo { (p - lo) / (hi - lo) } else { 0.0 }),
         ),
     };
-    let mut buf = Vec::new();
-    let start_value = objective(family, start, tracks, &mut buf);
+    let mut bases = Vec::new();
+    let start_value = objective(family, start, tracks, &mut bases);
     let (solved, report) = LevenbergMarquardt::new().with_patience(patience).minimize(problem);
-    let p = solved.params_raw();
-    let value = objective(family, &p, tracks, &mut buf);
+    let q = solved.raw(&solved.u);
+    let value = objective(family, &q, tracks, &mut bases);
     let evals = report.number_of_evaluations * (start.len() + 1);
     if value <= start_value {
-        (p, value, evals)
+        (q, value, evals)
     } else {
         (start.to_vec(), start_value, evals)
     }
@@ -180,7 +226,7 @@ struct LmProblem<'a> {
     tracks: &'a [Track],
     lower: &'a [f64],
     upper: &'a [f64],
-    /// Normalised parameters (0 = lower bound, 1 = upper bound).
+    /// Normalised nonlinear parameters (0 = lower bound, 1 = upper bound).
     u: DVector<f64>,
 }
 
@@ -198,31 +244,23 @@ impl LmProblem<'_> {
             .collect()
     }
 
-    fn params_raw(&self) -> Vec<f64> {
-        self.raw(&self.u)
-    }
-
-    /// Residuals (model − measured)/(max|F|·√(n·R)), so Σr² = J².
+    /// The projected residuals at `u` (a penalty if not admissible).
     fn residuals_at(&self, u: &DVector<f64>) -> Vec<f64> {
-        let p = self.raw(u);
-        let r = self.tracks.len().max(1) as f64;
-        let per_track: Vec<Vec<f64>> = self
-            .tracks
-            .par_iter()
-            .map(|t| {
-                let w = 1.0 / (t.force_scale_n * (t.len().max(1) as f64 * r).sqrt());
-                let mut out = Vec::with_capacity(t.len());
-                if self.family.simulate(&p, t, &mut out) {
-                    out.iter().zip(&t.force_n).map(|(m, f)| (m - f) * w).collect()
-                } else {
-                    t.force_n.iter().map(|f| -PENALTY * f * w).collect()
-                }
-            })
-            .collect();
-        per_track.concat()
+        match project(self.family, &self.raw(u), self.tracks, &mut Vec::new()) {
+            Some(p) => p.residuals,
+            None => {
+                let r = self.tracks.len().max(1) as f64;
+                self.tracks
+                    .iter()
+                    .flat_map(|t| {
+                        let w = 1.0 / (t.force_scale_n * (t.len().max(1) as f64 * r).sqrt());
+                        t.force_n.iter().map(move |f| -PENALTY * f * w)
+                    })
+                    .collect()
+            }
+        }
     }
 }
-
 impl LeastSquaresProblem<f64, Dyn, Dyn> for LmProblem<'_> {
     type ResidualStorage = Owned<f64, Dyn>;
     type JacobianStorage = Owned<f64, Dyn, Dyn>;

@@ -7,7 +7,7 @@
 //! amplitude (the classical A, β, γ have one redundant scale). The shape
 //! parameter r = β − γ ∈ [−1, 1] sets how sharply the loop turns on
 //! reversal. Per-current parameters, interpolated between currents.
-use super::{all_finite, sign, CurrentLaw, Family, Scales, StepCost};
+use super::{all_finite, sign, Basis, CurrentLaw, Family, Scales, StepCost};
 use crate::compare::tracks::Track;
 
 pub struct BoucWen;
@@ -51,11 +51,15 @@ impl Family for BoucWen {
     }
 
     fn equations(&self) -> &'static str {
-        "F = c0·v + k0·x + α·z + f0; dz/dx = (1 − z²(β·sgn(ẋz) + γ))/x_y, n = 2, β + γ = 1, r = β − γ; per current, interpolated"
+        "F = c0·v + k0·x + α·z + f0; dz/dx = (1 − z²(β·sgn(ẋz) + γ))/x_y, n = 2, β + γ = 1, r = β − γ"
     }
 
-    fn param_names(&self) -> &'static [&'static str] {
-        &["c0_n_s_m", "k0_n_mm", "alpha_n", "f0_n", "x_y_mm", "r"]
+    fn nonlinear_names(&self) -> &'static [&'static str] {
+        &["x_y_mm", "r"]
+    }
+
+    fn linear_names(&self) -> &'static [&'static str] {
+        &["c0_n_s_m", "k0_n_mm", "alpha_n", "f0_n"]
     }
 
     fn law(&self) -> CurrentLaw {
@@ -63,27 +67,25 @@ impl Family for BoucWen {
     }
 
     fn bounds(&self, s: &Scales) -> (Vec<f64>, Vec<f64>) {
-        let (f, x, v) = (s.force_n, s.x_mm, s.v_m_s);
-        (
-            vec![0.0, -f / x, 0.0, -0.5 * f, 0.002 * x, -1.0],
-            vec![2.0 * f / v, 2.0 * f / x, 2.0 * f, 0.5 * f, 0.5 * x, 1.0],
-        )
+        (vec![0.0005 * s.x_mm, -1.0], vec![0.5 * s.x_mm, 1.0])
     }
 
-    fn simulate(&self, p: &[f64], track: &Track, out: &mut Vec<f64>) -> bool {
-        let &[c0, k0, alpha, f0, x_y, r] = p else { return false };
-        if x_y <= 0.0 || !(-1.0..=1.0).contains(&r) {
+    fn basis(&self, q: &[f64], track: &Track, b: &mut Basis) -> bool {
+        let &[x_y, r] = q else { return false };
+        if !(x_y > 0.0) || !(-1.0..=1.0).contains(&r) {
             return false;
         }
-        out.clear();
+        b.reset(4);
         let mut z = 0.0;
         let mut x_prev = track.x_mm.first().copied().unwrap_or(0.0);
         for (&x, &v) in track.x_mm.iter().zip(&track.v_m_s) {
             z = step(z, x - x_prev, x_y, r);
             x_prev = x;
-            out.push(c0 * v + k0 * x + alpha * z + f0);
+            for (c, value) in b.columns.iter_mut().zip([v, x, z, 1.0]) {
+                c.push(value);
+            }
         }
-        all_finite(out)
+        all_finite(&b.columns[2])
     }
 
     fn step_cost(&self) -> StepCost {

@@ -5,14 +5,14 @@
 //! z ∈ [−1, 1], σ (1/mm) the inverse transition length, stepped exactly
 //! ([`super::exponential_step`]). σ is searched as log10 σ. Per-current
 //! parameters, interpolated between currents.
-use super::{all_finite, exponential_step, CurrentLaw, Family, Scales, StepCost};
+use super::{all_finite, exponential_step, Basis, CurrentLaw, Family, Scales, StepCost};
 use crate::compare::tracks::Track;
 
 pub struct Dahl;
 
-/// The log10 σ range (1/mm): transition lengths from 2·x_max down to x_max/500.
+/// The log10 σ range (1/mm): transition lengths from 2·x_max down to x_max/2000.
 pub fn log_sigma_range(s: &Scales) -> (f64, f64) {
-    ((0.5 / s.x_mm).log10(), (500.0 / s.x_mm).log10())
+    ((0.5 / s.x_mm).log10(), (2000.0 / s.x_mm).log10())
 }
 
 impl Family for Dahl {
@@ -21,11 +21,15 @@ impl Family for Dahl {
     }
 
     fn equations(&self) -> &'static str {
-        "F = k0·x + c0·v + Fd·z + f0; dz/dx = σ(1 − sgn(ẋ)·z); per current, interpolated"
+        "F = k0·x + c0·v + Fd·z + f0; dz/dx = σ(1 − sgn(ẋ)·z)"
     }
 
-    fn param_names(&self) -> &'static [&'static str] {
-        &["k0_n_mm", "c0_n_s_m", "fd_n", "log10_sigma_per_mm", "f0_n"]
+    fn nonlinear_names(&self) -> &'static [&'static str] {
+        &["log10_sigma_per_mm"]
+    }
+
+    fn linear_names(&self) -> &'static [&'static str] {
+        &["k0_n_mm", "c0_n_s_m", "fd_n", "f0_n"]
     }
 
     fn law(&self) -> CurrentLaw {
@@ -33,26 +37,24 @@ impl Family for Dahl {
     }
 
     fn bounds(&self, s: &Scales) -> (Vec<f64>, Vec<f64>) {
-        let (f, x, v) = (s.force_n, s.x_mm, s.v_m_s);
         let (lo, hi) = log_sigma_range(s);
-        (
-            vec![-f / x, 0.0, 0.0, lo, -0.5 * f],
-            vec![2.0 * f / x, 2.0 * f / v, 2.0 * f, hi, 0.5 * f],
-        )
+        (vec![lo], vec![hi])
     }
 
-    fn simulate(&self, p: &[f64], track: &Track, out: &mut Vec<f64>) -> bool {
-        let &[k0, c0, fd, log_sigma, f0] = p else { return false };
+    fn basis(&self, q: &[f64], track: &Track, b: &mut Basis) -> bool {
+        let &[log_sigma] = q else { return false };
         let sigma = 10f64.powf(log_sigma);
-        out.clear();
+        b.reset(4);
         let mut z = 0.0;
         let mut x_prev = track.x_mm.first().copied().unwrap_or(0.0);
         for (&x, &v) in track.x_mm.iter().zip(&track.v_m_s) {
             z = exponential_step(z, x - x_prev, sigma);
             x_prev = x;
-            out.push(k0 * x + c0 * v + fd * z + f0);
+            for (c, value) in b.columns.iter_mut().zip([x, v, z, 1.0]) {
+                c.push(value);
+            }
         }
-        all_finite(out)
+        all_finite(&b.columns[2])
     }
 
     fn step_cost(&self) -> StepCost {

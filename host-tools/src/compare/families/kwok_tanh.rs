@@ -5,24 +5,10 @@
 //!
 //! stateless (the hysteresis comes from the velocity and the sign of x).
 //! β (s/m) is searched as log10 β. Per-current parameters, interpolated.
-use super::{all_finite, CurrentLaw, Family, Scales, StepCost};
+use super::{all_finite, sign, Basis, CurrentLaw, Family, Scales, StepCost};
 use crate::compare::tracks::Track;
 
 pub struct KwokTanh;
-
-/// The model force at one sample (parameters as in [`Family::param_names`]).
-#[inline]
-pub fn force(p: &[f64; 6], x_mm: f64, v_m_s: f64) -> f64 {
-    let [c, k, alpha, log_beta, delta, f0] = *p;
-    let sgn_x = if x_mm > 0.0 {
-        1.0
-    } else if x_mm < 0.0 {
-        -1.0
-    } else {
-        0.0
-    };
-    c * v_m_s + k * x_mm + alpha * (10f64.powf(log_beta) * v_m_s + delta * sgn_x).tanh() + f0
-}
 
 impl Family for KwokTanh {
     fn name(&self) -> &'static str {
@@ -30,11 +16,15 @@ impl Family for KwokTanh {
     }
 
     fn equations(&self) -> &'static str {
-        "F = c·v + k·x + α·tanh(β·v + δ·sgn(x)) + f0; per current, interpolated"
+        "F = c·v + k·x + α·tanh(β·v + δ·sgn(x)) + f0"
     }
 
-    fn param_names(&self) -> &'static [&'static str] {
-        &["c_n_s_m", "k_n_mm", "alpha_n", "log10_beta_s_m", "delta", "f0_n"]
+    fn nonlinear_names(&self) -> &'static [&'static str] {
+        &["log10_beta_s_m", "delta"]
+    }
+
+    fn linear_names(&self) -> &'static [&'static str] {
+        &["c_n_s_m", "k_n_mm", "alpha_n", "f0_n"]
     }
 
     fn law(&self) -> CurrentLaw {
@@ -42,18 +32,21 @@ impl Family for KwokTanh {
     }
 
     fn bounds(&self, s: &Scales) -> (Vec<f64>, Vec<f64>) {
-        let (f, x, v) = (s.force_n, s.x_mm, s.v_m_s);
-        (
-            vec![0.0, -f / x, 0.0, (0.5 / v).log10(), -2.0, -0.5 * f],
-            vec![2.0 * f / v, 2.0 * f / x, 2.0 * f, (2000.0 / v).log10(), 2.0, 0.5 * f],
-        )
+        let v = s.v_m_s;
+        (vec![(0.5 / v).log10(), -2.0], vec![(2000.0 / v).log10(), 2.0])
     }
 
-    fn simulate(&self, p: &[f64], track: &Track, out: &mut Vec<f64>) -> bool {
-        let Ok(p) = <[f64; 6]>::try_from(p) else { return false };
-        out.clear();
-        out.extend(track.x_mm.iter().zip(&track.v_m_s).map(|(&x, &v)| force(&p, x, v)));
-        all_finite(out)
+    fn basis(&self, q: &[f64], track: &Track, b: &mut Basis) -> bool {
+        let &[log_beta, delta] = q else { return false };
+        let beta = 10f64.powf(log_beta);
+        b.reset(4);
+        for (&x, &v) in track.x_mm.iter().zip(&track.v_m_s) {
+            let z = (beta * v + delta * sign(x)).tanh();
+            for (c, value) in b.columns.iter_mut().zip([v, x, z, 1.0]) {
+                c.push(value);
+            }
+        }
+        all_finite(&b.columns[2])
     }
 
     fn step_cost(&self) -> StepCost {

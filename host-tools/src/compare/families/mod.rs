@@ -80,21 +80,80 @@ impl StepCost {
     }
 }
 
+/// The columns a family's force is linear in, for fixed nonlinear parameters:
+/// F = offset + Σₖ θₖ·columns[k] (θ = the family's linear parameters).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Basis {
+    pub columns: Vec<Vec<f64>>,
+    /// A part of the force with no free coefficient (empty = none).
+    pub offset: Vec<f64>,
+}
+
+impl Basis {
+    /// Empties every column, keeping `k` of them (capacity reused).
+    pub fn reset(&mut self, k: usize) {
+        self.columns.resize_with(k, Vec::new);
+        for c in &mut self.columns {
+            c.clear();
+        }
+        self.offset.clear();
+    }
+
+    /// The force for linear parameters `theta` into `out`.
+    pub fn force(&self, theta: &[f64], out: &mut Vec<f64>) {
+        let n = self.columns.first().map_or(self.offset.len(), Vec::len);
+        out.clear();
+        out.resize(n, 0.0);
+        if !self.offset.is_empty() {
+            out.copy_from_slice(&self.offset);
+        }
+        for (c, t) in self.columns.iter().zip(theta) {
+            for (o, v) in out.iter_mut().zip(c) {
+                *o += t * v;
+            }
+        }
+    }
+}
+
+/// A model family, split the separable way: nonlinear parameters q (searched
+/// by GSA and refined by LM) and linear ones θ (solved exactly by least
+/// squares for every q; variable projection, Golub & Pereyra 1973).
 pub trait Family: Sync + Send {
     /// Short name, used in file names and the report (`bouc-wen`, …).
     fn name(&self) -> &'static str;
     /// The equations, for the report.
     fn equations(&self) -> &'static str;
-    fn param_names(&self) -> &'static [&'static str];
+    fn nonlinear_names(&self) -> &'static [&'static str];
+    fn linear_names(&self) -> &'static [&'static str];
     fn law(&self) -> CurrentLaw;
-    /// Search box (lower, upper) for the parameters.
+    /// Search box (lower, upper) of the nonlinear parameters.
     fn bounds(&self, s: &Scales) -> (Vec<f64>, Vec<f64>);
-    /// Model force at every sample of `track` into `out` (resized). For
-    /// [`CurrentLaw::PerCurrent`], `p` is the set at the track's current; for
-    /// [`CurrentLaw::Joint`], the whole set. Returns false (with `out`
-    /// unspecified) when the parameters are not admissible.
-    fn simulate(&self, p: &[f64], track: &Track, out: &mut Vec<f64>) -> bool;
+    /// The columns (and offset) along `track` for nonlinear parameters `q`.
+    /// For [`CurrentLaw::PerCurrent`], `q` is the set at the track's current;
+    /// for [`CurrentLaw::Joint`], the whole set. Returns false when `q` is not
+    /// admissible (the basis is then unspecified).
+    fn basis(&self, q: &[f64], track: &Track, basis: &mut Basis) -> bool;
     fn step_cost(&self) -> StepCost;
+
+    /// Every parameter name: nonlinear first, then linear.
+    fn param_names(&self) -> Vec<&'static str> {
+        self.nonlinear_names().iter().chain(self.linear_names()).copied().collect()
+    }
+
+    /// Model force at every sample of `track` for the full parameter vector
+    /// (nonlinear then linear) into `out`; false if not admissible.
+    fn simulate(&self, p: &[f64], track: &Track, out: &mut Vec<f64>) -> bool {
+        let nq = self.nonlinear_names().len();
+        if p.len() != nq + self.linear_names().len() {
+            return false;
+        }
+        let mut b = Basis::default();
+        if !self.basis(&p[..nq], track, &mut b) {
+            return false;
+        }
+        b.force(&p[nq..], out);
+        all_finite(out)
+    }
 }
 
 /// Every nonlinear family, in report order.

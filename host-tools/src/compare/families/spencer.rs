@@ -8,15 +8,14 @@
 //! with Spencer's current laws α = αa + αb·I, c0 = c0a + c0b·I, c1 = c1a + c1b·I
 //! (his first-order coil filter is left out: the recordings hold the current
 //! constant). One parameter set for every current. Integrated in time with
-//! the midpoint rule (at most [`MAX_SUBSTEPS`] sub-steps per sample), ẋ and x linear within each sample interval.
-use super::bouc_wen::shape_rate;
-use super::{all_finite, CurrentLaw, Family, Scales, StepCost};
+//! the linearly implicit Euler rule ([`Coeffs::implicit_step`]), ẋ and x linear within each sample interval.
+use super::bouc_wen::{self, shape_rate};
+use super::{all_finite, Basis, CurrentLaw, Family, Scales, StepCost};
 use crate::compare::tracks::Track;
 
 pub struct Spencer;
 
-/// Parameters whose dynamics need more midpoint sub-steps per sample than
-/// this are inadmissible (the explicit rule would be unstable or slow).
+/// Sub-steps per sample at most.
 pub const MAX_SUBSTEPS: usize = 64;
 
 /// mm per m: ẏ is in m/s, y in mm.
@@ -45,6 +44,33 @@ impl Coeffs {
         let z_dot = rel * MM_PER_M / self.x_y * shape_rate(s.z, rel.signum(), self.r);
         (y_dot, z_dot)
     }
+
+    /// One linearly implicit Euler step of length `h` (s) at (x, v): solves
+    /// (I − h·J)·Δ = h·f with J the Jacobian of (dy/dt, dz/dt) in (y, z).
+    /// Stable however stiff the coupling α/((c0 + c1)·x_y) is, which an
+    /// explicit rule at the recordings' sample rates is not.
+    #[inline]
+    fn implicit_step(&self, s: &mut State, x: f64, v: f64, h: f64) {
+        let cc = self.c0 + self.c1;
+        let (y_dot, z_dot) = self.rates(s, x, v);
+        let rel = v - y_dot;
+        let beta = 0.5 * (1.0 + self.r);
+        let gamma = 0.5 * (1.0 - self.r);
+        let same = if rel * s.z >= 0.0 { 1.0 } else { -1.0 };
+        let g = shape_rate(s.z, rel.signum(), self.r);
+        let dg_dz = -2.0 * s.z * (beta * same + gamma);
+        let kz = MM_PER_M / self.x_y;
+        // ∂ẏ/∂y = −k0/cc, ∂ẏ/∂z = α/cc (ẏ in m/s, y in mm: dy/dt = 1000·ẏ).
+        let j11 = -MM_PER_M * self.k0 / cc;
+        let j12 = MM_PER_M * self.alpha / cc;
+        let j21 = kz * g * self.k0 / cc;
+        let j22 = kz * (-g * self.alpha / cc + rel * dg_dz);
+        let (f1, f2) = (h * MM_PER_M * y_dot, h * z_dot);
+        let (a11, a12, a21, a22) = (1.0 - h * j11, -h * j12, -h * j21, 1.0 - h * j22);
+        let det = a11 * a22 - a12 * a21;
+        s.y_mm += (f1 * a22 - a12 * f2) / det;
+        s.z += (a11 * f2 - a21 * f1) / det;
+    }
 }
 
 impl Family for Spencer {
@@ -56,7 +82,7 @@ impl Family for Spencer {
         "F = c1·ẏ + k1·x + f0; ẏ = (αz + c0ẋ + k0(x − y))/(c0 + c1); ż = (ẋ − ẏ)/x_y·(1 − z²(β·sgn + γ)), β + γ = 1; α, c0, c1 linear in I"
     }
 
-    fn param_names(&self) -> &'static [&'static str] {
+    fn nonlinear_names(&self) -> &'static [&'static str] {
         &[
             "alpha_a_n",
             "alpha_b_n_per_a",
@@ -65,11 +91,13 @@ impl Family for Spencer {
             "c1a_n_s_m",
             "c1b_n_s_m_per_a",
             "k0_n_mm",
-            "k1_n_mm",
-            "f0_n",
             "x_y_mm",
             "r",
         ]
+    }
+
+    fn linear_names(&self) -> &'static [&'static str] {
+        &["k1_n_mm", "f0_n"]
     }
 
     fn law(&self) -> CurrentLaw {
@@ -80,13 +108,13 @@ impl Family for Spencer {
         let (f, x, v, i) = (s.force_n, s.x_mm, s.v_m_s, s.current_a);
         let c = f / v;
         (
-            vec![0.0, -2.0 * f / i, 0.0, -2.0 * c / i, 0.05 * c, -20.0 * c / i, 0.0, -f / x, -0.5 * f, 0.002 * x, -1.0],
-            vec![2.0 * f, 2.0 * f / i, 2.0 * c, 2.0 * c / i, 20.0 * c, 20.0 * c / i, f / x, 2.0 * f / x, 0.5 * f, 0.5 * x, 1.0],
+            vec![0.0, -2.0 * f / i, 0.0, -2.0 * c / i, 0.05 * c, -20.0 * c / i, 0.0, 0.002 * x, -1.0],
+            vec![2.0 * f, 2.0 * f / i, 2.0 * c, 2.0 * c / i, 20.0 * c, 20.0 * c / i, f / x, 0.5 * x, 1.0],
         )
     }
 
-    fn simulate(&self, p: &[f64], track: &Track, out: &mut Vec<f64>) -> bool {
-        let &[alpha_a, alpha_b, c0a, c0b, c1a, c1b, k0, k1, f0, x_y, r] = p else {
+    fn basis(&self, q: &[f64], track: &Track, b: &mut Basis) -> bool {
+        let &[alpha_a, alpha_b, c0a, c0b, c1a, c1b, k0, x_y, r] = q else {
             return false;
         };
         let i = track.current_a;
@@ -99,47 +127,35 @@ impl Family for Spencer {
             x_y,
             r,
         };
-        if x_y <= 0.0 || k.c0 + k.c1 <= 0.0 || k0 < 0.0 || !(-1.0..=1.0).contains(&r) {
+        if !(x_y > 0.0) || !(k.c0 + k.c1 > 0.0) || k0 < 0.0 || !(-1.0..=1.0).contains(&r) {
             return false;
         }
-        out.clear();
+        b.reset(2);
         let n = track.len();
         if n == 0 {
             return true;
         }
         let (t, xs, vs) = (&track.time_s, &track.x_mm, &track.v_m_s);
         let mut s = State { y_mm: xs[0], z: 0.0 };
-        let force = |s: &State, x: f64, v: f64| k.c1 * k.rates(s, x, v).0 + k1 * x + f0;
-        out.push(force(&s, xs[0], vs[0]));
-        // Stiffest rates: y relaxes at k0/(c0 + c1)·1000 1/s, z through ẏ at α/(c0 + c1)·1000/x_y.
-        let lam_y = MM_PER_M * (k.k0 + k.alpha / x_y) / (k.c0 + k.c1);
+        let push = |s: &State, x: f64, v: f64, b: &mut Basis| {
+            b.offset.push(k.c1 * k.rates(s, x, v).0);
+            b.columns[0].push(x);
+            b.columns[1].push(1.0);
+        };
+        push(&s, xs[0], vs[0], b);
         for j in 1..n {
-            let dt = t[j] - t[j - 1];
             let (x0, x1, v0, v1) = (xs[j - 1], xs[j], vs[j - 1], vs[j]);
-            let lam_z = MM_PER_M * v0.abs().max(v1.abs()) * 2.0 / x_y;
-            let m = (dt.abs() * (lam_y + lam_z) * 2.0).ceil();
-            if !(m <= MAX_SUBSTEPS as f64) {
-                return false;
-            }
-            let m = (m as usize).max(1);
-            let h = dt / m as f64;
+            // Sub-steps as Bouc–Wen's: the relative motion is at most the
+            // sample's own, and z turns over a distance x_y.
+            let m = bouc_wen::substeps(x1 - x0, x_y).min(MAX_SUBSTEPS);
+            let h = (t[j] - t[j - 1]) / m as f64;
             for q in 0..m {
-                let a = q as f64 / m as f64;
-                let b = (q as f64 + 0.5) / m as f64;
-                let (xa, va) = (x0 + a * (x1 - x0), v0 + a * (v1 - v0));
-                let (xb, vb) = (x0 + b * (x1 - x0), v0 + b * (v1 - v0));
-                let (yd, zd) = k.rates(&s, xa, va);
-                let mid = State {
-                    y_mm: s.y_mm + 0.5 * h * yd * MM_PER_M,
-                    z: s.z + 0.5 * h * zd,
-                };
-                let (yd, zd) = k.rates(&mid, xb, vb);
-                s.y_mm += h * yd * MM_PER_M;
-                s.z += h * zd;
+                let c = (q as f64 + 0.5) / m as f64;
+                k.implicit_step(&mut s, x0 + c * (x1 - x0), v0 + c * (v1 - v0), h);
             }
-            out.push(force(&s, x1, v1));
+            push(&s, x1, v1, b);
         }
-        all_finite(out)
+        all_finite(&b.offset)
     }
 
     fn step_cost(&self) -> StepCost {
