@@ -184,6 +184,28 @@ enum Command {
         #[arg(long)]
         reduced: bool,
     },
+    /// Time the Bouc–Wen GSA of `compare` and export its objective for bench/compare_gsa.py.
+    BenchCompare {
+        #[arg(default_value = "data/mr-damper-mts")]
+        dataset: PathBuf,
+        /// Fit current whose recordings make the objective.
+        #[arg(long, default_value_t = 1.0)]
+        current: f64,
+        #[arg(long, default_value_t = 40)]
+        agents: usize,
+        #[arg(long, default_value_t = 150)]
+        iters: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Samples per recording after decimation.
+        #[arg(long, default_value_t = 600)]
+        samples: usize,
+        #[arg(long, default_value_t = 5)]
+        repeats: usize,
+        /// Folder for objective.csv and bench.json.
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Simulate the drop test: passive 0 A, passive 2 A and the core's impact law in the loop.
     Sim {
         #[command(flatten)]
@@ -460,6 +482,28 @@ fn run(cli: Cli) -> Result<()> {
             let r = mre_host::compare::run_compare(&dataset, &opts, &report)?;
             println!("{}", mre_host::compare::report::summary_line(&r));
             println!("report: {}", report.join("report.md").display());
+        }
+        Command::BenchCompare {
+            dataset,
+            current,
+            agents,
+            iters,
+            seed,
+            samples,
+            repeats,
+            out,
+        } => {
+            let gsa = mre_host::fit::gsa::GsaParams {
+                agents,
+                iters,
+                seed,
+                ..Default::default()
+            };
+            let b = mre_host::compare::bench::run_bench(&dataset, current, gsa, samples, repeats, &out)?;
+            println!(
+                "bouc-wen GSA: {} evaluations on {} samples, median {:.4} s ({} threads), best objective {:.6}",
+                b.evaluations, b.samples, b.median_s, b.threads, b.best_objective
+            );
         }
         Command::Sim {
             drop,

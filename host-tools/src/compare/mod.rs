@@ -8,6 +8,7 @@
 //! families of [`families`] (GSA, then Levenberg–Marquardt: [`fit`]).
 //! [`report`] writes report.json, report.md and the predictions; [`plots`]
 //! the overlays.
+pub mod bench;
 pub mod families;
 pub mod fit;
 pub mod plots;
