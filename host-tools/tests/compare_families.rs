@@ -101,7 +101,7 @@ fn dahl_response_to_a_monotone_ramp_is_exponential() {
         (0..n).map(|i| i as f64 * 0.01 * v * 1e3).collect(),
         vec![v; n],
     );
-    let (sigma, k0, c0, fd, f0) = (1.7, 3.0, 200.0, 50.0, -4.0);
+    let (sigma, k0, c0, fd, f0) = (1.7f64, 3.0, 200.0, 50.0, -4.0);
     let f = simulate(&Dahl, &[sigma.log10(), k0, c0, fd, f0], &t);
     for (x, got) in t.x_mm.iter().zip(&f) {
         let want = k0 * x + c0 * v + fd * (1.0 - (-sigma * x).exp()) + f0;

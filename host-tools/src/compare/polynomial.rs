@@ -4,10 +4,10 @@
 //! the quartics plus the terms `mre diagnose` selects (its own fit and
 //! prediction, called through its public entry point).
 use super::tracks::Track;
-use crate::dataset::Dataset;
+use crate::dataset::{Dataset, Role};
 use crate::diagnose::{diagnose, DiagnoseOptions};
 use crate::fit::{fit_dataset, gsa::GsaParams, model_file, FitOptions, Method};
-use anyhow::{anyhow, Result};
+use anyhow::{anyhow, bail, Result};
 use serde_json::json;
 
 /// A polynomial family's parameters, size and predictions (one per track, in order).
@@ -53,24 +53,37 @@ pub fn quartics(ds: &Dataset, method: Method, gsa: GsaParams) -> Result<PolyOutc
     })
 }
 
-/// The quartics plus what `mre diagnose` selects, with the held-out currents
-/// as its validate currents (so it never fits them).
+/// The quartics plus what `mre diagnose` selects. The diagnosis runs on the
+/// fit recordings alone: its candidate scoring also reads `validate`
+/// recordings (a term that only changes how they are predicted is scored on
+/// them), so running it on the whole data set would let the held-out data
+/// choose the model. The selected model is then applied to every recording.
 pub fn with_diagnosis(ds: &Dataset, hold_out_a: &[f64], tracks: &[Track]) -> Result<PolyOutcome> {
-    let d = diagnose(
-        ds,
-        &DiagnoseOptions {
-            validate_currents_a: hold_out_a.to_vec(),
-            ..DiagnoseOptions::default()
-        },
-    )?;
+    let mut fit_only = ds.clone();
+    crate::fit::problems::hold_out(&mut fit_only, hold_out_a);
+    fit_only.recordings.retain(|r| r.role == Role::Fit);
+    let options = DiagnoseOptions::default();
+    let d = diagnose(&fit_only, &options)?;
+    let every = crate::diagnose::prepared::prepare(ds, &options.folds, hold_out_a)?;
+    let all_pred = crate::diagnose::predictions(&every, &d.selection.final_model);
+    // The same model on the same fit recordings must give the diagnosis's own predictions.
+    for (r, p) in d.prep.recs.iter().zip(&d.final_pred) {
+        let i = every.recs.iter().position(|e| e.file == r.file);
+        let same = i.is_some_and(|i| {
+            all_pred[i].len() == p.len() && all_pred[i].iter().zip(p).all(|(a, b)| (a - b).abs() <= 1e-6 * (1.0 + b.abs()))
+        });
+        if !same {
+            bail!("diagnose's model does not reproduce its own prediction of {}", r.file);
+        }
+    }
     let predictions = tracks
         .iter()
         .map(|t| {
-            d.prep
+            every
                 .recs
                 .iter()
                 .position(|r| r.file == t.file)
-                .and_then(|i| d.final_pred.get(i).cloned())
+                .and_then(|i| all_pred.get(i).cloned())
                 .filter(|p| p.len() == t.len())
                 .ok_or_else(|| anyhow!("diagnose returned no prediction for {}", t.file))
         })
