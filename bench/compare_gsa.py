@@ -6,9 +6,9 @@ Usage: compare_gsa.py DIR   (DIR holds objective.csv and bench.json from
 `mre bench-compare --out DIR`)
 
 The objective is `mre compare`'s, re-implemented here line for line:
-recordings decimated as exported; z integrated along x with the midpoint rule,
-sub-steps = clamp(ceil(|dx|/x_y*8), 1, 64), dz/dx = (1 - z^2 (beta*sgn(dx z)
-+ gamma))/x_y with beta = (1+r)/2, gamma = (1-r)/2; the linear parameters
+recordings decimated as exported; z stepped exactly along x,
+dz/dx = (1 - z^2 (beta*sgn(dx z) + gamma))/x_y with beta = (1+r)/2,
+gamma = (1-r)/2 (tan/tanh after a reversal, tanh after); the linear parameters
 (c0, k0, alpha, f0) by weighted least squares on the columns [v, x, z, 1];
 J = sqrt(sum of weighted squared residuals), weight 1/(max|F| sqrt(n R)).
 Search: (x_y, r) inside the exported box. niapy evaluates one candidate at a
@@ -37,46 +37,72 @@ def load(d: Path):
     return tracks, json.loads((d / "bench.json").read_text())
 
 
+def towards_zero(w, u, r):
+    """From w < 0 along dw/du = 1 + r w^2 for at most u: (w reached, u used)."""
+    if r > 1e-12:
+        q = math.sqrt(r)
+        a = math.atan(q * w)
+        need = -a / q
+        return (0.0, need) if u >= need else (math.tan(a + q * u) / q, u)
+    if r < -1e-12:
+        q = math.sqrt(-r)
+        qw = max(q * w, -1.0)
+        a = -math.inf if qw <= -1.0 else math.atanh(qw)
+        need = -a / q
+        return (0.0, need) if u >= need else (math.tanh(a + q * u) / q, u)
+    return (0.0, -w) if u >= -w else (w + u, u)
+
+
+def step(z, dx, x_y, r):
+    """Exact Bouc-Wen (n = 2, beta + gamma = 1) step, as mre's bouc_wen::step."""
+    if dx == 0.0:
+        return z
+    s = 1.0 if dx > 0 else -1.0
+    w, u = s * z, abs(dx) / x_y
+    if w < 0.0:
+        end, used = towards_zero(w, u, r)
+        if used >= u:
+            return s * end
+        w, u = 0.0, u - used
+    return s * math.tanh((math.inf if w >= 1.0 else math.atanh(w)) + u)
+
+
 def z_path(x, x_y, r):
     """Scalar loop: one candidate."""
-    beta, gamma = 0.5 * (1 + r), 0.5 * (1 - r)
     z, out, x_prev = 0.0, np.empty(len(x)), x[0]
     for i, xi in enumerate(x):
-        dx = xi - x_prev
+        z = step(z, xi - x_prev, x_y, r)
         x_prev = xi
-        if dx != 0.0:
-            s = 1.0 if dx > 0 else -1.0
-            m = min(max(math.ceil(abs(dx) / x_y * 8.0), 1), 64)
-            h = dx / m / x_y
-            for _ in range(m):
-                same = 1.0 if s * z >= 0 else -1.0
-                mid = z + 0.5 * h * (1 - z * z * (beta * same + gamma))
-                same = 1.0 if s * mid >= 0 else -1.0
-                z += h * (1 - mid * mid * (beta * same + gamma))
         out[i] = z
     return out
 
 
 def z_paths(x, x_y, r):
     """Vectorised over candidates: x_y, r are arrays (one per candidate)."""
-    beta, gamma = 0.5 * (1 + r), 0.5 * (1 - r)
     z = np.zeros(len(x_y))
     out = np.empty((len(x), len(x_y)))
     x_prev = x[0]
-    for i, xi in enumerate(x):
-        dx = xi - x_prev
-        x_prev = xi
-        if dx != 0.0:
-            s = 1.0 if dx > 0 else -1.0
-            m = np.clip(np.ceil(abs(dx) / x_y * 8.0), 1, 64)
-            h = dx / m / x_y
-            for q in range(int(m.max())):
-                act = q < m
-                same = np.where(s * z >= 0, 1.0, -1.0)
-                mid = z + 0.5 * h * (1 - z * z * (beta * same + gamma))
-                same = np.where(s * mid >= 0, 1.0, -1.0)
-                z = np.where(act, z + h * (1 - mid * mid * (beta * same + gamma)), z)
-        out[i] = z
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for i, xi in enumerate(x):
+            dx = xi - x_prev
+            x_prev = xi
+            if dx != 0.0:
+                s = 1.0 if dx > 0 else -1.0
+                w, u = s * z, abs(dx) / x_y
+                q = np.sqrt(np.abs(r))
+                pos, neg = r > 1e-12, r < -1e-12
+                a = np.where(pos, np.arctan(q * w), np.where(neg, np.arctanh(np.maximum(q * w, -1.0)), w))
+                qs = np.where(pos | neg, q, 1.0)
+                need = np.where(pos | neg, -a / qs, -w)
+                moving = np.where(pos, np.tan(a + q * u) / qs,
+                                  np.where(neg, np.tanh(a + q * u) / qs, w + u))
+                back = w < 0.0
+                done = back & (u < need)
+                rest = np.where(back, u - need, u)
+                w0 = np.where(back, 0.0, w)
+                loaded = np.tanh(np.where(w0 >= 1.0, np.inf, np.arctanh(np.minimum(w0, 1.0))) + rest)
+                z = s * np.where(done, moving, loaded)
+            out[i] = z
     return out
 
 

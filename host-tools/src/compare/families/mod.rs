@@ -65,7 +65,7 @@ pub struct StepCost {
     pub divides: u32,
     /// exp / tanh calls.
     pub transcendentals: u32,
-    /// Integration sub-steps per sample in the worst case the host used (1 if exact).
+    /// Integration sub-steps per control period, typical at 10 kHz (1 if the update is exact).
     pub substeps: u32,
     /// f32 state carried from one sample to the next.
     pub state_floats: u32,

@@ -5,18 +5,26 @@
 //! ẏ = (α·z + c0·ẋ + k0·(x − y)) / (c0 + c1),
 //! ż = (ẋ − ẏ)/x_y · (1 − z²(β·sgn((ẋ − ẏ)z) + γ)),  β + γ = 1, r = β − γ,
 //!
-//! with Spencer's current laws α = αa + αb·I, c0 = c0a + c0b·I, c1 = c1a + c1b·I
-//! (his first-order coil filter is left out: the recordings hold the current
+//! with Spencer's current laws α = αa + αb·I, c0 = c0a + c0b·I, c1 = c1a + c1b·I,
+//! parametrised by their values at 0 A and 1 A (c1 searched in log10; his
+//! first-order coil filter is left out: the recordings hold the current
 //! constant). One parameter set for every current. Integrated in time with
 //! the linearly implicit Euler rule ([`Coeffs::implicit_step`]), ẋ and x linear within each sample interval.
-use super::bouc_wen::{self, shape_rate};
+use super::bouc_wen::shape_rate;
 use super::{all_finite, Basis, CurrentLaw, Family, Scales, StepCost};
 use crate::compare::tracks::Track;
 
 pub struct Spencer;
 
 /// Sub-steps per sample at most.
-pub const MAX_SUBSTEPS: usize = 64;
+pub const MAX_SUBSTEPS: usize = 16;
+
+/// Sub-steps for a sample that moves by `dx`: z turns over a distance x_y and
+/// the relative motion is at most the sample's own.
+#[inline]
+fn substeps(dx_mm: f64, x_y_mm: f64) -> usize {
+    ((dx_mm.abs() / x_y_mm * 4.0).ceil() as usize).clamp(1, MAX_SUBSTEPS)
+}
 
 /// mm per m: ẏ is in m/s, y in mm.
 const MM_PER_M: f64 = 1000.0;
@@ -84,12 +92,12 @@ impl Family for Spencer {
 
     fn nonlinear_names(&self) -> &'static [&'static str] {
         &[
-            "alpha_a_n",
-            "alpha_b_n_per_a",
-            "c0a_n_s_m",
-            "c0b_n_s_m_per_a",
-            "c1a_n_s_m",
-            "c1b_n_s_m_per_a",
+            "alpha_at_0a_n",
+            "alpha_at_1a_n",
+            "c0_at_0a_n_s_m",
+            "c0_at_1a_n_s_m",
+            "log10_c1_at_0a_n_s_m",
+            "log10_c1_at_1a_n_s_m",
             "k0_n_mm",
             "x_y_mm",
             "r",
@@ -105,24 +113,26 @@ impl Family for Spencer {
     }
 
     fn bounds(&self, s: &Scales) -> (Vec<f64>, Vec<f64>) {
-        let (f, x, v, i) = (s.force_n, s.x_mm, s.v_m_s, s.current_a);
+        let (f, x, v) = (s.force_n, s.x_mm, s.v_m_s);
         let c = f / v;
+        let (c1_lo, c1_hi) = ((0.05 * c).log10(), (1000.0 * c).log10());
         (
-            vec![0.0, -2.0 * f / i, 0.0, -2.0 * c / i, 0.05 * c, -20.0 * c / i, 0.0, 0.002 * x, -1.0],
-            vec![2.0 * f, 2.0 * f / i, 2.0 * c, 2.0 * c / i, 20.0 * c, 20.0 * c / i, f / x, 0.5 * x, 1.0],
+            vec![0.0, 0.0, 0.0, 0.0, c1_lo, c1_lo, 0.0, 0.0005 * x, -1.0],
+            vec![2.0 * f, 2.0 * f, 2.0 * c, 2.0 * c, c1_hi, c1_hi, f / x, 0.5 * x, 1.0],
         )
     }
 
     fn basis(&self, q: &[f64], track: &Track, b: &mut Basis) -> bool {
-        let &[alpha_a, alpha_b, c0a, c0b, c1a, c1b, k0, x_y, r] = q else {
+        let &[alpha_0, alpha_1, c0_0, c0_1, log_c1_0, log_c1_1, k0, x_y, r] = q else {
             return false;
         };
-        let i = track.current_a;
-        // Laws are clamped at zero: a damper coefficient never turns negative.
+        // Spencer's laws, linear in I through the values at 0 A and 1 A;
+        // clamped at zero, a damper coefficient never turns negative.
+        let law = |at_0: f64, at_1: f64| (at_0 + (at_1 - at_0) * track.current_a).max(0.0);
         let k = Coeffs {
-            alpha: (alpha_a + alpha_b * i).max(0.0),
-            c0: (c0a + c0b * i).max(0.0),
-            c1: (c1a + c1b * i).max(0.0),
+            alpha: law(alpha_0, alpha_1),
+            c0: law(c0_0, c0_1),
+            c1: law(10f64.powf(log_c1_0), 10f64.powf(log_c1_1)),
             k0,
             x_y,
             r,
@@ -145,9 +155,7 @@ impl Family for Spencer {
         push(&s, xs[0], vs[0], b);
         for j in 1..n {
             let (x0, x1, v0, v1) = (xs[j - 1], xs[j], vs[j - 1], vs[j]);
-            // Sub-steps as Bouc–Wen's: the relative motion is at most the
-            // sample's own, and z turns over a distance x_y.
-            let m = bouc_wen::substeps(x1 - x0, x_y).min(MAX_SUBSTEPS);
+            let m = substeps(x1 - x0, x_y);
             let h = (t[j] - t[j - 1]) / m as f64;
             for q in 0..m {
                 let c = (q as f64 + 0.5) / m as f64;
@@ -159,13 +167,14 @@ impl Family for Spencer {
     }
 
     fn step_cost(&self) -> StepCost {
-        // Per sub-step: two rate evaluations (~16 flops, 1 divide each) and the updates.
+        // Per sub-step: the rates (~16 flops, 1 divide), the 2×2 Jacobian (~20),
+        // its solve (~12, 1 divide); sub-steps as Bouc–Wen's.
         StepCost {
-            flops: 44,
+            flops: 48,
             divides: 2,
             transcendentals: 0,
-            substeps: 8,
-            state_floats: 4,
+            substeps: 2,
+            state_floats: 3,
         }
     }
 }
