@@ -89,47 +89,90 @@ pub struct Projected {
 }
 
 /// Variable projection at `q` over `tracks` (None if `q` is not admissible
-/// or the columns are rank-deficient).
-pub fn project(family: &dyn Family, q: &[f64], tracks: &[Track], bases: &mut Vec<Basis>) -> Option<Projected> {
+/// or the columns are rank-deficient). The k ≤ 6 columns are equilibrated
+/// and solved through their k×k Gram matrix by Cholesky; with `residuals`
+/// false only J is computed (the GSA path), from the Gram form.
+pub fn project(
+    family: &dyn Family,
+    q: &[f64],
+    tracks: &[Track],
+    bases: &mut Vec<Basis>,
+    residuals: bool,
+) -> Option<Projected> {
     let k = family.linear_names().len();
     bases.resize_with(tracks.len(), Basis::default);
-    let mut rows = 0;
+    let mut gram = nalgebra::DMatrix::<f64>::zeros(k, k);
+    let mut rhs = nalgebra::DVector::<f64>::zeros(k);
+    let mut yy = 0.0;
+    let r = tracks.len().max(1) as f64;
+    let mut phi = vec![0.0; k];
     for (t, b) in tracks.iter().zip(bases.iter_mut()) {
         if !family.basis(q, t, b) {
             return None;
         }
-        rows += t.len();
-    }
-    let r = tracks.len().max(1) as f64;
-    let weight = |t: &Track| 1.0 / (t.force_scale_n * (t.len().max(1) as f64 * r).sqrt());
-    let mut a = nalgebra::DMatrix::<f64>::zeros(rows, k);
-    let mut y = nalgebra::DVector::<f64>::zeros(rows);
-    let mut row = 0;
-    for (t, b) in tracks.iter().zip(bases.iter()) {
-        let w = weight(t);
+        let w2 = weight(t, r).powi(2);
         for i in 0..t.len() {
-            for (j, c) in b.columns.iter().enumerate() {
-                a[(row + i, j)] = w * c[i];
+            let y = t.force_n[i] - b.offset.get(i).copied().unwrap_or(0.0);
+            for (p, c) in phi.iter_mut().zip(&b.columns) {
+                *p = c[i];
             }
-            let offset = b.offset.get(i).copied().unwrap_or(0.0);
-            y[row + i] = w * (t.force_n[i] - offset);
+            for a in 0..k {
+                let wa = w2 * phi[a];
+                rhs[a] += wa * y;
+                for c in a..k {
+                    gram[(a, c)] += wa * phi[c];
+                }
+            }
+            yy += w2 * y * y;
         }
-        row += t.len();
     }
-    let ls = crate::linalg::solve(&a, &y).ok()?;
-    let fitted = &a * nalgebra::DVector::from_column_slice(&ls.coeffs);
-    let residuals: Vec<f64> = fitted.iter().zip(y.iter()).map(|(m, f)| m - f).collect();
-    let objective = residuals.iter().map(|e| e * e).sum::<f64>().sqrt();
-    objective.is_finite().then_some(Projected {
+    let scale: Vec<f64> = (0..k).map(|a| gram[(a, a)].sqrt()).collect();
+    if scale.iter().any(|s| !(*s > 0.0) || !s.is_finite()) {
+        return None;
+    }
+    let g = nalgebra::DMatrix::from_fn(k, k, |a, c| {
+        let (lo, hi) = (a.min(c), a.max(c));
+        gram[(lo, hi)] / (scale[a] * scale[c])
+    });
+    let chol = nalgebra::linalg::Cholesky::new(g)?;
+    let h = nalgebra::DVector::from_fn(k, |a, _| rhs[a] / scale[a]);
+    let scaled = chol.solve(&h);
+    let theta: Vec<f64> = (0..k).map(|a| scaled[a] / scale[a]).collect();
+    // SSE = yᵀy − 2θᵀb + θᵀGθ = yᵀy − θᵀb at the optimum.
+    let sse = (yy - theta.iter().zip(rhs.iter()).map(|(t, b)| t * b).sum::<f64>()).max(0.0);
+    let residuals = if residuals {
+        let mut out = Vec::with_capacity(tracks.iter().map(Track::len).sum());
+        let mut force = Vec::new();
+        for (t, b) in tracks.iter().zip(bases.iter()) {
+            let w = weight(t, r);
+            b.force(&theta, &mut force);
+            out.extend(force.iter().zip(&t.force_n).map(|(m, f)| (m - f) * w));
+        }
+        out
+    } else {
+        Vec::new()
+    };
+    // With residuals at hand, J from them (no cancellation near a perfect fit).
+    let objective = if residuals.is_empty() {
+        sse.sqrt()
+    } else {
+        residuals.iter().map(|e| e * e).sum::<f64>().sqrt()
+    };
+    (objective.is_finite() && theta.iter().all(|t| t.is_finite())).then_some(Projected {
         objective,
-        theta: ls.coeffs,
+        theta,
         residuals,
     })
 }
 
+/// A track's residual weight 1/(max|F|·√(n·R)), R = number of tracks, so Σr² = J².
+fn weight(t: &Track, tracks: f64) -> f64 {
+    1.0 / (t.force_scale_n * (t.len().max(1) as f64 * tracks).sqrt())
+}
+
 /// J at `q` (∞ if not admissible).
 pub fn objective(family: &dyn Family, q: &[f64], tracks: &[Track], bases: &mut Vec<Basis>) -> f64 {
-    project(family, q, tracks, bases).map_or(f64::INFINITY, |p| p.objective)
+    project(family, q, tracks, bases, false).map_or(f64::INFINITY, |p| p.objective)
 }
 
 /// Fits `family` to the `fit` tracks (validate tracks are never passed on).
@@ -171,7 +214,9 @@ pub fn fit_family(family: &dyn Family, tracks: &[Track], budget: &Budget, seed: 
             let dense: Vec<Track> = group.iter().map(|t| t.at_most(budget.lm_samples_per_track)).collect();
             let (q, lm_value, lm_evals) = refine(family, &r.best, &lower, &upper, &dense, budget.lm_patience);
             // θ from the dense samples at the refined q (an admissible q: GSA's best was).
-            let theta = project(family, &q, &dense, &mut Vec::new()).map(|p| p.theta).unwrap_or_default();
+            let theta = project(family, &q, &dense, &mut Vec::new(), false)
+                .map(|p| p.theta)
+                .unwrap_or_default();
             let full = q.into_iter().chain(theta).collect();
             (*current, full, r.best_value, lm_value, r.evaluations + lm_evals)
         })
@@ -246,14 +291,14 @@ impl LmProblem<'_> {
 
     /// The projected residuals at `u` (a penalty if not admissible).
     fn residuals_at(&self, u: &DVector<f64>) -> Vec<f64> {
-        match project(self.family, &self.raw(u), self.tracks, &mut Vec::new()) {
+        match project(self.family, &self.raw(u), self.tracks, &mut Vec::new(), true) {
             Some(p) => p.residuals,
             None => {
                 let r = self.tracks.len().max(1) as f64;
                 self.tracks
                     .iter()
                     .flat_map(|t| {
-                        let w = 1.0 / (t.force_scale_n * (t.len().max(1) as f64 * r).sqrt());
+                        let w = weight(t, r);
                         t.force_n.iter().map(move |f| -PENALTY * f * w)
                     })
                     .collect()

@@ -5,12 +5,22 @@
 //!
 //! with β + γ = 1 so z saturates at ±1 and α is the hysteretic force
 //! amplitude (the classical A, β, γ have one redundant scale). The shape
-//! parameter r = β − γ ∈ [−1, 1] sets how sharply the loop turns on
-//! reversal. Per-current parameters, interpolated between currents.
+//! parameter r = β − γ ∈ [−1, 3] sets how sharply the loop turns on
+//! reversal; x_y is searched as log10 x_y. Per-current parameters, interpolated between currents.
 use super::{all_finite, sign, Basis, CurrentLaw, Family, Scales, StepCost};
 use crate::compare::tracks::Track;
 
 pub struct BoucWen;
+
+/// The shape r = β − γ may exceed 1 (γ < 0: the loop turns even faster on
+/// reversal); β + γ = 1 keeps z bounded for any r ≥ −1.
+pub const MAX_R: f64 = 3.0;
+
+/// log10 x_y (mm): yield displacements from x_max/2000 to x_max/2, searched in
+/// log so that small ones are as easy to reach as large ones.
+pub fn log_x_y_range(s: &Scales) -> (f64, f64) {
+    ((0.0005 * s.x_mm).log10(), (0.5 * s.x_mm).log10())
+}
 
 /// dz/dx·x_y for the n = 2 loop with β + γ = 1, shape r = β − γ.
 #[inline]
@@ -42,6 +52,60 @@ pub fn step(z: f64, dx_mm: f64, x_y_mm: f64, r: f64) -> f64 {
         u -= used;
     }
     s * (w.atanh() + u).tanh()
+}
+
+/// [`step`] along a path, carrying a = atanh(w) while loading so a sample
+/// in the same direction costs one tanh (tanh(atanh(tanh a) + u) = tanh(a + u)).
+#[derive(Clone, Copy, Debug)]
+pub struct Loop {
+    pub z: f64,
+    dir: f64,
+    loading: bool,
+    a: f64,
+}
+
+impl Default for Loop {
+    fn default() -> Self {
+        Loop {
+            z: 0.0,
+            dir: 0.0,
+            loading: false,
+            a: 0.0,
+        }
+    }
+}
+
+impl Loop {
+    /// z after moving by `dx` (the same as [`step`]).
+    #[inline]
+    pub fn advance(&mut self, dx_mm: f64, x_y_mm: f64, r: f64) -> f64 {
+        let s = sign(dx_mm);
+        if s == 0.0 {
+            return self.z;
+        }
+        let mut u = dx_mm.abs() / x_y_mm;
+        if s == self.dir && self.loading {
+            self.a += u;
+            self.z = s * self.a.tanh();
+            return self.z;
+        }
+        self.dir = s;
+        let mut w = s * self.z;
+        if w < 0.0 {
+            let (end, used) = towards_zero(w, u, r);
+            if used >= u {
+                self.loading = false;
+                self.z = s * end;
+                return self.z;
+            }
+            w = 0.0;
+            u -= used;
+        }
+        self.loading = true;
+        self.a = w.atanh() + u;
+        self.z = s * self.a.tanh();
+        self.z
+    }
 }
 
 /// From w < 0 along dw/du = 1 + r·w² for at most `u`: (w reached, u used);
@@ -85,7 +149,7 @@ impl Family for BoucWen {
     }
 
     fn nonlinear_names(&self) -> &'static [&'static str] {
-        &["x_y_mm", "r"]
+        &["log10_x_y_mm", "r"]
     }
 
     fn linear_names(&self) -> &'static [&'static str] {
@@ -97,19 +161,21 @@ impl Family for BoucWen {
     }
 
     fn bounds(&self, s: &Scales) -> (Vec<f64>, Vec<f64>) {
-        (vec![0.0005 * s.x_mm, -1.0], vec![0.5 * s.x_mm, 1.0])
+        let (lo, hi) = log_x_y_range(s);
+        (vec![lo, -1.0], vec![hi, MAX_R])
     }
 
     fn basis(&self, q: &[f64], track: &Track, b: &mut Basis) -> bool {
-        let &[x_y, r] = q else { return false };
-        if !(x_y > 0.0) || !(-1.0..=1.0).contains(&r) {
+        let &[log_x_y, r] = q else { return false };
+        let x_y = 10f64.powf(log_x_y);
+        if !(x_y > 0.0) || !(-1.0..=MAX_R).contains(&r) {
             return false;
         }
         b.reset(4);
-        let mut z = 0.0;
+        let mut hysteresis = Loop::default();
         let mut x_prev = track.x_mm.first().copied().unwrap_or(0.0);
         for (&x, &v) in track.x_mm.iter().zip(&track.v_m_s) {
-            z = step(z, x - x_prev, x_y, r);
+            let z = hysteresis.advance(x - x_prev, x_y, r);
             x_prev = x;
             for (c, value) in b.columns.iter_mut().zip([v, x, z, 1.0]) {
                 c.push(value);
@@ -149,6 +215,17 @@ mod tests {
             }
             let exact = step(z0, dx, x_y, r);
             assert!((exact - z).abs() < 1e-6, "z0 {z0}, dx {dx}, r {r}: {exact} vs {z}");
+        }
+    }
+
+    #[test]
+    fn carried_loop_matches_the_step_by_step_solution() {
+        let (x_y, r) = (0.3, 0.7);
+        let (mut z, mut path) = (0.0, Loop::default());
+        for i in 0..3000 {
+            let dx = 0.05 * (i as f64 * 0.013).cos() + if i % 97 == 0 { -0.2 } else { 0.0 };
+            z = step(z, dx, x_y, r);
+            assert!((path.advance(dx, x_y, r) - z).abs() < 1e-9, "sample {i}");
         }
     }
 
