@@ -7,13 +7,12 @@
 //! current, each decimated to about `samples_per_track` samples, Bouc–Wen's
 //! nonlinear parameters (x_y, r) with the linear ones solved by least squares.
 use super::families::{bouc_wen::BoucWen, Family, Scales};
-use super::fit::objective;
+use super::fit::search;
 use super::tracks::{tracks, Track};
 use crate::atomic_write::{write_atomic, write_atomic_with};
 use crate::dataset::{Dataset, Role};
-use crate::fit::gsa::{minimize_batch, GsaParams};
+use crate::fit::gsa::GsaParams;
 use anyhow::{bail, Result};
-use rayon::prelude::*;
 use serde::Serialize;
 use std::io::Write;
 use std::path::Path;
@@ -66,21 +65,8 @@ pub fn run_bench(
     let mut seconds = Vec::new();
     let mut best = (f64::INFINITY, Vec::new(), 0);
     for _ in 0..repeats.max(1) {
-        let mut rng = crate::fit::branch_rng(gsa.seed, 0);
         let start = Instant::now();
-        let r = minimize_batch(
-            &lower,
-            &upper,
-            |agents| {
-                agents
-                    .par_iter()
-                    .map_init(Vec::new, |bases, q| objective(&family, q, &data, bases))
-                    .collect()
-            },
-            &gsa,
-            &mut rng,
-            || {},
-        );
+        let r = search(&family, &data, &lower, &upper, &gsa, gsa.seed, 0);
         seconds.push(start.elapsed().as_secs_f64());
         best = (r.best_value, r.best, r.evaluations);
     }

@@ -12,7 +12,7 @@
 use super::families::{interpolate_sets, Basis, CurrentLaw, Family, Scales};
 use super::tracks::Track;
 use crate::dataset::Role;
-use crate::fit::gsa::{minimize_batch, GsaParams};
+use crate::fit::gsa::{minimize_batch, GsaParams, GsaResultN};
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra_lm::{storage::Owned, DMatrix, DVector, Dyn};
 use rayon::prelude::*;
@@ -197,20 +197,7 @@ pub fn fit_family(family: &dyn Family, tracks: &[Track], budget: &Budget, seed: 
         .enumerate()
         .map(|(g, (current, group))| {
             let coarse: Vec<Track> = group.iter().map(|t| t.at_most(budget.gsa_samples_per_track)).collect();
-            let mut rng = crate::fit::branch_rng(seed, g as u64);
-            let r = minimize_batch(
-                &lower,
-                &upper,
-                |agents| {
-                    agents
-                        .par_iter()
-                        .map_init(Vec::new, |bases, q| objective(family, q, &coarse, bases))
-                        .collect()
-                },
-                &budget.gsa,
-                &mut rng,
-                || {},
-            );
+            let r = search(family, &coarse, &lower, &upper, &budget.gsa, seed, g as u64);
             let dense: Vec<Track> = group.iter().map(|t| t.at_most(budget.lm_samples_per_track)).collect();
             let (q, lm_value, lm_evals) = refine(family, &r.best, &lower, &upper, &dense, budget.lm_patience);
             // θ from the dense samples at the refined q (an admissible q: GSA's best was).
@@ -228,6 +215,32 @@ pub fn fit_family(family: &dyn Family, tracks: &[Track], budget: &Budget, seed: 
         lm_objective: fits.iter().map(|f| f.3).collect(),
         evaluations: fits.iter().map(|f| f.4).sum(),
     }
+}
+
+/// GSA over the box, agents evaluated in parallel; seeded by (seed, stream).
+pub fn search(
+    family: &dyn Family,
+    tracks: &[Track],
+    lower: &[f64],
+    upper: &[f64],
+    gsa: &GsaParams,
+    seed: u64,
+    stream: u64,
+) -> GsaResultN {
+    let mut rng = crate::fit::branch_rng(seed, stream);
+    minimize_batch(
+        lower,
+        upper,
+        |agents| {
+            agents
+                .par_iter()
+                .map_init(Vec::new, |bases, q| objective(family, q, tracks, bases))
+                .collect()
+        },
+        gsa,
+        &mut rng,
+        || {},
+    )
 }
 
 /// LM from `start`; returns the better of the start and LM's end point, its
