@@ -10,7 +10,7 @@
 //! first-order coil filter is left out: the recordings hold the current
 //! constant). One parameter set for every current. Integrated in time with
 //! the linearly implicit Euler rule ([`Coeffs::implicit_step`]), ẋ and x linear within each sample interval.
-use super::bouc_wen::{log_x_y_range, shape_rate, MAX_R};
+use super::bouc_wen::shape_rate;
 use super::{all_finite, Basis, CurrentLaw, Family, Scales, StepCost};
 use crate::compare::tracks::Track;
 
@@ -99,7 +99,7 @@ impl Family for Spencer {
             "log10_c1_at_0a_n_s_m",
             "log10_c1_at_1a_n_s_m",
             "k0_n_mm",
-            "log10_x_y_mm",
+            "x_y_mm",
             "r",
         ]
     }
@@ -116,18 +116,18 @@ impl Family for Spencer {
         let (f, x, v) = (s.force_n, s.x_mm, s.v_m_s);
         let c = f / v;
         let (c1_lo, c1_hi) = ((0.05 * c).log10(), (1000.0 * c).log10());
-        let (xy_lo, xy_hi) = log_x_y_range(s);
+        // x_y linear and r ≤ 1 here: with the implicit rule's few sub-steps,
+        // very small x_y and r > 1 made the search slow and its 0.5 A prediction unstable.
         (
-            vec![0.0, 0.0, 0.0, 0.0, c1_lo, c1_lo, 0.0, xy_lo, -1.0],
-            vec![2.0 * f, 2.0 * f, 2.0 * c, 2.0 * c, c1_hi, c1_hi, f / x, xy_hi, MAX_R],
+            vec![0.0, 0.0, 0.0, 0.0, c1_lo, c1_lo, 0.0, 0.0005 * x, -1.0],
+            vec![2.0 * f, 2.0 * f, 2.0 * c, 2.0 * c, c1_hi, c1_hi, f / x, 0.5 * x, 1.0],
         )
     }
 
     fn basis(&self, q: &[f64], track: &Track, b: &mut Basis) -> bool {
-        let &[alpha_0, alpha_1, c0_0, c0_1, log_c1_0, log_c1_1, k0, log_x_y, r] = q else {
+        let &[alpha_0, alpha_1, c0_0, c0_1, log_c1_0, log_c1_1, k0, x_y, r] = q else {
             return false;
         };
-        let x_y = 10f64.powf(log_x_y);
         // Spencer's laws, linear in I through the values at 0 A and 1 A;
         // clamped at zero, a damper coefficient never turns negative.
         let law = |at_0: f64, at_1: f64| (at_0 + (at_1 - at_0) * track.current_a).max(0.0);
@@ -139,7 +139,7 @@ impl Family for Spencer {
             x_y,
             r,
         };
-        if !(x_y > 0.0) || !(k.c0 + k.c1 > 0.0) || k0 < 0.0 || !(-1.0..=MAX_R).contains(&r) {
+        if !(x_y > 0.0) || !(k.c0 + k.c1 > 0.0) || k0 < 0.0 || !(-1.0..=1.0).contains(&r) {
             return false;
         }
         b.reset(2);
