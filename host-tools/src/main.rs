@@ -501,8 +501,16 @@ fn run(cli: Cli) -> Result<()> {
             };
             let b = mre_host::compare::bench::run_bench(&dataset, current, gsa, samples, repeats, &out)?;
             println!(
-                "bouc-wen GSA: {} evaluations on {} samples, median {:.4} s ({} threads), best objective {:.6}",
-                b.evaluations, b.samples, b.median_s, b.threads, b.best_objective
+                "bouc-wen GSA: {} evaluations on {} samples, median {:.4} s ({} threads), best objective {:.6}; \
+                 + LM: {} evaluations, {:.4} s, objective {:.6}",
+                b.evaluations,
+                b.samples,
+                b.median_s,
+                b.threads,
+                b.best_objective,
+                b.refined_evaluations,
+                b.refined_median_s,
+                b.refined_objective
             );
         }
         Command::Sim {

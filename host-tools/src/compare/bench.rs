@@ -7,7 +7,7 @@
 //! current, each decimated to about `samples_per_track` samples, Bouc–Wen's
 //! nonlinear parameters (x_y, r) with the linear ones solved by least squares.
 use super::families::{bouc_wen::BoucWen, Family, Scales};
-use super::fit::search;
+use super::fit::{refine, search};
 use super::tracks::{tracks, Track};
 use crate::atomic_write::{write_atomic, write_atomic_with};
 use crate::dataset::{Dataset, Role};
@@ -17,6 +17,9 @@ use serde::Serialize;
 use std::io::Write;
 use std::path::Path;
 use std::time::Instant;
+
+/// LM patience of the benchmark's refinement (as `mre compare`'s default budget).
+const LM_PATIENCE: usize = 30;
 
 #[derive(Clone, Debug, Serialize)]
 pub struct BenchOutcome {
@@ -30,11 +33,18 @@ pub struct BenchOutcome {
     pub upper: Vec<f64>,
     pub seed: u64,
     pub threads: usize,
-    /// Wall time of each repeat (s) and their median.
+    /// Wall time of each repeat (s) and their median: GSA alone.
     pub seconds: Vec<f64>,
     pub median_s: f64,
     pub best_objective: f64,
     pub best_q: Vec<f64>,
+    /// GSA then Levenberg–Marquardt from its best (the fit `mre compare` runs):
+    /// evaluations charged (n + 1 per LM iteration, an upper bound), median
+    /// time, final objective and point.
+    pub refined_evaluations: usize,
+    pub refined_median_s: f64,
+    pub refined_objective: f64,
+    pub refined_q: Vec<f64>,
 }
 
 /// The decimated fit tracks at `current_a` (held-out currents excluded).
@@ -62,16 +72,23 @@ pub fn run_bench(
     }
     let family = BoucWen;
     let (lower, upper) = family.bounds(&Scales::of(&data));
-    let mut seconds = Vec::new();
+    let (mut seconds, mut refined_s) = (Vec::new(), Vec::new());
     let mut best = (f64::INFINITY, Vec::new(), 0);
+    let mut refined = (f64::INFINITY, Vec::new(), 0);
     for _ in 0..repeats.max(1) {
         let start = Instant::now();
         let r = search(&family, &data, &lower, &upper, &gsa, gsa.seed, 0);
         seconds.push(start.elapsed().as_secs_f64());
+        let (q, value, lm_evals) = refine(&family, &r.best, &lower, &upper, &data, LM_PATIENCE);
+        refined_s.push(start.elapsed().as_secs_f64());
+        refined = (value, q, r.evaluations + lm_evals);
         best = (r.best_value, r.best, r.evaluations);
     }
-    let mut sorted = seconds.clone();
-    sorted.sort_by(f64::total_cmp);
+    let median = |v: &[f64]| {
+        let mut sorted = v.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        sorted[sorted.len() / 2]
+    };
     let outcome = BenchOutcome {
         current_a,
         recordings: data.len(),
@@ -83,10 +100,14 @@ pub fn run_bench(
         upper,
         seed: gsa.seed,
         threads: rayon::current_num_threads(),
-        median_s: sorted[sorted.len() / 2],
+        median_s: median(&seconds),
         seconds,
         best_objective: best.0,
         best_q: best.1,
+        refined_evaluations: refined.2,
+        refined_median_s: median(&refined_s),
+        refined_objective: refined.0,
+        refined_q: refined.1,
     };
     write_atomic_with(&out.join("objective.csv"), |w| {
         writeln!(w, "track,time_s,x_mm,v_m_s,force_n,force_scale_n")?;

@@ -245,7 +245,7 @@ pub fn search(
 
 /// LM from `start`; returns the better of the start and LM's end point, its
 /// objective and the evaluations spent (each Jacobian counts n + 1).
-fn refine(
+pub fn refine(
     family: &dyn Family,
     start: &[f64],
     lower: &[f64],
