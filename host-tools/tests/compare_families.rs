@@ -85,7 +85,11 @@ fn bouc_wen_steady_loop_matches_its_closed_form() {
     let last_loading = 5 * 4000..5 * 4000 + 2000;
     for i in last_loading {
         let x = t.x_mm[i];
-        let want = if x < x0 { -z_top + (x + amp) / x_y } else { ((x - x0) / x_y).tanh() };
+        let want = if x < x0 {
+            -z_top + (x + amp) / x_y
+        } else {
+            ((x - x0) / x_y).tanh()
+        };
         assert!((z[i] - want).abs() < 2e-4, "x = {x}: z = {} vs {want}", z[i]);
     }
 }

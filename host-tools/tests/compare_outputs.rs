@@ -43,7 +43,16 @@ fn report_schema_and_numbers_match_the_written_predictions() {
     // lsq, GSA and five nonlinear families (diagnosis skipped here).
     assert_eq!(families.len(), 7);
     for f in families {
-        for key in ["name", "parameters", "n_parameters", "fit_nrmse", "heldout_nrmse", "aic", "bic", "fit_time_s"] {
+        for key in [
+            "name",
+            "parameters",
+            "n_parameters",
+            "fit_nrmse",
+            "heldout_nrmse",
+            "aic",
+            "bic",
+            "fit_time_s",
+        ] {
             assert!(f.get(key).is_some(), "{} lacks {key}", f["name"]);
         }
         let name = f["name"].as_str().unwrap();
@@ -52,7 +61,8 @@ fn report_schema_and_numbers_match_the_written_predictions() {
         for rec in f["recordings"].as_array().unwrap() {
             let file = rec["file"].as_str().unwrap();
             let stem = Path::new(file).file_stem().unwrap().to_str().unwrap();
-            let csv = std::fs::read_to_string(dir.path().join("predictions").join(name).join(format!("{stem}.csv"))).unwrap();
+            let csv =
+                std::fs::read_to_string(dir.path().join("predictions").join(name).join(format!("{stem}.csv"))).unwrap();
             let mut lines = csv.lines();
             assert_eq!(lines.next(), Some("time_s,force_measured_n,force_model_n"));
             let (mut sse, mut n, mut peak) = (0.0, 0usize, 0.0f64);
@@ -73,13 +83,21 @@ fn report_schema_and_numbers_match_the_written_predictions() {
         assert_eq!((fit.len(), held.len()), (10, 5), "{name}");
         let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
         assert!((f["fit_nrmse"].as_f64().unwrap() - mean(&fit)).abs() < 1e-9, "{name}");
-        assert!((f["heldout_nrmse"].as_f64().unwrap() - mean(&held)).abs() < 1e-9, "{name}");
+        assert!(
+            (f["heldout_nrmse"].as_f64().unwrap() - mean(&held)).abs() < 1e-9,
+            "{name}"
+        );
     }
     assert!(r.best_heldout.is_some());
-    assert!(std::fs::read_to_string(dir.path().join("report.md")).unwrap().contains("predicts the held-out recordings best"));
+    assert!(std::fs::read_to_string(dir.path().join("report.md"))
+        .unwrap()
+        .contains("predicts the held-out recordings best"));
     for stem in ["0A_2mm5Hz0A", "0p5A_10mm1Hz0x5A", "1A_25mm0x1Hz1A"] {
         for ext in ["png", "svg"] {
-            assert!(dir.path().join("plots").join(format!("{stem}.{ext}")).is_file(), "{stem}.{ext}");
+            assert!(
+                dir.path().join("plots").join(format!("{stem}.{ext}")).is_file(),
+                "{stem}.{ext}"
+            );
         }
     }
 }

@@ -122,6 +122,9 @@ pub fn run_bench(
         }
         Ok(())
     })?;
-    write_atomic(&out.join("bench.json"), serde_json::to_string_pretty(&outcome)?.as_bytes())?;
+    write_atomic(
+        &out.join("bench.json"),
+        serde_json::to_string_pretty(&outcome)?.as_bytes(),
+    )?;
     Ok(outcome)
 }

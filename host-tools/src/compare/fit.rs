@@ -127,7 +127,7 @@ pub fn project(
         }
     }
     let scale: Vec<f64> = (0..k).map(|a| gram[(a, a)].sqrt()).collect();
-    if scale.iter().any(|s| !(*s > 0.0) || !s.is_finite()) {
+    if scale.iter().any(|s| !s.is_finite() || *s <= 0.0) {
         return None;
     }
     let g = nalgebra::DMatrix::from_fn(k, k, |a, c| {
@@ -187,7 +187,12 @@ pub fn fit_family(family: &dyn Family, tracks: &[Track], budget: &Budget, seed: 
             currents.dedup();
             currents
                 .into_iter()
-                .map(|c| (c, fit.iter().filter(|t| t.current_a == c).map(|t| (*t).clone()).collect()))
+                .map(|c| {
+                    (
+                        c,
+                        fit.iter().filter(|t| t.current_a == c).map(|t| (*t).clone()).collect(),
+                    )
+                })
                 .collect()
         }
     };
@@ -344,7 +349,11 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for LmProblem<'_> {
             .map(|j| {
                 let mut u = self.u.clone();
                 // Step inwards at the upper bound so the difference sees the model.
-                let h = if u[j] + JACOBIAN_STEP > 1.0 { -JACOBIAN_STEP } else { JACOBIAN_STEP };
+                let h = if u[j] + JACOBIAN_STEP > 1.0 {
+                    -JACOBIAN_STEP
+                } else {
+                    JACOBIAN_STEP
+                };
                 u[j] += h;
                 let shifted = self.residuals_at(&u);
                 shifted.iter().zip(&base).map(|(a, b)| (a - b) / h).collect()

@@ -104,8 +104,20 @@ pub fn compare(ds: &Dataset, options: &CompareOptions) -> Result<Comparison> {
     let mut outcomes = Vec::new();
     for (name, method) in [("polynomial-lsq", Method::Lsq), ("polynomial-gsa", Method::Gsa)] {
         let t0 = Instant::now();
-        let p = polynomial::quartics(&ds, method, GsaParams { seed: options.seed, ..options.poly_gsa })?;
-        outcomes.push(poly_outcome(name, "F = a1·x⁴ + … + a5 per current and branch (v > 0 / v ≤ 0), forces interpolated in I", p, t0));
+        let p = polynomial::quartics(
+            &ds,
+            method,
+            GsaParams {
+                seed: options.seed,
+                ..options.poly_gsa
+            },
+        )?;
+        outcomes.push(poly_outcome(
+            name,
+            "F = a1·x⁴ + … + a5 per current and branch (v > 0 / v ≤ 0), forces interpolated in I",
+            p,
+            t0,
+        ));
     }
     if !options.skip_diagnosis {
         let t0 = Instant::now();
@@ -184,7 +196,11 @@ pub fn nonlinear(family: &dyn Family, tracks: &[Track], options: &CompareOptions
 }
 
 /// `mre compare DATASET --report DIR`: compare, then write every output.
-pub fn run_compare(dataset_dir: &std::path::Path, options: &CompareOptions, dir: &std::path::Path) -> Result<report::ReportJson> {
+pub fn run_compare(
+    dataset_dir: &std::path::Path,
+    options: &CompareOptions,
+    dir: &std::path::Path,
+) -> Result<report::ReportJson> {
     let ds = Dataset::load(dataset_dir)?;
     let c = compare(&ds, options)?;
     let json = report::summarise(&c);

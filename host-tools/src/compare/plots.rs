@@ -50,7 +50,10 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &Comparison, k: us
     };
     let (head, body) = root.split_vertically(60);
     head.draw_text(
-        &format!("{} at {} A ({role}) — measured (grey) vs each family", t.stem, t.current_a),
+        &format!(
+            "{} at {} A ({role}) — measured (grey) vs each family",
+            t.stem, t.current_a
+        ),
         &(FONT, 30).into_text_style(&head),
         (20, 15),
     )

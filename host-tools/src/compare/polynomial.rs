@@ -70,7 +70,11 @@ pub fn with_diagnosis(ds: &Dataset, hold_out_a: &[f64], tracks: &[Track]) -> Res
     for (r, p) in d.prep.recs.iter().zip(&d.final_pred) {
         let i = every.recs.iter().position(|e| e.file == r.file);
         let same = i.is_some_and(|i| {
-            all_pred[i].len() == p.len() && all_pred[i].iter().zip(p).all(|(a, b)| (a - b).abs() <= 1e-6 * (1.0 + b.abs()))
+            all_pred[i].len() == p.len()
+                && all_pred[i]
+                    .iter()
+                    .zip(p)
+                    .all(|(a, b)| (a - b).abs() <= 1e-6 * (1.0 + b.abs()))
         });
         if !same {
             bail!("diagnose's model does not reproduce its own prediction of {}", r.file);

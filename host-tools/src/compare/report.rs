@@ -193,7 +193,10 @@ pub fn markdown(r: &ReportJson) -> String {
         None => s.push_str("No recording was held out, so nothing is scored out of sample.\n"),
         Some(b) => {
             let h = b.heldout_nrmse.unwrap_or(f64::NAN);
-            s.push_str(&format!("**{}** predicts the held-out recordings best (mean NRMSE {:.4}).", b.name, h));
+            s.push_str(&format!(
+                "**{}** predicts the held-out recordings best (mean NRMSE {:.4}).",
+                b.name, h
+            ));
             for base in ["polynomial-lsq", "polynomial+diagnose"] {
                 if let Some(q) = ratio(r, h, base).filter(|_| b.name != base) {
                     s.push_str(&format!(" It is {q:.2}× lower than {base}'s."));
@@ -224,7 +227,12 @@ pub fn markdown(r: &ReportJson) -> String {
     s.push_str(&"---|".repeat(r.families.len()));
     s.push('\n');
     if let Some(first) = r.families.first() {
-        for (i, rec) in first.recordings.iter().enumerate().filter(|(_, x)| x.role == Role::Validate) {
+        for (i, rec) in first
+            .recordings
+            .iter()
+            .enumerate()
+            .filter(|(_, x)| x.role == Role::Validate)
+        {
             s.push_str(&format!("| {} | {} |", rec.file, rec.current_a));
             for f in &r.families {
                 s.push_str(&format!(" {:.4} |", f.recordings[i].nrmse));
@@ -304,6 +312,10 @@ pub fn summary_line(r: &ReportJson) -> String {
             b.name,
             b.heldout_nrmse.unwrap_or(f64::NAN)
         ),
-        None => format!("{} families in {:.1} s; no held-out recordings", r.families.len(), r.total_time_s),
+        None => format!(
+            "{} families in {:.1} s; no held-out recordings",
+            r.families.len(),
+            r.total_time_s
+        ),
     }
 }

@@ -168,7 +168,7 @@ impl Family for BoucWen {
     fn basis(&self, q: &[f64], track: &Track, b: &mut Basis) -> bool {
         let &[log_x_y, r] = q else { return false };
         let x_y = 10f64.powf(log_x_y);
-        if !(x_y > 0.0) || !(-1.0..=MAX_R).contains(&r) {
+        if x_y.is_nan() || x_y <= 0.0 || !(-1.0..=MAX_R).contains(&r) {
             return false;
         }
         b.reset(4);

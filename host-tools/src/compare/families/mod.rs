@@ -137,7 +137,11 @@ pub trait Family: Sync + Send {
 
     /// Every parameter name: nonlinear first, then linear.
     fn param_names(&self) -> Vec<&'static str> {
-        self.nonlinear_names().iter().chain(self.linear_names()).copied().collect()
+        self.nonlinear_names()
+            .iter()
+            .chain(self.linear_names())
+            .copied()
+            .collect()
     }
 
     /// Model force at every sample of `track` for the full parameter vector

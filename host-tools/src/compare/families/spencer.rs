@@ -139,7 +139,8 @@ impl Family for Spencer {
             x_y,
             r,
         };
-        if !(x_y > 0.0) || !(k.c0 + k.c1 > 0.0) || k0 < 0.0 || !(-1.0..=1.0).contains(&r) {
+        let cc = k.c0 + k.c1;
+        if x_y.is_nan() || x_y <= 0.0 || cc.is_nan() || cc <= 0.0 || k0 < 0.0 || !(-1.0..=1.0).contains(&r) {
             return false;
         }
         b.reset(2);
