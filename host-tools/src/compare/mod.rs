@@ -124,7 +124,7 @@ pub fn compare(ds: &Dataset, options: &CompareOptions) -> Result<Comparison> {
         let p = polynomial::with_diagnosis(&ds, &options.hold_out_a, &tracks)?;
         outcomes.push(poly_outcome(
             "polynomial+diagnose",
-            "the quartics plus the terms `mre diagnose` accepts (fitted jointly by its least squares)",
+            "the quartics plus the terms `mre diagnose` accepts when run on the fit recordings alone (fitted jointly by its least squares)",
             p,
             t0,
         ));
