@@ -177,9 +177,7 @@ impl Family for BoucWen {
         for (&x, &v) in track.x_mm.iter().zip(&track.v_m_s) {
             let z = hysteresis.advance(x - x_prev, x_y, r);
             x_prev = x;
-            for (c, value) in b.columns.iter_mut().zip([v, x, z, 1.0]) {
-                c.push(value);
-            }
+            b.push_row(&[v, x, z, 1.0]);
         }
         all_finite(&b.columns[2])
     }

@@ -50,9 +50,7 @@ impl Family for Dahl {
         for (&x, &v) in track.x_mm.iter().zip(&track.v_m_s) {
             z = exponential_step(z, x - x_prev, sigma);
             x_prev = x;
-            for (c, value) in b.columns.iter_mut().zip([x, v, z, 1.0]) {
-                c.push(value);
-            }
+            b.push_row(&[x, v, z, 1.0]);
         }
         all_finite(&b.columns[2])
     }

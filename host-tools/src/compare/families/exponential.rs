@@ -59,9 +59,7 @@ impl Family for Exponential {
             for (zj, s) in z.iter_mut().zip(sigma) {
                 *zj = exponential_step(*zj, dx, s);
             }
-            for (c, value) in b.columns.iter_mut().zip([x, v, 1.0, z[0], z[1], z[2]]) {
-                c.push(value);
-            }
+            b.push_row(&[x, v, 1.0, z[0], z[1], z[2]]);
         }
         b.columns[3..].iter().all(|c| all_finite(c))
     }

@@ -42,9 +42,7 @@ impl Family for KwokTanh {
         b.reset(4);
         for (&x, &v) in track.x_mm.iter().zip(&track.v_m_s) {
             let z = (beta * v + delta * sign(x)).tanh();
-            for (c, value) in b.columns.iter_mut().zip([v, x, z, 1.0]) {
-                c.push(value);
-            }
+            b.push_row(&[v, x, z, 1.0]);
         }
         all_finite(&b.columns[2])
     }

@@ -99,6 +99,14 @@ impl Basis {
         self.offset.clear();
     }
 
+    /// Appends one sample's column values (in column order).
+    #[inline]
+    pub fn push_row(&mut self, values: &[f64]) {
+        for (c, v) in self.columns.iter_mut().zip(values) {
+            c.push(*v);
+        }
+    }
+
     /// The force for linear parameters `theta` into `out`.
     pub fn force(&self, theta: &[f64], out: &mut Vec<f64>) {
         let n = self.columns.first().map_or(self.offset.len(), Vec::len);
