@@ -50,8 +50,9 @@ impl Track {
         self.time_s.is_empty()
     }
 
-    /// Every `stride`-th sample (the first always kept). Used for the global
-    /// search only; the local refinement and every score use all samples.
+    /// Every `stride`-th sample (the first always kept). The fits search on
+    /// decimated recordings (GSA coarser than LM); every score and prediction
+    /// uses all samples.
     pub fn decimated(&self, stride: usize) -> Track {
         let stride = stride.max(1);
         let pick = |v: &[f64]| v.iter().step_by(stride).copied().collect::<Vec<_>>();
