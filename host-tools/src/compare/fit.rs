@@ -100,39 +100,51 @@ pub fn project(
     residuals: bool,
 ) -> Option<Projected> {
     let k = family.linear_names().len();
+    if k > MAX_LINEAR {
+        return None;
+    }
     bases.resize_with(tracks.len(), Basis::default);
-    let mut gram = nalgebra::DMatrix::<f64>::zeros(k, k);
-    let mut rhs = nalgebra::DVector::<f64>::zeros(k);
+    // Fixed-size accumulators on the stack: this loop is the GSA's hot path
+    // (no allocation, no dynamic indexing per sample).
+    let mut gram = [[0.0f64; MAX_LINEAR]; MAX_LINEAR];
+    let mut rhs = [0.0f64; MAX_LINEAR];
     let mut yy = 0.0;
     let r = tracks.len().max(1) as f64;
-    let mut phi = vec![0.0; k];
     for (t, b) in tracks.iter().zip(bases.iter_mut()) {
-        if !family.basis(q, t, b) {
+        if !family.basis(q, t, b) || b.columns.len() != k {
             return None;
         }
-        let w2 = weight(t, r).powi(2);
+        let (mut g, mut h, mut s) = ([[0.0f64; MAX_LINEAR]; MAX_LINEAR], [0.0f64; MAX_LINEAR], 0.0);
+        let mut phi = [0.0f64; MAX_LINEAR];
         for i in 0..t.len() {
             let y = t.force_n[i] - b.offset.get(i).copied().unwrap_or(0.0);
             for (p, c) in phi.iter_mut().zip(&b.columns) {
                 *p = c[i];
             }
             for a in 0..k {
-                let wa = w2 * phi[a];
-                rhs[a] += wa * y;
+                h[a] += phi[a] * y;
                 for c in a..k {
-                    gram[(a, c)] += wa * phi[c];
+                    g[a][c] += phi[a] * phi[c];
                 }
             }
-            yy += w2 * y * y;
+            s += y * y;
         }
+        let w2 = weight(t, r).powi(2);
+        for a in 0..k {
+            rhs[a] += w2 * h[a];
+            for c in a..k {
+                gram[a][c] += w2 * g[a][c];
+            }
+        }
+        yy += w2 * s;
     }
-    let scale: Vec<f64> = (0..k).map(|a| gram[(a, a)].sqrt()).collect();
+    let scale: Vec<f64> = (0..k).map(|a| gram[a][a].sqrt()).collect();
     if scale.iter().any(|s| !s.is_finite() || *s <= 0.0) {
         return None;
     }
     let g = nalgebra::DMatrix::from_fn(k, k, |a, c| {
         let (lo, hi) = (a.min(c), a.max(c));
-        gram[(lo, hi)] / (scale[a] * scale[c])
+        gram[lo][hi] / (scale[a] * scale[c])
     });
     let chol = nalgebra::linalg::Cholesky::new(g)?;
     let h = nalgebra::DVector::from_fn(k, |a, _| rhs[a] / scale[a]);
@@ -164,6 +176,9 @@ pub fn project(
         residuals,
     })
 }
+
+/// Most linear parameters a family may have (the exponential family's six).
+pub(crate) const MAX_LINEAR: usize = 6;
 
 /// A track's residual weight 1/(max|F|·√(n·R)), R = number of tracks, so Σr² = J².
 fn weight(t: &Track, tracks: f64) -> f64 {

@@ -244,6 +244,14 @@ mod tests {
     }
 
     #[test]
+    fn every_family_fits_the_projection_accumulators() {
+        // `fit::project` accumulates the Gram matrix in fixed-size arrays.
+        for f in all() {
+            assert!(f.linear_names().len() <= crate::compare::fit::MAX_LINEAR, "{}", f.name());
+        }
+    }
+
+    #[test]
     fn exponential_step_composes_like_one_step() {
         // The exact solution: two half steps equal one whole step.
         let (z0, dx, sigma) = (-0.3, 0.8, 2.5);
