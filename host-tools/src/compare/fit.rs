@@ -111,24 +111,16 @@ pub fn project(
     let mut yy = 0.0;
     let r = tracks.len().max(1) as f64;
     for (t, b) in tracks.iter().zip(bases.iter_mut()) {
-        if !family.basis(q, t, b) || b.columns.len() != k {
+        if !family.basis(q, t, b) || b.columns.len() != k || b.columns.iter().any(|c| c.len() != t.len()) {
             return None;
         }
-        let (mut g, mut h, mut s) = ([[0.0f64; MAX_LINEAR]; MAX_LINEAR], [0.0f64; MAX_LINEAR], 0.0);
-        let mut phi = [0.0f64; MAX_LINEAR];
-        for i in 0..t.len() {
-            let y = t.force_n[i] - b.offset.get(i).copied().unwrap_or(0.0);
-            for (p, c) in phi.iter_mut().zip(&b.columns) {
-                *p = c[i];
-            }
-            for a in 0..k {
-                h[a] += phi[a] * y;
-                for c in a..k {
-                    g[a][c] += phi[a] * phi[c];
-                }
-            }
-            s += y * y;
-        }
+        // k known at compile time for the common sizes, so the loops unroll.
+        let (g, h, s) = match k {
+            2 => normal_sums::<2>(t, b),
+            4 => normal_sums::<4>(t, b),
+            6 => normal_sums::<6>(t, b),
+            _ => normal_sums_dyn(t, b, k),
+        };
         let w2 = weight(t, r).powi(2);
         for a in 0..k {
             rhs[a] += w2 * h[a];
@@ -175,6 +167,50 @@ pub fn project(
         theta,
         residuals,
     })
+}
+
+/// Gram matrix (upper triangle), Xᵀy and yᵀy of one track's basis (unweighted).
+type NormalSums = ([[f64; MAX_LINEAR]; MAX_LINEAR], [f64; MAX_LINEAR], f64);
+
+fn normal_sums<const K: usize>(t: &Track, b: &Basis) -> NormalSums {
+    let cols: [&[f64]; K] = std::array::from_fn(|a| &b.columns[a][..t.len()]);
+    let (mut g, mut h, mut s) = ([[0.0; K]; K], [0.0; K], 0.0);
+    for i in 0..t.len() {
+        let y = t.force_n[i] - b.offset.get(i).copied().unwrap_or(0.0);
+        let phi: [f64; K] = std::array::from_fn(|a| cols[a][i]);
+        for a in 0..K {
+            h[a] += phi[a] * y;
+            for c in a..K {
+                g[a][c] += phi[a] * phi[c];
+            }
+        }
+        s += y * y;
+    }
+    let mut out = ([[0.0; MAX_LINEAR]; MAX_LINEAR], [0.0; MAX_LINEAR], s);
+    for a in 0..K {
+        out.1[a] = h[a];
+        out.0[a][..K].copy_from_slice(&g[a]);
+    }
+    out
+}
+
+fn normal_sums_dyn(t: &Track, b: &Basis, k: usize) -> NormalSums {
+    let (mut g, mut h, mut s) = ([[0.0; MAX_LINEAR]; MAX_LINEAR], [0.0; MAX_LINEAR], 0.0);
+    let mut phi = [0.0; MAX_LINEAR];
+    for i in 0..t.len() {
+        let y = t.force_n[i] - b.offset.get(i).copied().unwrap_or(0.0);
+        for (p, c) in phi.iter_mut().zip(&b.columns) {
+            *p = c[i];
+        }
+        for a in 0..k {
+            h[a] += phi[a] * y;
+            for c in a..k {
+                g[a][c] += phi[a] * phi[c];
+            }
+        }
+        s += y * y;
+    }
+    (g, h, s)
 }
 
 /// Most linear parameters a family may have (the exponential family's six).

@@ -247,7 +247,11 @@ mod tests {
     fn every_family_fits_the_projection_accumulators() {
         // `fit::project` accumulates the Gram matrix in fixed-size arrays.
         for f in all() {
-            assert!(f.linear_names().len() <= crate::compare::fit::MAX_LINEAR, "{}", f.name());
+            assert!(
+                f.linear_names().len() <= crate::compare::fit::MAX_LINEAR,
+                "{}",
+                f.name()
+            );
         }
     }
 
