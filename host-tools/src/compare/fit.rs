@@ -175,8 +175,8 @@ type NormalSums = ([[f64; MAX_LINEAR]; MAX_LINEAR], [f64; MAX_LINEAR], f64);
 fn normal_sums<const K: usize>(t: &Track, b: &Basis) -> NormalSums {
     let cols: [&[f64]; K] = std::array::from_fn(|a| &b.columns[a][..t.len()]);
     let (mut g, mut h, mut s) = ([[0.0; K]; K], [0.0; K], 0.0);
-    for i in 0..t.len() {
-        let y = t.force_n[i] - b.offset.get(i).copied().unwrap_or(0.0);
+    for (i, f) in t.force_n.iter().take(t.len()).enumerate() {
+        let y = f - b.offset.get(i).copied().unwrap_or(0.0);
         let phi: [f64; K] = std::array::from_fn(|a| cols[a][i]);
         for a in 0..K {
             h[a] += phi[a] * y;
