@@ -114,12 +114,15 @@ pub fn project(
         if !family.basis(q, t, b) || b.columns.len() != k || b.columns.iter().any(|c| c.len() != t.len()) {
             return None;
         }
-        // k known at compile time for the common sizes, so the loops unroll.
+        // k known at compile time, so the loops unroll (k ≤ MAX_LINEAR checked above).
         let (g, h, s) = match k {
+            0 => normal_sums::<0>(t, b),
+            1 => normal_sums::<1>(t, b),
             2 => normal_sums::<2>(t, b),
+            3 => normal_sums::<3>(t, b),
             4 => normal_sums::<4>(t, b),
-            6 => normal_sums::<6>(t, b),
-            _ => normal_sums_dyn(t, b, k),
+            5 => normal_sums::<5>(t, b),
+            _ => normal_sums::<MAX_LINEAR>(t, b),
         };
         let w2 = weight(t, r).powi(2);
         for a in 0..k {
@@ -192,25 +195,6 @@ fn normal_sums<const K: usize>(t: &Track, b: &Basis) -> NormalSums {
         out.0[a][..K].copy_from_slice(&g[a]);
     }
     out
-}
-
-fn normal_sums_dyn(t: &Track, b: &Basis, k: usize) -> NormalSums {
-    let (mut g, mut h, mut s) = ([[0.0; MAX_LINEAR]; MAX_LINEAR], [0.0; MAX_LINEAR], 0.0);
-    let mut phi = [0.0; MAX_LINEAR];
-    for i in 0..t.len() {
-        let y = t.force_n[i] - b.offset.get(i).copied().unwrap_or(0.0);
-        for (p, c) in phi.iter_mut().zip(&b.columns) {
-            *p = c[i];
-        }
-        for a in 0..k {
-            h[a] += phi[a] * y;
-            for c in a..k {
-                g[a][c] += phi[a] * phi[c];
-            }
-        }
-        s += y * y;
-    }
-    (g, h, s)
 }
 
 /// Most linear parameters a family may have (the exponential family's six).
