@@ -153,6 +153,22 @@ fn real_data_diagnosis(data: &Path, out: &Path, seed: u64) -> Result<DemoStep> {
     })
 }
 
+/// Model families side by side on the real MR damper data (Fig. 15), with
+/// the reduced search budget (report.md states it).
+fn model_families(data: &Path, out: &Path, seed: u64) -> Result<DemoStep> {
+    let dir = out.join("compare-mr-damper-mts");
+    let options = crate::compare::CompareOptions {
+        seed,
+        ..crate::compare::CompareOptions::reduced()
+    };
+    let r = crate::compare::run_compare(&data.join("mr-damper-mts"), &options, &dir)?;
+    Ok(DemoStep {
+        title: "model families side by side on the real MR damper data (0.5 A held out)".into(),
+        headline: crate::compare::report::summary_line(&r),
+        report: dir.join("report.md"),
+    })
+}
+
 fn processor_in_the_loop(out: &Path, seed: u64) -> Result<DemoStep> {
     use crate::pil::qemu::{qemu_binary, workspace_root, INSTALL_HINT};
     let title = "closed-loop drop test, firmware in QEMU (PIL)".to_string();
@@ -259,6 +275,7 @@ fn run_steps(options: &DemoOptions) -> Result<Vec<DemoStep>> {
         )?,
         diagnosis(data, out, options.seed)?,
         real_data_diagnosis(data, out, options.seed)?,
+        model_families(data, out, options.seed)?,
         closed_loop(out, options.seed)?,
         crate::control_bench::demo_step::recordings_to_flash(data, out)?,
         processor_in_the_loop(out, options.seed)?,

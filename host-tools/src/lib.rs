@@ -2,6 +2,7 @@
 //! function here; `main.rs` only parses arguments.
 pub mod atomic_write;
 pub mod control_bench;
+pub mod compare;
 pub mod dataset;
 pub mod demo;
 pub mod diagnose;

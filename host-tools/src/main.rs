@@ -193,6 +193,51 @@ enum Command {
         #[arg(long)]
         validate_current: Vec<f64>,
     },
+    /// Fit the paper's polynomial, the polynomial with diagnose's terms and five
+    /// nonlinear families (GSA + Levenberg–Marquardt) side by side (Fig. 15).
+    Compare {
+        /// Data set folder (holding dataset.toml).
+        dataset: PathBuf,
+        /// Folder for report.json, report.md, predictions/ and plots/.
+        #[arg(long)]
+        report: PathBuf,
+        /// Recordings at these currents are only predicted (held out).
+        #[arg(long, value_delimiter = ',', default_value = "0.5")]
+        hold_out_current: Vec<f64>,
+        /// GSA agents N for the nonlinear families.
+        #[arg(long, default_value_t = 40)]
+        agents: usize,
+        /// GSA iterations T for the nonlinear families.
+        #[arg(long, default_value_t = 150)]
+        iters: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// The demo's reduced budget (N = 30, T = 60, coarser refinement).
+        #[arg(long)]
+        reduced: bool,
+    },
+    /// Time the Bouc–Wen GSA of `compare` and export its objective for bench/compare_gsa.py.
+    BenchCompare {
+        #[arg(default_value = "data/mr-damper-mts")]
+        dataset: PathBuf,
+        /// Fit current whose recordings make the objective.
+        #[arg(long, default_value_t = 1.0)]
+        current: f64,
+        #[arg(long, default_value_t = 40)]
+        agents: usize,
+        #[arg(long, default_value_t = 150)]
+        iters: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Samples per recording after decimation.
+        #[arg(long, default_value_t = 600)]
+        samples: usize,
+        #[arg(long, default_value_t = 5)]
+        repeats: usize,
+        /// Folder for objective.csv and bench.json.
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Simulate the drop test: passive 0 A, passive 2 A and the core's impact law in the loop.
     Sim {
         #[command(flatten)]
@@ -558,6 +603,59 @@ fn run(cli: Cli) -> Result<()> {
             if let Some(path) = json {
                 mre_host::atomic_write::write_atomic(&path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
             }
+        }
+        Command::Compare {
+            dataset,
+            report,
+            hold_out_current,
+            agents,
+            iters,
+            seed,
+            reduced,
+        } => {
+            let mut opts = if reduced {
+                mre_host::compare::CompareOptions::reduced()
+            } else {
+                let mut o = mre_host::compare::CompareOptions::default();
+                o.budget.gsa.agents = agents;
+                o.budget.gsa.iters = iters;
+                o
+            };
+            opts.hold_out_a = hold_out_current;
+            opts.seed = seed;
+            let r = mre_host::compare::run_compare(&dataset, &opts, &report)?;
+            println!("{}", mre_host::compare::report::summary_line(&r));
+            println!("report: {}", report.join("report.md").display());
+        }
+        Command::BenchCompare {
+            dataset,
+            current,
+            agents,
+            iters,
+            seed,
+            samples,
+            repeats,
+            out,
+        } => {
+            let gsa = mre_host::fit::gsa::GsaParams {
+                agents,
+                iters,
+                seed,
+                ..Default::default()
+            };
+            let b = mre_host::compare::bench::run_bench(&dataset, current, gsa, samples, repeats, &out)?;
+            println!(
+                "bouc-wen GSA: {} evaluations on {} samples, median {:.4} s ({} threads), best objective {:.6}; \
+                 + LM: {} evaluations, {:.4} s, objective {:.6}",
+                b.evaluations,
+                b.samples,
+                b.median_s,
+                b.threads,
+                b.best_objective,
+                b.refined_evaluations,
+                b.refined_median_s,
+                b.refined_objective
+            );
         }
         Command::Sim {
             drop,

@@ -65,6 +65,16 @@ pub struct GsaResult {
     pub evaluations: usize,
 }
 
+/// The result of [`minimize_batch`] in any dimension.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GsaResultN {
+    pub best: Vec<f64>,
+    pub best_value: f64,
+    /// Best-so-far objective after each iteration (length T).
+    pub convergence: Vec<f64>,
+    pub evaluations: usize,
+}
+
 /// Minimises `objective` over `bounds`. `on_iteration` is called after each
 /// iteration (for progress display).
 pub fn minimize(
@@ -72,42 +82,79 @@ pub fn minimize(
     bounds: &SearchBox,
     params: &GsaParams,
     rng: &mut impl Rng,
-    mut on_iteration: impl FnMut(),
+    on_iteration: impl FnMut(),
 ) -> GsaResult {
-    const D: usize = 5;
+    let r = minimize_batch(
+        &bounds.lower,
+        &bounds.upper,
+        |batch| {
+            batch
+                .iter()
+                .map(|c| objective(&std::array::from_fn(|d| c[d])))
+                .collect()
+        },
+        params,
+        rng,
+        on_iteration,
+    );
+    GsaResult {
+        best: std::array::from_fn(|d| r.best[d]),
+        best_value: r.best_value,
+        convergence: r.convergence,
+        evaluations: r.evaluations,
+    }
+}
+
+/// The same algorithm in `lower.len()` dimensions. `evaluate` gets every
+/// agent's mapped-back position of one iteration at once and returns their
+/// objective values in order, so a caller may evaluate them in parallel; the
+/// random stream does not depend on how they are evaluated.
+pub fn minimize_batch(
+    lower: &[f64],
+    upper: &[f64],
+    mut evaluate: impl FnMut(&[Vec<f64>]) -> Vec<f64>,
+    params: &GsaParams,
+    rng: &mut impl Rng,
+    mut on_iteration: impl FnMut(),
+) -> GsaResultN {
+    let dim = lower.len().min(upper.len());
     let n = params.agents.max(1);
     let t_max = params.iters.max(1);
     let eps = f64::EPSILON;
-    // Agent positions live in [−SPAN, SPAN]⁵; `to_box` maps them back.
+    // Agent positions live in [−SPAN, SPAN]^dim; `to_box` maps them back.
     const SPAN: f64 = 100.0;
-    let to_box = |u: &[f64; D]| -> [f64; D] {
-        std::array::from_fn(|d| bounds.lower[d] + (u[d] + SPAN) / (2.0 * SPAN) * (bounds.upper[d] - bounds.lower[d]))
+    let to_box = |u: &[f64]| -> Vec<f64> {
+        (0..dim)
+            .map(|d| lower[d] + (u[d] + SPAN) / (2.0 * SPAN) * (upper[d] - lower[d]))
+            .collect()
     };
-    let mut x: Vec<[f64; D]> = (0..n)
-        .map(|_| std::array::from_fn(|_| -SPAN + rng.random::<f64>() * 2.0 * SPAN))
+    let mut x: Vec<Vec<f64>> = (0..n)
+        .map(|_| (0..dim).map(|_| -SPAN + rng.random::<f64>() * 2.0 * SPAN).collect())
         .collect();
-    let mut v = vec![[0.0; D]; n];
-    let mut fit = vec![0.0; n];
+    let mut v = vec![vec![0.0; dim]; n];
     let mut mass = vec![0.0; n];
     let mut order: Vec<usize> = (0..n).collect();
     let mut best = to_box(&x[0]);
     let mut best_value = f64::INFINITY;
     let mut convergence = Vec::with_capacity(t_max);
     let mut evaluations = 0;
+    let mut acc = vec![0.0; dim];
 
     for t in 1..=t_max {
-        for (f, xi) in fit.iter_mut().zip(&x) {
-            let coeffs = to_box(xi);
-            let value = objective(&coeffs);
+        let mapped: Vec<Vec<f64>> = x.iter().map(|xi| to_box(xi)).collect();
+        let values = evaluate(&mapped);
+        let mut fit = Vec::with_capacity(n);
+        for (i, coeffs) in mapped.into_iter().enumerate() {
+            let value = values.get(i).copied().unwrap_or(f64::NAN);
             evaluations += 1;
-            *f = if value.is_finite() { value } else { f64::MAX };
-            if *f < best_value {
-                best_value = *f;
+            let f = if value.is_finite() { value } else { f64::MAX };
+            if f < best_value {
+                best_value = f;
                 best = coeffs;
             }
+            fit.push(f);
         }
         convergence.push(best_value);
-
         // Masses (minimisation: best = smallest fitness).
         let (lo, hi) = fit
             .iter()
@@ -132,24 +179,24 @@ pub fn minimize(
         let heavy = &order[..kbest];
 
         for i in 0..n {
-            let mut acc = [0.0; D];
+            acc.fill(0.0);
             for &j in heavy {
                 if j == i {
                     continue;
                 }
                 let r2: f64 = x[j].iter().zip(&x[i]).map(|(a, b)| (a - b) * (a - b)).sum();
                 let w = rng.random::<f64>() * mass[j] / (r2.sqrt() + eps);
-                for d in 0..D {
+                for d in 0..dim {
                     acc[d] += w * (x[j][d] - x[i][d]);
                 }
             }
             let keep = rng.random::<f64>();
-            for d in 0..D {
+            for d in 0..dim {
                 v[i][d] = keep * v[i][d] + g * acc[d];
             }
         }
         for (xi, vi) in x.iter_mut().zip(&v) {
-            for d in 0..D {
+            for d in 0..dim {
                 xi[d] += vi[d];
                 if !(-SPAN..=SPAN).contains(&xi[d]) {
                     xi[d] = -SPAN + rng.random::<f64>() * 2.0 * SPAN;
@@ -158,7 +205,7 @@ pub fn minimize(
         }
         on_iteration();
     }
-    GsaResult {
+    GsaResultN {
         best,
         best_value,
         convergence,
