@@ -44,6 +44,23 @@ pub fn command<T>(f: impl FnOnce() -> Result<T>) -> Result<T> {
     run_command(None, f)
 }
 
+/// Runs `f` outside the running command's output set: its writes publish at
+/// once. For scratch files a command writes and reads back itself (a
+/// recorded campaign in a temporary folder), never for its outputs.
+pub fn scratch<T>(f: impl FnOnce() -> Result<T>) -> Result<T> {
+    let suspended = ACTIVE.with(|a| a.borrow_mut().take());
+    /// Puts the suspended set back however `f` ends, including by a panic.
+    struct Restore(Option<OutputSet>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            let set = self.0.take();
+            let _ = ACTIVE.try_with(|a| *a.borrow_mut() = set);
+        }
+    }
+    let _restore = Restore(suspended);
+    f()
+}
+
 /// [`command`] with an injected fault, for tests: staging the output after
 /// the first `writes` ones fails part-way through its bytes, as a full disk
 /// would.

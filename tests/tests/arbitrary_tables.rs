@@ -3,12 +3,14 @@
 //! values come from the definitions (quartic in f64, linear interpolation),
 //! not from the core.
 use mre_core::model::Branch;
-use mre_core::table::{CurrentEntry, Quartic, TableImage, FORMAT_VERSION, MAX_CURRENTS};
+use mre_core::table::{CurrentEntry, Quartic, TableImage, MAX_CURRENTS};
 use mre_core::{Flags, Table};
 use proptest::prelude::*;
 
+// Coefficients up to 2e3 keep |F| below validation's 1e9 N bound over any
+// stroke this generator draws (x ≤ 21 mm: 2e3·(21⁴ + 21³ + …) ≈ 4e8 N).
 fn quartic() -> impl Strategy<Value = Quartic> {
-    proptest::array::uniform5(-2.0e4f32..2.0e4).prop_map(Quartic::new)
+    proptest::array::uniform5(-2.0e3f32..2.0e3).prop_map(Quartic::new)
 }
 
 /// 1–8 entries with strictly ascending currents and a positive stroke.
@@ -139,7 +141,7 @@ proptest! {
     /// the stored CRC is caught.
     #[test]
     fn the_image_round_trips_and_a_wrong_crc_is_refused(t in table(), bit in 0u32..32) {
-        let image = TableImage { version: FORMAT_VERSION, entries: t.entries(), crc32: t.crc32() };
+        let image = TableImage { version: t.version(), entries: t.entries(), terms: *t.terms(), crc32: t.crc32() };
         let back = Table::from_image(&image).expect("its own image");
         prop_assert_eq!(back.entries(), t.entries());
         let bad = TableImage { crc32: t.crc32() ^ (1 << bit), ..image };

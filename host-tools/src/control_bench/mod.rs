@@ -224,7 +224,8 @@ pub fn record_campaign(plant: &Plant, seed: u64) -> Result<(tempfile::TempDir, D
         force: true,
         precision: SYNTH_PRECISION,
     };
-    write_dataset(&recorded, dir.path(), &options)?;
+    // A scratch copy read straight back: it is not one of the command's outputs.
+    crate::atomic_write::scratch(|| write_dataset(&recorded, dir.path(), &options))?;
     let campaign = Dataset::load(dir.path())?;
     Ok((dir, campaign))
 }
