@@ -22,5 +22,5 @@ fuzz_target!(|data: &[u8]| {
         }
     }
     // What the loader accepts, `mre tables` can turn into flash source.
-    let _ = mre_host::tables::generate_table_source("fuzz", &table);
+    let _ = mre_host::tables::generate_table_source("fuzz", &table, None);
 });

@@ -545,6 +545,7 @@ fn run(cli: Cli) -> Result<()> {
             let outcomes = mre_host::control_bench::run_to_files(&mre_host::control_bench::default_cases(), &out)?;
             print!("{}", mre_host::control_bench::markdown(&outcomes));
             println!("\nreport: {}", out.join("report.md").display());
+            println!("page: {}", out.join("index.html").display());
         }
         Command::BenchDiagnose {
             cases,
@@ -626,6 +627,7 @@ fn run(cli: Cli) -> Result<()> {
             let r = mre_host::compare::run_compare(&dataset, &opts, &report)?;
             println!("{}", mre_host::compare::report::summary_line(&r));
             println!("report: {}", report.join("report.md").display());
+            println!("page: {}", report.join("index.html").display());
         }
         Command::BenchCompare {
             dataset,

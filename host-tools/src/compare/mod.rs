@@ -206,5 +206,8 @@ pub fn run_compare(
     let json = report::summarise(&c);
     report::write_all(&c, &json, dir)?;
     plots::overlays(&c, &dir.join("plots"))?;
+    crate::html::Page::new("Model families side by side (the paper's Fig. 15)")
+        .folder(dir)
+        .write(&dir.join("index.html"))?;
     Ok(json)
 }

@@ -76,6 +76,9 @@ pub fn recordings_to_flash(data: &Path, out: &Path) -> Result<DemoStep> {
     }
     md.push_str("\n![force against displacement](force-displacement.png)\n");
     crate::atomic_write::write_atomic(&dir.join("summary.md"), md.as_bytes())?;
+    crate::html::Page::new("From recordings to flash")
+        .folder(&dir)
+        .write(&dir.join("index.html"))?;
     let [a, c] = &outcomes[..] else {
         return Err(anyhow!("internal: two runs expected"));
     };

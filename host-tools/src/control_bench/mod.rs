@@ -344,5 +344,8 @@ pub fn run_to_files(cases: &[Case], out: &std::path::Path) -> Result<Vec<CaseOut
     let json = serde_json::to_string_pretty(&outcomes)?;
     crate::atomic_write::write_atomic(&out.join("report.json"), json.as_bytes())?;
     crate::atomic_write::write_atomic(&out.join("report.md"), md.as_bytes())?;
+    crate::html::Page::new("Controllers against the physical limit (mre bench-control)")
+        .folder(out)
+        .write(&out.join("index.html"))?;
     Ok(outcomes)
 }
