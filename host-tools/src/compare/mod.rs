@@ -208,6 +208,7 @@ pub fn run_compare(
     plots::overlays(&c, &dir.join("plots"))?;
     crate::html::Page::new("Model families side by side (the paper's Fig. 15)")
         .folder(dir)
+        .folder(&dir.join("plots"))
         .write(&dir.join("index.html"))?;
     Ok(json)
 }

@@ -103,12 +103,10 @@ impl Page {
                 .into_iter()
                 .filter(|(d, _)| !crate::atomic_write::same_path(d, dest))
                 .collect();
-            if several {
-                let _ = writeln!(
-                    body,
-                    "<section><h2 class=\"folder\">{}</h2>",
-                    escape(&relative(base, dir).display().to_string())
-                );
+            let label = relative(base, dir).display().to_string();
+            // The page's own folder needs no heading; its subfolders do.
+            if several && label != "." && !label.is_empty() {
+                let _ = writeln!(body, "<section><h2 class=\"folder\">{}</h2>", escape(&label));
             } else {
                 body.push_str("<section>\n");
             }
