@@ -244,7 +244,10 @@ impl Controller {
             stats: Stats::default(),
         };
         match table {
-            Ok(t) => c.table = Some(t),
+            Ok(t) => {
+                c.law.prepare(&t);
+                c.table = Some(t);
+            }
             Err(_) => c.latch(Flags::TABLE_FAULT),
         }
         Ok(c)

@@ -28,6 +28,10 @@ pub struct AlphaBeta {
     alpha: f32,
     beta: f32,
     period_s: f32,
+    /// Precomputed per-period factors (no divide on the hot path): mm moved
+    /// per m/s in one period, and the velocity gain `β/T` per mm of residual.
+    period_mm_per_m_s: f32,
+    v_gain_per_mm_s: f32,
     x_mm: f32,
     v_m_s: f32,
     primed: bool,
@@ -47,6 +51,8 @@ impl AlphaBeta {
             alpha,
             beta,
             period_s,
+            period_mm_per_m_s: period_s * 1.0e3,
+            v_gain_per_mm_s: beta * 1.0e-3 / period_s,
             x_mm: 0.0,
             v_m_s: 0.0,
             primed: false,
@@ -89,16 +95,17 @@ impl AlphaBeta {
     /// A non-finite sample, or one beyond ±`MAX_ABS_X_MM`, is skipped
     /// (prediction only) and flagged, so the estimate stays finite.
     pub fn update(&mut self, z_mm: f32) -> (f32, Flags) {
-        let flags = if !z_mm.is_finite() {
-            Flags::NON_FINITE_INPUT
-        } else if F32Ext::abs(z_mm) > MAX_ABS_X_MM {
-            Flags::SENSOR_RANGE
-        } else {
-            Flags::NONE
-        };
-        if flags != Flags::NONE {
+        // One comparison on the hot path (false for NaN and ±inf); which
+        // fault it is only matters when there is one.
+        let plausible = F32Ext::abs(z_mm) <= MAX_ABS_X_MM;
+        if !plausible {
+            let flags = if z_mm.is_finite() {
+                Flags::SENSOR_RANGE
+            } else {
+                Flags::NON_FINITE_INPUT
+            };
             if self.primed {
-                self.x_mm = clamp_finite(self.x_mm + self.v_m_s * self.period_s * 1.0e3);
+                self.x_mm = clamp_finite(self.x_mm + self.v_m_s * self.period_mm_per_m_s);
             }
             return (self.v_m_s, flags);
         }
@@ -106,10 +113,10 @@ impl AlphaBeta {
             self.reset(z_mm, 0.0);
             return (0.0, Flags::NONE);
         }
-        let predicted_mm = self.x_mm + self.v_m_s * self.period_s * 1.0e3;
+        let predicted_mm = self.x_mm + self.v_m_s * self.period_mm_per_m_s;
         let residual_mm = z_mm - predicted_mm;
         self.x_mm = predicted_mm + self.alpha * residual_mm;
-        self.v_m_s += self.beta * residual_mm * 1.0e-3 / self.period_s;
+        self.v_m_s += self.v_gain_per_mm_s * residual_mm;
         (self.v_m_s, Flags::NONE)
     }
 

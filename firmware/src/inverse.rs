@@ -4,7 +4,7 @@
 //! (in `tanh(I/I_s)` under a version 2 saturation term), with a knot at every
 //! tabulated current. The answer is the lowest current at which that polyline
 //! equals the target, solved exactly on its segment (under saturation the
-//! current is then mapped back through atanh, to micromath's precision). The
+//! current is then mapped back through atanh). The
 //! force need not grow with current (the paper's 2 A loop lies below its 1.5 A
 //! loop in places), so segments are scanned from the lowest current up rather
 //! than bisected. If no current gives the target, the knot with the nearest
@@ -120,20 +120,13 @@ impl Table {
     }
 
     /// The current at fraction `t` of segment `lower` under saturation:
-    /// w = w0 + t·(w1 − w0), I = I_s·atanh(w), then one Newton step on the
-    /// forward model's own tanh so that forward and inverse agree to its
-    /// precision (micromath's ln and exp differ by ~1e-3 alone). Out of line:
-    /// its registers would otherwise be saved on every call.
+    /// w = w0 + t·(w1 − w0), I = I_s·atanh(w). `math::atanh` and the forward
+    /// model's `math::tanh` agree to ~1e-6, so no refinement is needed. Out
+    /// of line: its registers would otherwise be saved on every call.
     #[inline(never)]
     fn saturated_current_a(&self, s: Solution, i_s: f32, i0: f32, i1: f32) -> f32 {
         let w = self.knot(s.lower) + s.t * (self.knot(s.lower + 1) - self.knot(s.lower));
-        let mut i = i_s * math::atanh(w);
-        let th = math::tanh(i / i_s);
-        let slope = 1.0 - th * th;
-        if slope > 0.0 {
-            i -= i_s * (th - w) / slope;
-        }
-        math::clamp(i, i0, i1)
+        math::clamp(i_s * math::atanh(w), i0, i1)
     }
 
     /// [`Table::current_for_branch_v`] with the branch from the sign of `v_m_s`.

@@ -286,6 +286,19 @@ impl ImpactLaw {
         }
     }
 
+    /// True when both samples are finite and within the plausible ranges,
+    /// in one pass of comparisons (each false for NaN).
+    #[inline(always)]
+    fn inputs_plausible(&self, x_mm: f32, v_m_s: f32) -> bool {
+        x_mm >= self.cfg.x_valid_min_mm
+            && x_mm <= self.cfg.x_valid_max_mm
+            && math::abs(v_m_s) <= self.cfg.v_valid_max_m_s
+    }
+
+    /// Which input fault makes the samples implausible (out of line: only
+    /// a fault pays for telling them apart).
+    #[inline(never)]
+    #[cold]
     fn check_inputs(&self, x_mm: f32, v_m_s: f32) -> Flags {
         let mut flags = Flags::NONE;
         if !x_mm.is_finite() || !v_m_s.is_finite() {
@@ -301,15 +314,13 @@ impl ImpactLaw {
 
     /// One period: sampled displacement and velocity in, coil command out.
     pub fn step(&mut self, table: &Table, x_mm: f32, v_m_s: f32) -> Command {
-        let input_faults = self.check_inputs(x_mm, v_m_s);
-        if input_faults != Flags::NONE {
+        if !self.inputs_plausible(x_mm, v_m_s) {
+            let input_faults = self.check_inputs(x_mm, v_m_s);
             return self.fail_safe(input_faults);
         }
         let cfg = self.cfg;
-        let (coil_tau_s, delay_s) = (table.terms().coil_tau_s, table.terms().sensor_delay_s);
-        if coil_tau_s != self.coil_tau_s {
-            self.set_coil_tau(coil_tau_s);
-        }
+        let delay_s = table.terms().sensor_delay_s;
+        self.prepare(table);
         let (x_mm, v_m_s) = if delay_s > 0.0 {
             self.predict(table, x_mm, v_m_s, delay_s)
         } else {
@@ -333,7 +344,14 @@ impl ImpactLaw {
                 if remaining_mm < TERMINAL_MM {
                     flags |= Flags::STROKE_EXHAUSTED;
                 }
-                match stopping_force_n(cfg.mass_kg, cfg.gravity_m_s2, v_m_s, remaining_mm.max(TERMINAL_MM)) {
+                // Not `f32::max`: that is a libcall on the target; the
+                // remaining stroke is finite here (the inputs were checked).
+                let planned_mm = if remaining_mm < TERMINAL_MM {
+                    TERMINAL_MM
+                } else {
+                    remaining_mm
+                };
+                match stopping_force_n(cfg.mass_kg, cfg.gravity_m_s2, v_m_s, planned_mm) {
                     Some(force_n) => {
                         target_force_n = force_n;
                         let r = table.current_for_branch_v(x_mm, v_m_s, Branch::Compression, force_n);
@@ -373,21 +391,23 @@ impl ImpactLaw {
         }
         // With a coil model the driver's voltage limit is the physical slew
         // limit (in `drive_for`); the configured one stands in for it otherwise.
-        let max_step_a = if self.coil_alpha < 1.0 {
-            f32::INFINITY
+        // The result stays in the output range: it lies between `clamped_a`
+        // and the last command, and every command (fail-safe included) is
+        // in that range.
+        let current_a = if self.coil_alpha < 1.0 {
+            clamped_a
         } else {
-            cfg.slew_a_per_s * cfg.period_s
+            let max_step_a = cfg.slew_a_per_s * cfg.period_s;
+            let slewed_a = math::clamp(
+                clamped_a,
+                self.last_current_a - max_step_a,
+                self.last_current_a + max_step_a,
+            );
+            if slewed_a != clamped_a {
+                flags |= Flags::SLEW_LIMITED;
+            }
+            slewed_a
         };
-        let current_a = math::clamp(
-            clamped_a,
-            self.last_current_a - max_step_a,
-            self.last_current_a + max_step_a,
-        );
-        if current_a != clamped_a {
-            flags |= Flags::SLEW_LIMITED;
-        }
-        // Stay inside the output range even if the previous command was not.
-        let current_a = math::clamp(current_a, cfg.current_min_a, cfg.current_max_a);
 
         self.last_current_a = current_a;
         if branch == Branch::Compression {
@@ -401,6 +421,19 @@ impl ImpactLaw {
         }
     }
 
+    /// Derives what the law needs from `table`'s terms, unless it already
+    /// has. [`ImpactLaw::step`] does it when the table changes; the
+    /// controller does it when it gets its table, so that no control period
+    /// pays for it.
+    #[inline]
+    pub fn prepare(&mut self, table: &Table) {
+        let coil_tau_s = table.terms().coil_tau_s;
+        if coil_tau_s != self.coil_tau_s {
+            self.set_coil_tau(coil_tau_s);
+        }
+    }
+
+    #[inline(never)]
     fn set_coil_tau(&mut self, tau_s: f32) {
         self.coil_tau_s = tau_s;
         // Table validation keeps τ finite and ≥ 0; 0 → no lag (α = 1).
@@ -419,6 +452,7 @@ impl ImpactLaw {
     /// higher than the law's wanted current at the states `Δ` ahead
     /// ([`LEAD_TAU`]) along its own plan (constant deceleration under
     /// `force_n`): `min(i_now, u_min + (i_Δ − u_min)·e^{Δ/τ})`.
+    #[inline(never)]
     fn anticipate(&self, table: &Table, x_mm: f32, v_m_s: f32, force_n: f32, now_a: f32) -> f32 {
         let cfg = &self.cfg;
         let a_m_s2 = cfg.gravity_m_s2 - force_n / cfg.mass_kg;
@@ -462,6 +496,7 @@ impl ImpactLaw {
     /// x (mm) and v `delay_s` ahead of the samples, with the model's
     /// deceleration at the modelled coil current (on contact only: before
     /// it the mass is free).
+    #[inline(never)]
     fn predict(&self, table: &Table, x_mm: f32, v_m_s: f32, delay_s: f32) -> (f32, f32) {
         let force_n = if x_mm > 0.0 {
             table
