@@ -452,7 +452,6 @@ impl ImpactLaw {
     /// higher than the law's wanted current at the states `Δ` ahead
     /// ([`LEAD_TAU`]) along its own plan (constant deceleration under
     /// `force_n`): `min(i_now, u_min + (i_Δ − u_min)·e^{Δ/τ})`.
-    #[inline(never)]
     fn anticipate(&self, table: &Table, x_mm: f32, v_m_s: f32, force_n: f32, now_a: f32) -> f32 {
         let cfg = &self.cfg;
         let a_m_s2 = cfg.gravity_m_s2 - force_n / cfg.mass_kg;
@@ -496,7 +495,6 @@ impl ImpactLaw {
     /// x (mm) and v `delay_s` ahead of the samples, with the model's
     /// deceleration at the modelled coil current (on contact only: before
     /// it the mass is free).
-    #[inline(never)]
     fn predict(&self, table: &Table, x_mm: f32, v_m_s: f32, delay_s: f32) -> (f32, f32) {
         let force_n = if x_mm > 0.0 {
             table
