@@ -153,6 +153,19 @@ impl SampleFrame {
 }
 
 impl CommandFrame {
+    /// The hello frame (sequence [`HELLO_SEQ`]): sent when the PIL link comes
+    /// up, and as the answer to a configuration commit (`TABLE_FAULT` when
+    /// the upload was refused or not stored).
+    pub fn hello(flags: Flags) -> Self {
+        Self {
+            seq: HELLO_SEQ,
+            current_a: 0.0,
+            target_force_n: 0.0,
+            flags,
+            rejected: 0,
+        }
+    }
+
     pub fn encode(&self) -> [u8; FRAME_LEN] {
         let mut buf = [0u8; FRAME_LEN];
         let [s0, s1] = SYNC;
@@ -425,6 +438,27 @@ impl ConfigChunk {
             words: [w(0), w(1), w(2)],
         })
     }
+}
+
+/// A blob as the frames that upload it: config chunks of up to three words,
+/// then the commit (host side: `mre pil`, `mre upload`).
+pub fn config_frames(words: &[u32]) -> impl Iterator<Item = [u8; FRAME_LEN]> + '_ {
+    let chunks = words.chunks(3).enumerate().map(|(k, chunk)| {
+        let mut three = [0u32; 3];
+        for (d, s) in three.iter_mut().zip(chunk) {
+            *d = *s;
+        }
+        ConfigChunk::Words {
+            index: 3 * k as u32,
+            count: chunk.len() as u8,
+            words: three,
+        }
+        .encode()
+    });
+    let commit = ConfigChunk::Commit {
+        total_words: words.len() as u32,
+    };
+    chunks.chain(core::iter::once(commit.encode()))
 }
 
 /// Why an uploaded configuration was refused.

@@ -24,6 +24,7 @@ pub mod model;
 pub mod pacing;
 pub mod status;
 pub mod table;
+pub mod upload;
 
 pub use flags::Flags;
 pub use model::Branch;
