@@ -70,7 +70,7 @@ impl TablePage for RamPage {
     }
 
     fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), FlashError> {
-        if offset % WRITE_ALIGN != 0 || data.len() % WRITE_ALIGN != 0 {
+        if !offset.is_multiple_of(WRITE_ALIGN) || !data.len().is_multiple_of(WRITE_ALIGN) {
             return Err(FlashError);
         }
         let dst = self

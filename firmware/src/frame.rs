@@ -35,6 +35,11 @@ pub const END_OF_RUN_SEQ: u32 = u32::MAX;
 /// The firmware's first command frame carries this sequence number: the
 /// link is up and samples may be sent (samples start at 1).
 pub const HELLO_SEQ: u32 = 0;
+/// A sample frame with this sequence number is a ping: the firmware answers
+/// with a hello and runs no step. A host that connects to a board already
+/// running (a serial port: `mre pil --serial`, `mre upload`) missed the boot
+/// hello, so it pings until one arrives. Pings are not sequenced.
+pub const PING_SEQ: u32 = HELLO_SEQ;
 const PRESENT_V: u8 = 1 << 0;
 const PRESENT_FORCE: u8 = 1 << 1;
 const CRC_AT: usize = 20;
@@ -291,6 +296,7 @@ impl SampleReceiver {
             SampleFrame::decode(&frame).map(Incoming::Sample)
         };
         match decoded {
+            Ok(Incoming::Sample(sample)) if sample.seq == PING_SEQ => Some(Ok(Incoming::Sample(sample))),
             Ok(Incoming::Sample(sample)) => Some(self.sequence(sample).map(Incoming::Sample)),
             Ok(chunk) => Some(Ok(chunk)),
             Err(e) => {

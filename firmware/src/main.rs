@@ -28,9 +28,9 @@ mod fw {
     use embassy_executor::Spawner;
     use embassy_sync::blocking_mutex::raw::CriticalSectionRawMutex;
     use embassy_sync::channel::Channel;
-    use mre_core::control::{ControlConfig, Controller, Stats, DEFAULT_RATE_HZ};
+    use mre_core::control::{Controller, Stats, DEFAULT_RATE_HZ};
     use mre_core::frame::LinkStats;
-    use mre_core::table::Table;
+    use mre_core::upload::TableSource;
 
     // Log lines carry embassy-time's µs since boot.
     defmt::timestamp!("{=u64:us}", embassy_time::Instant::now().as_micros());
@@ -121,40 +121,27 @@ mod fw {
         );
 
         // A rejected table is not fatal: the controller latches TABLE_FAULT
-        // and commands the fail-safe current every period.
-        // An uploaded table (flash page, `mre_core::flash_table`) is preferred;
-        // an erased, torn or invalid page falls back to the built-in one.
-        let uploaded = match board::uploaded_table(&mut board) {
-            Ok((t, c)) => {
-                defmt::info!(
-                    "table uploaded (flash page) format v{=u16}: {=usize} currents, CRC {=u32:#010x} OK, {=u32} Hz",
-                    t.version(),
-                    t.entries().len(),
-                    t.crc32(),
-                    c.rate_hz
-                );
-                Some((t, c))
-            }
-            Err(e) => {
-                defmt::info!("no uploaded table ({=str}): flying the built-in table", e.as_str());
-                None
-            }
-        };
-        let table = match uploaded {
-            Some((t, _)) => Ok(t),
-            None => Table::from_image(&flown::IMAGE),
-        };
-        match (&table, uploaded.is_some()) {
-            (_, true) => {}
-            (Ok(t), false) => defmt::info!(
-                "table {=str} format v{=u16}: {=usize} currents, CRC {=u32:#010x} OK, data set sha256 {=str}",
+        // and commands the fail-safe current every period. An uploaded table
+        // (flash page, `mre upload`) is preferred; an erased, torn or invalid
+        // page falls back to the built-in one (`mre_core::upload`).
+        let boot = board::boot_table(&mut board, &flown::IMAGE, RATE_HZ);
+        match (&boot.source, &boot.table) {
+            (TableSource::Uploaded, Ok(t)) => defmt::info!(
+                "table uploaded (flash page) format v{=u16}: {=usize} currents, CRC {=u32:#010x} OK",
+                t.version(),
+                t.entries().len(),
+                t.crc32()
+            ),
+            (TableSource::BuiltIn(why), Ok(t)) => defmt::info!(
+                "no uploaded table ({=str}): table {=str} format v{=u16}: {=usize} currents, CRC {=u32:#010x} OK, data set sha256 {=str}",
+                why.as_str(),
                 flown::NAME,
                 t.version(),
                 t.entries().len(),
                 t.crc32(),
                 flown::SOURCE_DATASET_SHA256
             ),
-            (Err(e), false) => defmt::error!(
+            (_, Err(e)) => defmt::error!(
                 "table {=str} format v{=u16} stored CRC {=u32:#010x} REJECTED: {}, data set sha256 {=str}",
                 flown::NAME,
                 flown::IMAGE.version,
@@ -163,21 +150,17 @@ mod fw {
                 flown::SOURCE_DATASET_SHA256
             ),
         }
-
-        let cfg = match (uploaded, ControlConfig::at_rate(RATE_HZ)) {
-            // The image's ticker runs at RATE_HZ: an uploaded configuration
-            // for another rate keeps only its table.
-            (Some((_, c)), _) if c.rate_hz == RATE_HZ => c,
-            (Some((_, c)), Ok(cfg)) => {
-                defmt::warn!(
-                    "uploaded configuration is for {=u32} Hz, the image runs {=u32} Hz: using the defaults",
-                    c.rate_hz,
-                    RATE_HZ
-                );
-                cfg
-            }
-            (_, Ok(cfg)) => cfg,
-            (_, Err(e)) => {
+        if let Some(rate_hz) = boot.uploaded_rate_ignored_hz {
+            defmt::warn!(
+                "uploaded configuration is for {=u32} Hz, the image runs {=u32} Hz: its table with the image's defaults",
+                rate_hz,
+                RATE_HZ
+            );
+        }
+        let table = boot.table;
+        let cfg = match boot.config {
+            Ok(cfg) => cfg,
+            Err(e) => {
                 // Only a build with a bad RATE_HZ gets here: hold the coil at
                 // the fail-safe duty and let the watchdog (never fed) reset.
                 defmt::error!("control config refused: {}", defmt::Debug2Format(&e));
@@ -206,6 +189,7 @@ mod fw {
             cfg.law.stroke_max_mm,
             cfg.law.mass_kg
         );
+        board::spawn_uplink(&spawner, &mut board);
         match status_task(status) {
             Ok(token) => spawner.spawn(token),
             Err(_) => defmt::error!("status task already running"),

@@ -14,7 +14,9 @@
 //! else the built-in image.
 use crate::control::{ControlConfig, ControlConfigError};
 use crate::flash_table::{load, store, PageError, TablePage};
-use crate::frame::{CommandFrame, ConfigBlobError, ConfigChunk, ConfigCollector, Incoming, SampleReceiver, FRAME_LEN};
+use crate::frame::{
+    CommandFrame, ConfigBlobError, ConfigChunk, ConfigCollector, Incoming, SampleReceiver, FRAME_LEN, PING_SEQ,
+};
 use crate::table::{Table, TableError, TableImage};
 use crate::Flags;
 
@@ -68,6 +70,24 @@ impl UploadReceiver {
     }
 }
 
+/// What an [`UploadPort`] must answer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PortEvent {
+    /// The host's handshake: answer `CommandFrame::hello(Flags::NONE)`.
+    Ping,
+    Commit(UploadResult),
+}
+
+impl PortEvent {
+    /// The answer frame.
+    pub fn answer(&self) -> [u8; FRAME_LEN] {
+        match self {
+            PortEvent::Ping => CommandFrame::hello(Flags::NONE).encode(),
+            PortEvent::Commit(result) => answer(result),
+        }
+    }
+}
+
 /// A byte stream that carries only uploads (the boards' VCP): frames are
 /// resynchronised and CRC-checked by [`SampleReceiver`]; anything but config
 /// frames is ignored.
@@ -85,10 +105,12 @@ impl UploadPort {
         }
     }
 
-    /// One received byte; `Some` on a commit (send [`answer`] back).
-    pub fn push<P: TablePage + ?Sized>(&mut self, byte: u8, page: &mut P) -> Option<UploadResult> {
+    /// One received byte; `Some` when a frame needs an answer: a commit
+    /// (send [`answer`] back) or a ping (send a hello).
+    pub fn push<P: TablePage + ?Sized>(&mut self, byte: u8, page: &mut P) -> Option<PortEvent> {
         match self.rx.push_any(byte)? {
-            Ok(Incoming::Config(chunk)) => self.upload.on_chunk(chunk, page),
+            Ok(Incoming::Config(chunk)) => self.upload.on_chunk(chunk, page).map(PortEvent::Commit),
+            Ok(Incoming::Sample(s)) if s.seq == PING_SEQ => Some(PortEvent::Ping),
             Ok(Incoming::Sample(_)) | Err(_) => None,
         }
     }

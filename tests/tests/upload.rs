@@ -9,7 +9,7 @@ use mre_core::flash_table::{PageError, RamPage, TablePage};
 use mre_core::frame::{config_frames, encode_config, CommandFrame, ConfigBlobError, CONFIG_MAX_WORDS, FRAME_LEN};
 use mre_core::generated_table::GENERATED_TABLE;
 use mre_core::table::{Table, PAPER_TABLE4_ENTRIES};
-use mre_core::upload::{answer, choose_boot_table, TableSource, UploadError, UploadPort};
+use mre_core::upload::{answer, choose_boot_table, PortEvent, TableSource, UploadError, UploadPort};
 use mre_core::Flags;
 
 /// Not the built-in table: Table 4 with a doubled stroke.
@@ -35,8 +35,8 @@ fn frames(words: &[u32]) -> Vec<[u8; FRAME_LEN]> {
 fn send(port: &mut UploadPort, page: &mut RamPage, frames: &[[u8; FRAME_LEN]]) -> Vec<CommandFrame> {
     let mut answers = Vec::new();
     for b in frames.iter().flatten() {
-        if let Some(result) = port.push(*b, page) {
-            answers.push(CommandFrame::decode(&answer(&result)).unwrap());
+        if let Some(event) = port.push(*b, page) {
+            answers.push(CommandFrame::decode(&event.answer()).unwrap());
         }
     }
     answers
@@ -132,7 +132,9 @@ fn the_receiver_reports_why_a_commit_failed() {
     let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
     let mut results = Vec::new();
     for b in fr.iter().flatten() {
-        results.extend(port.push(*b, &mut page));
+        if let Some(PortEvent::Commit(r)) = port.push(*b, &mut page) {
+            results.push(r);
+        }
     }
     assert_eq!(
         results.as_slice(),
@@ -161,7 +163,9 @@ fn a_flash_write_failure_is_not_acknowledged_and_boot_falls_back() {
     let mut port = UploadPort::new();
     let mut results = Vec::new();
     for b in frames(&blob(&other_table(), &cfg)).iter().flatten() {
-        results.extend(port.push(*b, &mut page));
+        if let Some(PortEvent::Commit(r)) = port.push(*b, &mut page) {
+            results.push(r);
+        }
     }
     assert_eq!(results.len(), 1);
     assert!(matches!(results[0], Err(UploadError::Page(PageError::Flash(_)))));
@@ -199,4 +203,21 @@ fn a_torn_page_falls_back_to_the_built_in_table() {
     let boot = choose_boot_table(&mut page, &GENERATED_TABLE, DEFAULT_RATE_HZ);
     assert_eq!(boot.source, TableSource::BuiltIn(PageError::Corrupt));
     assert_eq!(boot.table.unwrap().crc32(), built_in_crc());
+}
+
+#[test]
+fn a_ping_is_answered_with_a_hello_and_never_stored() {
+    use mre_core::frame::{SampleFrame, PING_SEQ};
+    let ping = SampleFrame {
+        seq: PING_SEQ,
+        x_mm: 0.0,
+        v_m_s: None,
+        force_n: None,
+    };
+    let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
+    // Twice: pings are not sequenced, so a repeat is not a duplicate.
+    let answers = send(&mut port, &mut page, &[ping.encode(), ping.encode()]);
+    assert_eq!(answers.len(), 2);
+    assert!(answers.iter().all(|a| a.seq == 0 && a.flags == Flags::NONE));
+    assert!(page.bytes.iter().all(|&b| b == 0xFF));
 }

@@ -11,12 +11,15 @@ use embassy_stm32::peripherals::{ADC1, ADC2, IWDG, TIM3};
 use embassy_stm32::time::khz;
 use embassy_stm32::timer::low_level::CountingMode;
 use embassy_stm32::timer::simple_pwm::{PwmPin, SimplePwm, SimplePwmChannel};
+use embassy_stm32::usart::BufferedUart;
 use embassy_stm32::wdg::IndependentWatchdog;
 use embassy_time::{Duration, Instant, Ticker};
 use mre_core::boot::ResetCause;
 use mre_core::control::{open_loop_duty, Coil, Controller, DisplacementSensor, VelocitySensor};
 use mre_core::law::{Command, LawConfig};
 use mre_core::pacing::Pacer;
+use mre_core::table::TableImage;
+use mre_core::upload::{choose_boot_table, BootTable};
 
 #[cfg(feature = "board-b-l475e-iot01a")]
 pub const NAME: &str = "B-L475E-IOT01A";
@@ -29,6 +32,21 @@ macro_rules! board_pins {
     };
 }
 
+/// The ST-LINK virtual COM port: USART1, RX = PB7, TX = PB6.
+#[cfg(feature = "board-b-l475e-iot01a")]
+macro_rules! vcp_pins {
+    ($p:ident) => {
+        ($p.USART1, $p.PB7, $p.PB6)
+    };
+}
+#[cfg(feature = "board-b-l475e-iot01a")]
+embassy_stm32::bind_interrupts!(struct Irqs {
+    USART1 => embassy_stm32::usart::BufferedInterruptHandler<embassy_stm32::peripherals::USART1>;
+    FLASH => embassy_stm32::flash::InterruptHandler;
+});
+#[cfg(feature = "board-b-l475e-iot01a")]
+use embassy_stm32::interrupt::USART1 as VCP_IRQ;
+
 #[cfg(feature = "board-nucleo-l476rg")]
 pub const NAME: &str = "NUCLEO-L476RG";
 /// Arduino A0 = PA0 (ADC1_IN5) displacement, A1 = PA1 (ADC2_IN6) velocity,
@@ -39,6 +57,20 @@ macro_rules! board_pins {
         ($p.PA0, $p.PA1, $p.PB4, $p.PA5, $p.PC13)
     };
 }
+/// The ST-LINK virtual COM port: USART2, RX = PA3, TX = PA2.
+#[cfg(feature = "board-nucleo-l476rg")]
+macro_rules! vcp_pins {
+    ($p:ident) => {
+        ($p.USART2, $p.PA3, $p.PA2)
+    };
+}
+#[cfg(feature = "board-nucleo-l476rg")]
+embassy_stm32::bind_interrupts!(struct Irqs {
+    USART2 => embassy_stm32::usart::BufferedInterruptHandler<embassy_stm32::peripherals::USART2>;
+    FLASH => embassy_stm32::flash::InterruptHandler;
+});
+#[cfg(feature = "board-nucleo-l476rg")]
+use embassy_stm32::interrupt::USART2 as VCP_IRQ;
 
 /// What is wired: a velocity transducer on the velocity channel (cargo feature).
 pub const HAS_VELOCITY_SENSOR: bool = cfg!(feature = "velocity-sensor");
@@ -115,14 +147,22 @@ pub struct Io {
 pub struct Board {
     pub io: Io,
     pub watchdog: IndependentWatchdog<'static, IWDG>,
-    table_page: FlashPage,
+    /// Taken by [`spawn_uplink`].
+    uplink: Option<Uplink>,
 }
 
 /// The flash page reserved for an uploaded table: the last 2 KiB of the
-/// 1 MiB flash (memory.x ends FLASH before it).
+/// 1 MiB flash (memory.x ends FLASH before it). It lies in bank 2 and the
+/// image (≤ 64 KiB) in bank 1: the L4's read-while-write lets the control
+/// loop keep running from bank 1 while the page is erased and written.
 const TABLE_PAGE_OFFSET: u32 = 1024 * 1024 - mre_core::flash_table::PAGE_BYTES as u32;
 
-struct FlashPage(embassy_stm32::flash::Flash<'static, embassy_stm32::flash::Blocking>);
+/// embassy-stm32's async flash driver: on the L4 its erase and write wait
+/// for the FLASH interrupt instead of holding a critical section (the
+/// blocking driver masks interrupts for the whole ~22 ms page erase, which
+/// would stall the control loop and trip the 5 ms watchdog). The upload task
+/// polls each operation to completion in thread mode.
+struct FlashPage(embassy_stm32::flash::Flash<'static, embassy_stm32::flash::Async>);
 
 impl mre_core::flash_table::TablePage for FlashPage {
     fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), mre_core::flash_table::FlashError> {
@@ -133,23 +173,81 @@ impl mre_core::flash_table::TablePage for FlashPage {
 
     fn erase(&mut self) -> Result<(), mre_core::flash_table::FlashError> {
         let end = TABLE_PAGE_OFFSET + mre_core::flash_table::PAGE_BYTES as u32;
-        self.0
-            .blocking_erase(TABLE_PAGE_OFFSET, end)
-            .map_err(|_| mre_core::flash_table::FlashError)
+        embassy_futures::block_on(self.0.erase(TABLE_PAGE_OFFSET, end)).map_err(|_| mre_core::flash_table::FlashError)
     }
 
     fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), mre_core::flash_table::FlashError> {
-        self.0
-            .blocking_write(TABLE_PAGE_OFFSET + offset as u32, data)
+        embassy_futures::block_on(self.0.write(TABLE_PAGE_OFFSET + offset as u32, data))
             .map_err(|_| mre_core::flash_table::FlashError)
     }
 }
 
-/// The table and configuration on the reserved flash page, if valid.
-pub fn uploaded_table(
-    board: &mut Board,
-) -> Result<(mre_core::Table, mre_core::control::ControlConfig), mre_core::flash_table::PageError> {
-    mre_core::flash_table::load(&mut board.table_page)
+/// The table upload receiver: the VCP UART and the flash page.
+pub struct Uplink {
+    uart: BufferedUart<'static>,
+    page: FlashPage,
+}
+
+/// The table boot flies: the flash page if it holds a valid upload, else
+/// the image's own (`mre_core::upload::choose_boot_table`).
+pub fn boot_table(board: &mut Board, built_in: &TableImage<'_>, rate_hz: u32) -> BootTable {
+    match board.uplink.as_mut() {
+        Some(up) => choose_boot_table(&mut up.page, built_in, rate_hz),
+        None => choose_boot_table(&mut mre_core::flash_table::RamPage::erased(), built_in, rate_hz),
+    }
+}
+
+/// Starts the upload receiver (thread mode, below the control task).
+pub fn spawn_uplink(spawner: &embassy_executor::Spawner, board: &mut Board) {
+    let Some(uplink) = board.uplink.take() else { return };
+    match upload_task(uplink) {
+        Ok(token) => spawner.spawn(token),
+        Err(_) => defmt::error!("upload task already running"),
+    }
+}
+
+/// `mre upload --port PORT model.toml` lands here: config frames on the
+/// VCP, validated, written to the flash page and read back, answered with a
+/// hello frame (`TABLE_FAULT` if refused). The table flies after the next
+/// reset; the running controller is never swapped mid-operation.
+#[embassy_executor::task]
+async fn upload_task(mut up: Uplink) {
+    use embedded_io_async::{Read, Write};
+    use mre_core::upload::{PortEvent, UploadPort};
+    defmt::info!("table upload: listening on the ST-LINK VCP (115200 8N1)");
+    let mut port = UploadPort::new();
+    let mut buf = [0u8; 32];
+    loop {
+        let n = match up.uart.read(&mut buf).await {
+            Ok(n) => n,
+            Err(e) => {
+                defmt::warn!("table upload: VCP read error {}", e);
+                continue;
+            }
+        };
+        for &byte in buf.get(..n).unwrap_or_default() {
+            let Some(event) = port.push(byte, &mut up.page) else {
+                continue;
+            };
+            match &event {
+                PortEvent::Ping => {}
+                PortEvent::Commit(Ok((t, c))) => defmt::info!(
+                    "table upload: stored in the flash page, CRC {=u32:#010x}, {=usize} currents, {=u32} Hz; flown after the next reset",
+                    t.crc32(),
+                    t.entries().len(),
+                    c.rate_hz
+                ),
+                PortEvent::Commit(Err(e)) => defmt::warn!(
+                    "table upload not stored: {=str} ({=u16} frames rejected so far)",
+                    e.as_str(),
+                    port.rejected_frames()
+                ),
+            }
+            if up.uart.write_all(&event.answer()).await.is_err() {
+                defmt::warn!("table upload: VCP write error");
+            }
+        }
+    }
 }
 
 /// The status LED and the user button B1 (active low on both boards).
@@ -224,15 +322,38 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
     io.set_duty(fail_safe_duty());
     io.calibrate();
     let watchdog = IndependentWatchdog::new(p.IWDG, WATCHDOG_TIMEOUT_US);
-    let table_page = FlashPage(embassy_stm32::flash::Flash::new_blocking(p.FLASH));
-    (
-        Board {
-            io,
-            watchdog,
-            table_page,
-        },
-        status,
-    )
+    let page = FlashPage(embassy_stm32::flash::Flash::new(p.FLASH, Irqs));
+    let (vcp, vcp_rx, vcp_tx) = vcp_pins!(p);
+    let uplink = match (
+        cortex_m::singleton!(: [u8; 64] = [0; 64]),
+        cortex_m::singleton!(: [u8; 256] = [0; 256]),
+    ) {
+        (Some(tx_buf), Some(rx_buf)) => {
+            match BufferedUart::new(
+                vcp,
+                vcp_rx,
+                vcp_tx,
+                tx_buf,
+                rx_buf,
+                Irqs,
+                embassy_stm32::usart::Config::default(),
+            ) {
+                Ok(uart) => Some(Uplink { uart, page }),
+                Err(e) => {
+                    defmt::error!("table upload disabled: VCP UART config {}", e);
+                    None
+                }
+            }
+        }
+        _ => None,
+    };
+    // The VCP interrupt only fills a ring buffer: below the control task (P1).
+    {
+        use embassy_stm32::interrupt::{InterruptExt, Priority};
+        VCP_IRQ.set_priority(Priority::P3);
+        embassy_stm32::interrupt::FLASH.set_priority(Priority::P3);
+    }
+    (Board { io, watchdog, uplink }, status)
 }
 
 impl Board {
