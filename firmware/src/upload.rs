@@ -71,6 +71,8 @@ impl UploadReceiver {
 }
 
 /// What an [`UploadPort`] must answer.
+// Returned once per commit and answered at once, never stored; no heap to box into.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PortEvent {
     /// The host's handshake: answer `CommandFrame::hello(Flags::NONE)`.
