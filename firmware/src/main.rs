@@ -24,7 +24,7 @@ mod board;
 #[cfg(target_os = "none")]
 mod fw {
     use crate::board::{self, BoardIo, StatusIo};
-    use core::sync::atomic::{AtomicBool, AtomicU16, AtomicU32, Ordering};
+    use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
     use embassy_executor::Spawner;
     use embassy_sync::blocking_mutex::raw::CriticalSectionRawMutex;
     use embassy_sync::channel::Channel;
@@ -40,7 +40,7 @@ mod fw {
         /// B1 pressed: faults cleared (at rest) or the clear refused.
         ClearRequest {
             cleared: bool,
-            latched: u16,
+            latched: u32,
         },
         Overrun {
             period: u32,
@@ -50,7 +50,7 @@ mod fw {
             period: u32,
         },
         FaultLatched {
-            latched: u16,
+            latched: u32,
             period: u32,
         },
         Stats {
@@ -62,7 +62,7 @@ mod fw {
     static EVENTS: Channel<CriticalSectionRawMutex, Event, 16> = Channel::new();
     static DROPPED_EVENTS: AtomicU32 = AtomicU32::new(0);
     /// Latched faults for the status LED (written by the control task).
-    static LATCHED: AtomicU16 = AtomicU16::new(0);
+    static LATCHED: AtomicU32 = AtomicU32::new(0);
     /// Set by a press of B1, taken by the control task.
     static CLEAR_REQUEST: AtomicBool = AtomicBool::new(false);
 
@@ -218,20 +218,20 @@ mod fw {
             match EVENTS.receive().await {
                 Event::Overrun { period } => defmt::warn!("overrun in period {=u32}", period),
                 Event::ClearRequest { cleared: true, latched } => {
-                    defmt::info!("B1: faults cleared at rest (still latched: {=u16:#06x})", latched)
+                    defmt::info!("B1: faults cleared at rest (still latched: {=u32:#010x})", latched)
                 }
                 Event::ClearRequest {
                     cleared: false,
                     latched,
                 } => defmt::warn!(
-                    "B1: faults not cleared, the damper is not at rest (latched {=u16:#06x})",
+                    "B1: faults not cleared, the damper is not at rest (latched {=u32:#010x})",
                     latched
                 ),
                 Event::Missed { ticks, period } => {
                     defmt::warn!("{=u32} control periods missed before period {=u32}", ticks, period)
                 }
                 Event::FaultLatched { latched, period } => defmt::error!(
-                    "fault latched: {=u16:#06x} in period {=u32}; coil at the fail-safe",
+                    "fault latched: {=u32:#010x} in period {=u32}; coil at the fail-safe",
                     latched,
                     period
                 ),
@@ -242,7 +242,7 @@ mod fw {
                 } => {
                     let dropped = DROPPED_EVENTS.load(Ordering::Relaxed);
                     defmt::info!(
-                        "stats: periods {=u32} (+{=u32}), overruns {=u32}, fail-safe periods {=u32}, latched {=u16:#06x}, step cycles min/mean/max {=u32}/{=u32}/{=u32}, log events dropped {=u32}{}",
+                        "stats: periods {=u32} (+{=u32}), overruns {=u32}, fail-safe periods {=u32}, latched {=u32:#010x}, step cycles min/mean/max {=u32}/{=u32}/{=u32}, log events dropped {=u32}{}",
                         s.periods,
                         new_periods,
                         s.overruns,
@@ -284,6 +284,7 @@ mod fw {
     async fn control_task(mut ctl: Controller, mut board: board::Board) {
         let mut last = ctl.stats();
         let mut known_faults = ctl.latched();
+        let mut over_current = mre_core::overcurrent::OverCurrent::default();
         board.start();
         loop {
             let missed = board.io.next_period(&mut ctl).await;
@@ -292,6 +293,13 @@ mod fw {
                     ticks: missed,
                     period: ctl.stats().periods,
                 });
+            }
+            // Over-current (the shunt at mid on-time of the last PWM period)
+            // latches before the step, so this period already holds the fail-safe.
+            if let Some(measured_a) = board.io.coil_current_a() {
+                if over_current.check(measured_a) {
+                    ctl.latch_fault(mre_core::Flags::OVER_CURRENT);
+                }
             }
             let t0 = board::cycles();
             let cmd = ctl.step_io(&mut board.io);

@@ -213,6 +213,7 @@ fn a_ping_is_answered_with_a_hello_and_never_stored() {
         x_mm: 0.0,
         v_m_s: None,
         force_n: None,
+        coil_current_a: None,
     };
     let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
     // Twice: pings are not sequenced, so a repeat is not a duplicate.

@@ -46,6 +46,10 @@ pub trait BoardIo: DisplacementSensor + VelocitySensor + Coil {
     fn finish_period(&mut self, cmd: &Command, ctl: &Controller) -> bool;
     /// The frame link's counters (PIL), `None` on hardware.
     fn link_stats(&self) -> Option<LinkStats>;
+    /// The measured coil current for the over-current monitor: the shunt at
+    /// mid on-time on hardware, the plant's coil in PIL (`None` when the
+    /// host sends none).
+    fn coil_current_a(&mut self) -> Option<f32>;
 }
 
 /// The status LED and the user button (thread mode).

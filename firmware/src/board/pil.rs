@@ -187,6 +187,7 @@ pub fn init(_rate_hz: u32) -> (Board, Status) {
                     x_mm: f32::NAN,
                     v_m_s: None,
                     force_n: None,
+                    coil_current_a: None,
                 },
                 current_a: 0.0,
                 last_reply: None,
@@ -313,6 +314,10 @@ impl super::BoardIo for Io {
 
     fn link_stats(&self) -> Option<LinkStats> {
         Some(self.rx.stats())
+    }
+
+    fn coil_current_a(&mut self) -> Option<f32> {
+        self.sample.coil_current_a
     }
 }
 

@@ -7,7 +7,7 @@ use panic_probe as _;
 
 use embassy_stm32::adc::{Adc, AdcChannel, AnyAdcChannel, SampleTime};
 use embassy_stm32::gpio::{Input, Level, Output, OutputType, Pull, Speed};
-use embassy_stm32::peripherals::{ADC1, ADC2, IWDG, TIM3};
+use embassy_stm32::peripherals::{ADC1, ADC2, ADC3, IWDG, TIM3};
 use embassy_stm32::time::khz;
 use embassy_stm32::timer::low_level::CountingMode;
 use embassy_stm32::timer::simple_pwm::{PwmPin, SimplePwm, SimplePwmChannel};
@@ -91,6 +91,17 @@ const COIL_FULL_SCALE_A: f32 = 3.0;
 const PWM_KHZ: u32 = 20;
 /// 24.5 + 12.5 ADC cycles at 80 MHz: 0.46 µs per conversion.
 const SAMPLE_TIME: SampleTime = SampleTime::CYCLES24_5;
+/// Coil current sense: a low-side shunt and amplifier, 1 V/A (0.1 Ω × 10),
+/// on Arduino A4 = PC1 = ADC3_IN2 on both boards. ADC3 converts it as an
+/// injected channel triggered by TIM3_CH4, whose compare sits at half the
+/// coil PWM's on-time: every conversion lands at mid on-time.
+const I_SENSE_V_PER_A: f32 = 1.0;
+const I_SENSE_CHANNEL: u8 = 2;
+/// ADC injected trigger JEXT4 = TIM3_CH4 (RM0351, "ADC1/2/3 external
+/// triggers for injected channels").
+const JEXTSEL_TIM3_CH4: u8 = 4;
+const JEXTEN_RISING: u8 = 1;
+
 /// 50 periods at 10 kHz: long enough for the 1 Hz stats log, short enough
 /// that a hung control loop releases the coil to the reset state quickly.
 const WATCHDOG_TIMEOUT_US: u32 = 5_000;
@@ -133,6 +144,11 @@ pub struct Io {
     adc_x: Adc<'static, ADC1>,
     ch_x: AnyAdcChannel<'static, ADC1>,
     velocity: Option<(Adc<'static, ADC2>, AnyAdcChannel<'static, ADC2>)>,
+    /// ADC3 (kept for its clock and calibration; converts through the PAC
+    /// once [`Io::start_current_sense`] ran) and the shunt channel.
+    sense: (Adc<'static, ADC3>, AnyAdcChannel<'static, ADC3>),
+    /// From boot calibration with the PWM off (0 if refused).
+    i_offset_a: f32,
     pwm: SimplePwmChannel<'static, TIM3>,
     max_duty: u32,
     ticker: Ticker,
@@ -281,6 +297,7 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
 
     let p = embassy_stm32::init(clock_config());
     let (pin_x, pin_v, pin_pwm, pin_led, pin_button) = board_pins!(p);
+    let pin_i = p.PC1;
     let status = Status {
         led: Output::new(pin_led, Level::Low, Speed::Low),
         button: Input::new(pin_button, Pull::None),
@@ -309,6 +326,8 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
         adc_x: Adc::new(p.ADC1),
         ch_x: pin_x.degrade_adc(),
         velocity: HAS_VELOCITY_SENSOR.then(|| (Adc::new(p.ADC2), pin_v.degrade_adc())),
+        sense: (Adc::new(p.ADC3), pin_i.degrade_adc()),
+        i_offset_a: 0.0,
         pwm: ch,
         max_duty,
         ticker: Ticker::every(period),
@@ -318,9 +337,13 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
         x_offset_mm: 0.0,
         v_zero_m_s: 0.0,
     };
+    // The PWM runs at 0 % (coil off): VDDA and the current-sense zero first.
+    io.calibrate_vdda();
+    io.calibrate_current_sense();
+    io.start_current_sense();
     // Until the loop runs, hold the fail-safe current (stiffest damper).
     io.set_duty(fail_safe_duty());
-    io.calibrate();
+    io.calibrate_at_rest();
     let watchdog = IndependentWatchdog::new(p.IWDG, WATCHDOG_TIMEOUT_US);
     let page = FlashPage(embassy_stm32::flash::Flash::new(p.FLASH, Irqs));
     let (vcp, vcp_rx, vcp_tx) = vcp_pins!(p);
@@ -385,12 +408,13 @@ impl Io {
         f32::from(code) * self.v_per_lsb
     }
 
-    /// Boot calibration (firmware/README.md): VDDA from VREFINT, then the
-    /// displacement offset and the velocity zero with the mass at rest. Each
-    /// result is range-checked (`mre_core::calibration`) and logged; a
-    /// refused one leaves the nominal scaling.
-    fn calibrate(&mut self) {
-        use mre_core::calibration::{vdda_v, V_REST, X_REST};
+    /// Boot calibration (firmware/README.md): VDDA from VREFINT (here), the
+    /// current-sense zero with the PWM off, then the displacement offset and
+    /// the velocity zero with the mass at rest. Each result is range-checked
+    /// (`mre_core::calibration`) and logged; a refused one leaves the
+    /// nominal scaling.
+    fn calibrate_vdda(&mut self) {
+        use mre_core::calibration::vdda_v;
         let mut vref = self.adc_x.enable_vrefint();
         let raw = self.adc_x.blocking_read(&mut vref, SampleTime::CYCLES247_5);
         match vdda_v(raw, vref.calibrated_value()) {
@@ -409,6 +433,43 @@ impl Io {
                 VREF_V
             ),
         }
+    }
+
+    /// The current-sense offset, with the coil off (PWM at 0 %).
+    fn calibrate_current_sense(&mut self) {
+        use mre_core::calibration::I_SENSE_REST;
+        self.i_offset_a = self.rest_zero("current sense zero (A)", I_SENSE_REST, |io| {
+            let (adc, ch) = &mut io.sense;
+            let code = adc.blocking_read(ch, SAMPLE_TIME);
+            io.volts(code) / I_SENSE_V_PER_A
+        });
+    }
+
+    /// From here on ADC3 converts the shunt once per PWM period, triggered
+    /// by TIM3_CH4 at mid on-time (embassy-stm32 0.6's ADC driver for the
+    /// L4 has no triggered mode: its ring-buffered mode ignores the trigger
+    /// and there is no injected API, so this is PAC). TIM3_CH4 runs in PWM
+    /// mode 2: OC4REF rises at CCR4 = CCR1 / 2 ([`Io::set_duty`]).
+    fn start_current_sense(&mut self) {
+        use embassy_stm32::pac;
+        use embassy_stm32::pac::timer::vals::Ocm;
+        pac::TIM3.ccmr_output(1).modify(|w| {
+            w.set_ocm(1, Ocm::PWM_MODE2);
+            w.set_ocpe(1, true);
+        });
+        pac::TIM3.ccr(3).write(|w| w.set_ccr(1));
+        pac::ADC3.jsqr().write(|w| {
+            w.set_jl(0);
+            w.set_jextsel(JEXTSEL_TIM3_CH4);
+            w.set_jexten(JEXTEN_RISING);
+            w.set_jsq(0, I_SENSE_CHANNEL);
+        });
+        pac::ADC3.cr().modify(|w| w.set_jadstart(true));
+    }
+
+    /// The displacement offset and the velocity zero with the mass at rest.
+    fn calibrate_at_rest(&mut self) {
+        use mre_core::calibration::{V_REST, X_REST};
         self.x_offset_mm = self.rest_zero("x offset (mm)", X_REST, |io| io.read_x_mm());
         if self.velocity.is_some() {
             self.v_zero_m_s = self.rest_zero("velocity zero (m/s)", V_REST, |io| io.read_v_m_s().unwrap_or(f32::NAN));
@@ -441,7 +502,12 @@ impl Io {
 
     fn set_duty(&mut self, duty: f32) {
         // duty ∈ [0, 1] by construction; `as` saturates anyway.
-        self.pwm.set_duty_cycle((duty * self.max_duty as f32) as u32);
+        let compare = (duty * self.max_duty as f32) as u32;
+        self.pwm.set_duty_cycle(compare);
+        // The current-sense trigger at mid on-time; at least 1 so that a
+        // shorted switch at 0 % duty is still sampled.
+        let mid = (compare / 2).clamp(1, u32::from(u16::MAX)) as u16;
+        embassy_stm32::pac::TIM3.ccr(3).write(|w| w.set_ccr(mid));
     }
 }
 
@@ -468,6 +534,12 @@ impl super::BoardIo for Io {
     /// No frame link on hardware.
     fn link_stats(&self) -> Option<mre_core::frame::LinkStats> {
         None
+    }
+
+    /// The latest mid-on-time shunt conversion (the last PWM period).
+    fn coil_current_a(&mut self) -> Option<f32> {
+        let code = embassy_stm32::pac::ADC3.jdr(0).read().jdata();
+        Some(self.volts(code) / I_SENSE_V_PER_A - self.i_offset_a)
     }
 }
 

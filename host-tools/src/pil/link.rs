@@ -103,6 +103,7 @@ impl PilLink {
             x_mm: 0.0,
             v_m_s: None,
             force_n: None,
+            coil_current_a: None,
         };
         let result = loop {
             if Instant::now() > deadline {
@@ -231,6 +232,7 @@ impl PilLink {
             x_mm: 0.0,
             v_m_s: None,
             force_n: None,
+            coil_current_a: None,
         };
         self.stream.write_all(&end.encode()).context("sending end of run")
     }

@@ -138,6 +138,7 @@ pub fn run_firmware_on(
                 x_mm,
                 v_m_s: Some(v_m_s),
                 force_n: None,
+                coil_current_a: None,
             }) {
                 Ok(cmd) => cmd.current_a,
                 Err(e) => {

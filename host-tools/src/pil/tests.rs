@@ -135,6 +135,7 @@ fn firmware_rejects_corrupt_and_out_of_order_frames_and_counts_them() {
         x_mm: 0.2,
         v_m_s: Some(3.0),
         force_n: None,
+        coil_current_a: None,
     };
 
     let first = link.exchange(&sample(1)).unwrap();
@@ -309,6 +310,7 @@ fn coil_pin_is_driven_low_first_thing_at_boot() {
         x_mm: 0.0,
         v_m_s: None,
         force_n: None,
+        coil_current_a: None,
     })
     .unwrap();
     const GPIOB: u32 = 0x4800_0400;
@@ -408,4 +410,56 @@ fn mre_pil_serial_closes_the_drop_test_over_qemu_serial() {
     // The end-of-run frame went over the pty too: the firmware exited.
     let status = qemu.wait(Duration::from_secs(20)).unwrap();
     assert!(status.success(), "firmware exit status {status}");
+}
+
+#[test]
+fn firmware_latches_over_current_from_the_measured_coil_current() {
+    // The sample frame carries the plant's coil current (bit 2); the
+    // firmware's monitor (`mre_core::overcurrent`, 2.4 A for 3 periods)
+    // latches OVER_CURRENT before the step, which then holds the fail-safe.
+    let Some((qemu, mut link)) = start() else { return };
+    let sample = |seq, coil_current_a| SampleFrame {
+        seq,
+        x_mm: 0.0,
+        v_m_s: Some(0.0),
+        force_n: None,
+        coil_current_a: Some(coil_current_a),
+    };
+    // At the rating, and at the trip level itself: no fault.
+    for seq in 1..=20 {
+        let cmd = link
+            .exchange(&sample(seq, if seq % 2 == 0 { 2.0 } else { 2.4 }))
+            .unwrap();
+        assert!(!cmd.flags.intersects(Flags::OVER_CURRENT | Flags::FAIL_SAFE), "{cmd:?}");
+    }
+    // Two periods over, one under: a noisy conversion does not latch.
+    for (seq, i) in [(21, 3.0), (22, 3.0), (23, 1.0)] {
+        assert!(!link
+            .exchange(&sample(seq, i))
+            .unwrap()
+            .flags
+            .contains(Flags::OVER_CURRENT));
+    }
+    // Three in a row: the third period answers with the fail-safe.
+    assert!(!link
+        .exchange(&sample(24, 3.0))
+        .unwrap()
+        .flags
+        .contains(Flags::OVER_CURRENT));
+    assert!(!link
+        .exchange(&sample(25, 3.0))
+        .unwrap()
+        .flags
+        .contains(Flags::OVER_CURRENT));
+    let tripped = link.exchange(&sample(26, 3.0)).unwrap();
+    assert!(
+        tripped.flags.contains(Flags::OVER_CURRENT | Flags::FAIL_SAFE),
+        "{tripped:?}"
+    );
+    let failsafe_a = mre_core::law::LawConfig::default().failsafe_current_a;
+    assert_eq!(tripped.current_a, failsafe_a);
+    // Latched: the current back to normal does not release it.
+    let later = link.exchange(&sample(27, 0.5)).unwrap();
+    assert!(later.flags.contains(Flags::OVER_CURRENT | Flags::FAIL_SAFE));
+    finish(qemu, link);
 }
