@@ -142,11 +142,11 @@ mod fw {
                 flown::SOURCE_DATASET_SHA256
             ),
             (_, Err(e)) => defmt::error!(
-                "table {=str} format v{=u16} stored CRC {=u32:#010x} REJECTED: {}, data set sha256 {=str}",
+                "table {=str} format v{=u16} stored CRC {=u32:#010x} REJECTED: {=str}, data set sha256 {=str}",
                 flown::NAME,
                 flown::IMAGE.version,
                 flown::IMAGE.crc32,
-                defmt::Debug2Format(e),
+                table_error_name(e),
                 flown::SOURCE_DATASET_SHA256
             ),
         }
@@ -163,7 +163,7 @@ mod fw {
             Err(e) => {
                 // Only a build with a bad RATE_HZ gets here: hold the coil at
                 // the fail-safe duty and let the watchdog (never fed) reset.
-                defmt::error!("control config refused: {}", defmt::Debug2Format(&e));
+                defmt::error!("control config refused: {=str}", config_error_name(&e));
                 board::halt_fail_safe(board)
             }
         };
@@ -171,7 +171,7 @@ mod fw {
         let mut ctl = match Controller::new(cfg, table) {
             Ok(c) => c,
             Err(e) => {
-                defmt::error!("controller refused config: {}", defmt::Debug2Format(&e));
+                defmt::error!("controller refused config: {=str}", config_error_name(&e));
                 board::halt_fail_safe(board)
             }
         };
@@ -209,6 +209,34 @@ mod fw {
             Err(_) => defmt::error!("control task already running"),
         }
         log_events().await
+    }
+
+    // Errors are logged by name: `defmt::Debug2Format` would link
+    // `core::fmt` with float printing (~13 KB of flash, BENCHMARKS.md).
+    fn table_error_name(e: &mre_core::TableError) -> &'static str {
+        use mre_core::TableError as E;
+        match e {
+            E::Empty => "empty",
+            E::TooManyEntries { .. } => "too many entries",
+            E::UnsupportedVersion { .. } => "unsupported version",
+            E::UnsortedCurrents { .. } => "currents not ascending",
+            E::NonFiniteValue { .. } => "non-finite value",
+            E::BadStroke { .. } => "bad stroke",
+            E::CrcMismatch { .. } => "CRC mismatch",
+            E::TooLarge { .. } => "value too large",
+            E::BadTerm { term } => term,
+        }
+    }
+
+    fn config_error_name(e: &mre_core::control::ControlConfigError) -> &'static str {
+        use mre_core::control::ControlConfigError as E;
+        match e {
+            E::Rate { .. } => "control rate out of range",
+            E::Law(_) => "law configuration",
+            E::PeriodMismatch => "law period does not match the rate",
+            E::Estimator => "estimator gains",
+            E::Counts => "fault counts",
+        }
     }
 
     /// Thread mode: turns the control task's events into defmt lines.

@@ -257,7 +257,10 @@ impl super::BoardIo for Io {
                                     true
                                 }
                                 Err(e) => {
-                                    defmt::warn!("uploaded configuration refused: {}", defmt::Debug2Format(&e));
+                                    defmt::warn!(
+                                        "uploaded configuration refused by the controller: {}",
+                                        defmt::Debug2Format(&e)
+                                    );
                                     false
                                 }
                             },
