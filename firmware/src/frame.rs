@@ -134,6 +134,17 @@ fn check(buf: &[u8; FRAME_LEN], kind: u8) -> Result<(), FrameError> {
 }
 
 impl SampleFrame {
+    /// The host's handshake ([`PING_SEQ`]): answered with a hello, no step.
+    pub fn ping() -> Self {
+        Self {
+            seq: PING_SEQ,
+            x_mm: 0.0,
+            v_m_s: None,
+            force_n: None,
+            coil_current_a: None,
+        }
+    }
+
     pub fn encode(&self) -> [u8; FRAME_LEN] {
         let mut buf = [0u8; FRAME_LEN];
         let slot4 = match (self.coil_current_a, self.force_n) {

@@ -208,13 +208,9 @@ fn a_torn_page_falls_back_to_the_built_in_table() {
 #[test]
 fn a_ping_is_answered_with_a_hello_and_never_stored() {
     use mre_core::frame::{SampleFrame, PING_SEQ};
-    let ping = SampleFrame {
-        seq: PING_SEQ,
-        x_mm: 0.0,
-        v_m_s: None,
-        force_n: None,
-        coil_current_a: None,
-    };
+    let ping = SampleFrame::ping();
+    // The protocol's ping: a sample frame with sequence 0.
+    assert_eq!((ping.seq, PING_SEQ), (0, 0));
     let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
     // Twice: pings are not sequenced, so a repeat is not a duplicate.
     let answers = send(&mut port, &mut page, &[ping.encode(), ping.encode()]);

@@ -6,7 +6,7 @@ use anyhow::{bail, Context, Result};
 use mre_core::control::ControlConfig;
 use mre_core::frame::{
     config_frames, encode_config, CommandFrame, SampleFrame, CONFIG_MAX_WORDS, END_OF_RUN_SEQ, FRAME_LEN, HELLO_SEQ,
-    PING_SEQ, SYNC,
+    SYNC,
 };
 use mre_core::table::Table;
 use mre_core::Flags;
@@ -92,19 +92,13 @@ impl PilLink {
         })
     }
 
-    /// Pings (a sample of sequence [`PING_SEQ`]) until the firmware answers
+    /// Pings ([`SampleFrame::ping`]) until the firmware answers
     /// with a hello, then waits for the line to go quiet so that no late
     /// answer to an earlier ping is taken for a later answer.
     pub fn handshake(&mut self, timeout: Duration) -> Result<()> {
         let deadline = Instant::now() + timeout;
         self.stream.set_read_timeout(PING_INTERVAL)?;
-        let ping = SampleFrame {
-            seq: PING_SEQ,
-            x_mm: 0.0,
-            v_m_s: None,
-            force_n: None,
-            coil_current_a: None,
-        };
+        let ping = SampleFrame::ping();
         let result = loop {
             if Instant::now() > deadline {
                 break Err(anyhow::anyhow!("no hello within {timeout:?}"));
