@@ -198,9 +198,10 @@ impl mre_core::flash_table::TablePage for FlashPage {
     }
 }
 
-/// The table upload receiver: the VCP UART and the flash page.
+/// The table upload receiver: the VCP UART (`None` if it could not be
+/// configured: boot still reads the page) and the flash page.
 pub struct Uplink {
-    uart: BufferedUart<'static>,
+    uart: Option<BufferedUart<'static>>,
     page: FlashPage,
 }
 
@@ -209,14 +210,17 @@ pub struct Uplink {
 pub fn boot_table(board: &mut Board, built_in: &TableImage<'_>, rate_hz: u32) -> BootTable {
     match board.uplink.as_mut() {
         Some(up) => choose_boot_table(&mut up.page, built_in, rate_hz),
+        // Only after `spawn_uplink`, which `main` calls later.
         None => choose_boot_table(&mut mre_core::flash_table::RamPage::erased(), built_in, rate_hz),
     }
 }
 
 /// Starts the upload receiver (thread mode, below the control task).
 pub fn spawn_uplink(spawner: &embassy_executor::Spawner, board: &mut Board) {
-    let Some(uplink) = board.uplink.take() else { return };
-    match upload_task(uplink) {
+    let Some(Uplink { uart: Some(uart), page }) = board.uplink.take() else {
+        return;
+    };
+    match upload_task(uart, page) {
         Ok(token) => spawner.spawn(token),
         Err(_) => defmt::error!("upload task already running"),
     }
@@ -227,14 +231,14 @@ pub fn spawn_uplink(spawner: &embassy_executor::Spawner, board: &mut Board) {
 /// hello frame (`TABLE_FAULT` if refused). The table flies after the next
 /// reset; the running controller is never swapped mid-operation.
 #[embassy_executor::task]
-async fn upload_task(mut up: Uplink) {
+async fn upload_task(mut uart: BufferedUart<'static>, mut page: FlashPage) {
     use embedded_io_async::{Read, Write};
     use mre_core::upload::{PortEvent, UploadPort};
     defmt::info!("table upload: listening on the ST-LINK VCP (115200 8N1)");
     let mut port = UploadPort::new();
     let mut buf = [0u8; 32];
     loop {
-        let n = match up.uart.read(&mut buf).await {
+        let n = match uart.read(&mut buf).await {
             Ok(n) => n,
             Err(e) => {
                 defmt::warn!("table upload: VCP read error {}", e);
@@ -242,7 +246,7 @@ async fn upload_task(mut up: Uplink) {
             }
         };
         for &byte in buf.get(..n).unwrap_or_default() {
-            let Some(event) = port.push(byte, &mut up.page) else {
+            let Some(event) = port.push(byte, &mut page) else {
                 continue;
             };
             match &event {
@@ -259,7 +263,7 @@ async fn upload_task(mut up: Uplink) {
                     port.rejected_frames()
                 ),
             }
-            if up.uart.write_all(&event.answer()).await.is_err() {
+            if uart.write_all(&event.answer()).await.is_err() {
                 defmt::warn!("table upload: VCP write error");
             }
         }
@@ -347,7 +351,7 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
     let watchdog = IndependentWatchdog::new(p.IWDG, WATCHDOG_TIMEOUT_US);
     let page = FlashPage(embassy_stm32::flash::Flash::new(p.FLASH, Irqs));
     let (vcp, vcp_rx, vcp_tx) = vcp_pins!(p);
-    let uplink = match (
+    let uart = match (
         cortex_m::singleton!(: [u8; 64] = [0; 64]),
         cortex_m::singleton!(: [u8; 256] = [0; 256]),
     ) {
@@ -361,7 +365,7 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
                 Irqs,
                 embassy_stm32::usart::Config::default(),
             ) {
-                Ok(uart) => Some(Uplink { uart, page }),
+                Ok(uart) => Some(uart),
                 Err(e) => {
                     defmt::error!("table upload disabled: VCP UART config {}", e);
                     None
@@ -376,6 +380,7 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
         VCP_IRQ.set_priority(Priority::P3);
         embassy_stm32::interrupt::FLASH.set_priority(Priority::P3);
     }
+    let uplink = Some(Uplink { uart, page });
     (Board { io, watchdog, uplink }, status)
 }
 
