@@ -1,7 +1,8 @@
 //! Boot calibration arithmetic, range-checked so that a bad reading is
 //! refused (and logged by the board) instead of silently applied:
 //! - VDDA from the internal reference (VREFINT) and its factory value;
-//! - the zero of a sensor read at rest (displacement offset, velocity zero).
+//! - the zero of a sensor read at rest (displacement offset, velocity zero,
+//!   and the current sense with the PWM off).
 //!
 //! The board samples; this module decides. A refused calibration leaves the
 //! nominal scaling in place.
@@ -67,6 +68,13 @@ pub const X_REST: RestLimits = RestLimits {
 pub const V_REST: RestLimits = RestLimits {
     max_offset: 0.3,
     max_spread: 0.3,
+};
+
+/// Current sense with the PWM off (the coil carries nothing): 0 A. 0.1 A is
+/// 10 mV of amplifier offset at 0.1 V/A; 0.05 A of spread is ~6 LSB.
+pub const I_SENSE_REST: RestLimits = RestLimits {
+    max_offset: 0.1,
+    max_spread: 0.05,
 };
 
 /// The offset (mean − `expected`) of `samples` taken at rest, to subtract

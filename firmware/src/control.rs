@@ -301,6 +301,11 @@ impl Controller {
         at_rest
     }
 
+    /// Latches a fault detected outside the step (the board's over-current monitor).
+    pub fn latch_fault(&mut self, fault: Flags) {
+        self.latch(fault);
+    }
+
     fn latch(&mut self, fault: Flags) {
         if !self.latched.contains(fault) {
             self.stats.fault_latches = self.stats.fault_latches.saturating_add(1);

@@ -3,7 +3,7 @@
 
 /// A set of status bits. `Flags::NONE` means a clean, in-range result.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub struct Flags(pub u16);
+pub struct Flags(pub u32);
 
 impl Flags {
     pub const NONE: Flags = Flags(0);
@@ -40,6 +40,10 @@ impl Flags {
     /// The velocity sensor and the displacement-based estimate disagree for
     /// too long: one of the two sensors is lying.
     pub const SENSOR_DISAGREE: Flags = Flags(1 << 15);
+    /// The coil current measured by the shunt exceeded the coil's rating
+    /// (`mre_core::overcurrent`). Bits 16.. travel in the command frame's
+    /// byte 3 (`frame`).
+    pub const OVER_CURRENT: Flags = Flags(1 << 16);
 
     /// Flags that mean the inputs or the system cannot be trusted.
     pub const FAULTS: Flags = Flags(
@@ -49,7 +53,8 @@ impl Flags {
             | Self::OVERRUN.0
             | Self::TABLE_FAULT.0
             | Self::FRAME_FAULT.0
-            | Self::SENSOR_DISAGREE.0,
+            | Self::SENSOR_DISAGREE.0
+            | Self::OVER_CURRENT.0,
     );
 
     #[inline]

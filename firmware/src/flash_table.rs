@@ -38,6 +38,52 @@ pub trait TablePage {
     fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), FlashError>;
 }
 
+/// A page in RAM that behaves like STM32L4 flash (erase to 0xFF, aligned
+/// writes that can only clear bits): the PIL board's stand-in (QEMU models
+/// no flash controller) and the host tests' page.
+#[derive(Clone, Debug)]
+pub struct RamPage {
+    pub bytes: [u8; PAGE_BYTES],
+}
+
+impl RamPage {
+    pub const fn erased() -> Self {
+        Self {
+            bytes: [0xFF; PAGE_BYTES],
+        }
+    }
+}
+
+impl TablePage for RamPage {
+    fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), FlashError> {
+        let src = self
+            .bytes
+            .get(offset..offset.saturating_add(buf.len()))
+            .ok_or(FlashError)?;
+        buf.copy_from_slice(src);
+        Ok(())
+    }
+
+    fn erase(&mut self) -> Result<(), FlashError> {
+        self.bytes.fill(0xFF);
+        Ok(())
+    }
+
+    fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), FlashError> {
+        if !offset.is_multiple_of(WRITE_ALIGN) || !data.len().is_multiple_of(WRITE_ALIGN) {
+            return Err(FlashError);
+        }
+        let dst = self
+            .bytes
+            .get_mut(offset..offset.saturating_add(data.len()))
+            .ok_or(FlashError)?;
+        for (d, s) in dst.iter_mut().zip(data) {
+            *d &= *s;
+        }
+        Ok(())
+    }
+}
+
 /// The flash driver failed (the board maps its error here).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FlashError;

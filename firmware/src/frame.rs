@@ -10,11 +10,11 @@
 //! |-------|----------------------------------------|---------------------------------|
 //! | 0..2  | sync `A5 5A`                           | sync `A5 5A`                    |
 //! | 2     | kind = 1                               | kind = 2                        |
-//! | 3     | present: bit0 velocity, bit1 force     | 0                               |
+//! | 3     | present: bit0 v, bit1 force, bit2 coil current | flags bits 16..24 (0 before `OVER_CURRENT`) |
 //! | 4..8  | sequence u32                           | sequence answered u32           |
 //! | 8..12 | x_mm f32                               | current_a f32                   |
 //! | 12..16| v_m_s f32 (if bit0)                    | target_force_n f32              |
-//! | 16..20| force_n f32 (if bit1)                  | flags u16, rejected frames u16  |
+//! | 16..20| force_n f32 (bit1) or coil_current_a f32 (bit2) | flags bits 0..16 u16, rejected frames u16 |
 //! | 20..24| CRC-32 of bytes 0..20                  | CRC-32 of bytes 0..20           |
 //!
 //! The receiver resynchronises on the sync word, so a corrupt or truncated
@@ -35,8 +35,14 @@ pub const END_OF_RUN_SEQ: u32 = u32::MAX;
 /// The firmware's first command frame carries this sequence number: the
 /// link is up and samples may be sent (samples start at 1).
 pub const HELLO_SEQ: u32 = 0;
+/// A sample frame with this sequence number is a ping: the firmware answers
+/// with a hello and runs no step. A host that connects to a board already
+/// running (a serial port: `mre pil --serial`, `mre upload`) missed the boot
+/// hello, so it pings until one arrives. Pings are not sequenced.
+pub const PING_SEQ: u32 = HELLO_SEQ;
 const PRESENT_V: u8 = 1 << 0;
 const PRESENT_FORCE: u8 = 1 << 1;
+const PRESENT_COIL_CURRENT: u8 = 1 << 2;
 const CRC_AT: usize = 20;
 
 const CRC32: Crc<u32> = Crc::<u32>::new(&CRC_32_ISO_HDLC);
@@ -50,6 +56,10 @@ pub struct SampleFrame {
     pub v_m_s: Option<f32>,
     /// Measured force, for logging only (the law does not use it).
     pub force_n: Option<f32>,
+    /// The coil current the shunt measures (the simulated plant's coil),
+    /// checked by the over-current monitor. Takes the force's place in the
+    /// frame (bytes 16..20, present bit 2): a frame carries one of the two.
+    pub coil_current_a: Option<f32>,
 }
 
 /// The firmware's answer to one sample.
@@ -124,16 +134,31 @@ fn check(buf: &[u8; FRAME_LEN], kind: u8) -> Result<(), FrameError> {
 }
 
 impl SampleFrame {
+    /// The host's handshake ([`PING_SEQ`]): answered with a hello, no step.
+    pub fn ping() -> Self {
+        Self {
+            seq: PING_SEQ,
+            x_mm: 0.0,
+            v_m_s: None,
+            force_n: None,
+            coil_current_a: None,
+        }
+    }
+
     pub fn encode(&self) -> [u8; FRAME_LEN] {
         let mut buf = [0u8; FRAME_LEN];
-        let present =
-            if self.v_m_s.is_some() { PRESENT_V } else { 0 } | if self.force_n.is_some() { PRESENT_FORCE } else { 0 };
+        let slot4 = match (self.coil_current_a, self.force_n) {
+            (Some(i), _) => Some((PRESENT_COIL_CURRENT, i)),
+            (None, Some(f)) => Some((PRESENT_FORCE, f)),
+            (None, None) => None,
+        };
+        let present = if self.v_m_s.is_some() { PRESENT_V } else { 0 } | slot4.map_or(0, |(bit, _)| bit);
         let [s0, s1] = SYNC;
         put(&mut buf, 0, [s0, s1, KIND_SAMPLE, present]);
         put(&mut buf, 4, self.seq.to_le_bytes());
         put(&mut buf, 8, self.x_mm.to_le_bytes());
         put(&mut buf, 12, self.v_m_s.unwrap_or(0.0).to_le_bytes());
-        put(&mut buf, 16, self.force_n.unwrap_or(0.0).to_le_bytes());
+        put(&mut buf, 16, slot4.map_or(0.0, |(_, value)| value).to_le_bytes());
         seal(&mut buf);
         buf
     }
@@ -147,20 +172,34 @@ impl SampleFrame {
             seq: u32::from_le_bytes(get4(buf, 4)),
             x_mm: f(8),
             v_m_s: (present & PRESENT_V != 0).then(|| f(12)),
-            force_n: (present & PRESENT_FORCE != 0).then(|| f(16)),
+            force_n: (present & (PRESENT_FORCE | PRESENT_COIL_CURRENT) == PRESENT_FORCE).then(|| f(16)),
+            coil_current_a: (present & PRESENT_COIL_CURRENT != 0).then(|| f(16)),
         })
     }
 }
 
 impl CommandFrame {
+    /// The hello frame (sequence [`HELLO_SEQ`]): sent when the PIL link comes
+    /// up, and as the answer to a configuration commit (`TABLE_FAULT` when
+    /// the upload was refused or not stored).
+    pub fn hello(flags: Flags) -> Self {
+        Self {
+            seq: HELLO_SEQ,
+            current_a: 0.0,
+            target_force_n: 0.0,
+            flags,
+            rejected: 0,
+        }
+    }
+
     pub fn encode(&self) -> [u8; FRAME_LEN] {
         let mut buf = [0u8; FRAME_LEN];
         let [s0, s1] = SYNC;
-        put(&mut buf, 0, [s0, s1, KIND_COMMAND, 0]);
+        let [f0, f1, f2, _] = self.flags.0.to_le_bytes();
+        put(&mut buf, 0, [s0, s1, KIND_COMMAND, f2]);
         put(&mut buf, 4, self.seq.to_le_bytes());
         put(&mut buf, 8, self.current_a.to_le_bytes());
         put(&mut buf, 12, self.target_force_n.to_le_bytes());
-        let [f0, f1] = self.flags.0.to_le_bytes();
         let [r0, r1] = self.rejected.to_le_bytes();
         put(&mut buf, 16, [f0, f1, r0, r1]);
         seal(&mut buf);
@@ -170,11 +209,12 @@ impl CommandFrame {
     pub fn decode(buf: &[u8; FRAME_LEN]) -> Result<Self, FrameError> {
         check(buf, KIND_COMMAND)?;
         let [f0, f1, r0, r1] = get4(buf, 16);
+        let f2 = buf.get(3).copied().unwrap_or(0);
         Ok(Self {
             seq: u32::from_le_bytes(get4(buf, 4)),
             current_a: f32::from_le_bytes(get4(buf, 8)),
             target_force_n: f32::from_le_bytes(get4(buf, 12)),
-            flags: Flags(u16::from_le_bytes([f0, f1])),
+            flags: Flags(u32::from_le_bytes([f0, f1, f2, 0])),
             rejected: u16::from_le_bytes([r0, r1]),
         })
     }
@@ -278,6 +318,7 @@ impl SampleReceiver {
             SampleFrame::decode(&frame).map(Incoming::Sample)
         };
         match decoded {
+            Ok(Incoming::Sample(sample)) if sample.seq == PING_SEQ => Some(Ok(Incoming::Sample(sample))),
             Ok(Incoming::Sample(sample)) => Some(self.sequence(sample).map(Incoming::Sample)),
             Ok(chunk) => Some(Ok(chunk)),
             Err(e) => {
@@ -425,6 +466,27 @@ impl ConfigChunk {
             words: [w(0), w(1), w(2)],
         })
     }
+}
+
+/// A blob as the frames that upload it: config chunks of up to three words,
+/// then the commit (host side: `mre pil`, `mre upload`).
+pub fn config_frames(words: &[u32]) -> impl Iterator<Item = [u8; FRAME_LEN]> + '_ {
+    let chunks = words.chunks(3).enumerate().map(|(k, chunk)| {
+        let mut three = [0u32; 3];
+        for (d, s) in three.iter_mut().zip(chunk) {
+            *d = *s;
+        }
+        ConfigChunk::Words {
+            index: 3 * k as u32,
+            count: chunk.len() as u8,
+            words: three,
+        }
+        .encode()
+    });
+    let commit = ConfigChunk::Commit {
+        total_words: words.len() as u32,
+    };
+    chunks.chain(core::iter::once(commit.encode()))
 }
 
 /// Why an uploaded configuration was refused.

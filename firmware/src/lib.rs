@@ -21,9 +21,11 @@ pub mod inverse;
 pub mod law;
 pub mod math;
 pub mod model;
+pub mod overcurrent;
 pub mod pacing;
 pub mod status;
 pub mod table;
+pub mod upload;
 
 pub use flags::Flags;
 pub use model::Branch;

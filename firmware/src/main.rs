@@ -24,13 +24,13 @@ mod board;
 #[cfg(target_os = "none")]
 mod fw {
     use crate::board::{self, BoardIo, StatusIo};
-    use core::sync::atomic::{AtomicBool, AtomicU16, AtomicU32, Ordering};
+    use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
     use embassy_executor::Spawner;
     use embassy_sync::blocking_mutex::raw::CriticalSectionRawMutex;
     use embassy_sync::channel::Channel;
-    use mre_core::control::{ControlConfig, Controller, Stats, DEFAULT_RATE_HZ};
+    use mre_core::control::{Controller, Stats, DEFAULT_RATE_HZ};
     use mre_core::frame::LinkStats;
-    use mre_core::table::Table;
+    use mre_core::upload::TableSource;
 
     // Log lines carry embassy-time's µs since boot.
     defmt::timestamp!("{=u64:us}", embassy_time::Instant::now().as_micros());
@@ -40,7 +40,7 @@ mod fw {
         /// B1 pressed: faults cleared (at rest) or the clear refused.
         ClearRequest {
             cleared: bool,
-            latched: u16,
+            latched: u32,
         },
         Overrun {
             period: u32,
@@ -50,7 +50,7 @@ mod fw {
             period: u32,
         },
         FaultLatched {
-            latched: u16,
+            latched: u32,
             period: u32,
         },
         Stats {
@@ -62,7 +62,7 @@ mod fw {
     static EVENTS: Channel<CriticalSectionRawMutex, Event, 16> = Channel::new();
     static DROPPED_EVENTS: AtomicU32 = AtomicU32::new(0);
     /// Latched faults for the status LED (written by the control task).
-    static LATCHED: AtomicU16 = AtomicU16::new(0);
+    static LATCHED: AtomicU32 = AtomicU32::new(0);
     /// Set by a press of B1, taken by the control task.
     static CLEAR_REQUEST: AtomicBool = AtomicBool::new(false);
 
@@ -121,66 +121,49 @@ mod fw {
         );
 
         // A rejected table is not fatal: the controller latches TABLE_FAULT
-        // and commands the fail-safe current every period.
-        // An uploaded table (flash page, `mre_core::flash_table`) is preferred;
-        // an erased, torn or invalid page falls back to the built-in one.
-        let uploaded = match board::uploaded_table(&mut board) {
-            Ok((t, c)) => {
-                defmt::info!(
-                    "table uploaded (flash page) format v{=u16}: {=usize} currents, CRC {=u32:#010x} OK, {=u32} Hz",
-                    t.version(),
-                    t.entries().len(),
-                    t.crc32(),
-                    c.rate_hz
-                );
-                Some((t, c))
-            }
-            Err(e) => {
-                defmt::info!("no uploaded table ({=str}): flying the built-in table", e.as_str());
-                None
-            }
-        };
-        let table = match uploaded {
-            Some((t, _)) => Ok(t),
-            None => Table::from_image(&flown::IMAGE),
-        };
-        match (&table, uploaded.is_some()) {
-            (_, true) => {}
-            (Ok(t), false) => defmt::info!(
-                "table {=str} format v{=u16}: {=usize} currents, CRC {=u32:#010x} OK, data set sha256 {=str}",
+        // and commands the fail-safe current every period. An uploaded table
+        // (flash page, `mre upload`) is preferred; an erased, torn or invalid
+        // page falls back to the built-in one (`mre_core::upload`).
+        let boot = board::boot_table(&mut board, &flown::IMAGE, RATE_HZ);
+        match (&boot.source, &boot.table) {
+            (TableSource::Uploaded, Ok(t)) => defmt::info!(
+                "table uploaded (flash page) format v{=u16}: {=usize} currents, CRC {=u32:#010x} OK",
+                t.version(),
+                t.entries().len(),
+                t.crc32()
+            ),
+            (TableSource::BuiltIn(why), Ok(t)) => defmt::info!(
+                "no uploaded table ({=str}): table {=str} format v{=u16}: {=usize} currents, CRC {=u32:#010x} OK, data set sha256 {=str}",
+                why.as_str(),
                 flown::NAME,
                 t.version(),
                 t.entries().len(),
                 t.crc32(),
                 flown::SOURCE_DATASET_SHA256
             ),
-            (Err(e), false) => defmt::error!(
-                "table {=str} format v{=u16} stored CRC {=u32:#010x} REJECTED: {}, data set sha256 {=str}",
+            (_, Err(e)) => defmt::error!(
+                "table {=str} format v{=u16} stored CRC {=u32:#010x} REJECTED: {=str}, data set sha256 {=str}",
                 flown::NAME,
                 flown::IMAGE.version,
                 flown::IMAGE.crc32,
-                defmt::Debug2Format(e),
+                table_error_name(e),
                 flown::SOURCE_DATASET_SHA256
             ),
         }
-
-        let cfg = match (uploaded, ControlConfig::at_rate(RATE_HZ)) {
-            // The image's ticker runs at RATE_HZ: an uploaded configuration
-            // for another rate keeps only its table.
-            (Some((_, c)), _) if c.rate_hz == RATE_HZ => c,
-            (Some((_, c)), Ok(cfg)) => {
-                defmt::warn!(
-                    "uploaded configuration is for {=u32} Hz, the image runs {=u32} Hz: using the defaults",
-                    c.rate_hz,
-                    RATE_HZ
-                );
-                cfg
-            }
-            (_, Ok(cfg)) => cfg,
-            (_, Err(e)) => {
+        if let Some(rate_hz) = boot.uploaded_rate_ignored_hz {
+            defmt::warn!(
+                "uploaded configuration is for {=u32} Hz, the image runs {=u32} Hz: its table with the image's defaults",
+                rate_hz,
+                RATE_HZ
+            );
+        }
+        let table = boot.table;
+        let cfg = match boot.config {
+            Ok(cfg) => cfg,
+            Err(e) => {
                 // Only a build with a bad RATE_HZ gets here: hold the coil at
                 // the fail-safe duty and let the watchdog (never fed) reset.
-                defmt::error!("control config refused: {}", defmt::Debug2Format(&e));
+                defmt::error!("control config refused: {=str}", config_error_name(&e));
                 board::halt_fail_safe(board)
             }
         };
@@ -188,7 +171,7 @@ mod fw {
         let mut ctl = match Controller::new(cfg, table) {
             Ok(c) => c,
             Err(e) => {
-                defmt::error!("controller refused config: {}", defmt::Debug2Format(&e));
+                defmt::error!("controller refused config: {=str}", config_error_name(&e));
                 board::halt_fail_safe(board)
             }
         };
@@ -206,6 +189,7 @@ mod fw {
             cfg.law.stroke_max_mm,
             cfg.law.mass_kg
         );
+        board::spawn_uplink(&spawner, &mut board);
         match status_task(status) {
             Ok(token) => spawner.spawn(token),
             Err(_) => defmt::error!("status task already running"),
@@ -227,6 +211,34 @@ mod fw {
         log_events().await
     }
 
+    // Errors are logged by name: `defmt::Debug2Format` would link
+    // `core::fmt` with float printing (~13 KB of flash, BENCHMARKS.md).
+    fn table_error_name(e: &mre_core::TableError) -> &'static str {
+        use mre_core::TableError as E;
+        match e {
+            E::Empty => "empty",
+            E::TooManyEntries { .. } => "too many entries",
+            E::UnsupportedVersion { .. } => "unsupported version",
+            E::UnsortedCurrents { .. } => "currents not ascending",
+            E::NonFiniteValue { .. } => "non-finite value",
+            E::BadStroke { .. } => "bad stroke",
+            E::CrcMismatch { .. } => "CRC mismatch",
+            E::TooLarge { .. } => "value too large",
+            E::BadTerm { term } => term,
+        }
+    }
+
+    fn config_error_name(e: &mre_core::control::ControlConfigError) -> &'static str {
+        use mre_core::control::ControlConfigError as E;
+        match e {
+            E::Rate { .. } => "control rate out of range",
+            E::Law(_) => "law configuration",
+            E::PeriodMismatch => "law period does not match the rate",
+            E::Estimator => "estimator gains",
+            E::Counts => "fault counts",
+        }
+    }
+
     /// Thread mode: turns the control task's events into defmt lines.
     async fn log_events() -> ! {
         let mut reported_dropped = 0;
@@ -234,20 +246,20 @@ mod fw {
             match EVENTS.receive().await {
                 Event::Overrun { period } => defmt::warn!("overrun in period {=u32}", period),
                 Event::ClearRequest { cleared: true, latched } => {
-                    defmt::info!("B1: faults cleared at rest (still latched: {=u16:#06x})", latched)
+                    defmt::info!("B1: faults cleared at rest (still latched: {=u32:#010x})", latched)
                 }
                 Event::ClearRequest {
                     cleared: false,
                     latched,
                 } => defmt::warn!(
-                    "B1: faults not cleared, the damper is not at rest (latched {=u16:#06x})",
+                    "B1: faults not cleared, the damper is not at rest (latched {=u32:#010x})",
                     latched
                 ),
                 Event::Missed { ticks, period } => {
                     defmt::warn!("{=u32} control periods missed before period {=u32}", ticks, period)
                 }
                 Event::FaultLatched { latched, period } => defmt::error!(
-                    "fault latched: {=u16:#06x} in period {=u32}; coil at the fail-safe",
+                    "fault latched: {=u32:#010x} in period {=u32}; coil at the fail-safe",
                     latched,
                     period
                 ),
@@ -258,7 +270,7 @@ mod fw {
                 } => {
                     let dropped = DROPPED_EVENTS.load(Ordering::Relaxed);
                     defmt::info!(
-                        "stats: periods {=u32} (+{=u32}), overruns {=u32}, fail-safe periods {=u32}, latched {=u16:#06x}, step cycles min/mean/max {=u32}/{=u32}/{=u32}, log events dropped {=u32}{}",
+                        "stats: periods {=u32} (+{=u32}), overruns {=u32}, fail-safe periods {=u32}, latched {=u32:#010x}, step cycles min/mean/max {=u32}/{=u32}/{=u32}, log events dropped {=u32}{}",
                         s.periods,
                         new_periods,
                         s.overruns,
@@ -300,6 +312,7 @@ mod fw {
     async fn control_task(mut ctl: Controller, mut board: board::Board) {
         let mut last = ctl.stats();
         let mut known_faults = ctl.latched();
+        let mut over_current = mre_core::overcurrent::OverCurrent::default();
         board.start();
         loop {
             let missed = board.io.next_period(&mut ctl).await;
@@ -308,6 +321,13 @@ mod fw {
                     ticks: missed,
                     period: ctl.stats().periods,
                 });
+            }
+            // Over-current (the shunt at mid on-time of the last PWM period)
+            // latches before the step, so this period already holds the fail-safe.
+            if let Some(measured_a) = board.io.coil_current_a() {
+                if over_current.check(measured_a) {
+                    ctl.latch_fault(mre_core::Flags::OVER_CURRENT);
+                }
             }
             let t0 = board::cycles();
             let cmd = ctl.step_io(&mut board.io);

@@ -1,12 +1,16 @@
 //! The table/configuration upload path: arbitrary words decoded directly,
 //! and the same words sent as an upload (valid-CRC frames through the
 //! firmware's receiver and collector). Never a panic; an accepted upload
-//! re-encodes to itself, and both paths agree.
+//! re-encodes to itself, and both paths agree. The board's receiver
+//! (`UploadPort` onto a flash-like RAM page) stores exactly what it accepts
+//! and leaves the page untouched when it refuses.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
+use mre_core::flash_table::{load, RamPage};
 use mre_core::frame::{
     decode_config, encode_config, ConfigChunk, ConfigCollector, Incoming, SampleReceiver, CONFIG_MAX_WORDS,
 };
+use mre_core::upload::{PortEvent, UploadPort};
 
 fuzz_target!(|data: &[u8]| {
     let words: Vec<u32> = data
@@ -37,6 +41,9 @@ fuzz_target!(|data: &[u8]| {
     chunks.push(ConfigChunk::Commit {
         total_words: words.len() as u32,
     });
+    let mut port = UploadPort::new();
+    let mut page = RamPage::erased();
+    let mut stored = None;
     for chunk in chunks {
         for b in chunk.encode() {
             if let Some(Ok(Incoming::Config(c))) = rx.push_any(b) {
@@ -44,7 +51,20 @@ fuzz_target!(|data: &[u8]| {
                     result = Some(r);
                 }
             }
+            if let Some(PortEvent::Commit(r)) = port.push(b, &mut page) {
+                stored = Some(r);
+            }
         }
+    }
+    match (stored.expect("the port answers the commit"), &result) {
+        (Ok((t, c)), Some(Ok((t2, c2)))) => {
+            assert_eq!(t.entries(), t2.entries());
+            assert_eq!(&c, c2);
+            let (t3, _) = load(&mut page).expect("what was acknowledged loads back");
+            assert_eq!(t3.entries(), t.entries());
+        }
+        (Err(_), Some(Err(_))) => assert!(page.bytes.iter().all(|&b| b == 0xFF), "a refused upload wrote the page"),
+        (s, r) => panic!("the port and the collector disagree: {:?} vs {:?}", s.is_ok(), r.as_ref().map(|r| r.is_ok())),
     }
     let uploaded = result.expect("a commit always answers");
     if words.len() <= CONFIG_MAX_WORDS {

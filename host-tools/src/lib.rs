@@ -16,4 +16,5 @@ pub mod plot;
 pub mod progress;
 pub mod table_file;
 pub mod tables;
+pub mod upload;
 pub mod validate;

@@ -274,6 +274,20 @@ enum Command {
         /// writes faults.md and faults.json.
         #[arg(long)]
         faults: Option<String>,
+        /// Hardware in the loop: the `pil` image already running on this serial port (a board's VCP) instead of QEMU.
+        #[arg(long, conflicts_with_all = ["elf", "faults"])]
+        serial: Option<PathBuf>,
+    },
+    /// Send a table to a running board over its serial port (no reflashing): it is stored in flash and flown after the next reset.
+    Upload {
+        /// The board's serial port (the ST-LINK virtual COM port, e.g. /dev/ttyACM0).
+        #[arg(long)]
+        port: PathBuf,
+        /// Model or table file (as `mre tables` reads).
+        model: PathBuf,
+        /// The control rate of the configuration sent with it (the image keeps only the table if it runs another rate).
+        #[arg(long)]
+        rate_hz: Option<u32>,
     },
 }
 
@@ -695,6 +709,7 @@ fn run(cli: Cli) -> Result<()> {
             elf,
             report,
             faults: Some(spec),
+            serial: _,
         } => {
             let plan = mre_host::pil::faults::FaultPlan::parse(&spec, drop.seed)?;
             let request = mre_host::pil::sim::PilRequest {
@@ -713,10 +728,21 @@ fn run(cli: Cli) -> Result<()> {
             elf,
             report,
             faults: None,
+            serial,
         } => {
             let sim = drop.request(None)?;
-            let progress = mre_host::progress::spinner("building the PIL firmware and running it in QEMU");
-            let out = mre_host::pil::sim::run_pil(&mre_host::pil::sim::PilRequest { sim, elf }, &report)?;
+            let progress = mre_host::progress::spinner(if serial.is_some() {
+                "running the drop with the firmware on the serial port"
+            } else {
+                "building the PIL firmware and running it in QEMU"
+            });
+            let out = match serial {
+                Some(port) => {
+                    let link = mre_host::pil::sim::FirmwareLink::Serial { port: &port };
+                    mre_host::pil::sim::run_pil_on(&sim, link, &report)?
+                }
+                None => mre_host::pil::sim::run_pil(&mre_host::pil::sim::PilRequest { sim, elf }, &report)?,
+            };
             std::mem::drop(progress);
             print!("{}", mre_host::plant::sim_report::summary_table(&out.comparison));
             let a = out.agreement;
@@ -729,6 +755,17 @@ fn run(cli: Cli) -> Result<()> {
             if !a.agrees() {
                 anyhow::bail!("the firmware run does not match the in-process run (see pil.json)");
             }
+        }
+        Command::Upload { port, model, rate_hz } => {
+            let u = mre_host::upload::run_upload(&port, &model, rate_hz)?;
+            println!(
+                "uploaded {} currents (table CRC-32 {:#010x}, {} Hz, {} words) to {}: stored, flown after the board's next reset",
+                u.currents,
+                u.table_crc32,
+                u.rate_hz,
+                u.words,
+                port.display()
+            );
         }
     }
     Ok(())

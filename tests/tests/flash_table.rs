@@ -1,10 +1,12 @@
 //! The uploaded-table flash page, over a RAM page that behaves like STM32L4
 //! flash (erase to 0xFF, 8-byte aligned writes that can only clear bits).
 use mre_core::control::ControlConfig;
-use mre_core::flash_table::{load, store, FlashError, PageError, TablePage, PAGE_BYTES, WRITE_ALIGN};
+use mre_core::flash_table::{load, store, FlashError, PageError, TablePage, WRITE_ALIGN};
 use mre_core::table::{Table, PAPER_TABLE4_ENTRIES};
 
+/// The core's RAM page, asserting alignment and able to lose power mid-write.
 struct RamPage {
+    page: mre_core::flash_table::RamPage,
     bytes: Vec<u8>,
     /// Stop after this many written bytes (a power cut mid-write).
     cut_after: Option<usize>,
@@ -12,8 +14,10 @@ struct RamPage {
 
 impl RamPage {
     fn erased() -> Self {
+        let page = mre_core::flash_table::RamPage::erased();
         Self {
-            bytes: vec![0xFF; PAGE_BYTES],
+            bytes: page.bytes.to_vec(),
+            page,
             cut_after: None,
         }
     }
@@ -21,12 +25,13 @@ impl RamPage {
 
 impl TablePage for RamPage {
     fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), FlashError> {
-        let src = self.bytes.get(offset..offset + buf.len()).ok_or(FlashError)?;
-        buf.copy_from_slice(src);
-        Ok(())
+        // Tests edit `bytes` directly: the core page mirrors them.
+        self.page.bytes.copy_from_slice(&self.bytes);
+        self.page.read(offset, buf)
     }
     fn erase(&mut self) -> Result<(), FlashError> {
-        self.bytes.fill(0xFF);
+        self.page.erase()?;
+        self.bytes.copy_from_slice(&self.page.bytes);
         Ok(())
     }
     fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), FlashError> {

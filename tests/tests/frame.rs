@@ -11,6 +11,7 @@ fn sample(seq: u32) -> SampleFrame {
         x_mm: 1.25,
         v_m_s: Some(-0.5),
         force_n: None,
+        coil_current_a: None,
     }
 }
 
@@ -79,18 +80,21 @@ fn optional_fields_round_trip() {
             x_mm: 0.0,
             v_m_s: None,
             force_n: None,
+            coil_current_a: None,
         },
         SampleFrame {
             seq: 2,
             x_mm: -0.25,
             v_m_s: Some(2.24),
             force_n: Some(950.0),
+            coil_current_a: None,
         },
         SampleFrame {
             seq: 3,
             x_mm: 3.0,
             v_m_s: None,
             force_n: Some(-1.0),
+            coil_current_a: None,
         },
     ] {
         assert_eq!(SampleFrame::decode(&s.encode()), Ok(s));

@@ -32,6 +32,7 @@ fn a_fault_blinks_its_code_every_two_seconds() {
         (Flags::SENSOR_DISAGREE, 5),
         (Flags::OVERRUN, 6),
         (Flags::FRAME_FAULT, 7),
+        (Flags::OVER_CURRENT, 8),
     ] {
         assert_eq!(blink_code(flag), code);
         assert_eq!(flashes(flag, two_s), code, "{flag:?}");
@@ -42,6 +43,8 @@ fn a_fault_blinks_its_code_every_two_seconds() {
     }
     // The most serious fault wins.
     assert_eq!(blink_code(Flags::OVERRUN | Flags::SENSOR_RANGE), 2);
+    // Over-current is shown before everything (the hardware may be damaged).
+    assert_eq!(blink_code(Flags::OVER_CURRENT | Flags::TABLE_FAULT), 8);
 }
 
 fn controller() -> Controller {

@@ -6,8 +6,9 @@
 //!
 //! Every layer exports the same items, named below (no glob): `NAME`,
 //! `Board { io, watchdog }` (`io` implements [`BoardIo`]), `Status`
-//! ([`StatusIo`]), `init(rate_hz)`, `Board::start`, `core_clock_hz`,
-//! `cycles` and `halt_fail_safe`.
+//! ([`StatusIo`]), `init(rate_hz)`, `Board::start`, `boot_table` (the
+//! uploaded table or the built-in one), `spawn_uplink` (the table upload
+//! receiver), `core_clock_hz`, `cycles` and `halt_fail_safe`.
 #[cfg(all(feature = "hw", feature = "pil"))]
 compile_error!("enable one board: `pil` needs `--no-default-features`");
 #[cfg(all(feature = "board-b-l475e-iot01a", feature = "board-nucleo-l476rg"))]
@@ -20,14 +21,14 @@ mod stm32l4;
 #[cfg(all(feature = "hw", feature = "bench"))]
 pub use stm32l4::bench_model_step;
 #[cfg(feature = "hw")]
-pub use stm32l4::{core_clock_hz, cycles, halt_fail_safe, init, uploaded_table, Board, Status, NAME};
+pub use stm32l4::{boot_table, core_clock_hz, cycles, halt_fail_safe, init, spawn_uplink, Board, Status, NAME};
 
 #[cfg(feature = "pil")]
 mod pil;
 #[cfg(all(feature = "pil", feature = "bench"))]
 pub use pil::icount;
 #[cfg(feature = "pil")]
-pub use pil::{core_clock_hz, cycles, halt_fail_safe, init, uploaded_table, Board, Status, NAME};
+pub use pil::{boot_table, core_clock_hz, cycles, halt_fail_safe, init, spawn_uplink, Board, Status, NAME};
 
 use mre_core::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
 use mre_core::frame::LinkStats;
@@ -45,6 +46,10 @@ pub trait BoardIo: DisplacementSensor + VelocitySensor + Coil {
     fn finish_period(&mut self, cmd: &Command, ctl: &Controller) -> bool;
     /// The frame link's counters (PIL), `None` on hardware.
     fn link_stats(&self) -> Option<LinkStats>;
+    /// The measured coil current for the over-current monitor: the shunt at
+    /// mid on-time on hardware, the plant's coil in PIL (`None` when the
+    /// host sends none).
+    fn coil_current_a(&mut self) -> Option<f32>;
 }
 
 /// The status LED and the user button (thread mode).

@@ -19,11 +19,13 @@ use embassy_time::Timer;
 use embassy_time_driver::Driver;
 use embassy_time_queue_utils::Queue;
 use mre_core::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
+use mre_core::flash_table::RamPage;
 use mre_core::frame::{
-    CommandFrame, ConfigCollector, FrameError, Incoming, LinkStats, SampleFrame, SampleReceiver, END_OF_RUN_SEQ,
-    FRAME_LEN, HELLO_SEQ,
+    CommandFrame, FrameError, Incoming, LinkStats, SampleFrame, SampleReceiver, END_OF_RUN_SEQ, FRAME_LEN, PING_SEQ,
 };
 use mre_core::law::Command;
+use mre_core::table::TableImage;
+use mre_core::upload::{choose_boot_table, BootTable, UploadReceiver};
 use mre_core::Flags;
 
 pub const NAME: &str = "PIL (QEMU b-l475e-iot01a)";
@@ -91,7 +93,15 @@ fn SysTick() {
 // ---- USART1 through the PAC ---------------------------------------------------
 
 fn usart_init() {
+    use pac::gpio::vals::Moder;
     pac::RCC.apb2enr().modify(|w| w.set_usart1en(true));
+    // PB6 (TX) and PB7 (RX) to USART1 (AF7): the ST-LINK VCP on a real
+    // B-L475E-IOT01A (QEMU's model connects USART1 without it).
+    pac::RCC.ahb2enr().modify(|w| w.set_gpioben(true));
+    for pin in [6, 7] {
+        pac::GPIOB.afr(0).modify(|w| w.set_afr(pin, 7));
+        pac::GPIOB.moder().modify(|w| w.set_moder(pin, Moder::ALTERNATE));
+    }
     // 115200 Bd at 4 MHz (QEMU ignores the rate; real hardware would not).
     pac::USART1.brr().write(|w| w.set_brr((CORE_CLOCK_HZ / 115_200) as u16));
     pac::USART1.cr1().write(|w| {
@@ -134,7 +144,11 @@ pub struct Board {
 /// in the answer frame.
 pub struct Io {
     rx: SampleReceiver,
-    config: ConfigCollector,
+    upload: UploadReceiver,
+    /// Stand-in for the flash page (QEMU models no flash controller): an
+    /// upload goes through the same store/read-back as on the boards, and
+    /// the controller flies what the page reads back.
+    page: RamPage,
     sample: SampleFrame,
     current_a: f32,
     last_reply: Option<[u8; FRAME_LEN]>,
@@ -166,12 +180,14 @@ pub fn init(_rate_hz: u32) -> (Board, Status) {
         Board {
             io: Io {
                 rx: SampleReceiver::new(),
-                config: ConfigCollector::new(),
+                upload: UploadReceiver::new(),
+                page: RamPage::erased(),
                 sample: SampleFrame {
                     seq: 0,
                     x_mm: f32::NAN,
                     v_m_s: None,
                     force_n: None,
+                    coil_current_a: None,
                 },
                 current_a: 0.0,
                 last_reply: None,
@@ -194,23 +210,18 @@ impl Board {
 }
 
 fn send_hello(flags: Flags) {
-    let hello = CommandFrame {
-        seq: HELLO_SEQ,
-        current_a: 0.0,
-        target_force_n: 0.0,
-        flags,
-        rejected: 0,
-    };
-    usart_write(&hello.encode());
+    usart_write(&CommandFrame::hello(flags).encode());
 }
 
-/// PIL uploads its table over the frame link instead (QEMU does not model
-/// the flash controller): the page is always empty here.
-pub fn uploaded_table(
-    _board: &mut Board,
-) -> Result<(mre_core::Table, mre_core::control::ControlConfig), mre_core::flash_table::PageError> {
-    Err(mre_core::flash_table::PageError::Empty)
+/// The table boot flies: the page (in RAM here, so empty after QEMU starts)
+/// or the image's own. Uploads arrive on the frame link and switch the
+/// running controller (`Io::next_period`).
+pub fn boot_table(board: &mut Board, built_in: &TableImage<'_>, rate_hz: u32) -> BootTable {
+    choose_boot_table(&mut board.io.page, built_in, rate_hz)
 }
+
+/// Uploads share the frame link with the samples: no separate receiver.
+pub fn spawn_uplink(_spawner: &embassy_executor::Spawner, _board: &mut Board) {}
 
 pub fn halt_fail_safe(_board: Board) -> ! {
     semihosting::process::exit(2)
@@ -230,26 +241,39 @@ impl super::BoardIo for Io {
                 };
                 idle_polls = 0;
                 match self.rx.push_any(byte) {
-                    Some(Ok(Incoming::Config(chunk))) => match self.config.push(chunk) {
-                        Some(Ok((table, cfg))) => match Controller::new(cfg, Ok(table)) {
-                            Ok(new_ctl) => {
-                                *ctl = new_ctl;
-                                defmt::info!(
-                                    "configuration uploaded: table CRC {=u32:#010x}, {=u32} Hz",
-                                    table.crc32(),
-                                    cfg.rate_hz
-                                );
-                                send_hello(Flags::NONE);
+                    Some(Ok(Incoming::Config(chunk))) => {
+                        let Some(result) = self.upload.on_chunk(chunk, &mut self.page) else {
+                            continue;
+                        };
+                        let flown = match result {
+                            Ok((table, cfg)) => match Controller::new(cfg, Ok(table)) {
+                                Ok(new_ctl) => {
+                                    *ctl = new_ctl;
+                                    defmt::info!(
+                                        "configuration uploaded (page stored and read back): table CRC {=u32:#010x}, {=u32} Hz",
+                                        table.crc32(),
+                                        cfg.rate_hz
+                                    );
+                                    true
+                                }
+                                Err(e) => {
+                                    defmt::warn!(
+                                        "uploaded configuration refused by the controller: {}",
+                                        defmt::Debug2Format(&e)
+                                    );
+                                    false
+                                }
+                            },
+                            Err(e) => {
+                                defmt::warn!("configuration refused: {=str}", e.as_str());
+                                false
                             }
-                            Err(_) => send_hello(Flags::TABLE_FAULT),
-                        },
-                        Some(Err(e)) => {
-                            defmt::warn!("configuration refused: {}", defmt::Debug2Format(&e));
-                            send_hello(Flags::TABLE_FAULT);
-                        }
-                        None => {}
-                    },
+                        };
+                        send_hello(if flown { Flags::NONE } else { Flags::TABLE_FAULT });
+                    }
                     Some(Ok(Incoming::Sample(sample))) if sample.seq == END_OF_RUN_SEQ => end_of_run(self.rx.stats()),
+                    // The host connected after the boot hello (a serial port).
+                    Some(Ok(Incoming::Sample(sample))) if sample.seq == PING_SEQ => send_hello(Flags::NONE),
                     Some(Ok(Incoming::Sample(sample))) => {
                         self.sample = sample;
                         return 0;
@@ -293,6 +317,10 @@ impl super::BoardIo for Io {
 
     fn link_stats(&self) -> Option<LinkStats> {
         Some(self.rx.stats())
+    }
+
+    fn coil_current_a(&mut self) -> Option<f32> {
+        self.sample.coil_current_a
     }
 }
 

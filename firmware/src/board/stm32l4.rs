@@ -7,16 +7,19 @@ use panic_probe as _;
 
 use embassy_stm32::adc::{Adc, AdcChannel, AnyAdcChannel, SampleTime};
 use embassy_stm32::gpio::{Input, Level, Output, OutputType, Pull, Speed};
-use embassy_stm32::peripherals::{ADC1, ADC2, IWDG, TIM3};
+use embassy_stm32::peripherals::{ADC1, ADC2, ADC3, IWDG, TIM3};
 use embassy_stm32::time::khz;
 use embassy_stm32::timer::low_level::CountingMode;
 use embassy_stm32::timer::simple_pwm::{PwmPin, SimplePwm, SimplePwmChannel};
+use embassy_stm32::usart::BufferedUart;
 use embassy_stm32::wdg::IndependentWatchdog;
 use embassy_time::{Duration, Instant, Ticker};
 use mre_core::boot::ResetCause;
 use mre_core::control::{open_loop_duty, Coil, Controller, DisplacementSensor, VelocitySensor};
 use mre_core::law::{Command, LawConfig};
 use mre_core::pacing::Pacer;
+use mre_core::table::TableImage;
+use mre_core::upload::{choose_boot_table, BootTable};
 
 #[cfg(feature = "board-b-l475e-iot01a")]
 pub const NAME: &str = "B-L475E-IOT01A";
@@ -29,6 +32,21 @@ macro_rules! board_pins {
     };
 }
 
+/// The ST-LINK virtual COM port: USART1, RX = PB7, TX = PB6.
+#[cfg(feature = "board-b-l475e-iot01a")]
+macro_rules! vcp_pins {
+    ($p:ident) => {
+        ($p.USART1, $p.PB7, $p.PB6)
+    };
+}
+#[cfg(feature = "board-b-l475e-iot01a")]
+embassy_stm32::bind_interrupts!(struct Irqs {
+    USART1 => embassy_stm32::usart::BufferedInterruptHandler<embassy_stm32::peripherals::USART1>;
+    FLASH => embassy_stm32::flash::InterruptHandler;
+});
+#[cfg(feature = "board-b-l475e-iot01a")]
+use embassy_stm32::interrupt::USART1 as VCP_IRQ;
+
 #[cfg(feature = "board-nucleo-l476rg")]
 pub const NAME: &str = "NUCLEO-L476RG";
 /// Arduino A0 = PA0 (ADC1_IN5) displacement, A1 = PA1 (ADC2_IN6) velocity,
@@ -39,6 +57,20 @@ macro_rules! board_pins {
         ($p.PA0, $p.PA1, $p.PB4, $p.PA5, $p.PC13)
     };
 }
+/// The ST-LINK virtual COM port: USART2, RX = PA3, TX = PA2.
+#[cfg(feature = "board-nucleo-l476rg")]
+macro_rules! vcp_pins {
+    ($p:ident) => {
+        ($p.USART2, $p.PA3, $p.PA2)
+    };
+}
+#[cfg(feature = "board-nucleo-l476rg")]
+embassy_stm32::bind_interrupts!(struct Irqs {
+    USART2 => embassy_stm32::usart::BufferedInterruptHandler<embassy_stm32::peripherals::USART2>;
+    FLASH => embassy_stm32::flash::InterruptHandler;
+});
+#[cfg(feature = "board-nucleo-l476rg")]
+use embassy_stm32::interrupt::USART2 as VCP_IRQ;
 
 /// What is wired: a velocity transducer on the velocity channel (cargo feature).
 pub const HAS_VELOCITY_SENSOR: bool = cfg!(feature = "velocity-sensor");
@@ -59,6 +91,17 @@ const COIL_FULL_SCALE_A: f32 = 3.0;
 const PWM_KHZ: u32 = 20;
 /// 24.5 + 12.5 ADC cycles at 80 MHz: 0.46 µs per conversion.
 const SAMPLE_TIME: SampleTime = SampleTime::CYCLES24_5;
+/// Coil current sense: a low-side shunt and amplifier, 1 V/A (0.1 Ω × 10),
+/// on Arduino A4 = PC1 = ADC3_IN2 on both boards. ADC3 converts it as an
+/// injected channel triggered by TIM3_CH4, whose compare sits at half the
+/// coil PWM's on-time: every conversion lands at mid on-time.
+const I_SENSE_V_PER_A: f32 = 1.0;
+const I_SENSE_CHANNEL: u8 = 2;
+/// ADC injected trigger JEXT4 = TIM3_CH4 (RM0351, "ADC1/2/3 external
+/// triggers for injected channels").
+const JEXTSEL_TIM3_CH4: u8 = 4;
+const JEXTEN_RISING: u8 = 1;
+
 /// 50 periods at 10 kHz: long enough for the 1 Hz stats log, short enough
 /// that a hung control loop releases the coil to the reset state quickly.
 const WATCHDOG_TIMEOUT_US: u32 = 5_000;
@@ -101,6 +144,11 @@ pub struct Io {
     adc_x: Adc<'static, ADC1>,
     ch_x: AnyAdcChannel<'static, ADC1>,
     velocity: Option<(Adc<'static, ADC2>, AnyAdcChannel<'static, ADC2>)>,
+    /// ADC3 (kept for its clock and calibration; converts through the PAC
+    /// once [`Io::start_current_sense`] ran) and the shunt channel.
+    sense: (Adc<'static, ADC3>, AnyAdcChannel<'static, ADC3>),
+    /// From boot calibration with the PWM off (0 if refused).
+    i_offset_a: f32,
     pwm: SimplePwmChannel<'static, TIM3>,
     max_duty: u32,
     ticker: Ticker,
@@ -115,14 +163,22 @@ pub struct Io {
 pub struct Board {
     pub io: Io,
     pub watchdog: IndependentWatchdog<'static, IWDG>,
-    table_page: FlashPage,
+    /// Taken by [`spawn_uplink`].
+    uplink: Option<Uplink>,
 }
 
 /// The flash page reserved for an uploaded table: the last 2 KiB of the
-/// 1 MiB flash (memory.x ends FLASH before it).
+/// 1 MiB flash (memory.x ends FLASH before it). It lies in bank 2 and the
+/// image (≤ 64 KiB) in bank 1: the L4's read-while-write lets the control
+/// loop keep running from bank 1 while the page is erased and written.
 const TABLE_PAGE_OFFSET: u32 = 1024 * 1024 - mre_core::flash_table::PAGE_BYTES as u32;
 
-struct FlashPage(embassy_stm32::flash::Flash<'static, embassy_stm32::flash::Blocking>);
+/// embassy-stm32's async flash driver: on the L4 its erase and write wait
+/// for the FLASH interrupt instead of holding a critical section (the
+/// blocking driver masks interrupts for the whole ~22 ms page erase, which
+/// would stall the control loop and trip the 5 ms watchdog). The upload task
+/// polls each operation to completion in thread mode.
+struct FlashPage(embassy_stm32::flash::Flash<'static, embassy_stm32::flash::Async>);
 
 impl mre_core::flash_table::TablePage for FlashPage {
     fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), mre_core::flash_table::FlashError> {
@@ -133,23 +189,85 @@ impl mre_core::flash_table::TablePage for FlashPage {
 
     fn erase(&mut self) -> Result<(), mre_core::flash_table::FlashError> {
         let end = TABLE_PAGE_OFFSET + mre_core::flash_table::PAGE_BYTES as u32;
-        self.0
-            .blocking_erase(TABLE_PAGE_OFFSET, end)
-            .map_err(|_| mre_core::flash_table::FlashError)
+        embassy_futures::block_on(self.0.erase(TABLE_PAGE_OFFSET, end)).map_err(|_| mre_core::flash_table::FlashError)
     }
 
     fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), mre_core::flash_table::FlashError> {
-        self.0
-            .blocking_write(TABLE_PAGE_OFFSET + offset as u32, data)
+        embassy_futures::block_on(self.0.write(TABLE_PAGE_OFFSET + offset as u32, data))
             .map_err(|_| mre_core::flash_table::FlashError)
     }
 }
 
-/// The table and configuration on the reserved flash page, if valid.
-pub fn uploaded_table(
-    board: &mut Board,
-) -> Result<(mre_core::Table, mre_core::control::ControlConfig), mre_core::flash_table::PageError> {
-    mre_core::flash_table::load(&mut board.table_page)
+/// The table upload receiver: the VCP UART (`None` if it could not be
+/// configured: boot still reads the page) and the flash page.
+pub struct Uplink {
+    uart: Option<BufferedUart<'static>>,
+    page: FlashPage,
+}
+
+/// The table boot flies: the flash page if it holds a valid upload, else
+/// the image's own (`mre_core::upload::choose_boot_table`).
+pub fn boot_table(board: &mut Board, built_in: &TableImage<'_>, rate_hz: u32) -> BootTable {
+    match board.uplink.as_mut() {
+        Some(up) => choose_boot_table(&mut up.page, built_in, rate_hz),
+        // Only after `spawn_uplink`, which `main` calls later.
+        None => choose_boot_table(&mut mre_core::flash_table::RamPage::erased(), built_in, rate_hz),
+    }
+}
+
+/// Starts the upload receiver (thread mode, below the control task).
+pub fn spawn_uplink(spawner: &embassy_executor::Spawner, board: &mut Board) {
+    let Some(Uplink { uart: Some(uart), page }) = board.uplink.take() else {
+        return;
+    };
+    match upload_task(uart, page) {
+        Ok(token) => spawner.spawn(token),
+        Err(_) => defmt::error!("upload task already running"),
+    }
+}
+
+/// `mre upload --port PORT model.toml` lands here: config frames on the
+/// VCP, validated, written to the flash page and read back, answered with a
+/// hello frame (`TABLE_FAULT` if refused). The table flies after the next
+/// reset; the running controller is never swapped mid-operation.
+#[embassy_executor::task]
+async fn upload_task(mut uart: BufferedUart<'static>, mut page: FlashPage) {
+    use embedded_io_async::{Read, Write};
+    use mre_core::upload::{PortEvent, UploadPort};
+    defmt::info!("table upload: listening on the ST-LINK VCP (115200 8N1)");
+    let mut port = UploadPort::new();
+    let mut buf = [0u8; 32];
+    loop {
+        let n = match uart.read(&mut buf).await {
+            Ok(n) => n,
+            Err(e) => {
+                defmt::warn!("table upload: VCP read error {}", e);
+                continue;
+            }
+        };
+        for &byte in buf.get(..n).unwrap_or_default() {
+            let Some(event) = port.push(byte, &mut page) else {
+                continue;
+            };
+            match &event {
+                PortEvent::Ping => {}
+                PortEvent::Commit(Ok((t, c))) => defmt::info!(
+                    "table upload: stored in the flash page, CRC {=u32:#010x}, {=usize} currents, {=u32} Hz; flown after the next reset",
+                    t.crc32(),
+                    t.entries().len(),
+                    c.rate_hz
+                ),
+                PortEvent::Commit(Err(e)) => defmt::warn!(
+                    "table upload not stored: {=str} ({=u16} frames rejected so far)",
+                    e.as_str(),
+                    port.rejected_frames()
+                ),
+            }
+            if uart.write_all(&event.answer()).await.is_err() {
+                defmt::warn!("table upload: VCP write error");
+            }
+        }
+    }
 }
 
 /// The status LED and the user button B1 (active low on both boards).
@@ -183,6 +301,7 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
 
     let p = embassy_stm32::init(clock_config());
     let (pin_x, pin_v, pin_pwm, pin_led, pin_button) = board_pins!(p);
+    let pin_i = p.PC1;
     let status = Status {
         led: Output::new(pin_led, Level::Low, Speed::Low),
         button: Input::new(pin_button, Pull::None),
@@ -211,6 +330,8 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
         adc_x: Adc::new(p.ADC1),
         ch_x: pin_x.degrade_adc(),
         velocity: HAS_VELOCITY_SENSOR.then(|| (Adc::new(p.ADC2), pin_v.degrade_adc())),
+        sense: (Adc::new(p.ADC3), pin_i.degrade_adc()),
+        i_offset_a: 0.0,
         pwm: ch,
         max_duty,
         ticker: Ticker::every(period),
@@ -220,19 +341,47 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
         x_offset_mm: 0.0,
         v_zero_m_s: 0.0,
     };
+    // The PWM runs at 0 % (coil off): VDDA and the current-sense zero first.
+    io.calibrate_vdda();
+    io.calibrate_current_sense();
+    io.start_current_sense();
     // Until the loop runs, hold the fail-safe current (stiffest damper).
     io.set_duty(fail_safe_duty());
-    io.calibrate();
+    io.calibrate_at_rest();
     let watchdog = IndependentWatchdog::new(p.IWDG, WATCHDOG_TIMEOUT_US);
-    let table_page = FlashPage(embassy_stm32::flash::Flash::new_blocking(p.FLASH));
-    (
-        Board {
-            io,
-            watchdog,
-            table_page,
-        },
-        status,
-    )
+    let page = FlashPage(embassy_stm32::flash::Flash::new(p.FLASH, Irqs));
+    let (vcp, vcp_rx, vcp_tx) = vcp_pins!(p);
+    let uart = match (
+        cortex_m::singleton!(: [u8; 64] = [0; 64]),
+        cortex_m::singleton!(: [u8; 256] = [0; 256]),
+    ) {
+        (Some(tx_buf), Some(rx_buf)) => {
+            match BufferedUart::new(
+                vcp,
+                vcp_rx,
+                vcp_tx,
+                tx_buf,
+                rx_buf,
+                Irqs,
+                embassy_stm32::usart::Config::default(),
+            ) {
+                Ok(uart) => Some(uart),
+                Err(e) => {
+                    defmt::error!("table upload disabled: VCP UART config {}", e);
+                    None
+                }
+            }
+        }
+        _ => None,
+    };
+    // The VCP interrupt only fills a ring buffer: below the control task (P1).
+    {
+        use embassy_stm32::interrupt::{InterruptExt, Priority};
+        VCP_IRQ.set_priority(Priority::P3);
+        embassy_stm32::interrupt::FLASH.set_priority(Priority::P3);
+    }
+    let uplink = Some(Uplink { uart, page });
+    (Board { io, watchdog, uplink }, status)
 }
 
 impl Board {
@@ -264,12 +413,13 @@ impl Io {
         f32::from(code) * self.v_per_lsb
     }
 
-    /// Boot calibration (firmware/README.md): VDDA from VREFINT, then the
-    /// displacement offset and the velocity zero with the mass at rest. Each
-    /// result is range-checked (`mre_core::calibration`) and logged; a
-    /// refused one leaves the nominal scaling.
-    fn calibrate(&mut self) {
-        use mre_core::calibration::{vdda_v, V_REST, X_REST};
+    /// Boot calibration (firmware/README.md): VDDA from VREFINT (here), the
+    /// current-sense zero with the PWM off, then the displacement offset and
+    /// the velocity zero with the mass at rest. Each result is range-checked
+    /// (`mre_core::calibration`) and logged; a refused one leaves the
+    /// nominal scaling.
+    fn calibrate_vdda(&mut self) {
+        use mre_core::calibration::vdda_v;
         let mut vref = self.adc_x.enable_vrefint();
         let raw = self.adc_x.blocking_read(&mut vref, SampleTime::CYCLES247_5);
         match vdda_v(raw, vref.calibrated_value()) {
@@ -288,6 +438,43 @@ impl Io {
                 VREF_V
             ),
         }
+    }
+
+    /// The current-sense offset, with the coil off (PWM at 0 %).
+    fn calibrate_current_sense(&mut self) {
+        use mre_core::calibration::I_SENSE_REST;
+        self.i_offset_a = self.rest_zero("current sense zero (A)", I_SENSE_REST, |io| {
+            let (adc, ch) = &mut io.sense;
+            let code = adc.blocking_read(ch, SAMPLE_TIME);
+            io.volts(code) / I_SENSE_V_PER_A
+        });
+    }
+
+    /// From here on ADC3 converts the shunt once per PWM period, triggered
+    /// by TIM3_CH4 at mid on-time (embassy-stm32 0.6's ADC driver for the
+    /// L4 has no triggered mode: its ring-buffered mode ignores the trigger
+    /// and there is no injected API, so this is PAC). TIM3_CH4 runs in PWM
+    /// mode 2: OC4REF rises at CCR4 = CCR1 / 2 ([`Io::set_duty`]).
+    fn start_current_sense(&mut self) {
+        use embassy_stm32::pac;
+        use embassy_stm32::pac::timer::vals::Ocm;
+        pac::TIM3.ccmr_output(1).modify(|w| {
+            w.set_ocm(1, Ocm::PWM_MODE2);
+            w.set_ocpe(1, true);
+        });
+        pac::TIM3.ccr(3).write(|w| w.set_ccr(1));
+        pac::ADC3.jsqr().write(|w| {
+            w.set_jl(0);
+            w.set_jextsel(JEXTSEL_TIM3_CH4);
+            w.set_jexten(JEXTEN_RISING);
+            w.set_jsq(0, I_SENSE_CHANNEL);
+        });
+        pac::ADC3.cr().modify(|w| w.set_jadstart(true));
+    }
+
+    /// The displacement offset and the velocity zero with the mass at rest.
+    fn calibrate_at_rest(&mut self) {
+        use mre_core::calibration::{V_REST, X_REST};
         self.x_offset_mm = self.rest_zero("x offset (mm)", X_REST, |io| io.read_x_mm());
         if self.velocity.is_some() {
             self.v_zero_m_s = self.rest_zero("velocity zero (m/s)", V_REST, |io| io.read_v_m_s().unwrap_or(f32::NAN));
@@ -320,7 +507,12 @@ impl Io {
 
     fn set_duty(&mut self, duty: f32) {
         // duty ∈ [0, 1] by construction; `as` saturates anyway.
-        self.pwm.set_duty_cycle((duty * self.max_duty as f32) as u32);
+        let compare = (duty * self.max_duty as f32) as u32;
+        self.pwm.set_duty_cycle(compare);
+        // The current-sense trigger at mid on-time; at least 1 so that a
+        // shorted switch at 0 % duty is still sampled.
+        let mid = (compare / 2).clamp(1, u32::from(u16::MAX)) as u16;
+        embassy_stm32::pac::TIM3.ccr(3).write(|w| w.set_ccr(mid));
     }
 }
 
@@ -347,6 +539,12 @@ impl super::BoardIo for Io {
     /// No frame link on hardware.
     fn link_stats(&self) -> Option<mre_core::frame::LinkStats> {
         None
+    }
+
+    /// The latest mid-on-time shunt conversion (the last PWM period).
+    fn coil_current_a(&mut self) -> Option<f32> {
+        let code = embassy_stm32::pac::ADC3.jdr(0).read().jdata();
+        Some(self.volts(code) / I_SENSE_V_PER_A - self.i_offset_a)
     }
 }
 

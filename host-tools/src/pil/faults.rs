@@ -379,6 +379,7 @@ pub fn run_faults(request: &PilRequest, plan: &FaultPlan) -> Result<FaultReport>
                 x_mm: s.read(seq, x_mm),
                 v_m_s: Some(v_m_s),
                 force_n: None,
+                coil_current_a: None,
             };
             let faults = draw_frame_faults(plan, &mut rng);
             match exchange(link, &frame, &faults, &mut tally.borrow_mut()) {

@@ -105,6 +105,7 @@ pub fn run_lockstep<P: Plant, B: ControlBackend + ?Sized>(
             x_mm: sample.x_mm,
             v_m_s: sample.v_m_s,
             force_n: sample.force_n,
+            coil_current_a: None,
         };
         let command = backend.step(&frame)?;
         if command.seq != seq {

@@ -59,6 +59,10 @@ pub struct Qemu {
     child: Child,
     /// QEMU's human monitor on a local TCP socket (register reads in tests).
     monitor_port: u16,
+    /// Holds the pty's symlink ([`Qemu::start_on_pty`]).
+    _pty_dir: Option<tempfile::TempDir>,
+    /// QEMU's stderr, for the error message when it exits early.
+    errors: std::fs::File,
 }
 
 impl Qemu {
@@ -66,49 +70,16 @@ impl Qemu {
     /// TCP socket and connects to it. defmt (semihosting) output goes to
     /// `log` (binary defmt frames; decode with `defmt-print -e ELF`).
     pub fn start(qemu: &Path, elf: &Path, log: Option<&Path>) -> Result<(Qemu, PilLink)> {
-        if !elf.is_file() {
-            bail!(
-                "firmware image {} not found: build it with `cargo fw-pil`",
-                elf.display()
-            );
-        }
         // Ask the OS for a free port; QEMU binds it right after.
         let port = TcpListener::bind("127.0.0.1:0")?.local_addr()?.port();
-        let monitor_port = TcpListener::bind("127.0.0.1:0")?.local_addr()?.port();
-        let stdout = match log {
-            Some(p) => Stdio::from(std::fs::File::create(p).with_context(|| format!("creating {}", p.display()))?),
-            None => Stdio::null(),
-        };
-        // stderr to a file, not a pipe: an undrained pipe could stall QEMU.
-        let mut errors = tempfile::tempfile().context("temporary file for QEMU's stderr")?;
-        let child = Command::new(qemu)
-            .args(["-M", "b-l475e-iot01a", "-nographic", "-monitor"])
-            .arg(format!("tcp:127.0.0.1:{monitor_port},server=on,wait=off"))
-            .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
-            .arg(elf)
-            .arg("-chardev")
-            .arg(format!(
-                "socket,id=u1,host=127.0.0.1,port={port},server=on,wait=on,nodelay=on"
-            ))
-            .args(["-serial", "chardev:u1"])
-            .stdin(Stdio::null())
-            .stdout(stdout)
-            .stderr(Stdio::from(errors.try_clone()?))
-            .spawn()
-            .with_context(|| format!("starting {}", qemu.display()))?;
-        let mut qemu = Qemu { child, monitor_port };
+        let chardev = format!("socket,id=u1,host=127.0.0.1,port={port},server=on,wait=on,nodelay=on");
+        let mut qemu = Self::spawn(qemu, elf, log, &chardev, None)?;
         let deadline = Instant::now() + Duration::from_secs(20);
         loop {
             match TcpStream::connect(("127.0.0.1", port)) {
                 Ok(stream) => return Ok((qemu, PilLink::new(stream)?)),
                 Err(e) => {
-                    if let Some(status) = qemu.child.try_wait()? {
-                        use std::io::{Read, Seek};
-                        let mut err = String::new();
-                        errors.rewind().ok();
-                        errors.read_to_string(&mut err).ok();
-                        bail!("QEMU exited ({status}) before the link came up: {err}");
-                    }
+                    qemu.check_running()?;
                     if Instant::now() > deadline {
                         bail!("cannot connect to QEMU's USART1 socket on port {port}: {e}");
                     }
@@ -116,6 +87,79 @@ impl Qemu {
                 }
             }
         }
+    }
+
+    /// Starts `elf` with USART1 on a pseudo-terminal, as a real board's
+    /// serial port would be, and returns its path (a symlink to the pty) for
+    /// `mre pil --serial` and `mre upload --port`. The firmware boots at
+    /// once: its boot hello is lost, as with a board that is already running.
+    pub fn start_on_pty(qemu: &Path, elf: &Path, log: Option<&Path>) -> Result<(Qemu, PathBuf)> {
+        let dir = tempfile::tempdir().context("temporary folder for the pty link")?;
+        let pty = dir.path().join("usart1");
+        let chardev = format!("pty,id=u1,path={}", pty.display());
+        let mut qemu = Self::spawn(qemu, elf, log, &chardev, Some(dir))?;
+        let deadline = Instant::now() + Duration::from_secs(20);
+        while !pty.exists() {
+            qemu.check_running()?;
+            if Instant::now() > deadline {
+                bail!("QEMU did not create its pty {}", pty.display());
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        Ok((qemu, pty))
+    }
+
+    fn spawn(
+        qemu: &Path,
+        elf: &Path,
+        log: Option<&Path>,
+        chardev: &str,
+        pty_dir: Option<tempfile::TempDir>,
+    ) -> Result<Qemu> {
+        if !elf.is_file() {
+            bail!(
+                "firmware image {} not found: build it with `cargo fw-pil`",
+                elf.display()
+            );
+        }
+        let monitor_port = TcpListener::bind("127.0.0.1:0")?.local_addr()?.port();
+        let stdout = match log {
+            Some(p) => Stdio::from(std::fs::File::create(p).with_context(|| format!("creating {}", p.display()))?),
+            None => Stdio::null(),
+        };
+        // stderr to a file, not a pipe: an undrained pipe could stall QEMU.
+        let errors = tempfile::tempfile().context("temporary file for QEMU's stderr")?;
+        let child = Command::new(qemu)
+            .args(["-M", "b-l475e-iot01a", "-nographic", "-monitor"])
+            .arg(format!("tcp:127.0.0.1:{monitor_port},server=on,wait=off"))
+            .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
+            .arg(elf)
+            .arg("-chardev")
+            .arg(chardev)
+            .args(["-serial", "chardev:u1"])
+            .stdin(Stdio::null())
+            .stdout(stdout)
+            .stderr(Stdio::from(errors.try_clone()?))
+            .spawn()
+            .with_context(|| format!("starting {}", qemu.display()))?;
+        Ok(Qemu {
+            child,
+            monitor_port,
+            _pty_dir: pty_dir,
+            errors,
+        })
+    }
+
+    /// Fails with QEMU's stderr if it has exited.
+    fn check_running(&mut self) -> Result<()> {
+        if let Some(status) = self.child.try_wait()? {
+            use std::io::{Read, Seek};
+            let mut err = String::new();
+            self.errors.rewind().ok();
+            self.errors.read_to_string(&mut err).ok();
+            bail!("QEMU exited ({status}) before the link came up: {err}");
+        }
+        Ok(())
     }
 
     /// Reads a 32-bit word of the emulated chip's physical address space

@@ -82,10 +82,48 @@ pub fn run_in_process(setup: &SimSetup, table: &Table, cfg: &ControlConfig) -> R
     )
 }
 
+/// Where the firmware runs.
+#[derive(Clone, Copy, Debug)]
+pub enum FirmwareLink<'a> {
+    /// The `pil` image in QEMU, USART1 on a TCP socket (started here).
+    Qemu { elf: &'a Path },
+    /// A board (or QEMU on a pty) already running the `pil` image, on this
+    /// serial port: `mre pil --serial PORT`.
+    Serial { port: &'a Path },
+}
+
+impl FirmwareLink<'_> {
+    fn label(&self) -> String {
+        match self {
+            FirmwareLink::Qemu { .. } => "in QEMU".to_owned(),
+            FirmwareLink::Serial { port } => format!("on {}", port.display()),
+        }
+    }
+}
+
+/// How long `--serial` pings before giving up (time to reset the board).
+pub const SERIAL_HELLO_TIMEOUT: Duration = Duration::from_secs(30);
+
 /// The controlled drop with the firmware in QEMU in the loop.
 pub fn run_firmware(setup: &SimSetup, table: &Table, cfg: &ControlConfig, elf: &Path) -> Result<(Trajectory, u64)> {
-    let qemu_bin = qemu_binary().ok_or_else(|| anyhow!("qemu-system-arm not found: {INSTALL_HINT}"))?;
-    let (qemu, mut link): (Qemu, PilLink) = Qemu::start(&qemu_bin, elf, None)?;
+    run_firmware_on(setup, table, cfg, FirmwareLink::Qemu { elf })
+}
+
+/// The controlled drop with the firmware on `target` in the loop.
+pub fn run_firmware_on(
+    setup: &SimSetup,
+    table: &Table,
+    cfg: &ControlConfig,
+    target: FirmwareLink<'_>,
+) -> Result<(Trajectory, u64)> {
+    let (qemu, mut link) = match target {
+        FirmwareLink::Qemu { elf } => {
+            let qemu_bin = qemu_binary().ok_or_else(|| anyhow!("qemu-system-arm not found: {INSTALL_HINT}"))?;
+            let (qemu, link): (Qemu, PilLink) = Qemu::start(&qemu_bin, elf, None)?;
+            (Some(qemu), link)
+        }
+        FirmwareLink::Serial { port } => (None, PilLink::serial(port, SERIAL_HELLO_TIMEOUT)?),
+    };
     link.upload_config(table, cfg)?;
     let error = RefCell::new(None);
     let mut seq = 0u32;
@@ -100,6 +138,7 @@ pub fn run_firmware(setup: &SimSetup, table: &Table, cfg: &ControlConfig, elf: &
                 x_mm,
                 v_m_s: Some(v_m_s),
                 force_n: None,
+                coil_current_a: None,
             }) {
                 Ok(cmd) => cmd.current_a,
                 Err(e) => {
@@ -119,9 +158,11 @@ pub fn run_firmware(setup: &SimSetup, table: &Table, cfg: &ControlConfig, elf: &
     }
     let frames = link.frames();
     link.end_of_run()?;
-    let status = qemu.wait(Duration::from_secs(20))?;
-    if !status.success() {
-        bail!("firmware ended the run with {status}");
+    if let Some(qemu) = qemu {
+        let status = qemu.wait(Duration::from_secs(20))?;
+        if !status.success() {
+            bail!("firmware ended the run with {status}");
+        }
     }
     Ok((trajectory, frames))
 }
@@ -152,23 +193,28 @@ pub fn compare(a: &Trajectory, b: &Trajectory, frames: u64) -> Agreement {
 /// against the in-process runs, and writes the `mre sim` report plus
 /// `pil.json` into `report_dir`.
 pub fn run_pil(request: &PilRequest, report_dir: &Path) -> Result<PilOutcome> {
-    let setup = setup_for(&request.sim)?;
-    let mut specs = if request.sim.runs.is_empty() {
-        DEFAULT_RUNS.to_vec()
-    } else {
-        request.sim.runs.clone()
-    };
-    if !specs.contains(&RunSpec::Controlled) {
-        specs.push(RunSpec::Controlled);
-    }
     let elf = match &request.elf {
         Some(p) => p.clone(),
         None => super::qemu::build_firmware()?,
     };
+    run_pil_on(&request.sim, FirmwareLink::Qemu { elf: &elf }, report_dir)
+}
+
+/// `mre pil` with the firmware on `target` (QEMU, or `--serial PORT`).
+pub fn run_pil_on(sim: &SimRequest, target: FirmwareLink<'_>, report_dir: &Path) -> Result<PilOutcome> {
+    let setup = setup_for(sim)?;
+    let mut specs = if sim.runs.is_empty() {
+        DEFAULT_RUNS.to_vec()
+    } else {
+        sim.runs.clone()
+    };
+    if !specs.contains(&RunSpec::Controlled) {
+        specs.push(RunSpec::Controlled);
+    }
     let table = crate::control_bench::diagnosed_table(&setup.plant, setup.impact.noise_seed)?;
     let cfg = control_config(&setup)?;
 
-    let (firmware, frames) = run_firmware(&setup, &table, &cfg, &elf)?;
+    let (firmware, frames) = run_firmware_on(&setup, &table, &cfg, target)?;
     let host = run_in_process(&setup, &table, &cfg)?;
     let sim = crate::plant::closed_loop::run_controlled(&setup, &table)?;
     let agreement = compare(&firmware, &host, frames);
@@ -178,7 +224,7 @@ pub fn run_pil(request: &PilRequest, report_dir: &Path) -> Result<PilOutcome> {
     for &spec in &specs {
         let (trajectory, label) = match spec {
             RunSpec::Passive(a) => (run_passive(&setup, a)?, spec.label()),
-            RunSpec::Controlled => (firmware.clone(), "controlled (firmware in QEMU)".to_owned()),
+            RunSpec::Controlled => (firmware.clone(), format!("controlled (firmware {})", target.label())),
         };
         runs.push(RunResult::new(spec, label, &setup, trajectory));
     }
@@ -190,7 +236,7 @@ pub fn run_pil(request: &PilRequest, report_dir: &Path) -> Result<PilOutcome> {
         Ok(())
     })
     .context("writing pil.json")?;
-    crate::html::Page::new("Closed-loop drop test, firmware in QEMU (PIL)")
+    crate::html::Page::new(format!("Closed-loop drop test, firmware {} (PIL)", target.label()))
         .folder(report_dir)
         .write(&report_dir.join("index.html"))?;
     Ok(PilOutcome {

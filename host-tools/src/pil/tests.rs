@@ -135,6 +135,7 @@ fn firmware_rejects_corrupt_and_out_of_order_frames_and_counts_them() {
         x_mm: 0.2,
         v_m_s: Some(3.0),
         force_n: None,
+        coil_current_a: None,
     };
 
     let first = link.exchange(&sample(1)).unwrap();
@@ -309,6 +310,7 @@ fn coil_pin_is_driven_low_first_thing_at_boot() {
         x_mm: 0.0,
         v_m_s: None,
         force_n: None,
+        coil_current_a: None,
     })
     .unwrap();
     const GPIOB: u32 = 0x4800_0400;
@@ -322,5 +324,142 @@ fn coil_pin_is_driven_low_first_thing_at_boot() {
     );
     assert_eq!(odr & (1 << 4), 0, "PB4 output level (ODR {odr:#010x})");
     assert_eq!(idr & (1 << 4), 0, "PB4 pin level (IDR {idr:#010x})");
+    finish(qemu, link);
+}
+
+// ---- Over a serial port: `mre upload --port`, `mre pil --serial` -------------
+//
+// QEMU's USART1 on a pty stands in for a board's VCP: the same code path
+// (`PilLink::serial`: open the port raw, ping until a hello) as with a real
+// board. QEMU has no flash controller: these tests cover the transfer and the
+// firmware's receiver; the PIL image stores the upload on a RAM page through
+// the same `mre_core::upload` code, whose flash page logic is tested on the
+// host (`tests/tests/upload.rs`, `tests/tests/flash_table.rs`).
+
+fn start_on_pty() -> Option<(Qemu, PathBuf)> {
+    let qemu = qemu_or_skip()?;
+    Some(Qemu::start_on_pty(&qemu, &firmware(), None).expect("starting QEMU on a pty"))
+}
+
+#[test]
+fn upload_over_qemu_serial_is_flown_and_a_corrupt_upload_is_refused() {
+    use crate::upload::{run_upload, upload_payload};
+    use mre_core::frame::{config_frames, encode_config, CONFIG_MAX_WORDS};
+    let Some((qemu, pty)) = start_on_pty() else { return };
+    let model = super::qemu::workspace_root().join("models/drop-none.toml");
+    // `mre upload --port PTY models/drop-none.toml`, the CLI's own function.
+    let sent = run_upload(&pty, &model, None).unwrap();
+    let (table, cfg) = upload_payload(&model, DEFAULT_RATE_HZ).unwrap();
+    assert_eq!(sent.table_crc32, table.crc32());
+    let built_in = Table::from_image(&mre_core::generated_table::GENERATED_TABLE).unwrap();
+    assert_ne!(
+        table.crc32(),
+        built_in.crc32(),
+        "the test needs another table than the built-in one"
+    );
+
+    // A second connection: an upload whose third frame has a flipped bit
+    // (its frame CRC fails, the commit finds a word missing) is refused.
+    let mut link = PilLink::serial(&pty, Duration::from_secs(30)).unwrap();
+    let mut words = [0u32; CONFIG_MAX_WORDS];
+    let n = encode_config(&built_in, &cfg, &mut words);
+    let mut frames: Vec<_> = config_frames(&words[..n]).collect();
+    frames[2][12] ^= 0x01;
+    let answer = link.send_config_frames(frames).unwrap();
+    assert!(answer.flags.contains(Flags::TABLE_FAULT), "{answer:?}");
+
+    // The firmware flies the first upload: sample for sample what the same
+    // Controller with that table does in process, and not the built-in table.
+    let pil = run_lockstep(&mut StandInDrop::new(true), &mut link, 200, PERIOD_S).unwrap();
+    let uploaded = run_lockstep(
+        &mut StandInDrop::new(true),
+        &mut InProcess::new(cfg, table).unwrap(),
+        200,
+        PERIOD_S,
+    )
+    .unwrap();
+    let default = run_lockstep(
+        &mut StandInDrop::new(true),
+        &mut InProcess::firmware_default().unwrap(),
+        200,
+        PERIOD_S,
+    )
+    .unwrap();
+    assert_eq!(first_mismatch(&pil, &uploaded, 1.0e-6), None);
+    assert!(first_mismatch(&pil, &default, 1.0e-6).is_some());
+    // The corrupt frame was counted by the firmware's receiver.
+    assert!(pil.iter().all(|r| r.command.rejected >= 1));
+    finish(qemu, link);
+}
+
+#[test]
+fn mre_pil_serial_closes_the_drop_test_over_qemu_serial() {
+    use super::sim::{run_pil_on, FirmwareLink};
+    use crate::plant::closed_loop::{RunSpec, SimRequest};
+    let Some((qemu, pty)) = start_on_pty() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let sim = SimRequest {
+        runs: vec![RunSpec::Controlled],
+        ..SimRequest::default()
+    };
+    // What `mre pil --serial PTY` runs.
+    let out = run_pil_on(&sim, FirmwareLink::Serial { port: &pty }, dir.path()).unwrap();
+    assert!(out.agreement.agrees(), "{:?}", out.agreement);
+    assert_eq!(out.agreement.bit_identical_commands, out.agreement.samples);
+    assert!(out.agreement.frames > 100, "{} control periods", out.agreement.frames);
+    // The end-of-run frame went over the pty too: the firmware exited.
+    let status = qemu.wait(Duration::from_secs(20)).unwrap();
+    assert!(status.success(), "firmware exit status {status}");
+}
+
+#[test]
+fn firmware_latches_over_current_from_the_measured_coil_current() {
+    // The sample frame carries the plant's coil current (bit 2); the
+    // firmware's monitor (`mre_core::overcurrent`, 2.4 A for 3 periods)
+    // latches OVER_CURRENT before the step, which then holds the fail-safe.
+    let Some((qemu, mut link)) = start() else { return };
+    let sample = |seq, coil_current_a| SampleFrame {
+        seq,
+        x_mm: 0.0,
+        v_m_s: Some(0.0),
+        force_n: None,
+        coil_current_a: Some(coil_current_a),
+    };
+    // At the rating, and at the trip level itself: no fault.
+    for seq in 1..=20 {
+        let cmd = link
+            .exchange(&sample(seq, if seq % 2 == 0 { 2.0 } else { 2.4 }))
+            .unwrap();
+        assert!(!cmd.flags.intersects(Flags::OVER_CURRENT | Flags::FAIL_SAFE), "{cmd:?}");
+    }
+    // Two periods over, one under: a noisy conversion does not latch.
+    for (seq, i) in [(21, 3.0), (22, 3.0), (23, 1.0)] {
+        assert!(!link
+            .exchange(&sample(seq, i))
+            .unwrap()
+            .flags
+            .contains(Flags::OVER_CURRENT));
+    }
+    // Three in a row: the third period answers with the fail-safe.
+    assert!(!link
+        .exchange(&sample(24, 3.0))
+        .unwrap()
+        .flags
+        .contains(Flags::OVER_CURRENT));
+    assert!(!link
+        .exchange(&sample(25, 3.0))
+        .unwrap()
+        .flags
+        .contains(Flags::OVER_CURRENT));
+    let tripped = link.exchange(&sample(26, 3.0)).unwrap();
+    assert!(
+        tripped.flags.contains(Flags::OVER_CURRENT | Flags::FAIL_SAFE),
+        "{tripped:?}"
+    );
+    let failsafe_a = mre_core::law::LawConfig::default().failsafe_current_a;
+    assert_eq!(tripped.current_a, failsafe_a);
+    // Latched: the current back to normal does not release it.
+    let later = link.exchange(&sample(27, 0.5)).unwrap();
+    assert!(later.flags.contains(Flags::OVER_CURRENT | Flags::FAIL_SAFE));
     finish(qemu, link);
 }

@@ -1,0 +1,64 @@
+//! `mre upload --port PORT model.toml`: sends a table (and the control
+//! configuration) to a running board over its serial port, without
+//! reflashing. The board validates it, writes its reserved flash page, reads
+//! it back and answers; it flies the table after its next reset
+//! (firmware/README.md, "Uploaded tables"). The PIL image in QEMU takes the
+//! same upload on USART1 and flies it at once.
+//!
+//! The bytes are the PIL protocol's config frames (`mre_core::frame`), so
+//! the firmware's receiver (`mre_core::upload`) is the code the host tests
+//! and the fuzz target (`fuzz/fuzz_targets/upload.rs`) exercise.
+use crate::pil::link::PilLink;
+use crate::table_file::read_table_file;
+use anyhow::{anyhow, bail, Context, Result};
+use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
+use mre_core::frame::{encode_config, CONFIG_MAX_WORDS};
+use mre_core::table::Table;
+use mre_core::Flags;
+use std::path::Path;
+use std::time::Duration;
+
+/// How long to ping for the board's hello before giving up.
+pub const HELLO_TIMEOUT: Duration = Duration::from_secs(10);
+
+/// What was uploaded and acknowledged.
+#[derive(Clone, Copy, Debug)]
+pub struct Uploaded {
+    pub table_crc32: u32,
+    pub currents: usize,
+    pub rate_hz: u32,
+    pub words: usize,
+}
+
+/// The table of a model (or table) file with the board's default
+/// configuration at `rate_hz`: what `mre upload` sends.
+pub fn upload_payload(model: &Path, rate_hz: u32) -> Result<(Table, ControlConfig)> {
+    let table = read_table_file(model)?;
+    let cfg = ControlConfig::at_rate(rate_hz).map_err(|e| anyhow!("control rate {rate_hz} Hz: {e:?}"))?;
+    Ok((table, cfg))
+}
+
+/// Sends `table` and `cfg` over an open link and waits for the answer.
+/// Fails when the board refuses or could not store them.
+pub fn upload_over(link: &mut PilLink, table: &Table, cfg: &ControlConfig) -> Result<Uploaded> {
+    let mut words = [0u32; CONFIG_MAX_WORDS];
+    let n = encode_config(table, cfg, &mut words);
+    let answer = link.send_config_words(&words[..n])?;
+    if answer.flags.contains(Flags::TABLE_FAULT) {
+        bail!("the board refused the upload or could not store it (its log says why); it keeps the table it had");
+    }
+    Ok(Uploaded {
+        table_crc32: table.crc32(),
+        currents: table.entries().len(),
+        rate_hz: cfg.rate_hz,
+        words: n,
+    })
+}
+
+/// `mre upload --port PORT MODEL [--rate-hz R]`.
+pub fn run_upload(port: &Path, model: &Path, rate_hz: Option<u32>) -> Result<Uploaded> {
+    let (table, cfg) = upload_payload(model, rate_hz.unwrap_or(DEFAULT_RATE_HZ))?;
+    let mut link = PilLink::serial(port, HELLO_TIMEOUT)
+        .context("is the board powered and running the firmware, and is PORT its ST-LINK VCP?")?;
+    upload_over(&mut link, &table, &cfg)
+}

@@ -1,0 +1,220 @@
+//! Table upload (host side of the firmware's receiver, `mre_core::upload`):
+//! the bytes `mre upload` sends, through the receiver the boards and the PIL
+//! image run, onto a RAM page with flash semantics, then the boot decision.
+//! The transfer over a serial port is tested in QEMU
+//! (`host-tools/src/pil/tests.rs`, `upload_over_qemu_serial_*`); QEMU has no
+//! flash controller, so the page logic is tested here, behind `TablePage`.
+use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
+use mre_core::flash_table::{PageError, RamPage, TablePage};
+use mre_core::frame::{config_frames, encode_config, CommandFrame, ConfigBlobError, CONFIG_MAX_WORDS, FRAME_LEN};
+use mre_core::generated_table::GENERATED_TABLE;
+use mre_core::table::{Table, PAPER_TABLE4_ENTRIES};
+use mre_core::upload::{answer, choose_boot_table, PortEvent, TableSource, UploadError, UploadPort};
+use mre_core::Flags;
+
+/// Not the built-in table: Table 4 with a doubled stroke.
+fn other_table() -> Table {
+    let mut entries = PAPER_TABLE4_ENTRIES;
+    for e in &mut entries {
+        e.x_max_mm *= 2.0;
+    }
+    Table::new(&entries).unwrap()
+}
+
+fn blob(table: &Table, cfg: &ControlConfig) -> Vec<u32> {
+    let mut words = [0u32; CONFIG_MAX_WORDS];
+    let n = encode_config(table, cfg, &mut words);
+    words[..n].to_vec()
+}
+
+fn frames(words: &[u32]) -> Vec<[u8; FRAME_LEN]> {
+    config_frames(words).collect()
+}
+
+/// Feeds the bytes; returns every commit's answer frame.
+fn send(port: &mut UploadPort, page: &mut RamPage, frames: &[[u8; FRAME_LEN]]) -> Vec<CommandFrame> {
+    let mut answers = Vec::new();
+    for b in frames.iter().flatten() {
+        if let Some(event) = port.push(*b, page) {
+            answers.push(CommandFrame::decode(&event.answer()).unwrap());
+        }
+    }
+    answers
+}
+
+fn built_in_crc() -> u32 {
+    Table::from_image(&GENERATED_TABLE).unwrap().crc32()
+}
+
+#[test]
+fn a_valid_upload_is_stored_acknowledged_and_flown_at_boot() {
+    let table = other_table();
+    let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+    assert_ne!(
+        table.crc32(),
+        built_in_crc(),
+        "the test needs a table other than the built-in one"
+    );
+    let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
+    // Line noise before the upload is skipped by the sync hunt.
+    let mut noise = vec![[0u8; FRAME_LEN]];
+    noise[0][..4].copy_from_slice(&[0x00, 0xA5, 0x13, 0xFF]);
+    let mut all = noise;
+    all.extend(frames(&blob(&table, &cfg)));
+    let answers = send(&mut port, &mut page, &all);
+    assert_eq!(answers.len(), 1);
+    assert_eq!(answers[0].seq, 0, "the answer is a hello frame");
+    assert_eq!(answers[0].flags, Flags::NONE);
+
+    let boot = choose_boot_table(&mut page, &GENERATED_TABLE, DEFAULT_RATE_HZ);
+    assert_eq!(boot.source, TableSource::Uploaded);
+    let flown = boot.table.unwrap();
+    assert_eq!(flown.crc32(), table.crc32());
+    assert_eq!(flown.entries(), table.entries());
+    assert_eq!(boot.config.unwrap(), cfg);
+}
+
+#[test]
+fn a_corrupt_upload_is_rejected_and_the_built_in_table_is_kept() {
+    let table = other_table();
+    let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+    let mut fr = frames(&blob(&table, &cfg));
+    // One bit flipped in a coefficient of the third frame: its CRC fails,
+    // the frame is dropped, and the commit finds a word missing.
+    fr[2][10] ^= 0x10;
+    let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
+    let answers = send(&mut port, &mut page, &fr);
+    assert_eq!(answers.len(), 1);
+    assert_eq!(answers[0].flags, Flags::TABLE_FAULT);
+    assert_eq!(port.rejected_frames(), 1);
+    assert!(
+        page.bytes.iter().all(|&b| b == 0xFF),
+        "a refused upload never touches the page"
+    );
+
+    let boot = choose_boot_table(&mut page, &GENERATED_TABLE, DEFAULT_RATE_HZ);
+    assert_eq!(boot.source, TableSource::BuiltIn(PageError::Empty));
+    assert_eq!(boot.table.unwrap().crc32(), built_in_crc());
+}
+
+#[test]
+fn a_refused_upload_keeps_the_earlier_upload() {
+    let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+    let first = other_table();
+    let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
+    assert_eq!(
+        send(&mut port, &mut page, &frames(&blob(&first, &cfg)))[0].flags,
+        Flags::NONE
+    );
+    let stored = page.bytes;
+
+    // Every frame intact (valid frame CRCs), but a coefficient of the table
+    // replaced by 1e30: the table's own CRC and magnitude checks refuse it.
+    let mut words = blob(&Table::paper().unwrap(), &cfg);
+    words[5] = 1.0e30f32.to_bits();
+    let mut port = UploadPort::new();
+    let answers = send(&mut port, &mut page, &frames(&words));
+    assert_eq!(answers[0].flags, Flags::TABLE_FAULT);
+    assert_eq!(port.rejected_frames(), 0);
+    assert_eq!(page.bytes, stored);
+    let boot = choose_boot_table(&mut page, &GENERATED_TABLE, DEFAULT_RATE_HZ);
+    assert_eq!(boot.source, TableSource::Uploaded);
+    assert_eq!(boot.table.unwrap().crc32(), first.crc32());
+}
+
+#[test]
+fn the_receiver_reports_why_a_commit_failed() {
+    let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+    let words = blob(&other_table(), &cfg);
+    // The commit arrives without its last chunk.
+    let mut fr = frames(&words);
+    fr.remove(fr.len() - 2);
+    let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
+    let mut results = Vec::new();
+    for b in fr.iter().flatten() {
+        if let Some(PortEvent::Commit(r)) = port.push(*b, &mut page) {
+            results.push(r);
+        }
+    }
+    assert_eq!(
+        results.as_slice(),
+        &[Err(UploadError::Refused(ConfigBlobError::Incomplete))]
+    );
+}
+
+/// A page that accepts the erase but fails every write (a worn or locked page).
+struct FailingPage(RamPage);
+impl TablePage for FailingPage {
+    fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), mre_core::flash_table::FlashError> {
+        self.0.read(offset, buf)
+    }
+    fn erase(&mut self) -> Result<(), mre_core::flash_table::FlashError> {
+        self.0.erase()
+    }
+    fn write(&mut self, _: usize, _: &[u8]) -> Result<(), mre_core::flash_table::FlashError> {
+        Err(mre_core::flash_table::FlashError)
+    }
+}
+
+#[test]
+fn a_flash_write_failure_is_not_acknowledged_and_boot_falls_back() {
+    let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+    let mut page = FailingPage(RamPage::erased());
+    let mut port = UploadPort::new();
+    let mut results = Vec::new();
+    for b in frames(&blob(&other_table(), &cfg)).iter().flatten() {
+        if let Some(PortEvent::Commit(r)) = port.push(*b, &mut page) {
+            results.push(r);
+        }
+    }
+    assert_eq!(results.len(), 1);
+    assert!(matches!(results[0], Err(UploadError::Page(PageError::Flash(_)))));
+    assert_eq!(
+        CommandFrame::decode(&answer(&results[0])).unwrap().flags,
+        Flags::TABLE_FAULT
+    );
+    let boot = choose_boot_table(&mut page, &GENERATED_TABLE, DEFAULT_RATE_HZ);
+    assert_eq!(boot.source, TableSource::BuiltIn(PageError::Empty));
+    assert_eq!(boot.table.unwrap().crc32(), built_in_crc());
+}
+
+#[test]
+fn an_upload_for_another_rate_keeps_its_table_and_the_image_rate() {
+    let table = other_table();
+    let cfg_20k = ControlConfig::at_rate(20_000).unwrap();
+    let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
+    assert_eq!(
+        send(&mut port, &mut page, &frames(&blob(&table, &cfg_20k)))[0].flags,
+        Flags::NONE
+    );
+    let boot = choose_boot_table(&mut page, &GENERATED_TABLE, DEFAULT_RATE_HZ);
+    assert_eq!(boot.source, TableSource::Uploaded);
+    assert_eq!(boot.uploaded_rate_ignored_hz, Some(20_000));
+    assert_eq!(boot.table.unwrap().crc32(), table.crc32());
+    assert_eq!(boot.config.unwrap().rate_hz, DEFAULT_RATE_HZ);
+}
+
+#[test]
+fn a_torn_page_falls_back_to_the_built_in_table() {
+    let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+    let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
+    send(&mut port, &mut page, &frames(&blob(&other_table(), &cfg)));
+    page.bytes[64] ^= 0x01;
+    let boot = choose_boot_table(&mut page, &GENERATED_TABLE, DEFAULT_RATE_HZ);
+    assert_eq!(boot.source, TableSource::BuiltIn(PageError::Corrupt));
+    assert_eq!(boot.table.unwrap().crc32(), built_in_crc());
+}
+
+#[test]
+fn a_ping_is_answered_with_a_hello_and_never_stored() {
+    use mre_core::frame::{SampleFrame, PING_SEQ};
+    let ping = SampleFrame::ping();
+    // The protocol's ping: a sample frame with sequence 0.
+    assert_eq!((ping.seq, PING_SEQ), (0, 0));
+    let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
+    // Twice: pings are not sequenced, so a repeat is not a duplicate.
+    let answers = send(&mut port, &mut page, &[ping.encode(), ping.encode()]);
+    assert_eq!(answers.len(), 2);
+    assert!(answers.iter().all(|a| a.seq == 0 && a.flags == Flags::NONE));
+    assert!(page.bytes.iter().all(|&b| b == 0xFF));
+}
