@@ -19,7 +19,8 @@
 //!   wanted current itself stays within the coil's current limits. Because
 //!   the coil can only decay so fast, the wanted current is also capped so
 //!   that, decaying at the driver's limit, it can still meet what the plan
-//!   wants 0.1 τ and 0.5 τ ahead (predictive command). Between impacts
+//!   wants 0.1 τ ahead (predictive command; a second look-ahead at 0.5 τ
+//!   changed no `mre bench-control` result and was dropped). Between impacts
 //!   (extension branch with x at contact) it pre-energises the coil to
 //!   [`LawConfig::armed_current_a`].
 use crate::flags::Flags;
@@ -225,10 +226,10 @@ pub struct ImpactLaw {
 
 /// How far ahead the law looks for a lagging coil, in units of τ: the
 /// current must be able to decay to what the plan wants there.
-pub const LEAD_TAU: [f32; 2] = [0.1, 0.5];
+pub const LEAD_TAU: [f32; 1] = [0.1];
 /// `e^{LEAD_TAU}`: how much a decaying coil's distance to the drive floor
-/// shrinks over each look-ahead (computed once, by hand: e^0.05 …).
-const LEAD_GROWTH: [f32; 2] = [1.105_170_9, 1.648_721_3];
+/// shrinks over the look-ahead (computed once, by hand: e^0.1).
+const LEAD_GROWTH: [f32; 1] = [1.105_170_9];
 
 impl ImpactLaw {
     /// Refuses an invalid configuration instead of running with it.
