@@ -133,20 +133,8 @@ pub fn project(
         }
         yy += w2 * s;
     }
-    let scale: Vec<f64> = (0..k).map(|a| gram[a][a].sqrt()).collect();
-    if scale.iter().any(|s| !s.is_finite() || *s <= 0.0) {
-        return None;
-    }
-    let g = nalgebra::DMatrix::from_fn(k, k, |a, c| {
-        let (lo, hi) = (a.min(c), a.max(c));
-        gram[lo][hi] / (scale[a] * scale[c])
-    });
-    let chol = nalgebra::linalg::Cholesky::new(g)?;
-    let h = nalgebra::DVector::from_fn(k, |a, _| rhs[a] / scale[a]);
-    let scaled = chol.solve(&h);
-    let theta: Vec<f64> = (0..k).map(|a| scaled[a] / scale[a]).collect();
-    // SSE = yᵀy − 2θᵀb + θᵀGθ = yᵀy − θᵀb at the optimum.
-    let sse = (yy - theta.iter().zip(rhs.iter()).map(|(t, b)| t * b).sum::<f64>()).max(0.0);
+    let (theta, sse) = solve_normal(&gram, &rhs, yy, k)?;
+    let theta = theta[..k].to_vec();
     let residuals = if residuals {
         let mut out = Vec::with_capacity(tracks.iter().map(Track::len).sum());
         let mut force = Vec::new();
@@ -170,6 +158,66 @@ pub fn project(
         theta,
         residuals,
     })
+}
+
+/// The normal equations G·θ = b (G's upper triangle in `gram`, k ≤ MAX_LINEAR)
+/// solved by Cholesky after equilibration (G scaled to a unit diagonal): θ
+/// and SSE = yᵀy − θᵀb. None if G is not positive definite or not finite.
+/// Shared by [`project`] and the batch objectives of the families.
+pub(crate) fn solve_normal(
+    gram: &[[f64; MAX_LINEAR]; MAX_LINEAR],
+    rhs: &[f64; MAX_LINEAR],
+    yy: f64,
+    k: usize,
+) -> Option<([f64; MAX_LINEAR], f64)> {
+    let k = k.min(MAX_LINEAR);
+    let mut scale = [0.0; MAX_LINEAR];
+    for a in 0..k {
+        scale[a] = gram[a][a].sqrt();
+        if !scale[a].is_finite() || scale[a] <= 0.0 {
+            return None;
+        }
+    }
+    // Lower Cholesky factor of the scaled G, then forward and back substitution.
+    let mut l = [[0.0; MAX_LINEAR]; MAX_LINEAR];
+    for a in 0..k {
+        for c in 0..=a {
+            let mut sum = gram[c][a] / (scale[a] * scale[c]);
+            for m in 0..c {
+                sum -= l[a][m] * l[c][m];
+            }
+            if a == c {
+                if !(sum > 0.0) {
+                    return None;
+                }
+                l[a][a] = sum.sqrt();
+            } else {
+                l[a][c] = sum / l[c][c];
+            }
+        }
+    }
+    let mut y = [0.0; MAX_LINEAR];
+    for a in 0..k {
+        let mut sum = rhs[a] / scale[a];
+        for m in 0..a {
+            sum -= l[a][m] * y[m];
+        }
+        y[a] = sum / l[a][a];
+    }
+    let mut theta = [0.0; MAX_LINEAR];
+    for a in (0..k).rev() {
+        let mut sum = y[a];
+        for m in a + 1..k {
+            sum -= l[m][a] * theta[m];
+        }
+        theta[a] = sum / l[a][a];
+    }
+    for a in 0..k {
+        theta[a] /= scale[a];
+    }
+    // SSE = yᵀy − 2θᵀb + θᵀGθ = yᵀy − θᵀb at the optimum.
+    let sse = (yy - (0..k).map(|a| theta[a] * rhs[a]).sum::<f64>()).max(0.0);
+    Some((theta, sse))
 }
 
 /// Gram matrix (upper triangle), Xᵀy and yᵀy of one track's basis (unweighted).
@@ -201,7 +249,7 @@ fn normal_sums<const K: usize>(t: &Track, b: &Basis) -> NormalSums {
 pub(crate) const MAX_LINEAR: usize = 6;
 
 /// A track's residual weight 1/(max|F|·√(n·R)), R = number of tracks, so Σr² = J².
-fn weight(t: &Track, tracks: f64) -> f64 {
+pub(crate) fn weight(t: &Track, tracks: f64) -> f64 {
     1.0 / (t.force_scale_n * (t.len().max(1) as f64 * tracks).sqrt())
 }
 
@@ -268,14 +316,16 @@ pub fn search(
     stream: u64,
 ) -> GsaResultN {
     let mut rng = crate::fit::branch_rng(seed, stream);
+    let batch = family.batch_objective(tracks);
     minimize_batch(
         lower,
         upper,
-        |agents| {
-            agents
+        |agents| match &batch {
+            Some(b) => b.evaluate(agents),
+            None => agents
                 .par_iter()
                 .map_init(Vec::new, |bases, q| objective(family, q, tracks, bases))
-                .collect()
+                .collect(),
         },
         gsa,
         &mut rng,

@@ -7,7 +7,7 @@
 //! amplitude (the classical A, β, γ have one redundant scale). The shape
 //! parameter r = β − γ ∈ [−1, 3] sets how sharply the loop turns on
 //! reversal; x_y is searched as log10 x_y. Per-current parameters, interpolated between currents.
-use super::{all_finite, sign, Basis, CurrentLaw, Family, Scales, StepCost};
+use super::{all_finite, sign, Basis, BatchObjective, CurrentLaw, Family, Scales, StepCost};
 use crate::compare::tracks::Track;
 
 pub struct BoucWen;
@@ -192,6 +192,10 @@ impl Family for BoucWen {
             substeps: 1,
             state_floats: 2,
         }
+    }
+
+    fn batch_objective(&self, tracks: &[Track]) -> Option<Box<dyn BatchObjective>> {
+        Some(Box::new(super::bouc_wen_batch::BoucWenBatch::new(tracks)))
     }
 }
 
