@@ -6,18 +6,19 @@
 //!   Gram entries of the v, x, 1 columns and the target. An evaluation only
 //!   integrates z and accumulates its five sums (z·v, z·x, z, z², z·F).
 //! - Agents are integrated in lock-step, [`LANES`] at a time (samples outer,
-//!   agents inner, struct-of-arrays), so the step is vectorised: on a loading
-//!   branch (s·z ≥ 0) tanh(atanh(w) + u) is written with e = e^(−2u) as
-//!   ((1+w) − e(1−w)) / ((1+w) + e(1−w)), one [`fastmath::exp`] and one divide.
-//!   Lanes just after a reversal (s·z < 0: the tan/atan branch, ~4 % of the
-//!   samples on the MTS data) take the exact scalar [`step`].
+//!   agents inner, struct-of-arrays), so the step is vectorised. Each lane
+//!   carries a phase ψ that grows by u = |dx|/x_y between reversals: loading
+//!   (ψ ≥ 0) z = s·tanh ψ, computed as (1 − e)/(1 + e) with e = e^(−2ψ) by
+//!   [`fastmath::exp`]; just after a reversal (ψ < 0, the tan/atan branch
+//!   of [`super::bouc_wen::unloading_phase`]) lanes take a scalar tan. ψ is
+//!   recomputed from z only at reversals (~4 % of the samples on the MTS data).
 //! - Work items are (agent block, track) pairs for rayon; tracks are
 //!   independent (z starts at 0 on each).
 //!
-//! The two forms of the loading step differ only by rounding (fastmath::exp is
-//! within 1e-15 relative of libm), so J agrees with the per-q projection to
-//! ~1e-12 relative (tested below and in `tests/compare_families.rs`).
-use super::bouc_wen::{step, MAX_R};
+//! This is the exact step of [`super::bouc_wen::Loop`] rearranged, so J differs
+//! from the per-q projection by rounding only (fastmath::exp is within 1e-15
+//! relative of libm): ~1e-15 relative, at most ~1e-9 at the r = −1 edge (tested below).
+use super::bouc_wen::{unloading_phase, unloading_w, MAX_R};
 use super::BatchObjective;
 use crate::compare::fastmath;
 use crate::compare::fit::{solve_normal, weight, MAX_LINEAR};
@@ -27,12 +28,11 @@ use rayon::prelude::*;
 /// Agents integrated together (8 f64: one AVX-512 or two AVX2 registers).
 pub const LANES: usize = 8;
 
-/// One sample, q-independent: direction of the step, |dx|, dx and the regressors.
+/// One sample, q-independent: direction of the step, |dx| and the regressors.
 #[derive(Clone, Copy, Debug)]
 struct Sample {
     sign: f64,
     abs_dx_mm: f64,
-    dx_mm: f64,
     v_m_s: f64,
     x_mm: f64,
     force_n: f64,
@@ -48,7 +48,6 @@ struct TrackData {
 #[derive(Clone, Copy, Debug)]
 struct Lanes {
     inv_x_y: [f64; LANES],
-    x_y_mm: [f64; LANES],
     r: [f64; LANES],
 }
 
@@ -83,7 +82,6 @@ impl BoucWenBatch {
                         Sample {
                             sign: super::sign(dx),
                             abs_dx_mm: dx.abs(),
-                            dx_mm: dx,
                             v_m_s: t.v_m_s[i],
                             x_mm: t.x_mm[i],
                             force_n: t.force_n[i],
@@ -140,7 +138,6 @@ impl BatchObjective for BoucWenBatch {
                 let at = |l: usize| chunk.get(l).copied().flatten().unwrap_or((1.0, 0.0));
                 Lanes {
                     inv_x_y: std::array::from_fn(|l| 1.0 / at(l).0),
-                    x_y_mm: std::array::from_fn(|l| at(l).0),
                     r: std::array::from_fn(|l| at(l).1),
                 }
             })
@@ -175,66 +172,91 @@ impl BatchObjective for BoucWenBatch {
 }
 
 /// z along one track for a block of agents, and its sums; the widest vector
-/// instructions the CPU has (checked at run time; same results on every path:
-/// no fused multiply–adds are introduced).
+/// instructions the CPU has, with fused multiply–adds where it has them
+/// (checked at run time; the paths differ by rounding only).
 fn integrate(samples: &[Sample], lanes: &Lanes) -> ZSums {
     #[cfg(target_arch = "x86_64")]
     {
-        if is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU supports AVX-512F (checked just above).
-            return unsafe { integrate_avx512(samples, lanes) };
-        }
-        if is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU supports AVX2 (checked just above).
-            return unsafe { integrate_avx2(samples, lanes) };
+        if is_x86_feature_detected!("fma") {
+            if is_x86_feature_detected!("avx512f") {
+                // SAFETY: the CPU supports AVX-512F and FMA (checked just above).
+                return unsafe { integrate_avx512(samples, lanes) };
+            }
+            if is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU supports AVX2 and FMA (checked just above).
+                return unsafe { integrate_avx2(samples, lanes) };
+            }
         }
     }
-    integrate_lanes(samples, lanes)
+    integrate_lanes::<false>(samples, lanes)
 }
 
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
+#[target_feature(enable = "avx512f,fma")]
 unsafe fn integrate_avx512(samples: &[Sample], lanes: &Lanes) -> ZSums {
-    integrate_lanes(samples, lanes)
+    integrate_lanes::<true>(samples, lanes)
 }
 
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
+#[target_feature(enable = "avx2,fma")]
 unsafe fn integrate_avx2(samples: &[Sample], lanes: &Lanes) -> ZSums {
-    integrate_lanes(samples, lanes)
+    integrate_lanes::<true>(samples, lanes)
+}
+
+/// a·b + c, fused when `FMA` (only on CPUs that have the instruction).
+#[inline(always)]
+fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
+    if FMA {
+        a.mul_add(b, c)
+    } else {
+        a * b + c
+    }
 }
 
 #[inline(always)]
-fn integrate_lanes(samples: &[Sample], lanes: &Lanes) -> ZSums {
+fn integrate_lanes<const FMA: bool>(samples: &[Sample], lanes: &Lanes) -> ZSums {
     let mut z = [0.0f64; LANES];
+    // Each lane's phase ψ: it grows by u = |dx|/x_y along a monotone stretch;
+    // ψ ≥ 0 loading (z = s·tanh ψ), ψ < 0 unloading (z = s·unloading_w(ψ)).
+    let mut psi = [0.0f64; LANES];
+    let mut dir = 0.0;
     let mut sums: ZSums = [[0.0; LANES]; 5];
     for p in samples {
         if p.sign != 0.0 {
-            let mut w = [0.0f64; LANES];
-            for l in 0..LANES {
-                w[l] = p.sign * z[l];
-                let e = fastmath::exp(-2.0 * p.abs_dx_mm * lanes.inv_x_y[l]);
-                let (a, b) = (1.0 + w[l], e * (1.0 - w[l]));
-                z[l] = p.sign * ((a - b) / (a + b));
+            if p.sign != dir {
+                // A reversal (or the first motion): each lane's phase from its z.
+                dir = p.sign;
+                for l in 0..LANES {
+                    let w = dir * z[l];
+                    psi[l] = if w >= 0.0 { w.atanh() } else { unloading_phase(w, lanes.r[l]) };
+                }
             }
             let mut back = false;
-            for &wl in &w {
-                back |= wl < 0.0;
+            for l in 0..LANES {
+                psi[l] = madd::<FMA>(p.abs_dx_mm, lanes.inv_x_y[l], psi[l]);
+                // tanh ψ = (1 − e)/(1 + e), e = e^(−2ψ).
+                let e = if FMA {
+                    fastmath::exp_fma(-2.0 * psi[l])
+                } else {
+                    fastmath::exp(-2.0 * psi[l])
+                };
+                z[l] = dir * ((1.0 - e) / (1.0 + e));
+                back |= psi[l] < 0.0;
             }
             if back {
                 for l in 0..LANES {
-                    if w[l] < 0.0 {
-                        z[l] = step(p.sign * w[l], p.dx_mm, lanes.x_y_mm[l], lanes.r[l]);
+                    if psi[l] < 0.0 {
+                        z[l] = dir * unloading_w(psi[l], lanes.r[l]);
                     }
                 }
             }
         }
         for l in 0..LANES {
-            sums[0][l] += z[l] * p.v_m_s;
-            sums[1][l] += z[l] * p.x_mm;
+            sums[0][l] = madd::<FMA>(z[l], p.v_m_s, sums[0][l]);
+            sums[1][l] = madd::<FMA>(z[l], p.x_mm, sums[1][l]);
             sums[2][l] += z[l];
-            sums[3][l] += z[l] * z[l];
-            sums[4][l] += z[l] * p.force_n;
+            sums[3][l] = madd::<FMA>(z[l], z[l], sums[3][l]);
+            sums[4][l] = madd::<FMA>(z[l], p.force_n, sums[4][l]);
         }
     }
     sums
@@ -305,6 +327,25 @@ mod tests {
             }
         }
         assert!(got[..25].iter().all(|j| j.is_finite()));
+    }
+
+    #[test]
+    fn every_instruction_path_integrates_alike() {
+        // The portable path (no FMA) against the one this CPU dispatches to.
+        let x: Vec<f64> = (0..400).map(|i| 5.0 * (i as f64 * 0.05).sin() + 0.03 * ((i % 7) as f64 - 3.0)).collect();
+        let t = track(x, vec![1.0; 400]);
+        let data = BoucWenBatch::new(std::slice::from_ref(&t));
+        let lanes = Lanes {
+            inv_x_y: std::array::from_fn(|l| 1.0 / (0.05 + 0.3 * l as f64)),
+            r: std::array::from_fn(|l| -1.0 + 0.5 * l as f64),
+        };
+        let (portable, dispatched) = (
+            integrate_lanes::<false>(&data.tracks[0].samples, &lanes),
+            integrate(&data.tracks[0].samples, &lanes),
+        );
+        for (a, b) in portable.iter().flatten().zip(dispatched.iter().flatten()) {
+            assert!((a - b).abs() <= 1e-9 * (1.0 + a.abs()), "{a} vs {b}");
+        }
     }
 
     #[test]
