@@ -333,8 +333,11 @@ pub fn search(
     )
 }
 
-/// LM from `start`; returns the better of the start and LM's end point, its
-/// objective and the evaluations spent (each Jacobian counts n + 1).
+/// LM from `start`; returns the best of the start and LM's end points, its
+/// objective and the evaluations spent (each Jacobian counts n + 1, n the
+/// parameters LM moves). LM's steps are clipped to the box, which stalls it
+/// along a bound; so when it ends with some parameters on a bound, a second
+/// LM moves only the others from there.
 pub fn refine(
     family: &dyn Family,
     start: &[f64],
@@ -343,30 +346,43 @@ pub fn refine(
     tracks: &[Track],
     patience: usize,
 ) -> (Vec<f64>, f64, usize) {
-    let problem = LmProblem {
-        family,
-        tracks,
-        lower,
-        upper,
-        u: DVector::from_iterator(
-            start.len(),
-            start
-                .iter()
-                .zip(lower.iter().zip(upper))
-                .map(|(p, (lo, hi))| if hi > lo { (p - lo) / (hi - lo) } else { 0.0 }),
-        ),
-    };
     let mut bases = Vec::new();
     let start_value = objective(family, start, tracks, &mut bases);
-    let (solved, report) = LevenbergMarquardt::new().with_patience(patience).minimize(problem);
-    let q = solved.raw(&solved.u);
-    let value = objective(family, &q, tracks, &mut bases);
-    let evals = report.number_of_evaluations * (start.len() + 1);
-    if value <= start_value {
-        (q, value, evals)
-    } else {
-        (start.to_vec(), start_value, evals)
+    let mut best = (start.to_vec(), start_value);
+    let mut evals = 0;
+    let mut u = DVector::from_iterator(
+        start.len(),
+        start
+            .iter()
+            .zip(lower.iter().zip(upper))
+            .map(|(p, (lo, hi))| if hi > lo { (p - lo) / (hi - lo) } else { 0.0 }),
+    );
+    let mut active: Vec<usize> = (0..start.len()).collect();
+    for _round in 0..2 {
+        let problem = LmProblem {
+            family,
+            tracks,
+            lower,
+            upper,
+            u: u.clone(),
+            active: active.clone(),
+            last: std::sync::Mutex::new(None),
+        };
+        let (solved, report) = LevenbergMarquardt::new().with_patience(patience).minimize(problem);
+        evals += report.number_of_evaluations * (active.len() + 1);
+        let q = solved.raw(&solved.u);
+        let value = objective(family, &q, tracks, &mut bases);
+        if value <= best.1 {
+            best = (q, value);
+        }
+        u = solved.u;
+        let free: Vec<usize> = active.iter().copied().filter(|&j| u[j] > 0.0 && u[j] < 1.0).collect();
+        if free.is_empty() || free.len() == active.len() {
+            break;
+        }
+        active = free;
     }
+    (best.0, best.1, evals)
 }
 
 struct LmProblem<'a> {
@@ -376,6 +392,11 @@ struct LmProblem<'a> {
     upper: &'a [f64],
     /// Normalised nonlinear parameters (0 = lower bound, 1 = upper bound).
     u: DVector<f64>,
+    /// The entries of `u` LM moves (the others stay fixed).
+    active: Vec<usize>,
+    /// The residuals LM last asked for, and where: its Jacobian at the same
+    /// point reuses them instead of integrating the model again.
+    last: std::sync::Mutex<Option<(DVector<f64>, Vec<f64>)>>,
 }
 
 /// Forward-difference step in normalised coordinates.
@@ -415,23 +436,35 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for LmProblem<'_> {
     type ParameterStorage = Owned<f64, Dyn>;
 
     fn set_params(&mut self, u: &DVector<f64>) {
-        self.u = u.map(|v| v.clamp(0.0, 1.0));
+        for (&j, v) in self.active.iter().zip(u.iter()) {
+            self.u[j] = v.clamp(0.0, 1.0);
+        }
     }
 
     fn params(&self) -> DVector<f64> {
-        self.u.clone()
+        DVector::from_iterator(self.active.len(), self.active.iter().map(|&j| self.u[j]))
     }
 
     fn residuals(&self) -> Option<DVector<f64>> {
-        Some(DVector::from_vec(self.residuals_at(&self.u)))
+        let r = self.residuals_at(&self.u);
+        if let Ok(mut last) = self.last.lock() {
+            *last = Some((self.u.clone(), r.clone()));
+        }
+        Some(DVector::from_vec(r))
     }
 
     fn jacobian(&self) -> Option<DMatrix<f64>> {
-        let base = self.residuals_at(&self.u);
-        let n = self.u.len();
-        let columns: Vec<Vec<f64>> = (0..n)
-            .into_par_iter()
-            .map(|j| {
+        let cached = self.last.lock().ok().and_then(|last| {
+            last.as_ref()
+                .filter(|(u, _)| *u == self.u)
+                .map(|(_, r)| r.clone())
+        });
+        let base = cached.unwrap_or_else(|| self.residuals_at(&self.u));
+        let n = self.active.len();
+        let columns: Vec<Vec<f64>> = self
+            .active
+            .par_iter()
+            .map(|&j| {
                 let mut u = self.u.clone();
                 // Step inwards at the upper bound so the difference sees the model.
                 let h = if u[j] + JACOBIAN_STEP > 1.0 {
