@@ -186,7 +186,7 @@ impl Family for BoucWen {
         if x_y.is_nan() || x_y <= 0.0 || !(-1.0..=MAX_R).contains(&r) {
             return false;
         }
-        b.reset(4);
+        b.reset(4, track.len());
         let mut hysteresis = Loop::default();
         let mut x_prev = track.x_mm.first().copied().unwrap_or(0.0);
         for (&x, &v) in track.x_mm.iter().zip(&track.v_m_s) {

@@ -91,11 +91,13 @@ pub struct Basis {
 }
 
 impl Basis {
-    /// Empties every column, keeping `k` of them (capacity reused).
-    pub fn reset(&mut self, k: usize) {
+    /// Empties every column, keeping `k` of them with room for `n` samples
+    /// (capacity reused; no reallocation while the rows are pushed).
+    pub fn reset(&mut self, k: usize, n: usize) {
         self.columns.resize_with(k, Vec::new);
         for c in &mut self.columns {
             c.clear();
+            c.reserve(n);
         }
         self.offset.clear();
     }
