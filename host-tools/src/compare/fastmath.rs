@@ -11,9 +11,9 @@
 //! it multiplies numbers ≤ 2), and NaN stays NaN.
 
 const LOG2_E: f64 = std::f64::consts::LOG2_E;
-/// ln 2 in two parts: the high one has 32 trailing zero bits, so n·LN2_HI is exact for |n| < 2²⁰.
-const LN2_HI: f64 = 6.931_471_803_691_238_2e-1;
-const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
+/// ln 2 in two parts (fdlibm's): the high one ends in 21 zero bits, so n·LN2_HI is exact for |n| ≤ 1024.
+const LN2_HI: f64 = f64::from_bits(0x3FE6_2E42_FEE0_0000);
+const LN2_LO: f64 = f64::from_bits(0x3DEA_39EF_3579_3C76);
 /// 1.5·2⁵²: adding it rounds to an integer held in the low mantissa bits.
 const ROUND: f64 = 6_755_399_441_055_744.0;
 

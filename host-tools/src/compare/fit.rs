@@ -182,12 +182,10 @@ pub(crate) fn solve_normal(
     let mut l = [[0.0; MAX_LINEAR]; MAX_LINEAR];
     for a in 0..k {
         for c in 0..=a {
-            let mut sum = gram[c][a] / (scale[a] * scale[c]);
-            for m in 0..c {
-                sum -= l[a][m] * l[c][m];
-            }
+            let dot: f64 = l[a][..c].iter().zip(&l[c][..c]).map(|(p, q)| p * q).sum();
+            let sum = gram[c][a] / (scale[a] * scale[c]) - dot;
             if a == c {
-                if !(sum > 0.0) {
+                if sum.is_nan() || sum <= 0.0 {
                     return None;
                 }
                 l[a][a] = sum.sqrt();
@@ -198,19 +196,13 @@ pub(crate) fn solve_normal(
     }
     let mut y = [0.0; MAX_LINEAR];
     for a in 0..k {
-        let mut sum = rhs[a] / scale[a];
-        for m in 0..a {
-            sum -= l[a][m] * y[m];
-        }
-        y[a] = sum / l[a][a];
+        let dot: f64 = l[a][..a].iter().zip(&y[..a]).map(|(p, q)| p * q).sum();
+        y[a] = (rhs[a] / scale[a] - dot) / l[a][a];
     }
     let mut theta = [0.0; MAX_LINEAR];
     for a in (0..k).rev() {
-        let mut sum = y[a];
-        for m in a + 1..k {
-            sum -= l[m][a] * theta[m];
-        }
-        theta[a] = sum / l[a][a];
+        let dot: f64 = (a + 1..k).map(|m| l[m][a] * theta[m]).sum();
+        theta[a] = (y[a] - dot) / l[a][a];
     }
     for a in 0..k {
         theta[a] /= scale[a];
@@ -454,11 +446,11 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for LmProblem<'_> {
     }
 
     fn jacobian(&self) -> Option<DMatrix<f64>> {
-        let cached = self.last.lock().ok().and_then(|last| {
-            last.as_ref()
-                .filter(|(u, _)| *u == self.u)
-                .map(|(_, r)| r.clone())
-        });
+        let cached = self
+            .last
+            .lock()
+            .ok()
+            .and_then(|last| last.as_ref().filter(|(u, _)| *u == self.u).map(|(_, r)| r.clone()));
         let base = cached.unwrap_or_else(|| self.residuals_at(&self.u));
         let n = self.active.len();
         let columns: Vec<Vec<f64>> = self

@@ -228,7 +228,11 @@ fn integrate_lanes<const FMA: bool>(samples: &[Sample], lanes: &Lanes) -> ZSums 
                 dir = p.sign;
                 for l in 0..LANES {
                     let w = dir * z[l];
-                    psi[l] = if w >= 0.0 { w.atanh() } else { unloading_phase(w, lanes.r[l]) };
+                    psi[l] = if w >= 0.0 {
+                        w.atanh()
+                    } else {
+                        unloading_phase(w, lanes.r[l])
+                    };
                 }
             }
             let mut back = false;
@@ -272,7 +276,13 @@ mod tests {
     fn track(x_mm: Vec<f64>, force_n: Vec<f64>) -> Track {
         let n = x_mm.len();
         let v_m_s: Vec<f64> = (0..n)
-            .map(|i| if i == 0 { 0.0 } else { (x_mm[i] - x_mm[i - 1]) * 1e-3 / 0.01 })
+            .map(|i| {
+                if i == 0 {
+                    0.0
+                } else {
+                    (x_mm[i] - x_mm[i - 1]) * 1e-3 / 0.01
+                }
+            })
             .collect();
         Track {
             stem: "t".into(),
@@ -299,7 +309,11 @@ mod tests {
                         pause * (3.0 + k as f64) * (2.0 * t).sin() + 0.05 * ((i * 7919 % 13) as f64 - 6.0) / 6.0
                     })
                     .collect();
-                let f: Vec<f64> = x.iter().enumerate().map(|(i, x)| 50.0 * x + 300.0 * ((i as f64 * 0.02).cos())).collect();
+                let f: Vec<f64> = x
+                    .iter()
+                    .enumerate()
+                    .map(|(i, x)| 50.0 * x + 300.0 * ((i as f64 * 0.02).cos()))
+                    .collect();
                 track(x, f)
             })
             .collect();
@@ -321,7 +335,10 @@ mod tests {
             if want.is_finite() {
                 // Rounding only: ~1e-15 typically; 3e-10 at r = −1, where z can stick at
                 // ±1 (dz/dx = 0 there) depending on the last bit of a saturated z.
-                assert!((g - want).abs() <= 1e-9 * want, "q {q:?}: batch {g} vs projection {want}");
+                assert!(
+                    (g - want).abs() <= 1e-9 * want,
+                    "q {q:?}: batch {g} vs projection {want}"
+                );
             } else {
                 assert!(g.is_infinite(), "q {q:?}: batch {g}, projection not admissible");
             }
@@ -332,7 +349,9 @@ mod tests {
     #[test]
     fn every_instruction_path_integrates_alike() {
         // The portable path (no FMA) against the one this CPU dispatches to.
-        let x: Vec<f64> = (0..400).map(|i| 5.0 * (i as f64 * 0.05).sin() + 0.03 * ((i % 7) as f64 - 3.0)).collect();
+        let x: Vec<f64> = (0..400)
+            .map(|i| 5.0 * (i as f64 * 0.05).sin() + 0.03 * ((i % 7) as f64 - 3.0))
+            .collect();
         let t = track(x, vec![1.0; 400]);
         let data = BoucWenBatch::new(std::slice::from_ref(&t));
         let lanes = Lanes {
