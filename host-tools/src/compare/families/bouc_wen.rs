@@ -122,7 +122,7 @@ fn towards_zero(w: f64, u: f64, r: f64) -> (f64, f64) {
 }
 
 /// |r| below this counts as r = 0 (dw/du = 1).
-const FLAT: f64 = 1e-12;
+pub const FLAT: f64 = 1e-12;
 
 /// The unloading branch dw/du = 1 + r·w² (w ≤ 0) in a variable that grows
 /// like u: φ = atan(√r·w)/√r (r > 0), atanh(√|r|·w)/√|r| (r < 0; −∞ where

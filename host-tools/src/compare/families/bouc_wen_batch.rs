@@ -11,14 +11,15 @@
 //!   (ψ ≥ 0) z = s·tanh ψ, computed as (1 − e)/(1 + e) with e = e^(−2ψ) by
 //!   [`fastmath::exp`]; just after a reversal (ψ < 0, the tan/atan branch
 //!   of [`super::bouc_wen::unloading_phase`]) lanes take a scalar tan. ψ is
-//!   recomputed from z only at reversals (~4 % of the samples on the MTS data).
+//!   recomputed from z only at reversals (~4 % of the samples on the MTS data),
+//!   by the vectorised [`fastmath::atan`] for r > 0.
 //! - Work items are (agent block, track) pairs for rayon; tracks are
 //!   independent (z starts at 0 on each).
 //!
 //! This is the exact step of [`super::bouc_wen::Loop`] rearranged, so J differs
 //! from the per-q projection by rounding only (fastmath::exp is within 1e-15
 //! relative of libm): ~1e-15 relative, at most ~1e-9 at the r = −1 edge (tested below).
-use super::bouc_wen::{unloading_phase, unloading_w, MAX_R};
+use super::bouc_wen::{unloading_phase, unloading_w, FLAT, MAX_R};
 use super::BatchObjective;
 use crate::compare::fastmath;
 use crate::compare::fit::{solve_normal, weight, MAX_LINEAR};
@@ -49,6 +50,21 @@ struct TrackData {
 struct Lanes {
     inv_x_y: [f64; LANES],
     r: [f64; LANES],
+    /// √r and 1/√r where r > FLAT (1 elsewhere: those lanes take the scalar path).
+    sqrt_r: [f64; LANES],
+    inv_sqrt_r: [f64; LANES],
+}
+
+impl Lanes {
+    fn new(x_y_mm: [f64; LANES], r: [f64; LANES]) -> Lanes {
+        let sqrt_r = r.map(|r| if r > FLAT { r.sqrt() } else { 1.0 });
+        Lanes {
+            inv_x_y: x_y_mm.map(|x| 1.0 / x),
+            r,
+            sqrt_r,
+            inv_sqrt_r: sqrt_r.map(|q| 1.0 / q),
+        }
+    }
 }
 
 /// Per lane: Σz·v, Σz·x, Σz, Σz², Σz·F over one track.
@@ -136,10 +152,7 @@ impl BatchObjective for BoucWenBatch {
             .chunks(LANES)
             .map(|chunk| {
                 let at = |l: usize| chunk.get(l).copied().flatten().unwrap_or((1.0, 0.0));
-                Lanes {
-                    inv_x_y: std::array::from_fn(|l| 1.0 / at(l).0),
-                    r: std::array::from_fn(|l| at(l).1),
-                }
+                Lanes::new(std::array::from_fn(|l| at(l).0), std::array::from_fn(|l| at(l).1))
             })
             .collect();
         let nt = self.tracks.len();
@@ -226,13 +239,25 @@ fn integrate_lanes<const FMA: bool>(samples: &[Sample], lanes: &Lanes) -> ZSums 
             if p.sign != dir {
                 // A reversal (or the first motion): each lane's phase from its z.
                 dir = p.sign;
+                // Vectorised for the usual case, w ≤ 0 and r > 0 (ψ = atan(√r·w)/√r);
+                // the other lanes exactly, one at a time.
+                let mut other = false;
                 for l in 0..LANES {
                     let w = dir * z[l];
-                    psi[l] = if w >= 0.0 {
-                        w.atanh()
-                    } else {
-                        unloading_phase(w, lanes.r[l])
-                    };
+                    psi[l] = fastmath::atan(lanes.sqrt_r[l] * w) * lanes.inv_sqrt_r[l];
+                    other |= !(w <= 0.0 && lanes.r[l] > FLAT);
+                }
+                if other {
+                    for l in 0..LANES {
+                        let w = dir * z[l];
+                        if !(w <= 0.0 && lanes.r[l] > FLAT) {
+                            psi[l] = if w >= 0.0 {
+                                w.atanh()
+                            } else {
+                                unloading_phase(w, lanes.r[l])
+                            };
+                        }
+                    }
                 }
             }
             let mut back = false;
@@ -354,10 +379,10 @@ mod tests {
             .collect();
         let t = track(x, vec![1.0; 400]);
         let data = BoucWenBatch::new(std::slice::from_ref(&t));
-        let lanes = Lanes {
-            inv_x_y: std::array::from_fn(|l| 1.0 / (0.05 + 0.3 * l as f64)),
-            r: std::array::from_fn(|l| -1.0 + 0.5 * l as f64),
-        };
+        let lanes = Lanes::new(
+            std::array::from_fn(|l| 0.05 + 0.3 * l as f64),
+            std::array::from_fn(|l| -1.0 + 0.5 * l as f64),
+        );
         let (portable, dispatched) = (
             integrate_lanes::<false>(&data.tracks[0].samples, &lanes),
             integrate(&data.tracks[0].samples, &lanes),
