@@ -10,9 +10,10 @@
 //!   carries a phase ψ that grows by u = |dx|/x_y between reversals: loading
 //!   (ψ ≥ 0) z = s·tanh ψ, computed as (1 − e)/(1 + e) with e = e^(−2ψ) by
 //!   [`fastmath::exp`]; just after a reversal (ψ < 0, the tan/atan branch
-//!   of [`super::bouc_wen::unloading_phase`]) lanes take a scalar tan. ψ is
-//!   recomputed from z only at reversals (~4 % of the samples on the MTS data),
-//!   by the vectorised [`fastmath::atan`] for r > 0.
+//!   of [`super::bouc_wen::unloading_phase`]) z = s·tan(√r·ψ)/√r by the
+//!   vectorised [`fastmath::tan`]. ψ is recomputed from z only at reversals
+//!   (~4 % of the samples on the MTS data), by [`fastmath::atan`]. Lanes with
+//!   r ≤ 0 take libm's atanh/tanh in those two places, one lane at a time.
 //! - Work items are (agent block, track) pairs for rayon; tracks are
 //!   independent (z starts at 0 on each).
 //!
@@ -273,9 +274,20 @@ fn integrate_lanes<const FMA: bool>(samples: &[Sample], lanes: &Lanes) -> ZSums 
                 back |= psi[l] < 0.0;
             }
             if back {
+                // Unloading lanes: w = tan(√r·ψ)/√r vectorised for r > 0, the others exactly.
+                let mut other = false;
                 for l in 0..LANES {
+                    let w = fastmath::tan(lanes.sqrt_r[l] * psi[l]) * lanes.inv_sqrt_r[l];
                     if psi[l] < 0.0 {
-                        z[l] = dir * unloading_w(psi[l], lanes.r[l]);
+                        z[l] = dir * w;
+                        other |= lanes.r[l] <= FLAT;
+                    }
+                }
+                if other {
+                    for l in 0..LANES {
+                        if psi[l] < 0.0 && lanes.r[l] <= FLAT {
+                            z[l] = dir * unloading_w(psi[l], lanes.r[l]);
+                        }
                     }
                 }
             }
