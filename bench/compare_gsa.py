@@ -174,9 +174,9 @@ def main():
             ("scipy differential_evolution", de_s, DE_EVALS[0], float(de.fun), list(de.x))]
     print(f"(mre GSA alone: {bench['evaluations']} evaluations, {bench['median_s']:.3f} s, J {bench['best_objective']:.6f}; "
           f"{bench['threads']} threads)")
-    print(f"{'optimiser':<30} {'time (s)':>10} {'evaluations':>12} {'final J':>10}  final (log10 x_y, r)")
+    print(f"{'optimiser':<30} {'time (s)':>10} {'evaluations':>12} {'final J':>12}  final (log10 x_y, r)")
     for name, s, e, j, q in rows:
-        print(f"{name:<30} {s:>10.3f} {e:>12} {j:>10.6f}  ({q[0]:.4f}, {q[1]:.4f})")
+        print(f"{name:<30} {s:>10.3f} {e:>12} {j:>12.8f}  ({q[0]:.4f}, {q[1]:.4f})")
     fastest = min(rows[1:], key=lambda r: r[1])
     print(f"mre (GSA + LM) is {fastest[1] / rows[0][1]:.0f}x faster than the fastest peer ({fastest[0]}); "
           f"final J {rows[0][3]:.6f} vs {fastest[3]:.6f}; best peer J {min(r[3] for r in rows[1:]):.6f}")
