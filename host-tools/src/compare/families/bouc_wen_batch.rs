@@ -13,13 +13,14 @@
 //!   of [`super::bouc_wen::unloading_phase`]) z = s·tan(√r·ψ)/√r by the
 //!   vectorised [`fastmath::tan`]. ψ is recomputed from z only at reversals
 //!   (~4 % of the samples on the MTS data), by [`fastmath::atan`]. Lanes with
-//!   r ≤ 0 take libm's atanh/tanh in those two places, one lane at a time.
+//!   r ≤ 0 (and w > 0 at a reversal) take libm's functions there, one lane at a time.
 //! - Work items are (agent block, track) pairs for rayon; tracks are
 //!   independent (z starts at 0 on each).
 //!
 //! This is the exact step of [`super::bouc_wen::Loop`] rearranged, so J differs
-//! from the per-q projection by rounding only (fastmath::exp is within 1e-15
-//! relative of libm): ~1e-15 relative, at most ~1e-9 at the r = −1 edge (tested below).
+//! from the per-q projection by rounding only (fastmath's exp, atan and tan are
+//! within 1e-15 relative of libm): ~1e-15 relative, at most ~1e-9 at the r = −1
+//! edge (tested below).
 use super::bouc_wen::{unloading_phase, unloading_w, FLAT, MAX_R};
 use super::BatchObjective;
 use crate::compare::fastmath;
