@@ -156,7 +156,7 @@ def main():
 
     task = Task(BoucWen(tracks, lower, upper), max_evals=evals)
     start = time.perf_counter()
-    _, niapy_best = GravitationalSearchAlgorithm(population_size=n, seed=seed).run(task)
+    niapy_q, niapy_best = GravitationalSearchAlgorithm(population_size=n, seed=seed).run(task)
     niapy_s = time.perf_counter() - start
 
     # popsize is a multiplier of the dimension (2); maxiter generations after the first.
@@ -168,14 +168,15 @@ def main():
                                 vectorized=True, updating="deferred")
     de_s = time.perf_counter() - start
 
-    rows = [("mre GSA + LM", bench["refined_median_s"], bench["refined_evaluations"], bench["refined_objective"]),
-            ("niapy GSA", niapy_s, task.evals, float(niapy_best)),
-            ("scipy differential_evolution", de_s, DE_EVALS[0], float(de.fun))]
+    rows = [("mre GSA + LM", bench["refined_median_s"], bench["refined_evaluations"], bench["refined_objective"],
+             bench["refined_q"]),
+            ("niapy GSA", niapy_s, task.evals, float(niapy_best), list(niapy_q)),
+            ("scipy differential_evolution", de_s, DE_EVALS[0], float(de.fun), list(de.x))]
     print(f"(mre GSA alone: {bench['evaluations']} evaluations, {bench['median_s']:.3f} s, J {bench['best_objective']:.6f}; "
           f"{bench['threads']} threads)")
-    print(f"{'optimiser':<30} {'time (s)':>10} {'evaluations':>12} {'final J':>10}")
-    for name, s, e, j in rows:
-        print(f"{name:<30} {s:>10.3f} {e:>12} {j:>10.6f}")
+    print(f"{'optimiser':<30} {'time (s)':>10} {'evaluations':>12} {'final J':>12}  final (log10 x_y, r)")
+    for name, s, e, j, q in rows:
+        print(f"{name:<30} {s:>10.3f} {e:>12} {j:>12.8f}  ({q[0]:.4f}, {q[1]:.4f})")
     fastest = min(rows[1:], key=lambda r: r[1])
     print(f"mre (GSA + LM) is {fastest[1] / rows[0][1]:.0f}x faster than the fastest peer ({fastest[0]}); "
           f"final J {rows[0][3]:.6f} vs {fastest[3]:.6f}; best peer J {min(r[3] for r in rows[1:]):.6f}")

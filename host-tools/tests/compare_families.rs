@@ -1,9 +1,14 @@
 //! Each family of `mre compare` against a closed form or an independent
 //! computation (never against its own earlier output).
 use mre_host::compare::families::{
-    bouc_wen::BoucWen, dahl::Dahl, exponential::Exponential, kwok_tanh::KwokTanh, spencer::Spencer, Family,
+    bouc_wen::{step, BoucWen, MAX_R},
+    dahl::Dahl,
+    exponential::Exponential,
+    kwok_tanh::KwokTanh,
+    spencer::Spencer,
+    Family, Scales,
 };
-use mre_host::compare::fit::{fit_family, project, Budget};
+use mre_host::compare::fit::{fit_family, objective, project, refine, Budget};
 use mre_host::compare::tracks::Track;
 use mre_host::dataset::Role;
 use mre_host::fit::gsa::GsaParams;
@@ -212,4 +217,35 @@ fn gsa_and_lm_find_a_planted_bouc_wen_loop() {
     assert!(fitted.lm_objective[0] < 1e-3, "objective {:?}", fitted.lm_objective);
     let p = &fitted.sets[0].1;
     assert!((p[0] - truth[0]).abs() < 0.01 && (p[4] - truth[4]).abs() < 2.0, "{p:?}");
+}
+
+#[test]
+fn lm_follows_a_bound_to_the_best_point_on_it() {
+    // Data made with r = 5, beyond the box (r ≤ MAX_R): the best admissible fit
+    // lies on r = MAX_R. LM's clipped steps stall along that bound (without the
+    // second round J ends 0.3–7 % above the line's minimum here); `refine` must
+    // reach the minimum along the line, found independently on a dense grid.
+    let mut t = sinusoid(5.0, 1.0, 3, 400);
+    let (mut z, mut prev) = (0.0, t.x_mm[0]);
+    t.force_n = (0..t.len())
+        .map(|i| {
+            z = step(z, t.x_mm[i] - prev, 0.4, 5.0);
+            prev = t.x_mm[i];
+            250.0 * t.v_m_s[i] + 4.0 * t.x_mm[i] + 120.0 * z + 3.0
+        })
+        .collect();
+    t.force_scale_n = t.force_n.iter().fold(0.0, |m: f64, f| m.max(f.abs()));
+    let tracks = std::slice::from_ref(&t);
+    let (lower, upper) = BoucWen.bounds(&Scales::of(tracks));
+    let grid_best = (0..=4000)
+        .map(|k| {
+            let log_x_y = lower[0] + (upper[0] - lower[0]) * k as f64 / 4000.0;
+            objective(&BoucWen, &[log_x_y, MAX_R], tracks, &mut Vec::new())
+        })
+        .fold(f64::INFINITY, f64::min);
+    for start in [[0.1f64.log10(), 1.0], [0.6f64.log10(), 2.0], [2f64.log10(), 2.8]] {
+        let (q, j, _) = refine(&BoucWen, &start, &lower, &upper, tracks, 30);
+        assert_eq!(q[1], MAX_R, "from {start:?}: {q:?}");
+        assert!(j <= grid_best + 1e-7, "from {start:?}: J {j} vs the line's {grid_best}");
+    }
 }

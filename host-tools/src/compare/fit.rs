@@ -133,20 +133,8 @@ pub fn project(
         }
         yy += w2 * s;
     }
-    let scale: Vec<f64> = (0..k).map(|a| gram[a][a].sqrt()).collect();
-    if scale.iter().any(|s| !s.is_finite() || *s <= 0.0) {
-        return None;
-    }
-    let g = nalgebra::DMatrix::from_fn(k, k, |a, c| {
-        let (lo, hi) = (a.min(c), a.max(c));
-        gram[lo][hi] / (scale[a] * scale[c])
-    });
-    let chol = nalgebra::linalg::Cholesky::new(g)?;
-    let h = nalgebra::DVector::from_fn(k, |a, _| rhs[a] / scale[a]);
-    let scaled = chol.solve(&h);
-    let theta: Vec<f64> = (0..k).map(|a| scaled[a] / scale[a]).collect();
-    // SSE = yᵀy − 2θᵀb + θᵀGθ = yᵀy − θᵀb at the optimum.
-    let sse = (yy - theta.iter().zip(rhs.iter()).map(|(t, b)| t * b).sum::<f64>()).max(0.0);
+    let (theta, sse) = solve_normal(&gram, &rhs, yy, k)?;
+    let theta = theta[..k].to_vec();
     let residuals = if residuals {
         let mut out = Vec::with_capacity(tracks.iter().map(Track::len).sum());
         let mut force = Vec::new();
@@ -170,6 +158,58 @@ pub fn project(
         theta,
         residuals,
     })
+}
+
+/// The normal equations G·θ = b (G's upper triangle in `gram`, k ≤ MAX_LINEAR)
+/// solved by Cholesky after equilibration (G scaled to a unit diagonal): θ
+/// and SSE = yᵀy − θᵀb. None if G is not positive definite or not finite.
+/// Shared by [`project`] and the batch objectives of the families.
+pub(crate) fn solve_normal(
+    gram: &[[f64; MAX_LINEAR]; MAX_LINEAR],
+    rhs: &[f64; MAX_LINEAR],
+    yy: f64,
+    k: usize,
+) -> Option<([f64; MAX_LINEAR], f64)> {
+    let k = k.min(MAX_LINEAR);
+    let mut scale = [0.0; MAX_LINEAR];
+    for a in 0..k {
+        scale[a] = gram[a][a].sqrt();
+        if !scale[a].is_finite() || scale[a] <= 0.0 {
+            return None;
+        }
+    }
+    // Lower Cholesky factor of the scaled G, then forward and back substitution.
+    let mut l = [[0.0; MAX_LINEAR]; MAX_LINEAR];
+    for a in 0..k {
+        for c in 0..=a {
+            let dot: f64 = l[a][..c].iter().zip(&l[c][..c]).map(|(p, q)| p * q).sum();
+            let sum = gram[c][a] / (scale[a] * scale[c]) - dot;
+            if a == c {
+                if sum.is_nan() || sum <= 0.0 {
+                    return None;
+                }
+                l[a][a] = sum.sqrt();
+            } else {
+                l[a][c] = sum / l[c][c];
+            }
+        }
+    }
+    let mut y = [0.0; MAX_LINEAR];
+    for a in 0..k {
+        let dot: f64 = l[a][..a].iter().zip(&y[..a]).map(|(p, q)| p * q).sum();
+        y[a] = (rhs[a] / scale[a] - dot) / l[a][a];
+    }
+    let mut theta = [0.0; MAX_LINEAR];
+    for a in (0..k).rev() {
+        let dot: f64 = (a + 1..k).map(|m| l[m][a] * theta[m]).sum();
+        theta[a] = (y[a] - dot) / l[a][a];
+    }
+    for a in 0..k {
+        theta[a] /= scale[a];
+    }
+    // SSE = yᵀy − 2θᵀb + θᵀGθ = yᵀy − θᵀb at the optimum.
+    let sse = (yy - (0..k).map(|a| theta[a] * rhs[a]).sum::<f64>()).max(0.0);
+    Some((theta, sse))
 }
 
 /// Gram matrix (upper triangle), Xᵀy and yᵀy of one track's basis (unweighted).
@@ -201,7 +241,7 @@ fn normal_sums<const K: usize>(t: &Track, b: &Basis) -> NormalSums {
 pub(crate) const MAX_LINEAR: usize = 6;
 
 /// A track's residual weight 1/(max|F|·√(n·R)), R = number of tracks, so Σr² = J².
-fn weight(t: &Track, tracks: f64) -> f64 {
+pub(crate) fn weight(t: &Track, tracks: f64) -> f64 {
     1.0 / (t.force_scale_n * (t.len().max(1) as f64 * tracks).sqrt())
 }
 
@@ -268,14 +308,16 @@ pub fn search(
     stream: u64,
 ) -> GsaResultN {
     let mut rng = crate::fit::branch_rng(seed, stream);
+    let batch = family.batch_objective(tracks);
     minimize_batch(
         lower,
         upper,
-        |agents| {
-            agents
+        |agents| match &batch {
+            Some(b) => b.evaluate(agents),
+            None => agents
                 .par_iter()
                 .map_init(Vec::new, |bases, q| objective(family, q, tracks, bases))
-                .collect()
+                .collect(),
         },
         gsa,
         &mut rng,
@@ -283,8 +325,11 @@ pub fn search(
     )
 }
 
-/// LM from `start`; returns the better of the start and LM's end point, its
-/// objective and the evaluations spent (each Jacobian counts n + 1).
+/// LM from `start`; returns the best of the start and LM's end points, its
+/// objective and the evaluations spent (each Jacobian counts n + 1, n the
+/// parameters LM moves). LM's steps are clipped to the box, which stalls it
+/// along a bound; so when it ends with some parameters on a bound, a second
+/// LM moves only the others from there.
 pub fn refine(
     family: &dyn Family,
     start: &[f64],
@@ -293,30 +338,43 @@ pub fn refine(
     tracks: &[Track],
     patience: usize,
 ) -> (Vec<f64>, f64, usize) {
-    let problem = LmProblem {
-        family,
-        tracks,
-        lower,
-        upper,
-        u: DVector::from_iterator(
-            start.len(),
-            start
-                .iter()
-                .zip(lower.iter().zip(upper))
-                .map(|(p, (lo, hi))| if hi > lo { (p - lo) / (hi - lo) } else { 0.0 }),
-        ),
-    };
     let mut bases = Vec::new();
     let start_value = objective(family, start, tracks, &mut bases);
-    let (solved, report) = LevenbergMarquardt::new().with_patience(patience).minimize(problem);
-    let q = solved.raw(&solved.u);
-    let value = objective(family, &q, tracks, &mut bases);
-    let evals = report.number_of_evaluations * (start.len() + 1);
-    if value <= start_value {
-        (q, value, evals)
-    } else {
-        (start.to_vec(), start_value, evals)
+    let mut best = (start.to_vec(), start_value);
+    let mut evals = 0;
+    let mut u = DVector::from_iterator(
+        start.len(),
+        start
+            .iter()
+            .zip(lower.iter().zip(upper))
+            .map(|(p, (lo, hi))| if hi > lo { (p - lo) / (hi - lo) } else { 0.0 }),
+    );
+    let mut active: Vec<usize> = (0..start.len()).collect();
+    for _round in 0..2 {
+        let problem = LmProblem {
+            family,
+            tracks,
+            lower,
+            upper,
+            u: u.clone(),
+            active: active.clone(),
+            last: std::sync::Mutex::new(None),
+        };
+        let (solved, report) = LevenbergMarquardt::new().with_patience(patience).minimize(problem);
+        evals += report.number_of_evaluations * (active.len() + 1);
+        let q = solved.raw(&solved.u);
+        let value = objective(family, &q, tracks, &mut bases);
+        if value <= best.1 {
+            best = (q, value);
+        }
+        u = solved.u;
+        let free: Vec<usize> = active.iter().copied().filter(|&j| u[j] > 0.0 && u[j] < 1.0).collect();
+        if free.is_empty() || free.len() == active.len() {
+            break;
+        }
+        active = free;
     }
+    (best.0, best.1, evals)
 }
 
 struct LmProblem<'a> {
@@ -326,6 +384,11 @@ struct LmProblem<'a> {
     upper: &'a [f64],
     /// Normalised nonlinear parameters (0 = lower bound, 1 = upper bound).
     u: DVector<f64>,
+    /// The entries of `u` LM moves (the others stay fixed).
+    active: Vec<usize>,
+    /// The residuals LM last asked for, and where: its Jacobian at the same
+    /// point reuses them instead of integrating the model again.
+    last: std::sync::Mutex<Option<(DVector<f64>, Vec<f64>)>>,
 }
 
 /// Forward-difference step in normalised coordinates.
@@ -365,23 +428,35 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for LmProblem<'_> {
     type ParameterStorage = Owned<f64, Dyn>;
 
     fn set_params(&mut self, u: &DVector<f64>) {
-        self.u = u.map(|v| v.clamp(0.0, 1.0));
+        for (&j, v) in self.active.iter().zip(u.iter()) {
+            self.u[j] = v.clamp(0.0, 1.0);
+        }
     }
 
     fn params(&self) -> DVector<f64> {
-        self.u.clone()
+        DVector::from_iterator(self.active.len(), self.active.iter().map(|&j| self.u[j]))
     }
 
     fn residuals(&self) -> Option<DVector<f64>> {
-        Some(DVector::from_vec(self.residuals_at(&self.u)))
+        let r = self.residuals_at(&self.u);
+        if let Ok(mut last) = self.last.lock() {
+            *last = Some((self.u.clone(), r.clone()));
+        }
+        Some(DVector::from_vec(r))
     }
 
     fn jacobian(&self) -> Option<DMatrix<f64>> {
-        let base = self.residuals_at(&self.u);
-        let n = self.u.len();
-        let columns: Vec<Vec<f64>> = (0..n)
-            .into_par_iter()
-            .map(|j| {
+        let cached = self
+            .last
+            .lock()
+            .ok()
+            .and_then(|last| last.as_ref().filter(|(u, _)| *u == self.u).map(|(_, r)| r.clone()));
+        let base = cached.unwrap_or_else(|| self.residuals_at(&self.u));
+        let n = self.active.len();
+        let columns: Vec<Vec<f64>> = self
+            .active
+            .par_iter()
+            .map(|&j| {
                 let mut u = self.u.clone();
                 // Step inwards at the upper bound so the difference sees the model.
                 let h = if u[j] + JACOBIAN_STEP > 1.0 {

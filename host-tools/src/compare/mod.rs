@@ -10,6 +10,7 @@
 //! the overlays.
 pub mod bench;
 pub mod families;
+pub mod fastmath;
 pub mod fit;
 pub mod plots;
 pub mod polynomial;

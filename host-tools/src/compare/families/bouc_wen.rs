@@ -7,7 +7,7 @@
 //! amplitude (the classical A, β, γ have one redundant scale). The shape
 //! parameter r = β − γ ∈ [−1, 3] sets how sharply the loop turns on
 //! reversal; x_y is searched as log10 x_y. Per-current parameters, interpolated between currents.
-use super::{all_finite, sign, Basis, CurrentLaw, Family, Scales, StepCost};
+use super::{all_finite, sign, Basis, BatchObjective, CurrentLaw, Family, Scales, StepCost};
 use crate::compare::tracks::Track;
 
 pub struct BoucWen;
@@ -112,30 +112,45 @@ impl Loop {
 /// stops at w = 0.
 #[inline]
 fn towards_zero(w: f64, u: f64, r: f64) -> (f64, f64) {
-    const FLAT: f64 = 1e-12;
+    let phase = unloading_phase(w, r);
+    let need = -phase;
+    if u >= need {
+        (0.0, need)
+    } else {
+        (unloading_w(phase + u, r), u)
+    }
+}
+
+/// |r| below this counts as r = 0 (dw/du = 1).
+pub const FLAT: f64 = 1e-12;
+
+/// The unloading branch dw/du = 1 + r·w² (w ≤ 0) in a variable that grows
+/// like u: φ = atan(√r·w)/√r (r > 0), atanh(√|r|·w)/√|r| (r < 0; −∞ where
+/// w = −1/√|r| stands still), w (r = 0). w reaches 0 at φ = 0.
+#[inline]
+pub fn unloading_phase(w: f64, r: f64) -> f64 {
     if r > FLAT {
         let q = r.sqrt();
-        let a = (q * w).atan();
-        let need = -a / q;
-        if u >= need {
-            (0.0, need)
-        } else {
-            ((a + q * u).tan() / q, u)
-        }
+        (q * w).atan() / q
     } else if r < -FLAT {
-        // dw/du = 1 − |r|·w²; at w = −1/√|r| it stands still (need = ∞).
         let q = (-r).sqrt();
-        let a = (q * w).max(-1.0).atanh();
-        let need = -a / q;
-        if u >= need {
-            (0.0, need)
-        } else {
-            ((a + q * u).tanh() / q, u)
-        }
-    } else if u >= -w {
-        (0.0, -w)
+        (q * w).max(-1.0).atanh() / q
     } else {
-        (w + u, u)
+        w
+    }
+}
+
+/// w at phase φ ≤ 0 of [`unloading_phase`].
+#[inline]
+pub fn unloading_w(phase: f64, r: f64) -> f64 {
+    if r > FLAT {
+        let q = r.sqrt();
+        (q * phase).tan() / q
+    } else if r < -FLAT {
+        let q = (-r).sqrt();
+        (q * phase).tanh() / q
+    } else {
+        phase
     }
 }
 
@@ -171,7 +186,7 @@ impl Family for BoucWen {
         if x_y.is_nan() || x_y <= 0.0 || !(-1.0..=MAX_R).contains(&r) {
             return false;
         }
-        b.reset(4);
+        b.reset(4, track.len());
         let mut hysteresis = Loop::default();
         let mut x_prev = track.x_mm.first().copied().unwrap_or(0.0);
         for (&x, &v) in track.x_mm.iter().zip(&track.v_m_s) {
@@ -192,6 +207,10 @@ impl Family for BoucWen {
             substeps: 1,
             state_floats: 2,
         }
+    }
+
+    fn batch_objective(&self, tracks: &[Track]) -> Option<Box<dyn BatchObjective>> {
+        Some(Box::new(super::bouc_wen_batch::BoucWenBatch::new(tracks)))
     }
 }
 

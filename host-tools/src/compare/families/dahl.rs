@@ -44,7 +44,7 @@ impl Family for Dahl {
     fn basis(&self, q: &[f64], track: &Track, b: &mut Basis) -> bool {
         let &[log_sigma] = q else { return false };
         let sigma = 10f64.powf(log_sigma);
-        b.reset(4);
+        b.reset(4, track.len());
         let mut z = 0.0;
         let mut x_prev = track.x_mm.first().copied().unwrap_or(0.0);
         for (&x, &v) in track.x_mm.iter().zip(&track.v_m_s) {

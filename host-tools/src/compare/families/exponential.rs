@@ -50,7 +50,7 @@ impl Family for Exponential {
     fn basis(&self, q: &[f64], track: &Track, b: &mut Basis) -> bool {
         let &[l1, l2, l3] = q else { return false };
         let sigma = [10f64.powf(l1), 10f64.powf(l2), 10f64.powf(l3)];
-        b.reset(3 + LAYERS);
+        b.reset(3 + LAYERS, track.len());
         let mut z = [0.0; LAYERS];
         let mut x_prev = track.x_mm.first().copied().unwrap_or(0.0);
         for (&x, &v) in track.x_mm.iter().zip(&track.v_m_s) {

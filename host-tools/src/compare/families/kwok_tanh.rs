@@ -39,7 +39,7 @@ impl Family for KwokTanh {
     fn basis(&self, q: &[f64], track: &Track, b: &mut Basis) -> bool {
         let &[log_beta, delta] = q else { return false };
         let beta = 10f64.powf(log_beta);
-        b.reset(4);
+        b.reset(4, track.len());
         for (&x, &v) in track.x_mm.iter().zip(&track.v_m_s) {
             let z = (beta * v + delta * sign(x)).tanh();
             b.push_row(&[v, x, z, 1.0]);

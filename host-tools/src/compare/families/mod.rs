@@ -7,6 +7,7 @@
 //! dimensionless and saturate at ±1 (the Bouc–Wen scale redundancy is removed
 //! by fixing β + γ = 1; see [`bouc_wen`]).
 pub mod bouc_wen;
+pub mod bouc_wen_batch;
 pub mod dahl;
 pub mod exponential;
 pub mod kwok_tanh;
@@ -90,11 +91,13 @@ pub struct Basis {
 }
 
 impl Basis {
-    /// Empties every column, keeping `k` of them (capacity reused).
-    pub fn reset(&mut self, k: usize) {
+    /// Empties every column, keeping `k` of them with room for `n` samples
+    /// (capacity reused; no reallocation while the rows are pushed).
+    pub fn reset(&mut self, k: usize, n: usize) {
         self.columns.resize_with(k, Vec::new);
         for c in &mut self.columns {
             c.clear();
+            c.reserve(n);
         }
         self.offset.clear();
     }
@@ -143,6 +146,13 @@ pub trait Family: Sync + Send {
     fn basis(&self, q: &[f64], track: &Track, basis: &mut Basis) -> bool;
     fn step_cost(&self) -> StepCost;
 
+    /// An evaluator of J for many q at once over fixed `tracks` (GSA's hot
+    /// path), if the family has one faster than projecting each q
+    /// ([`crate::compare::fit::objective`]); it must return the same values.
+    fn batch_objective(&self, _tracks: &[Track]) -> Option<Box<dyn BatchObjective>> {
+        None
+    }
+
     /// Every parameter name: nonlinear first, then linear.
     fn param_names(&self) -> Vec<&'static str> {
         self.nonlinear_names()
@@ -166,6 +176,11 @@ pub trait Family: Sync + Send {
         b.force(&p[nq..], out);
         all_finite(out)
     }
+}
+
+/// J for a batch of nonlinear parameter sets (∞ where one is not admissible).
+pub trait BatchObjective: Sync + Send {
+    fn evaluate(&self, qs: &[Vec<f64>]) -> Vec<f64>;
 }
 
 /// Every nonlinear family, in report order.

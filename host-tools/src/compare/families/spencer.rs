@@ -143,7 +143,7 @@ impl Family for Spencer {
         if x_y.is_nan() || x_y <= 0.0 || cc.is_nan() || cc <= 0.0 || k0 < 0.0 || !(-1.0..=1.0).contains(&r) {
             return false;
         }
-        b.reset(2);
+        b.reset(2, track.len());
         let n = track.len();
         if n == 0 {
             return true;
