@@ -450,13 +450,25 @@ fn judge(
     min_units: usize,
 ) -> Judgement {
     let pool: Vec<usize> = (0..sse_before.len()).filter(|i| !excluded.contains(i)).collect();
-    let sum = |idx: &[usize], s: &[f64]| idx.iter().map(|&i| s[i]).sum::<f64>();
-    let ratio = (sum(&pool, sse_before) / sum(&pool, sse_after).max(1e-300)).sqrt();
-    let ci95 = bootstrap_ratio_ci95(sse_before, sse_after, &pool, th);
     let units: Vec<Vec<usize>> = scoring_units(prep, on_validate)
         .into_iter()
         .filter(|u| !u.iter().any(|i| excluded.contains(i)))
         .collect();
+    judge_units(sse_before, sse_after, &pool, &units, th, min_units)
+}
+
+/// [`judge`] on explicit recordings (`pool`) and scoring units.
+fn judge_units(
+    sse_before: &[f64],
+    sse_after: &[f64],
+    pool: &[usize],
+    units: &[Vec<usize>],
+    th: &Thresholds,
+    min_units: usize,
+) -> Judgement {
+    let sum = |idx: &[usize], s: &[f64]| idx.iter().map(|&i| s[i]).sum::<f64>();
+    let ratio = (sum(pool, sse_before) / sum(pool, sse_after).max(1e-300)).sqrt();
+    let ci95 = bootstrap_ratio_ci95(sse_before, sse_after, pool, th);
     let units_improved = units.iter().filter(|u| sum(u, sse_after) < sum(u, sse_before)).count();
     let large = ratio >= th.min_ratio && ci95[0] >= th.min_ratio_lo;
     let consistent = units.len() >= min_units && units_improved == units.len() && ratio >= th.min_ratio_consistent;
@@ -664,4 +676,62 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
         final_model: current,
         not_identifiable,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn units(n: usize) -> Vec<Vec<usize>> {
+        (0..n).map(|i| vec![2 * i, 2 * i + 1]).collect()
+    }
+
+    #[test]
+    fn a_small_improvement_in_every_unit_passes_by_consistency() {
+        // Ten recordings in five units; SSE 100 → 88 in each: ratio
+        // √(100/88) = 1.066, below the 1.10 gate, above 1.05, all 5 units.
+        let (b, a) = (vec![100.0; 10], vec![88.0; 10]);
+        let th = Thresholds::default();
+        let pool: Vec<usize> = (0..10).collect();
+        let j = judge_units(&b, &a, &pool, &units(5), &th, th.min_consistent_units);
+        assert!((j.ratio - (100.0f64 / 88.0).sqrt()).abs() < 1e-12);
+        assert_eq!(j.units_improved, 5);
+        assert!(j.passes);
+        // One unit (recordings 8, 9) a little worse: 4 of 5 is no sign test
+        // at p ≤ 1/32, and 1.06 is no large improvement.
+        let mut a2 = a.clone();
+        a2[8] = 101.0;
+        a2[9] = 101.0;
+        let j = judge_units(&b, &a2, &pool, &units(5), &th, th.min_consistent_units);
+        assert_eq!(j.units_improved, 4);
+        assert!(!j.passes, "{}", j.ratio);
+        // Four units are too few for the route even when all improve.
+        let j = judge_units(&b[..8], &a[..8], &pool[..8], &units(4), &th, th.min_consistent_units);
+        assert!(!j.passes);
+    }
+
+    #[test]
+    fn every_unit_improving_by_a_hair_is_not_an_effect() {
+        // 100 → 99 everywhere: consistent, but ratio 1.005 < 1.05.
+        let (b, a) = (vec![100.0; 10], vec![99.0; 10]);
+        let th = Thresholds::default();
+        let pool: Vec<usize> = (0..10).collect();
+        assert!(!judge_units(&b, &a, &pool, &units(5), &th, 5).passes);
+    }
+
+    #[test]
+    fn a_large_improvement_passes_without_every_unit() {
+        // Four units 100 → 25 (ratio 2 each), one 100 → 110: ratio
+        // √(1000/(8·25 + 2·110)) = √(1000/420) = 1.54; every bootstrap
+        // resample of recordings keeps most of the 2× units.
+        let b = vec![100.0; 10];
+        let mut a = vec![25.0; 10];
+        a[8] = 110.0;
+        a[9] = 110.0;
+        let th = Thresholds::default();
+        let pool: Vec<usize> = (0..10).collect();
+        let j = judge_units(&b, &a, &pool, &units(5), &th, 5);
+        assert!((j.ratio - (1000.0f64 / 420.0).sqrt()).abs() < 1e-12);
+        assert!(j.ci95[0] >= th.min_ratio_lo && j.passes);
+    }
 }

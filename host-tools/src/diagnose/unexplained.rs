@@ -56,12 +56,20 @@ pub fn force_noise_n(prep: &Prepared) -> f64 {
 /// Excitation frequency of a recording from its velocity sign changes (Hz),
 /// to two significant digits; `None` with fewer than two cycles.
 fn frequency_hz(time_s: &[f64], v: &[f64]) -> Option<f64> {
-    let crossings = v.windows(2).filter(|w| (w[0] > 0.0) != (w[1] > 0.0)).count();
-    let span = time_s.last()? - time_s.first()?;
-    if crossings < 4 || span <= 0.0 {
+    // Half periods between the first and last sign change (not over the
+    // whole recording, whose ends are partial cycles).
+    let crossings: Vec<f64> = (1..v.len().min(time_s.len()))
+        .filter(|&t| (v[t - 1] > 0.0) != (v[t] > 0.0))
+        .map(|t| time_s[t])
+        .collect();
+    if crossings.len() < 5 {
         return None;
     }
-    let f = crossings as f64 / 2.0 / span;
+    let span = crossings[crossings.len() - 1] - crossings[0];
+    if span <= 0.0 {
+        return None;
+    }
+    let f = (crossings.len() - 1) as f64 / (2.0 * span);
     let mag = 10f64.powf(f.log10().floor() - 1.0);
     Some((f / mag).round() * mag)
 }
@@ -112,7 +120,9 @@ pub fn locate_unexplained(prep: &Prepared, final_pred: &[Vec<f64>], scored: &[Ve
                 ((((r.time_s[t] - t0) / (t1 - t0).max(1e-300)) * TIME_BINS as f64).floor() as usize).min(TIME_BINS - 1);
             cells[2].add(format!("{}–{} % of each recording", tb * 20, tb * 20 + 20), e);
             if let Some(f) = freq {
-                cells[3].add(format!("{f} Hz"), e);
+                // Two significant digits, printed without float noise.
+                let decimals = (1.0 - f.log10().floor()).max(0.0) as usize;
+                cells[3].add(format!("{f:.decimals$} Hz"), e);
             }
             cells[4].add(format!("{} A", r.current_label()), e);
         }
