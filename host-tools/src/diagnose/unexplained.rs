@@ -8,7 +8,7 @@
 //! sits in one part of the data — a branch, a stretch of stroke or of time,
 //! one excitation frequency or one current — far more than that part's
 //! share of the samples.
-use super::prepared::{velocity_noise_m_s, Prepared};
+use super::prepared::{velocity_noise_m_s, Prepared, BRANCH_AMBIGUITY_SIGMAS};
 
 /// The residual counts as structure only above this multiple of the force noise.
 pub const NOISE_FACTOR: f64 = 2.0;
@@ -54,24 +54,63 @@ pub fn force_noise_n(prep: &Prepared) -> f64 {
 }
 
 /// Excitation frequency of a recording from its velocity sign changes (Hz),
-/// to two significant digits; `None` with fewer than two cycles.
-fn frequency_hz(time_s: &[f64], v: &[f64]) -> Option<f64> {
-    // Half periods between the first and last sign change (not over the
-    // whole recording, whose ends are partial cycles).
-    let crossings: Vec<f64> = (1..v.len().min(time_s.len()))
-        .filter(|&t| (v[t - 1] > 0.0) != (v[t] > 0.0))
-        .map(|t| time_s[t])
-        .collect();
-    if crossings.len() < 5 {
+/// `None` with less than a full cycle between the first and last sign change.
+fn frequency_hz(time_s: &[f64], v: &[f64], band_m_s: f64) -> Option<f64> {
+    // Sign changes with a dead band, so velocity noise chattering around a
+    // turn-around counts once.
+    let mut crossings = Vec::new();
+    let mut sign: Option<bool> = None;
+    for (t, &vt) in time_s.iter().zip(v) {
+        let s = if vt > band_m_s {
+            true
+        } else if vt < -band_m_s {
+            false
+        } else {
+            continue;
+        };
+        if sign.is_some_and(|p| p != s) {
+            crossings.push(*t);
+        }
+        sign = Some(s);
+    }
+    if crossings.len() < 3 {
         return None;
     }
     let span = crossings[crossings.len() - 1] - crossings[0];
     if span <= 0.0 {
         return None;
     }
-    let f = (crossings.len() - 1) as f64 / (2.0 * span);
-    let mag = 10f64.powf(f.log10().floor() - 1.0);
-    Some((f / mag).round() * mag)
+    Some((crossings.len() - 1) as f64 / (2.0 * span))
+}
+
+/// Cell labels for per-recording frequencies: estimates within 10 % of each
+/// other share a cell (sampling makes the same excitation read slightly
+/// differently), labelled by their mean to two significant digits.
+fn frequency_labels(freqs: &[Option<f64>]) -> Vec<Option<String>> {
+    let mut sorted: Vec<f64> = freqs.iter().flatten().copied().collect();
+    sorted.sort_by(f64::total_cmp);
+    let mut clusters: Vec<Vec<f64>> = Vec::new();
+    for f in sorted {
+        match clusters.last_mut() {
+            Some(c) if f <= 1.1 * c[0] => c.push(f),
+            _ => clusters.push(vec![f]),
+        }
+    }
+    let label = |c: &[f64]| {
+        let m = c.iter().sum::<f64>() / c.len() as f64;
+        let decimals = (1.0 - m.log10().floor()).max(0.0) as usize;
+        format!("{m:.decimals$} Hz")
+    };
+    freqs
+        .iter()
+        .map(|f| {
+            let f = (*f)?;
+            clusters
+                .iter()
+                .find(|c| f >= c[0] && f <= c[c.len() - 1])
+                .map(|c| label(c))
+        })
+        .collect()
 }
 
 /// Accumulates energy and counts per cell label.
@@ -103,10 +142,20 @@ pub fn locate_unexplained(prep: &Prepared, final_pred: &[Vec<f64>], scored: &[Ve
     let dims = ["branch", "stroke", "time", "frequency", "current"];
     let mut cells: Vec<Cells> = dims.iter().map(|_| Cells::default()).collect();
     let (mut total_e, mut total_n) = (0.0, 0usize);
+    let freqs: Vec<Option<f64>> = prep
+        .recs
+        .iter()
+        .map(|r| {
+            let band = BRANCH_AMBIGUITY_SIGMAS * r.velocity_noise_m_s;
+            (!prep.free_drop)
+                .then(|| frequency_hz(&r.time_s, &r.v_m_s, band))
+                .flatten()
+        })
+        .collect();
+    let freq_labels = frequency_labels(&freqs);
     for (i, r) in prep.recs.iter().enumerate() {
         let n = r.len();
         let (t0, t1) = (r.time_s[0], r.time_s[n - 1]);
-        let freq = (!prep.free_drop).then(|| frequency_hz(&r.time_s, &r.v_m_s)).flatten();
         for t in (0..n).filter(|&t| scored[i][t]) {
             let e = (r.force_n[t] - final_pred[i][t]).powi(2);
             total_e += e;
@@ -119,10 +168,8 @@ pub fn locate_unexplained(prep: &Prepared, final_pred: &[Vec<f64>], scored: &[Ve
             let tb =
                 ((((r.time_s[t] - t0) / (t1 - t0).max(1e-300)) * TIME_BINS as f64).floor() as usize).min(TIME_BINS - 1);
             cells[2].add(format!("{}–{} % of each recording", tb * 20, tb * 20 + 20), e);
-            if let Some(f) = freq {
-                // Two significant digits, printed without float noise.
-                let decimals = (1.0 - f.log10().floor()).max(0.0) as usize;
-                cells[3].add(format!("{f:.decimals$} Hz"), e);
+            if let Some(f) = &freq_labels[i] {
+                cells[3].add(f.clone(), e);
             }
             cells[4].add(format!("{} A", r.current_label()), e);
         }
@@ -173,9 +220,19 @@ mod tests {
         // 3 Hz sine over 2 s sampled at 1 kHz: 12 sign changes → 3 Hz.
         let t: Vec<f64> = (0..2000).map(|k| k as f64 * 1e-3 + 1e-4).collect();
         let v: Vec<f64> = t.iter().map(|t| (2.0 * std::f64::consts::PI * 3.0 * t).sin()).collect();
-        assert_eq!(frequency_hz(&t, &v), Some(3.0));
+        assert!((frequency_hz(&t, &v, 0.0).unwrap() - 3.0).abs() < 0.01);
         // Half a cycle is not a frequency.
         let v1: Vec<f64> = t.iter().map(|t| (std::f64::consts::PI * 0.25 * t).sin()).collect();
-        assert_eq!(frequency_hz(&t, &v1), None);
+        assert_eq!(frequency_hz(&t, &v1, 0.0), None);
+    }
+
+    #[test]
+    fn nearby_frequency_estimates_share_a_cell() {
+        let labels = frequency_labels(&[Some(0.098), Some(0.1), Some(0.25), None, Some(0.102)]);
+        assert_eq!(labels[0].as_deref(), Some("0.10 Hz"));
+        assert_eq!(labels[0], labels[1]);
+        assert_eq!(labels[0], labels[4]);
+        assert_eq!(labels[2].as_deref(), Some("0.25 Hz"));
+        assert_eq!(labels[3], None);
     }
 }
