@@ -304,12 +304,14 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
         "Accept only if the held-out RMSE ratio is ≥ {:.2} and its 95 % bootstrap lower bound (resampling \
          recordings) ≥ {:.2}, or every held-out scoring unit improves — whole cross-validation folds of fit \
          recordings, or each validate recording for a term that only changes how validate currents are \
-         predicted; at least {} units, a sign test at p ≤ 2^−{} — and the ratio is ≥ {:.2}{bic_gate}.\n",
+         predicted; at least {} units, a sign test at p ≤ 2^−{} — and the ratio is ≥ {:.2}; this second route \
+         only for vocabulary terms and while the model's held-out RMSE is ≥ {}× the force noise{bic_gate}.\n",
         d.thresholds.min_ratio,
         d.thresholds.min_ratio_lo,
         d.thresholds.min_consistent_units,
         d.thresholds.min_consistent_units,
-        d.thresholds.min_ratio_consistent
+        d.thresholds.min_ratio_consistent,
+        d.thresholds.consistent_min_residual_over_noise
     );
     if let Some(m) = &d.selection.memory {
         let t = &m.scored.terms;

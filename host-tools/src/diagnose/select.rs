@@ -13,6 +13,7 @@
 use super::candidates::{self, Effect};
 use super::design::{Designs, Solution, Terms};
 use super::prepared::Prepared;
+use super::unexplained::force_noise_n;
 use anyhow::{bail, Result};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -33,6 +34,9 @@ pub struct Thresholds {
     /// Scoring units the consistency route needs (a one-sided sign test
     /// with all of k units improving has p = 2^−k).
     pub min_consistent_units: usize,
+    /// The consistency route only when the current model's held-out RMSE is
+    /// at least this multiple of the force channel's noise.
+    pub consistent_min_residual_over_noise: f64,
     pub bootstrap_resamples: usize,
     pub seed: u64,
 }
@@ -50,6 +54,7 @@ impl Default for Thresholds {
             max_delta_bic: f64::INFINITY,
             min_ratio_consistent: 1.05,
             min_consistent_units: 5,
+            consistent_min_residual_over_noise: 5.0,
             bootstrap_resamples: 1000,
             seed: 1,
         }
@@ -378,7 +383,11 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
     // `hysteresis_memory` is the reference, not a vocabulary candidate: it
     // needs the large improvement (the consistency route let its yield form
     // stand in for the low-speed part of a true viscosity on drop tests).
-    let min_units = if effect == Some(Effect::HysteresisMemory) {
+    // The consistency route is for a residual far above the force noise
+    // (where a fixed ratio gate has no power); near the noise a spurious
+    // term can improve every fold by a few per cent.
+    let large_residual = rmse_before_n >= th.consistent_min_residual_over_noise * force_noise_n(prep);
+    let min_units = if effect == Some(Effect::HysteresisMemory) || !large_residual {
         usize::MAX
     } else {
         th.min_consistent_units
