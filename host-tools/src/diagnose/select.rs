@@ -642,11 +642,21 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
             break;
         }
         let mut tested = Vec::new();
+        // Candidates carry the current terms at their full-data values in
+        // every fold, while `current`'s own held-out errors came from each
+        // fold's choice: compared with that, every candidate would gain the
+        // same few per cent. So they are compared with the current terms
+        // fixed the same way.
+        let before = if rounds.is_empty() && memory.as_ref().is_none_or(|m| !m.accepted) {
+            current.clone()
+        } else {
+            score(prep, &[current.terms])?
+        };
         for e in todo {
             let variants = candidates::variants(prep, &current.terms, e);
             let refine = |best: &Terms| candidates::refinements(prep, best, e);
             if let Ok(after) = score_refined(prep, variants, &refine) {
-                tested.push(compare(prep, &current, after, Some(e), th));
+                tested.push(compare(prep, &before, after, Some(e), th));
             }
         }
         let accepted = (0..tested.len())
