@@ -24,7 +24,8 @@ fn outputs_follow_the_contract() {
     let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).expect("json")).expect("parse");
     let mut keys: Vec<&str> = v.as_object().expect("object").keys().map(|k| k.as_str()).collect();
     keys.sort_unstable();
-    assert_eq!(keys, ["baseline", "effects", "final", "not_identifiable"]);
+    assert_eq!(keys, ["baseline", "effects", "final", "not_identifiable", "unexplained"]);
+    assert!(v["unexplained"].is_array());
     for m in ["baseline", "final"] {
         assert!(v[m]["rmse_n"].is_f64() && v[m]["nrmse"].is_f64());
     }
@@ -36,6 +37,7 @@ fn outputs_follow_the_contract() {
         "rmse_n_before",
         "rmse_n_after",
         "heldout_improvement",
+        "heldout_improvement_nested",
     ] {
         assert!(!e[k].is_null(), "missing {k}");
     }

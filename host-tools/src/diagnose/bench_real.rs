@@ -388,12 +388,14 @@ pub fn run_real_bench(
                         .iter()
                         .map(|c| {
                             format!(
-                                "{} {:.3} [{:.3}, {:.3}] {:.0}",
+                                "{} {:.3} [{:.3}, {:.3}] {}/{} units{}",
                                 c.effect.map_or("memory", |e| e.name()),
                                 c.ratio,
                                 c.ratio_ci95[0],
                                 c.ratio_ci95[1],
-                                c.delta_bic
+                                c.units_improved,
+                                c.n_units,
+                                if c.accepted { " accepted" } else { "" }
                             )
                         })
                         .collect()

@@ -16,6 +16,7 @@ pub mod plots;
 pub mod prepared;
 pub mod report;
 pub mod select;
+pub mod unexplained;
 
 use crate::dataset::Dataset;
 use anyhow::Result;
@@ -58,6 +59,9 @@ pub struct Finding {
     pub rmse_n_before: f64,
     pub rmse_n_after: f64,
     pub heldout_improvement: f64,
+    /// The same ratio with the choice between effects nested: each held-out
+    /// unit scored by the candidate chosen without it ([`select::nested_ratio`]).
+    pub heldout_improvement_nested: f64,
     pub ratio_ci95: [f64; 2],
     pub delta_bic: f64,
 }
@@ -77,6 +81,8 @@ pub struct Diagnosis {
     /// Samples the baseline and final metrics are computed on: those both
     /// models score.
     pub scored_mask: Vec<Vec<bool>>,
+    /// Where the final residual is still concentrated, beyond the noise.
+    pub unexplained: Vec<unexplained::Unexplained>,
     pub thresholds: Thresholds,
 }
 
@@ -99,29 +105,35 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
     let loc = locate::locate(&prep, &baseline_pred);
     let selection = select::forward_select(&prep, &opts.thresholds)?;
     let mut findings = Vec::new();
-    let finding =
-        |effect: Effect, c: &select::Comparison, before: &Scored, after: &Scored, variant_sse| -> Result<Finding> {
-            let pred_before = predictions(&prep, before);
-            let pred_after = predictions(&prep, after);
-            Ok(Finding {
+    let finding = |effect: Effect,
+                   c: &select::Comparison,
+                   nested: f64,
+                   before: &Scored,
+                   after: &Scored,
+                   variant_sse|
+     -> Result<Finding> {
+        let pred_before = predictions(&prep, before);
+        let pred_after = predictions(&prep, after);
+        Ok(Finding {
+            effect,
+            parameters: parameters::with_intervals(
+                &prep,
                 effect,
-                parameters: parameters::with_intervals(
-                    &prep,
-                    effect,
-                    &selection.final_model.terms,
-                    &selection.final_model.solution,
-                    variant_sse,
-                    opts.parameter_resamples,
-                    opts.thresholds.seed,
-                )?,
-                evidence: evidence_for(&prep, effect, &pred_before, &pred_after, c),
-                rmse_n_before: c.rmse_before_n,
-                rmse_n_after: c.rmse_after_n,
-                heldout_improvement: c.ratio,
-                ratio_ci95: c.ratio_ci95,
-                delta_bic: c.delta_bic,
-            })
-        };
+                &selection.final_model.terms,
+                &selection.final_model.solution,
+                variant_sse,
+                opts.parameter_resamples,
+                opts.thresholds.seed,
+            )?,
+            evidence: evidence_for(&prep, effect, &pred_before, &pred_after, c),
+            rmse_n_before: c.rmse_before_n,
+            rmse_n_after: c.rmse_after_n,
+            heldout_improvement: c.ratio,
+            heldout_improvement_nested: nested,
+            ratio_ci95: c.ratio_ci95,
+            delta_bic: c.delta_bic,
+        })
+    };
     // Rate-independent hysteresis memory, when accepted, is the first finding
     // (the reference every other candidate was tested against). Its held-out
     // figure is its share on top of every other accepted effect when there
@@ -133,9 +145,11 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
         };
         if let Some(c) = kept {
             let effect = Effect::HysteresisMemory;
+            // One candidate, no choice between effects to nest.
             findings.push(finding(
                 effect,
                 c,
+                c.ratio,
                 &selection.baseline,
                 &selection.reference,
                 &first.scored.variant_sse,
@@ -147,7 +161,8 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
         let Some(k) = round.accepted else { break };
         let c = &round.tested[k];
         let Some(effect) = c.effect else { break };
-        findings.push(finding(effect, c, &before, &c.scored, &c.scored.variant_sse)?);
+        let nested = round.nested_ratio.unwrap_or(c.ratio);
+        findings.push(finding(effect, c, nested, &before, &c.scored, &c.scored.variant_sse)?);
         before = c.scored.clone();
     }
     let final_pred = if findings.is_empty() {
@@ -155,12 +170,13 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
     } else {
         predictions(&prep, &selection.final_model)
     };
-    let scored_mask = prep
+    let scored_mask: Vec<Vec<bool>> = prep
         .recs
         .iter()
         .zip(&selection.final_model.mask)
         .map(|(r, m)| r.in_domain.iter().zip(m).map(|(a, b)| *a && *b).collect())
         .collect();
+    let unexplained = unexplained::locate_unexplained(&prep, &final_pred, &scored_mask);
     Ok(Diagnosis {
         prep,
         baseline_table,
@@ -171,6 +187,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
         baseline_pred,
         final_pred,
         scored_mask,
+        unexplained,
         thresholds: opts.thresholds,
     })
 }
