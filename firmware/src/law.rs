@@ -497,14 +497,15 @@ impl ImpactLaw {
     /// deceleration at the modelled coil current (on contact only: before
     /// it the mass is free).
     fn predict(&self, table: &Table, x_mm: f32, v_m_s: f32, delay_s: f32) -> (f32, f32) {
-        let force_n = if x_mm > 0.0 {
+        let model_n = if x_mm > 0.0 {
             table
                 .force_on_branch_v(x_mm, v_m_s, Branch::from_velocity(v_m_s), self.coil_a)
                 .force_n
-                .max(0.0)
         } else {
             0.0
         };
+        // Not `f32::max` (a libcall on the target); NaN → 0 as it did.
+        let force_n = if model_n > 0.0 { model_n } else { 0.0 };
         let a_m_s2 = self.cfg.gravity_m_s2 - force_n / self.cfg.mass_kg;
         (
             x_mm + (v_m_s * delay_s + 0.5 * a_m_s2 * delay_s * delay_s) * 1.0e3,

@@ -220,9 +220,26 @@ impl Table {
         let seg = self.segment(current_a);
         let entries = self.entries();
         let v = viscous_velocity(v_m_s);
+        // Inside every entry's stroke no x is clamped: the quartic alone, with
+        // the same result and no flag, without the per-entry range checks.
+        let shared = self.in_shared_stroke(x_mm);
+        let at = |e: &CurrentEntry| {
+            if shared {
+                let quartic = match branch {
+                    Branch::Compression => &e.compression,
+                    Branch::Extension => &e.extension,
+                };
+                ForceResult {
+                    force_n: quartic.eval(x_mm),
+                    flags: Flags::NONE,
+                }
+            } else {
+                e.force_n(x_mm, branch)
+            }
+        };
         let lower = match entries.get(seg.lower) {
             Some(e) => {
-                let mut r = e.force_n(x_mm, branch);
+                let mut r = at(e);
                 r.force_n += self.viscous(seg.lower) * v;
                 r
             }
@@ -236,7 +253,7 @@ impl Table {
         let mut flags = seg.flags | lower.flags;
         let force_n = match entries.get(seg.lower + 1) {
             Some(upper_entry) if seg.t > 0.0 => {
-                let upper = upper_entry.force_n(x_mm, branch);
+                let upper = at(upper_entry);
                 flags |= upper.flags;
                 let upper_n = upper.force_n + self.viscous(seg.lower + 1) * v;
                 lower.force_n + seg.t * (upper_n - lower.force_n)
