@@ -584,10 +584,11 @@ fn run(cli: Cli) -> Result<()> {
                     c.tested
                 )
             })?;
-            print!("{}", mre_host::diagnose::bench_real::format_real_summary(&summary));
-            if let Some(path) = json {
-                mre_host::atomic_write::write_atomic(&path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
-            }
+            print_summary(
+                &mre_host::diagnose::bench_real::format_real_summary(&summary),
+                &summary,
+                json,
+            )?;
         }
         Command::BenchDiagnose {
             cases,
@@ -614,10 +615,7 @@ fn run(cli: Cli) -> Result<()> {
                 ))
             })?;
             std::mem::drop(progress);
-            print!("{}", mre_host::diagnose::bench::format_summary(&summary));
-            if let Some(path) = json {
-                mre_host::atomic_write::write_atomic(&path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
-            }
+            print_summary(&mre_host::diagnose::bench::format_summary(&summary), &summary, json)?;
         }
         Command::Compare {
             dataset,
@@ -736,6 +734,7 @@ fn run(cli: Cli) -> Result<()> {
             } else {
                 "building the PIL firmware and running it in QEMU"
             });
+            let firmware_on = if serial.is_some() { "serial port" } else { "QEMU" };
             let out = match serial {
                 Some(port) => {
                     let link = mre_host::pil::sim::FirmwareLink::Serial { port: &port };
@@ -747,7 +746,7 @@ fn run(cli: Cli) -> Result<()> {
             print!("{}", mre_host::plant::sim_report::summary_table(&out.comparison));
             let a = out.agreement;
             println!(
-                "firmware (QEMU) vs in-process control: {} of {} commands bit-identical, max diff {:.3e} A, {} frames",
+                "firmware ({firmware_on}) vs in-process control: {} of {} commands bit-identical, max diff {:.3e} A, {} frames",
                 a.bit_identical_commands, a.samples, a.max_command_diff_a, a.frames
             );
             println!("report: {}", report.join("summary.md").display());
@@ -767,6 +766,16 @@ fn run(cli: Cli) -> Result<()> {
                 port.display()
             );
         }
+    }
+    Ok(())
+}
+
+/// Prints a benchmark's text summary and, with `--json PATH`, writes the
+/// summary itself there (atomically).
+fn print_summary<T: serde::Serialize>(text: &str, summary: &T, json: Option<PathBuf>) -> Result<()> {
+    print!("{text}");
+    if let Some(path) = json {
+        mre_host::atomic_write::write_atomic(&path, serde_json::to_string_pretty(summary)?.as_bytes())?;
     }
     Ok(())
 }
