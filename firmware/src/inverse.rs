@@ -21,6 +21,20 @@ pub struct CurrentResult {
     pub flags: Flags,
 }
 
+/// [`CurrentResult`] with what the law reuses from the same scan
+/// ([`Table::plan_current_v`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlanResult {
+    pub current_a: f32,
+    pub flags: Flags,
+    /// The model's force at `current_a`: the target when it is met, else
+    /// the nearest force (N). The law keeps it as the force one period old.
+    pub force_n: f32,
+    /// The lower entry of the segment the current lies on (for a saturated
+    /// result the nearest entry): [`Table::current_on_segment_v`] reuses it.
+    pub segment: usize,
+}
+
 impl Table {
     /// Lowest current whose interpolated force on `branch` at `x_mm` equals
     /// `target_force_n`; see the module docs for the saturated cases.
@@ -37,17 +51,32 @@ impl Table {
     /// [`Table::current_for_branch`] at velocity `v_m_s`, which a version 2
     /// table's viscous term depends on (see [`crate::model::viscous_velocity`]).
     pub fn current_for_branch_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32) -> CurrentResult {
+        let r = self.plan_current_v(x_mm, v_m_s, branch, target_force_n);
+        CurrentResult {
+            current_a: r.current_a,
+            flags: r.flags,
+        }
+    }
+
+    /// [`Table::current_for_branch_v`], with the force at the result and its
+    /// segment, for the law (inlined there, so the scan is the same code).
+    #[inline(always)]
+    pub fn plan_current_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32) -> PlanResult {
         let entries = self.entries();
         let Some(first) = entries.first() else {
-            return CurrentResult {
+            return PlanResult {
                 current_a: 0.0,
                 flags: Flags::TABLE_FAULT,
+                force_n: 0.0,
+                segment: 0,
             };
         };
         if !target_force_n.is_finite() {
-            return CurrentResult {
+            return PlanResult {
                 current_a: first.current_a,
                 flags: Flags::NON_FINITE_INPUT,
+                force_n: 0.0,
+                segment: 0,
             };
         }
         if self.has_viscous() {
@@ -71,7 +100,7 @@ impl Table {
         branch: Branch,
         target_force_n: f32,
         with_extra: impl Fn(usize, f32) -> f32,
-    ) -> CurrentResult {
+    ) -> PlanResult {
         let entries = self.entries();
         if self.in_shared_stroke(x_mm) {
             let r = match branch {
@@ -99,7 +128,7 @@ impl Table {
     /// The current at fraction `t` of segment `lower` (t = 0 and t = 1:
     /// exactly the entries' currents): linear in I, or through atanh under saturation.
     #[inline]
-    fn current_of(&self, s: Solution) -> CurrentResult {
+    fn current_of(&self, s: Solution) -> PlanResult {
         let (i0, i1) = (s.i0, s.i1);
         let current_a = if s.t <= 0.0 {
             i0
@@ -113,20 +142,84 @@ impl Table {
                 i0 + s.t * (i1 - i0)
             }
         };
-        CurrentResult {
+        PlanResult {
             current_a,
             flags: s.flags,
+            force_n: s.force_n,
+            segment: s.lower,
         }
     }
 
     /// The current at fraction `t` of segment `lower` under saturation:
-    /// w = w0 + t·(w1 − w0), I = I_s·atanh(w). `math::atanh` and the forward
-    /// model's `math::tanh` agree to ~1e-6, so no refinement is needed. Out
-    /// of line: its registers would otherwise be saved on every call.
+    /// w = w0 + t·(w1 − w0), I = I_s·atanh(w). By the addition theorem
+    /// `atanh(w) − atanh(w0) = atanh(u)`, `u = t·Δw / (1 − w0² − t·Δw·w0)`
+    /// (the segment's constants precomputed in `Table::build`), and on a
+    /// segment narrow against I_s u is small, so I = I0 + I_s·atanh(u) by
+    /// its series: no logarithm and one divide. A wide segment takes the
+    /// logarithm. Out of line: its registers would otherwise be saved on
+    /// every call.
     #[inline(never)]
     fn saturated_current_a(&self, s: Solution, i_s: f32, i0: f32, i1: f32) -> f32 {
-        let w = self.knot(s.lower) + s.t * (self.knot(s.lower + 1) - self.knot(s.lower));
-        math::clamp(i_s * math::atanh(w), i0, i1)
+        let [dw, den0, lin] = self.saturation_segment(s.lower);
+        let u = s.t * dw / (den0 - s.t * lin);
+        let current_a = if u <= math::ATANH_SERIES_MAX {
+            i0 + i_s * math::atanh_small(u)
+        } else {
+            i_s * math::atanh(self.knot(s.lower) + s.t * dw)
+        };
+        math::clamp(current_a, i0, i1)
+    }
+
+    /// The look-ahead's inverse, restricted to one segment: the current on
+    /// entries `lower` and `lower + 1` (the last segment when `lower` is the
+    /// last entry) whose interpolated force on `branch` at `x_mm`, `v_m_s`
+    /// equals `target_force_n`, clamped to the segment's two currents (a NaN
+    /// fraction gives the lower one). Two quartics instead of a scan: the
+    /// law asks it on the segment its plan found
+    /// ([`PlanResult::segment`]) a fraction of a millisecond ahead,
+    /// where the answer lies on or near that segment.
+    pub fn current_on_segment_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32, lower: usize) -> f32 {
+        let entries = self.entries();
+        let k = lower.min(entries.len().saturating_sub(2));
+        let Some([e0, e1]) = entries.get(k..k + 2) else {
+            // One entry: its current is the only one.
+            return entries.first().map_or(0.0, |e| e.current_a);
+        };
+        let (q0, q1) = if self.in_shared_stroke(x_mm) {
+            match branch {
+                Branch::Compression => (e0.compression.eval(x_mm), e1.compression.eval(x_mm)),
+                Branch::Extension => (e0.extension.eval(x_mm), e1.extension.eval(x_mm)),
+            }
+        } else {
+            // As the scan: a non-finite x counts as each entry's x_min.
+            let x_mm = if x_mm.is_finite() { x_mm } else { f32::NEG_INFINITY };
+            (
+                self.clamped_force_n(k, e0, branch, x_mm),
+                self.clamped_force_n(k + 1, e1, branch, x_mm),
+            )
+        };
+        let (f0, f1) = if self.has_viscous() {
+            let v = crate::model::viscous_velocity(v_m_s);
+            (q0 + self.viscous(k) * v, q1 + self.viscous(k + 1) * v)
+        } else {
+            (q0, q1)
+        };
+        let t = (target_force_n - f0) / (f1 - f0);
+        if !(t > 0.0) {
+            return e0.current_a;
+        }
+        if !(t < 1.0) {
+            return e1.current_a;
+        }
+        self.current_of(Solution {
+            lower: k,
+            i0: e0.current_a,
+            i1: e1.current_a,
+            t,
+            flags: Flags::NONE,
+            force_n: target_force_n,
+        })
+        .current_a
     }
 
     /// [`Table::current_for_branch_v`] with the branch from the sign of `v_m_s`.
@@ -149,6 +242,8 @@ struct Solution {
     i1: f32,
     t: f32,
     flags: Flags,
+    /// The force at the result (the target when met).
+    force_n: f32,
 }
 
 /// The inverse over entries whose force at the fixed x is `force_at(index, entry)`.
@@ -162,7 +257,7 @@ fn solve(
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
     let Some(first) = entries.first() else {
-        return saturated(0, 0.0, Flags::TABLE_FAULT);
+        return saturated(0, 0.0, 0.0, Flags::TABLE_FAULT);
     };
     let mut f0 = force_at(0, first);
     // One loop per side of the target, so each entry costs one comparison
@@ -184,10 +279,10 @@ fn solve(
             }
             (f0, i_prev) = (force, entry.current_a);
         }
-        return saturated(nearest.0, nearest.2, Flags::SATURATED_HIGH);
+        return saturated(nearest.0, nearest.2, nearest.1, Flags::SATURATED_HIGH);
     }
     if f0 == target_force_n {
-        return saturated(0, first.current_a, Flags::NONE);
+        return saturated(0, first.current_a, f0, Flags::NONE);
     }
     for (k, entry) in entries.iter().enumerate().skip(1) {
         let force = force_at(k, entry);
@@ -200,7 +295,7 @@ fn solve(
         }
         (f0, i_prev) = (force, entry.current_a);
     }
-    saturated(nearest.0, nearest.2, Flags::SATURATED_LOW)
+    saturated(nearest.0, nearest.2, nearest.1, Flags::SATURATED_LOW)
 }
 
 /// The target lies between entry `k − 1` (force `f0`) and entry `k` (`f1`),
@@ -213,6 +308,7 @@ fn bracket(k: usize, currents: (f32, f32), f0: f32, f1: f32, target_force_n: f32
         i1: currents.1,
         t: (target_force_n - f0) / (f1 - f0),
         flags: Flags::NONE,
+        force_n: target_force_n,
     }
 }
 
@@ -220,12 +316,13 @@ fn bracket(k: usize, currents: (f32, f32), f0: f32, f1: f32, target_force_n: f32
 /// there, or no segment brackets it and this is the nearest knot, flagged
 /// with its side.
 #[inline(always)]
-fn saturated(lower: usize, current_a: f32, side: Flags) -> Solution {
+fn saturated(lower: usize, current_a: f32, force_n: f32, side: Flags) -> Solution {
     Solution {
         lower,
         i0: current_a,
         i1: current_a,
         t: 0.0,
         flags: side,
+        force_n,
     }
 }

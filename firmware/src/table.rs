@@ -263,6 +263,10 @@ pub struct Table {
     /// Each entry's interpolation knot: its current, or `tanh(I/I_s)` under
     /// saturation (computed once here, not per period).
     knots: [f32; MAX_CURRENTS],
+    /// Per segment `[w1 − w0, 1 − w0², (w1 − w0)·w0]` under saturation:
+    /// the constants of the inverse's atanh addition theorem (see
+    /// `inverse.rs`), computed once here, not per period.
+    saturation_segments: [[f32; 3]; MAX_CURRENTS],
     has_viscous: bool,
     /// The stroke every entry was fitted on (the intersection of their
     /// ranges; empty if they share none). Inside it no x needs clamping, which
@@ -304,6 +308,7 @@ impl Table {
             crc32: content_crc(version, entries, &terms),
             terms,
             knots: [0.0; MAX_CURRENTS],
+            saturation_segments: [[0.0; 3]; MAX_CURRENTS],
             has_viscous: terms.viscous_n_s_per_m.iter().take(entries.len()).any(|c| *c != 0.0),
             shared_x_min_mm: f32::NEG_INFINITY,
             shared_x_max_mm: f32::INFINITY,
@@ -348,6 +353,12 @@ impl Table {
             return Err(TableError::BadTerm {
                 term: "saturation_current_a",
             });
+        }
+        let knots = table.knots.get(..table.len).unwrap_or(&[]);
+        for (segment, pair) in table.saturation_segments.iter_mut().zip(knots.windows(2)) {
+            if let [w0, w1] = *pair {
+                *segment = [w1 - w0, 1.0 - w0 * w0, (w1 - w0) * w0];
+            }
         }
         Ok(table)
     }
@@ -395,6 +406,12 @@ impl Table {
     #[inline]
     pub(crate) fn knot(&self, index: usize) -> f32 {
         self.knots.get(index).copied().unwrap_or(0.0)
+    }
+
+    /// Segment `index`'s saturation constants `[Δw, 1 − w0², Δw·w0]`.
+    #[inline]
+    pub(crate) fn saturation_segment(&self, index: usize) -> [f32; 3] {
+        self.saturation_segments.get(index).copied().unwrap_or([0.0, 1.0, 0.0])
     }
 
     /// True when some entry has a viscous term (else the model skips it).
