@@ -179,11 +179,9 @@ impl Table {
     /// ([`PlanResult::segment`]) a fraction of a millisecond ahead,
     /// where the answer lies on or near that segment.
     pub fn current_on_segment_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32, lower: usize) -> f32 {
-        let entries = self.entries();
-        let k = lower.min(entries.len().saturating_sub(2));
-        let Some([e0, e1]) = entries.get(k..k + 2) else {
+        let Some((k, e0, e1)) = self.segment_entries(lower) else {
             // One entry: its current is the only one.
-            return entries.first().map_or(0.0, |e| e.current_a);
+            return self.entries().first().map_or(0.0, |e| e.current_a);
         };
         let (q0, q1) = if self.in_shared_stroke(x_mm) {
             match branch {

@@ -221,8 +221,13 @@ pub struct ImpactLaw {
     /// The τ `coil_alpha` was computed for, and `1 − e^{−T/τ}`.
     coil_tau_s: f32,
     coil_alpha: f32,
-    /// The look-ahead times `LEAD_TAU · τ` (s).
+    /// The look-ahead times `Δ = LEAD_TAU · τ` (s), and per look-ahead
+    /// `[Δ·10³, ½·Δ²·10³]`: x (mm) moves `v·f[0] + a·f[1]` in Δ.
     lead_s: [f32; LEAD_TAU.len()],
+    lead_factors: [[f32; 2]; LEAD_TAU.len()],
+    /// Per look-ahead, the wanted current at or below which it cannot bind:
+    /// `u_min + (current_min − u_min)·e^{LEAD_TAU}` (from the configuration).
+    lead_floor_a: [f32; LEAD_TAU.len()],
     /// The model's force at the last compression plan's current (N): what
     /// the sensor-delay prediction decelerates with, one period old.
     model_force_n: f32,
@@ -251,6 +256,8 @@ impl ImpactLaw {
             coil_tau_s: 0.0,
             coil_alpha: 1.0,
             lead_s: [0.0; LEAD_TAU.len()],
+            lead_factors: [[0.0; 2]; LEAD_TAU.len()],
+            lead_floor_a: LEAD_GROWTH.map(|growth| cfg.drive_min_a + (cfg.current_min_a - cfg.drive_min_a) * growth),
             model_force_n: 0.0,
         })
     }
@@ -328,7 +335,7 @@ impl ImpactLaw {
         let delay_s = table.terms().sensor_delay_s;
         self.prepare(table);
         let (x_mm, v_m_s) = if delay_s > 0.0 {
-            self.predict(x_mm, v_m_s, delay_s)
+            self.predict(table, x_mm, v_m_s, delay_s)
         } else {
             (x_mm, v_m_s)
         };
@@ -449,8 +456,9 @@ impl ImpactLaw {
         } else {
             1.0
         };
-        for (lead, k) in self.lead_s.iter_mut().zip(LEAD_TAU) {
+        for ((lead, factors), k) in self.lead_s.iter_mut().zip(&mut self.lead_factors).zip(LEAD_TAU) {
             *lead = k * tau_s;
+            *factors = [*lead * 1.0e3, 0.5 * *lead * *lead * 1.0e3];
         }
     }
 
@@ -467,17 +475,18 @@ impl ImpactLaw {
         let a_m_s2 = cfg.gravity_m_s2 - force_n / cfg.mass_kg;
         let u_min = cfg.drive_min_a;
         let mut wanted_a = now_a;
-        for (&lead_s, &growth) in self.lead_s.iter().zip(&LEAD_GROWTH) {
+        let leads = self.lead_s.iter().zip(&self.lead_factors);
+        for (((&lead_s, &[mm_per_m_s, mm_per_m_s2]), &growth), &floor_a) in leads.zip(&LEAD_GROWTH).zip(&self.lead_floor_a) {
             // Even the lowest current ahead bounds no lower than this: skip
             // the inverse when the wanted current is already below it.
-            if wanted_a <= u_min + (cfg.current_min_a - u_min) * growth {
+            if wanted_a <= floor_a {
                 continue;
             }
             let v_ahead = v_m_s + a_m_s2 * lead_s;
             if v_ahead <= 0.0 {
                 break;
             }
-            let x_ahead = x_mm + (v_m_s * lead_s + 0.5 * a_m_s2 * lead_s * lead_s) * 1.0e3;
+            let x_ahead = x_mm + v_m_s * mm_per_m_s + a_m_s2 * mm_per_m_s2;
             let ahead_a = table.current_on_segment_v(x_ahead, v_ahead, Branch::Compression, force_n, segment);
             let ahead_a = math::clamp(ahead_a, cfg.current_min_a, cfg.current_max_a);
             let bound_a = u_min + (ahead_a - u_min) * growth;
@@ -508,7 +517,7 @@ impl ImpactLaw {
     /// old, which a prediction over a delay of 0.1–1 ms (1–10 periods)
     /// tolerates; it costs no model evaluation of its own.
     #[inline]
-    fn predict(&self, x_mm: f32, v_m_s: f32, delay_s: f32) -> (f32, f32) {
+    fn predict(&self, table: &Table, x_mm: f32, v_m_s: f32, delay_s: f32) -> (f32, f32) {
         // Not `f32::max` (a libcall on the target); NaN → 0 as it did.
         let force_n = if x_mm > 0.0 && self.model_force_n > 0.0 {
             self.model_force_n
@@ -516,9 +525,7 @@ impl ImpactLaw {
             0.0
         };
         let a_m_s2 = self.cfg.gravity_m_s2 - force_n / self.cfg.mass_kg;
-        (
-            x_mm + (v_m_s * delay_s + 0.5 * a_m_s2 * delay_s * delay_s) * 1.0e3,
-            v_m_s + a_m_s2 * delay_s,
-        )
+        let [mm_per_m_s, mm_per_m_s2] = table.delay_factors();
+        (x_mm + v_m_s * mm_per_m_s + a_m_s2 * mm_per_m_s2, v_m_s + a_m_s2 * delay_s)
     }
 }
