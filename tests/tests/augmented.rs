@@ -67,6 +67,69 @@ fn inverse_undoes_tanh_and_the_viscous_term() {
     assert!(high.flags.contains(Flags::SATURATED_HIGH));
 }
 
+/// The linear entries with a saturation current `i_s` and no viscous term.
+fn saturating(i_s: f32) -> Table {
+    let terms = ModelTerms {
+        saturation_current_a: i_s,
+        ..ModelTerms::NONE
+    };
+    Table::with_terms(&linear_entries(), terms).unwrap()
+}
+
+#[test]
+fn saturated_inverse_maps_back_through_atanh_on_narrow_and_wide_segments() {
+    // At x = 2 mm the entries give 200 N (0 A) and 600 N (1 A); a target F
+    // lies at t = (F − 200)/400 of the segment, w = t·tanh(1/I_s) and
+    // I = I_s·atanh(w) (std, f64). I_s = 2.5 A keeps the addition-theorem
+    // argument below 0.4 (the series); I_s = 0.5 A takes the logarithm.
+    for i_s in [2.5f64, 0.5] {
+        let t = saturating(i_s as f32);
+        for target in [210.0f64, 300.0, 400.0, 500.0, 590.0] {
+            let frac = (target - 200.0) / 400.0;
+            let expected = i_s * (frac * (1.0 / i_s).tanh()).atanh();
+            let r = t.current_for_branch(2.0, Branch::Compression, target as f32);
+            assert_eq!(r.flags, Flags::NONE);
+            assert!(
+                (f64::from(r.current_a) - expected).abs() < 2e-6,
+                "I_s {i_s}, {target} N: {} vs {expected}",
+                r.current_a
+            );
+        }
+    }
+}
+
+#[test]
+fn the_look_ahead_solves_on_one_segment() {
+    // Three linear entries, 0/1/2 A giving 100/300/400·x N. At x = 3 mm the
+    // segment 1–2 A spans 900–1200 N: 1000 N lies at t = 1/3 → 1.333 A
+    // (linear in I without saturation).
+    let e = |current_a: f32, k: f32| CurrentEntry {
+        current_a,
+        compression: Quartic::new([0.0, 0.0, 0.0, k, 0.0]),
+        extension: Quartic::new([0.0, 0.0, 0.0, k, 0.0]),
+        x_min_mm: 0.0,
+        x_max_mm: 10.0,
+    };
+    let t = Table::with_terms(&[e(0.0, 100.0), e(1.0, 300.0), e(2.0, 400.0)], ModelTerms::NONE).unwrap();
+    let on = |lower, target| t.current_on_segment_v(3.0, 0.0, Branch::Compression, target, lower);
+    assert!((on(1, 1000.0) - 4.0 / 3.0).abs() < 1e-5, "{}", on(1, 1000.0));
+    // The same target asked on segment 0–1 A (300–900 N) clamps to its top.
+    assert_eq!(on(0, 1000.0), 1.0);
+    // Below the segment: its lower current; a lower past the last segment
+    // means the last one.
+    assert_eq!(on(1, 500.0), 1.0);
+    assert!((on(7, 1000.0) - 4.0 / 3.0).abs() < 1e-5);
+    // Beyond the stroke the clamped end forces are used: at 12 mm the
+    // entries give 1000/3000/4000 N, 3500 N lies half way on 1–2 A.
+    let clamped = t.current_on_segment_v(12.0, 0.0, Branch::Compression, 3500.0, 1);
+    assert!((clamped - 1.5).abs() < 1e-5, "{clamped}");
+    // It agrees with the full inverse wherever the answer is on the segment.
+    let full = t.current_for_branch(3.0, Branch::Compression, 1000.0).current_a;
+    assert!((full - on(1, 1000.0)).abs() < 1e-6);
+    // NaN target: the lower current, never NaN.
+    assert_eq!(on(1, f32::NAN), 1.0);
+}
+
 #[test]
 fn a_version_1_table_is_the_paper_model_whatever_the_velocity() {
     let plain = Table::new(&linear_entries()).unwrap();
