@@ -390,14 +390,15 @@ impl Controller {
         if self.cfg.stuck_samples == 0 {
             return;
         }
+        // Bit-identical: a real moving sensor changes by at least one LSB.
+        // A changed reading (the usual case) settles it without the speed.
+        let unchanged = x_mm.to_bits() == self.last_x_mm.to_bits();
+        self.last_x_mm = x_mm;
         let moving = match v_measured_m_s {
             Some(v) => v.is_finite() && math::abs(v) >= self.cfg.stuck_min_speed_m_s,
             None => false,
         };
-        // Bit-identical: a real moving sensor changes by at least one LSB.
-        let unchanged = x_mm.to_bits() == self.last_x_mm.to_bits();
-        self.last_x_mm = x_mm;
-        if moving && unchanged {
+        if unchanged && moving {
             self.unchanged_moving = self.unchanged_moving.saturating_add(1);
             if self.unchanged_moving >= self.cfg.stuck_samples {
                 self.latch(Flags::SENSOR_STUCK);

@@ -170,38 +170,59 @@ impl Table {
         math::clamp(current_a, i0, i1)
     }
 
-    /// The look-ahead's inverse, restricted to one segment: the current on
-    /// entries `lower` and `lower + 1` (the last segment when `lower` is the
-    /// last entry) whose interpolated force on `branch` at `x_mm`, `v_m_s`
-    /// equals `target_force_n`, clamped to the segment's two currents (a NaN
-    /// fraction gives the lower one). Two quartics instead of a scan: the
-    /// law asks it on the segment its plan found
-    /// ([`PlanResult::segment`]) a fraction of a millisecond ahead,
-    /// where the answer lies on or near that segment.
+    /// The look-ahead's inverse, started on the plan's segment: the current
+    /// whose interpolated force on `branch` at `x_mm`, `v_m_s` equals
+    /// `target_force_n`, found from entries `lower` and `lower + 1` (the
+    /// last segment when `lower` is the last entry) by walking down or up
+    /// segment by segment until the target is bracketed, and clamped to the
+    /// table's currents at its ends (a NaN target gives the segment's lower
+    /// current). Where the force rises with current (the segments the law
+    /// walks) this is the full inverse's answer; a fraction of a millisecond
+    /// after the plan ([`PlanResult::segment`]) it costs two quartics, plus
+    /// one per segment crossed, instead of a scan from the lowest current.
     pub fn current_on_segment_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32, lower: usize) -> f32 {
-        let Some((k, e0, e1)) = self.segment_entries(lower) else {
+        let Some((mut k, mut e0, mut e1)) = self.segment_entries(lower) else {
             // One entry: its current is the only one.
             return self.entries().first().map_or(0.0, |e| e.current_a);
         };
-        let (q0, q1) = if self.in_shared_stroke(x_mm) {
-            match branch {
-                Branch::Compression => (e0.compression.eval(x_mm), e1.compression.eval(x_mm)),
-                Branch::Extension => (e0.extension.eval(x_mm), e1.extension.eval(x_mm)),
+        let entries = self.entries();
+        let shared = self.in_shared_stroke(x_mm);
+        // As the scan: a non-finite x counts as each entry's x_min.
+        let x_mm = if x_mm.is_finite() { x_mm } else { f32::NEG_INFINITY };
+        let v = if self.has_viscous() {
+            crate::model::viscous_velocity(v_m_s)
+        } else {
+            0.0
+        };
+        let force = |index: usize, e: &CurrentEntry| {
+            let quartic_n = if shared {
+                match branch {
+                    Branch::Compression => e.compression.eval(x_mm),
+                    Branch::Extension => e.extension.eval(x_mm),
+                }
+            } else {
+                self.clamped_force_n(index, e, branch, x_mm)
+            };
+            quartic_n + self.viscous(index) * v
+        };
+        let (mut f0, mut f1) = (force(k, e0), force(k + 1, e1));
+        if target_force_n < f0 {
+            while let Some(below) = k.checked_sub(1).and_then(|j| entries.get(j)) {
+                (k, e1, f1, e0) = (k - 1, e0, f0, below);
+                f0 = force(k, e0);
+                if target_force_n >= f0 {
+                    break;
+                }
             }
-        } else {
-            // As the scan: a non-finite x counts as each entry's x_min.
-            let x_mm = if x_mm.is_finite() { x_mm } else { f32::NEG_INFINITY };
-            (
-                self.clamped_force_n(k, e0, branch, x_mm),
-                self.clamped_force_n(k + 1, e1, branch, x_mm),
-            )
-        };
-        let (f0, f1) = if self.has_viscous() {
-            let v = crate::model::viscous_velocity(v_m_s);
-            (q0 + self.viscous(k) * v, q1 + self.viscous(k + 1) * v)
-        } else {
-            (q0, q1)
-        };
+        } else if target_force_n > f1 {
+            while let Some(above) = entries.get(k + 2) {
+                (k, e0, f0, e1) = (k + 1, e1, f1, above);
+                f1 = force(k + 1, e1);
+                if target_force_n <= f1 {
+                    break;
+                }
+            }
+        }
         let t = (target_force_n - f0) / (f1 - f0);
         if !(t > 0.0) {
             return e0.current_a;
