@@ -205,22 +205,29 @@ impl Table {
             };
             quartic_n + self.viscous(index) * v
         };
-        let (mut f0, mut f1) = (force(k, e0), force(k + 1, e1));
+        let mut f0 = force(k, e0);
+        let mut f1;
         if target_force_n < f0 {
-            while let Some(below) = k.checked_sub(1).and_then(|j| entries.get(j)) {
+            // Below the segment (the usual way while a stroke goes on): its
+            // lower entry becomes the upper one, so the upper is never needed.
+            loop {
+                let Some(below) = k.checked_sub(1).and_then(|j| entries.get(j)) else {
+                    return e0.current_a;
+                };
                 (k, e1, f1, e0) = (k - 1, e0, f0, below);
                 f0 = force(k, e0);
                 if target_force_n >= f0 {
                     break;
                 }
             }
-        } else if target_force_n > f1 {
-            while let Some(above) = entries.get(k + 2) {
+        } else {
+            f1 = force(k + 1, e1);
+            while target_force_n > f1 {
+                let Some(above) = entries.get(k + 2) else {
+                    return e1.current_a;
+                };
                 (k, e0, f0, e1) = (k + 1, e1, f1, above);
                 f1 = force(k + 1, e1);
-                if target_force_n <= f1 {
-                    break;
-                }
             }
         }
         let t = (target_force_n - f0) / (f1 - f0);
