@@ -30,8 +30,9 @@ pub struct PlanResult {
     /// The model's force at `current_a`: the target when it is met, else
     /// the nearest force (N). The law keeps it as the force one period old.
     pub force_n: f32,
-    /// The lower entry of the segment the current lies on (for a saturated
-    /// result the nearest entry): [`Table::current_on_segment_v`] reuses it.
+    /// The lower entry of the segment the current lies on (for a result
+    /// saturated high the last entry, low the first):
+    /// [`Table::current_on_segment_v`] starts from it.
     pub segment: usize,
 }
 
@@ -180,6 +181,9 @@ impl Table {
     /// walks) this is the full inverse's answer; a fraction of a millisecond
     /// after the plan ([`PlanResult::segment`]) it costs two quartics, plus
     /// one per segment crossed, instead of a scan from the lowest current.
+    // `!(t > 0.0)`: a NaN fraction (flat segment, NaN target) must take the
+    // lower current, in one comparison.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
     pub fn current_on_segment_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32, lower: usize) -> f32 {
         let Some((mut k, mut e0, mut e1)) = self.segment_entries(lower) else {
             // One entry: its current is the only one.
@@ -289,8 +293,10 @@ fn solve(
     // One loop per side of the target, so each entry costs one comparison
     // for the crossing. Until a crossing, every force lies on the starting
     // side, so the nearest one so far is the largest (below) or smallest
-    // (above); ties keep the lowest current.
-    let mut nearest = (0, f0, first.current_a);
+    // (above); ties keep the lowest current. A saturated result reports the
+    // top (or bottom) segment, not the nearest entry's: the look-ahead walks
+    // from there, and the scan need not carry an index.
+    let mut nearest = (f0, first.current_a);
     let mut i_prev = first.current_a;
     if f0 < target_force_n {
         for (k, entry) in entries.iter().enumerate().skip(1) {
@@ -300,12 +306,12 @@ fn solve(
             if !(force < target_force_n) {
                 return bracket(k, (i_prev, entry.current_a), f0, force, target_force_n);
             }
-            if force > nearest.1 {
-                nearest = (k, force, entry.current_a);
+            if force > nearest.0 {
+                nearest = (force, entry.current_a);
             }
             (f0, i_prev) = (force, entry.current_a);
         }
-        return saturated(nearest.0, nearest.2, nearest.1, Flags::SATURATED_HIGH);
+        return saturated(entries.len().saturating_sub(1), nearest.1, nearest.0, Flags::SATURATED_HIGH);
     }
     if f0 == target_force_n {
         return saturated(0, first.current_a, f0, Flags::NONE);
@@ -316,12 +322,12 @@ fn solve(
         if force <= target_force_n {
             return bracket(k, (i_prev, entry.current_a), f0, force, target_force_n);
         }
-        if force < nearest.1 {
-            nearest = (k, force, entry.current_a);
+        if force < nearest.0 {
+            nearest = (force, entry.current_a);
         }
         (f0, i_prev) = (force, entry.current_a);
     }
-    saturated(nearest.0, nearest.2, nearest.1, Flags::SATURATED_LOW)
+    saturated(0, nearest.1, nearest.0, Flags::SATURATED_LOW)
 }
 
 /// The target lies between entry `k − 1` (force `f0`) and entry `k` (`f1`),
