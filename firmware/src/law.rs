@@ -467,9 +467,11 @@ impl ImpactLaw {
     /// higher than the law's wanted current at the states `Δ` ahead
     /// ([`LEAD_TAU`]) along its own plan (constant deceleration under
     /// `force_n`): `min(i_now, u_min + (i_Δ − u_min)·e^{Δ/τ})`. `i_Δ` is
-    /// solved on the plan's current segment (`segment`, two quartics), not
-    /// by a second scan: a fraction of a millisecond ahead the answer lies
-    /// on it or next to it, where the segment's end current bounds it.
+    /// solved from the plan's segment (`segment`) outwards, not by a second
+    /// scan from the lowest current: a fraction of a millisecond ahead the
+    /// answer lies on that segment or a neighbour. Out of line, so that a
+    /// table without coil lag does not carry its registers.
+    #[inline(never)]
     fn anticipate(&self, table: &Table, x_mm: f32, v_m_s: f32, force_n: f32, now_a: f32, segment: usize) -> f32 {
         let cfg = &self.cfg;
         let a_m_s2 = cfg.gravity_m_s2 - force_n / cfg.mass_kg;
