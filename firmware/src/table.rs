@@ -435,11 +435,11 @@ impl Table {
     /// segment; `None` for a one-entry table.
     #[inline]
     pub(crate) fn segment_entries(&self, lower: usize) -> Option<(usize, &CurrentEntry, &CurrentEntry)> {
-        let k = lower.min(self.last_segment);
-        match self.entries.get(k..k + 2) {
-            Some([e0, e1]) if k + 1 < self.len => Some((k, e0, e1)),
-            _ => None,
+        if self.len < 2 {
+            return None;
         }
+        let k = if lower < self.last_segment { lower } else { self.last_segment };
+        Some((k, self.entries.get(k)?, self.entries.get(k + 1)?))
     }
 
     /// True when some entry has a viscous term (else the model skips it).
