@@ -184,7 +184,14 @@ impl Table {
     // `!(t > 0.0)`: a NaN fraction (flat segment, NaN target) must take the
     // lower current, in one comparison.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
-    pub fn current_on_segment_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32, lower: usize) -> f32 {
+    pub fn current_on_segment_v(
+        &self,
+        x_mm: f32,
+        v_m_s: f32,
+        branch: Branch,
+        target_force_n: f32,
+        lower: usize,
+    ) -> f32 {
         let Some((mut k, mut e0, mut e1)) = self.segment_entries(lower) else {
             // One entry: its current is the only one.
             return self.entries().first().map_or(0.0, |e| e.current_a);
@@ -311,7 +318,12 @@ fn solve(
             }
             (f0, i_prev) = (force, entry.current_a);
         }
-        return saturated(entries.len().saturating_sub(1), nearest.1, nearest.0, Flags::SATURATED_HIGH);
+        return saturated(
+            entries.len().saturating_sub(1),
+            nearest.1,
+            nearest.0,
+            Flags::SATURATED_HIGH,
+        );
     }
     if f0 == target_force_n {
         return saturated(0, first.current_a, f0, Flags::NONE);

@@ -478,7 +478,9 @@ impl ImpactLaw {
         let u_min = cfg.drive_min_a;
         let mut wanted_a = now_a;
         let leads = self.lead_s.iter().zip(&self.lead_factors);
-        for (((&lead_s, &[mm_per_m_s, mm_per_m_s2]), &growth), &floor_a) in leads.zip(&LEAD_GROWTH).zip(&self.lead_floor_a) {
+        for (((&lead_s, &[mm_per_m_s, mm_per_m_s2]), &growth), &floor_a) in
+            leads.zip(&LEAD_GROWTH).zip(&self.lead_floor_a)
+        {
             // Even the lowest current ahead bounds no lower than this: skip
             // the inverse when the wanted current is already below it.
             if wanted_a <= floor_a {
@@ -515,9 +517,10 @@ impl ImpactLaw {
 
     /// x (mm) and v `delay_s` ahead of the samples, decelerated by the
     /// force the model gave at the last compression plan's current (on
-    /// contact only: before it the mass is free). That force is one period
-    /// old, which a prediction over a delay of 0.1–1 ms (1–10 periods)
-    /// tolerates; it costs no model evaluation of its own.
+    /// contact only: before it the mass is free; a rebound, which plans
+    /// nothing, keeps the last one). That force is one period old, which a
+    /// prediction over a delay of 0.1–1 ms (1–10 periods) tolerates, and it
+    /// costs no model evaluation of its own.
     #[inline]
     fn predict(&self, table: &Table, x_mm: f32, v_m_s: f32, delay_s: f32) -> (f32, f32) {
         // Not `f32::max` (a libcall on the target); NaN → 0 as it did.
@@ -528,6 +531,9 @@ impl ImpactLaw {
         };
         let a_m_s2 = self.cfg.gravity_m_s2 - force_n / self.cfg.mass_kg;
         let [mm_per_m_s, mm_per_m_s2] = table.delay_factors();
-        (x_mm + v_m_s * mm_per_m_s + a_m_s2 * mm_per_m_s2, v_m_s + a_m_s2 * delay_s)
+        (
+            x_mm + v_m_s * mm_per_m_s + a_m_s2 * mm_per_m_s2,
+            v_m_s + a_m_s2 * delay_s,
+        )
     }
 }

@@ -58,7 +58,8 @@ pub const ATANH_SERIES_MAX: f32 = 0.4;
 #[inline]
 pub fn atanh_small(u: f32) -> f32 {
     let s = u * u;
-    let series = (((((s * (1.0 / 13.0) + 1.0 / 11.0) * s + 1.0 / 9.0) * s + 1.0 / 7.0) * s + 1.0 / 5.0) * s + 1.0 / 3.0) * s;
+    let series =
+        (((((s * (1.0 / 13.0) + 1.0 / 11.0) * s + 1.0 / 9.0) * s + 1.0 / 7.0) * s + 1.0 / 5.0) * s + 1.0 / 3.0) * s;
     u + u * series
 }
 

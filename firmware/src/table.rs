@@ -438,7 +438,11 @@ impl Table {
         if self.len < 2 {
             return None;
         }
-        let k = if lower < self.last_segment { lower } else { self.last_segment };
+        let k = if lower < self.last_segment {
+            lower
+        } else {
+            self.last_segment
+        };
         Some((k, self.entries.get(k)?, self.entries.get(k + 1)?))
     }
 
