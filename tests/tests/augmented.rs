@@ -8,14 +8,18 @@ use proptest::prelude::*;
 /// Two linear "quartics": 0 A gives 100·x N, 1 A gives 300·x N (both
 /// branches), fitted on 0–10 mm.
 fn linear_entries() -> [CurrentEntry; 2] {
-    let e = |current_a: f32, k: f32| CurrentEntry {
+    [linear_entry(0.0, 100.0), linear_entry(1.0, 300.0)]
+}
+
+/// An entry whose force is `k·x` N on both branches, fitted on 0–10 mm.
+fn linear_entry(current_a: f32, k: f32) -> CurrentEntry {
+    CurrentEntry {
         current_a,
         compression: Quartic::new([0.0, 0.0, 0.0, k, 0.0]),
         extension: Quartic::new([0.0, 0.0, 0.0, k, 0.0]),
         x_min_mm: 0.0,
         x_max_mm: 10.0,
-    };
-    [e(0.0, 100.0), e(1.0, 300.0)]
+    }
 }
 
 fn augmented() -> Table {
@@ -104,13 +108,7 @@ fn the_look_ahead_walks_from_the_plans_segment_to_the_bracketing_one() {
     // give 300/900/1200 N: 1000 N lies a third of the way up 1–2 A
     // (1.333 A, linear in I without saturation), 500 N a third of the way
     // up 0–1 A (0.333 A).
-    let e = |current_a: f32, k: f32| CurrentEntry {
-        current_a,
-        compression: Quartic::new([0.0, 0.0, 0.0, k, 0.0]),
-        extension: Quartic::new([0.0, 0.0, 0.0, k, 0.0]),
-        x_min_mm: 0.0,
-        x_max_mm: 10.0,
-    };
+    let e = linear_entry;
     let t = Table::with_terms(&[e(0.0, 100.0), e(1.0, 300.0), e(2.0, 400.0)], ModelTerms::NONE).unwrap();
     let on = |lower, target| t.current_on_segment_v(3.0, 0.0, Branch::Compression, target, lower);
     let close = |got: f32, want: f32| assert!((got - want).abs() < 1e-5, "{got} vs {want}");

@@ -79,18 +79,22 @@ fn idle_with_a_lagging_coil_pre_energises_and_without_one_rests_at_the_minimum()
     assert!(cmd.current_a < 0.0, "drives the current down: {}", cmd.current_a);
 }
 
+/// The flown entries with a sensor delay `d` only, and a fresh fast law.
+fn delayed(d: f32) -> (Table, LawConfig, ImpactLaw) {
+    let table = with_terms(ModelTerms {
+        sensor_delay_s: d,
+        ..ModelTerms::NONE
+    });
+    (table, fast(), ImpactLaw::new(fast()).unwrap())
+}
+
 #[test]
 fn sensor_delay_is_predicted_with_the_free_fall_before_contact() {
     // Before contact (x < 0) no force acts: across d = 0.5 ms the mass moves
     // v·d + ½·g·d² and speeds up by g·d. The law targets the stopping force
     // of that predicted state, one period on.
     let d = 5.0e-4f32;
-    let table = with_terms(ModelTerms {
-        sensor_delay_s: d,
-        ..ModelTerms::NONE
-    });
-    let cfg = fast();
-    let mut law = ImpactLaw::new(cfg).unwrap();
+    let (table, cfg, mut law) = delayed(d);
     let (x_mm, v) = (-0.5f32, 2.0f32);
     let cmd = law.step(&table, x_mm, v);
     let x_p = -0.5 + (2.0 * 5.0e-4 + 0.5 * 9.81 * 2.5e-7) * 1.0e3;
@@ -116,12 +120,7 @@ fn in_contact_the_delay_is_predicted_with_the_last_plans_force() {
     // a = g − F1/m and slows by a·d; the law then plans for the end of its
     // period and targets m·v²/(2r) + m·g for that state.
     let d = 5.0e-4f32;
-    let table = with_terms(ModelTerms {
-        sensor_delay_s: d,
-        ..ModelTerms::NONE
-    });
-    let cfg = fast();
-    let mut law = ImpactLaw::new(cfg).unwrap();
+    let (table, cfg, mut law) = delayed(d);
     let first = law.step(&table, 2.0, 2.0);
     assert!(
         !first
