@@ -332,3 +332,41 @@ fn format_mts_arm(s: &BenchSummary, out: &mut String) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn case(truth: &str, found: &[&str], identifiable: bool) -> BenchCase {
+        let found: Vec<String> = found.iter().map(|s| s.to_string()).collect();
+        BenchCase {
+            seed: 0,
+            truth: truth.into(),
+            top1: found.first().cloned().unwrap_or_else(|| "none".into()),
+            found,
+            heldout_improvement: None,
+            first_round: Vec::new(),
+            seconds: 0.0,
+            identifiable,
+        }
+    }
+
+    #[test]
+    fn a_case_its_campaign_cannot_reveal_is_neither_a_hit_nor_a_miss() {
+        // 2 of 3 scored cases right; the unidentifiable miss and the
+        // unidentifiable "hit" both stay out of the accuracy.
+        let s = summarize(vec![
+            case("end_stop", &["end_stop"], true),
+            case("none", &[], true),
+            case("viscous_damping", &["sensor_delay"], true),
+            case("inertia", &[], false),
+            case("inertia", &["inertia"], false),
+        ]);
+        assert!((s.top1_accuracy - 2.0 / 3.0).abs() < 1e-12);
+        assert!(!s.confusion.contains_key("inertia"));
+        assert_eq!(s.false_positive_rate_none, 0.0);
+        let text = format_summary(&s);
+        assert!(text.contains("(2/3)"), "{text}");
+        assert_eq!(text.matches("not scored").count(), 2, "{text}");
+    }
+}
