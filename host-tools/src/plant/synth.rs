@@ -56,7 +56,9 @@ pub struct SynthPlan {
     /// A second drop mass (kg): when set, every even-numbered repeat of a
     /// constant-current test drops this mass instead of `mass_kg` (an
     /// instrumented drop tower's carriage with or without its added-mass
-    /// plates). Controlled impacts keep `mass_kg`.
+    /// plates), from the height that gives it the same impact energy:
+    /// velocities × √(mass_kg / second_mass_kg). Controlled impacts keep
+    /// `mass_kg`.
     pub second_mass_kg: Option<f64>,
     /// A striker accelerometer: when set, every recording has an
     /// `acceleration_m_s2` column.
@@ -172,8 +174,16 @@ impl SynthPlan {
         }
     }
 
-    fn heaviest_kg(&self) -> f64 {
-        self.second_mass_kg.map_or(self.mass_kg, |m| m.max(self.mass_kg))
+    /// Impact velocity factor of a drop of `mass_kg`: the same impact energy
+    /// as `self.mass_kg` at the planned velocity, so both masses reach about
+    /// the same stroke (an end stop is met by both; the force ranges overlap).
+    fn energy_matched_factor(&self, mass_kg: f64) -> f64 {
+        (self.mass_kg / mass_kg).sqrt()
+    }
+
+    /// Every drop mass of the constant-current tests.
+    fn drop_masses_kg(&self) -> Vec<f64> {
+        std::iter::once(self.mass_kg).chain(self.second_mass_kg).collect()
     }
 }
 
@@ -309,16 +319,25 @@ pub fn effect_scale(base: &Plant, plan: &SynthPlan) -> Result<EffectScale> {
         .copied()
         .fold(f64::INFINITY, f64::min);
     let fastest = plan.velocities_m_s.iter().copied().fold(0.0, f64::max);
-    let cfg = ImpactConfig {
-        mass_kg: plan.heaviest_kg(),
-        impact_velocity_m_s: fastest,
-        ..ImpactConfig::default()
+    let mut longest = EffectScale {
+        longest_stroke_mm: 0.0,
+        peak_force_at_longest_n: 0.0,
     };
-    let s = simulate(base, &cfg, CurrentSource::Constant(lowest_a))?.summary;
-    Ok(EffectScale {
-        longest_stroke_mm: s.max_stroke_mm,
-        peak_force_at_longest_n: s.peak_force_n,
-    })
+    for mass_kg in plan.drop_masses_kg() {
+        let cfg = ImpactConfig {
+            mass_kg,
+            impact_velocity_m_s: fastest * plan.energy_matched_factor(mass_kg),
+            ..ImpactConfig::default()
+        };
+        let s = simulate(base, &cfg, CurrentSource::Constant(lowest_a))?.summary;
+        if s.max_stroke_mm > longest.longest_stroke_mm {
+            longest = EffectScale {
+                longest_stroke_mm: s.max_stroke_mm,
+                peak_force_at_longest_n: s.peak_force_n,
+            };
+        }
+    }
+    Ok(longest)
 }
 
 /// The plant for (effect, seed): the seed's base plant plus the effect with
@@ -408,10 +427,11 @@ fn plan_tests(plan: &SynthPlan, seed: u64, plant: &Plant) -> Result<Vec<Test>> {
                 None => 1.0,
             };
             for &v in &plan.velocities_m_s {
-                let v = (v * scale * 100.0).round() / 100.0;
                 for repeat in 1..=plan.repeats {
+                    let mass_kg = plan.mass_for_repeat_kg(repeat);
+                    let v = (v * scale * plan.energy_matched_factor(mass_kg) * 100.0).round() / 100.0;
                     tests.push(Test {
-                        mass_kg: plan.mass_for_repeat_kg(repeat),
+                        mass_kg,
                         mass_in_name: plan.second_mass_kg.is_some(),
                         ..Test::new(current_a, None, role, v, repeat)
                     });
