@@ -606,14 +606,14 @@ fn run(cli: Cli) -> Result<()> {
         Command::BenchDiagnose {
             cases,
             mts_cases,
-            instrumented_cases,
+            instrumented_cases: inst,
             seed,
             json,
             ..
         } => {
             let opts = mre_host::diagnose::DiagnoseOptions::default();
-            let progress = mre_host::progress::bar((cases + mts_cases + instrumented_cases) as u64, "cases");
-            let summary = mre_host::diagnose::bench::run_bench(cases, mts_cases, instrumented_cases, seed, &opts, |k, c| {
+            let progress = mre_host::progress::bar((cases + mts_cases + inst) as u64, "cases");
+            let summary = mre_host::diagnose::bench::run_bench(cases, mts_cases, inst, seed, &opts, |k, c| {
                 progress.inc();
                 progress.println(&format!(
                     "case {:>3} seed {}: truth {:<20} diagnosed {:?} ({:.2} s); first round {:?}",

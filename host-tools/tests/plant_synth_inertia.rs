@@ -33,40 +33,10 @@ fn loading_cubic(r: &Recording) -> [f64; 3] {
         .map(|k| (s.x_mm[k], s.force_n[k]))
         .collect();
     assert!(rows.len() >= 10, "{}: {} loading samples", r.file, rows.len());
-    let mut ata = [[0.0f64; 3]; 3];
-    let mut aty = [0.0f64; 3];
-    for &(x, f) in &rows {
-        let basis = [1.0, x, x * x * x];
-        for i in 0..3 {
-            aty[i] += basis[i] * f;
-            for j in 0..3 {
-                ata[i][j] += basis[i] * basis[j];
-            }
-        }
-    }
-    solve3(ata, aty)
-}
-
-/// Gaussian elimination with partial pivoting.
-fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> [f64; 3] {
-    for col in 0..3 {
-        let pivot = (col..3).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs())).unwrap();
-        a.swap(col, pivot);
-        b.swap(col, pivot);
-        for row in col + 1..3 {
-            let f = a[row][col] / a[col][col];
-            for k in col..3 {
-                a[row][k] -= f * a[col][k];
-            }
-            b[row] -= f * b[col];
-        }
-    }
-    let mut x = [0.0; 3];
-    for row in (0..3).rev() {
-        let s: f64 = (row + 1..3).map(|k| a[row][k] * x[k]).sum();
-        x[row] = (b[row] - s) / a[row][row];
-    }
-    x
+    let a = nalgebra::DMatrix::from_fn(rows.len(), 3, |i, j| rows[i].0.powi([0, 1, 3][j]));
+    let y = nalgebra::DVector::from_iterator(rows.len(), rows.iter().map(|r| r.1));
+    let c = a.svd(true, true).solve(&y, 1e-12).expect("least squares");
+    [c[0], c[1], c[2]]
 }
 
 /// The cubic's force without its constant, at `x_mm`.
@@ -111,7 +81,11 @@ fn heavy_over_light(out: &SynthOutput) -> Vec<(String, f64)> {
                 .copied()
                 .filter(|r| r.current_a == current_a && r.mass_kg == Some(m))
                 .collect();
-            v.sort_by(|a, b| a.impact_velocity_m_s.unwrap().total_cmp(&b.impact_velocity_m_s.unwrap()));
+            v.sort_by(|a, b| {
+                a.impact_velocity_m_s
+                    .unwrap()
+                    .total_cmp(&b.impact_velocity_m_s.unwrap())
+            });
             v
         };
         let (heavy, light) = (of_mass(HEAVY_KG), of_mass(LIGHT_KG));
@@ -119,7 +93,10 @@ fn heavy_over_light(out: &SynthOutput) -> Vec<(String, f64)> {
         for (h, l) in heavy.iter().zip(&light) {
             let x_mm = 0.8 * loading_stroke_mm(h).min(loading_stroke_mm(l));
             let (ch, cl) = (loading_cubic(h), loading_cubic(l));
-            ratios.push((format!("{} / {}", h.file, l.file), elastic_n(ch, x_mm) / elastic_n(cl, x_mm)));
+            ratios.push((
+                format!("{} / {}", h.file, l.file),
+                elastic_n(ch, x_mm) / elastic_n(cl, x_mm),
+            ));
         }
     }
     ratios
@@ -138,7 +115,10 @@ fn instrumented_inertia_scales_each_drop_mass_by_one_minus_m_s_over_m() {
     // Force noise ≤ 15 N against ≥ 500 N at 80 % stroke, over ≥ 10 samples:
     // each ratio to well within 1 %.
     for (file, r) in &ratios {
-        assert!((r - expected).abs() < 0.01 * expected, "{file}: {r:.4}, expected {expected:.4}");
+        assert!(
+            (r - expected).abs() < 0.01 * expected,
+            "{file}: {r:.4}, expected {expected:.4}"
+        );
     }
     // The constant is the striker's weight (the cell is tared with it hanging).
     let c0: Vec<f64> = constant_current(&out).map(|r| loading_cubic(r)[0]).collect();
@@ -167,7 +147,10 @@ fn the_accelerometer_records_g_minus_force_over_mass() {
     assert_eq!(out.dataset.recordings.len(), 60);
     for r in &out.dataset.recordings {
         let s = &r.samples;
-        let a = s.accel_m_s2.as_ref().unwrap_or_else(|| panic!("{}: no acceleration", r.file));
+        let a = s
+            .accel_m_s2
+            .as_ref()
+            .unwrap_or_else(|| panic!("{}: no acceleration", r.file));
         let m = r.mass_kg.unwrap();
         // Newton on the drop mass: M·(g − a) = F, to the two channels' noise.
         let sigma = (noise("force_noise_n").powi(2) + (m * sigma_a).powi(2)).sqrt();
@@ -198,9 +181,7 @@ fn the_accelerometer_records_g_minus_force_over_mass() {
     // Constant-current tests alternate the two masses; the light one drops
     // from twice the height (the same impact energy: v × √2), so both reach
     // about the same stroke.
-    let masses: BTreeSet<u64> = constant_current(&out)
-        .map(|r| r.mass_kg.unwrap().to_bits())
-        .collect();
+    let masses: BTreeSet<u64> = constant_current(&out).map(|r| r.mass_kg.unwrap().to_bits()).collect();
     assert_eq!(masses.len(), 2);
     let fastest = |m: f64| {
         constant_current(&out)
@@ -209,7 +190,10 @@ fn the_accelerometer_records_g_minus_force_over_mass() {
             .fold(0.0, f64::max)
     };
     let ratio = fastest(LIGHT_KG) / fastest(HEAVY_KG);
-    assert!((ratio - 2f64.sqrt()).abs() < 0.02, "light / heavy impact velocity {ratio:.3}");
+    assert!(
+        (ratio - 2f64.sqrt()).abs() < 0.02,
+        "light / heavy impact velocity {ratio:.3}"
+    );
 }
 
 #[test]
@@ -221,7 +205,10 @@ fn single_mass_inertia_is_a_pure_scale_and_its_key_says_it_cannot_be_identified(
     let why = with.key["not_identifiable_because"].as_str().unwrap();
     assert!(why.contains("a = g − F/M"), "{why}");
     assert!(key_identifiable(&without.key), "only inertia is marked");
-    assert!(without.key.get("identifiable").is_none(), "plain keys keep their fields");
+    assert!(
+        without.key.get("identifiable").is_none(),
+        "plain keys keep their fields"
+    );
     let m_s = m_s_kg(&with);
     let expected = 1.0 - m_s / HEAVY_KG;
     for (a, b) in constant_current(&with).zip(constant_current(&without)) {

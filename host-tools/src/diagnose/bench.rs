@@ -280,11 +280,7 @@ fn format_drop_arm(s: &BenchSummary, names: &[&str]) -> String {
         let _ = writeln!(out);
     }
     let scored = s.cases.iter().filter(|c| c.identifiable).count();
-    let correct = s
-        .cases
-        .iter()
-        .filter(|c| c.identifiable && c.top1 == c.truth)
-        .count();
+    let correct = s.cases.iter().filter(|c| c.identifiable && c.top1 == c.truth).count();
     let _ = writeln!(
         out,
         "top-1 accuracy: {:.1} % ({correct}/{scored})",
@@ -297,11 +293,7 @@ fn format_drop_arm(s: &BenchSummary, names: &[&str]) -> String {
             c.seed, c.truth, c.found
         );
     }
-    let n_none = s
-        .cases
-        .iter()
-        .filter(|c| c.identifiable && c.truth == "none")
-        .count();
+    let n_none = s.cases.iter().filter(|c| c.identifiable && c.truth == "none").count();
     let _ = writeln!(
         out,
         "false-positive rate on none: {:.1} % (of {n_none} cases)",

@@ -649,7 +649,9 @@ fn key_json(plant: &Plant, seed: u64, plan: &SynthPlan) -> Result<serde_json::Va
 /// Can the key's effect be identified from its campaign? (`false` only when
 /// the key says so.)
 pub fn key_identifiable(key: &serde_json::Value) -> bool {
-    key.get("identifiable").and_then(serde_json::Value::as_bool).unwrap_or(true)
+    key.get("identifiable")
+        .and_then(serde_json::Value::as_bool)
+        .unwrap_or(true)
 }
 
 /// Where the key goes by default: `<folder>.key.json` beside the folder.
