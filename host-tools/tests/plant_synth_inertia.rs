@@ -230,7 +230,14 @@ fn random_on_the_instrumented_campaign_covers_inertia_and_the_plain_one_never_dr
     let picked: BTreeSet<&str> = (0..200)
         .map(|s| resolve_effect_name_for("random", s, &instrumented).unwrap())
         .collect();
-    assert_eq!(picked, INSTRUMENTED_EFFECT_NAMES.iter().copied().collect());
+    let mut vocabulary: BTreeSet<&str> = mre_host::plant::EFFECT_NAMES.iter().copied().collect();
+    vocabulary.insert("inertia");
+    assert_eq!(vocabulary.len(), 8);
+    assert_eq!(picked, vocabulary);
+    assert_eq!(
+        INSTRUMENTED_EFFECT_NAMES.iter().copied().collect::<BTreeSet<_>>(),
+        vocabulary
+    );
     let plain = SynthPlan::default();
     assert!((0..200).all(|s| resolve_effect_name_for("random", s, &plain).unwrap() != "inertia"));
     assert!(instrumented.reveals_inertia() && !plain.reveals_inertia());

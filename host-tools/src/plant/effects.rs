@@ -25,16 +25,16 @@ pub const EFFECT_NAMES: [&str; 7] = [
 /// What an instrumented drop campaign (two drop masses, striker accelerometer:
 /// [`crate::plant::synth::SynthPlan::instrumented`]) can reveal: every plain-drop
 /// effect and `inertia`. `random` picks from these there.
-pub const INSTRUMENTED_EFFECT_NAMES: [&str; 8] = [
-    "none",
-    "viscous_damping",
-    "sensor_delay",
-    "stress_softening",
-    "end_stop",
-    "magnetic_saturation",
-    "coil_lag",
-    "inertia",
-];
+pub const INSTRUMENTED_EFFECT_NAMES: [&str; 8] = {
+    let mut names = [""; 8];
+    let mut i = 0;
+    while i < EFFECT_NAMES.len() {
+        names[i] = EFFECT_NAMES[i];
+        i += 1;
+    }
+    names[7] = "inertia";
+    names
+};
 
 /// Range of the drawn striker mass below the load cell (kg); see [`draw_effect`].
 pub const INERTIA_MASS_RANGE_KG: std::ops::Range<f64> = 0.3..0.8;
