@@ -247,6 +247,17 @@ fn random_on_the_instrumented_campaign_covers_inertia_and_the_plain_one_never_dr
         ..SynthPlan::instrumented()
     };
     assert!(!one_mass.reveals_inertia());
+    // Two masses need two repeats: the second mass drops the even ones.
+    let one_repeat = SynthPlan {
+        repeats: 1,
+        ..SynthPlan::instrumented()
+    };
+    assert!(!one_repeat.reveals_inertia());
+    let bad_mass = SynthPlan {
+        second_mass_kg: Some(-1.0),
+        ..SynthPlan::instrumented()
+    };
+    assert!(synthesize_with_plan("none", SEED, &bad_mass).is_err());
 }
 
 /// The path users run: `mre synth --campaign instrumented` writes the

@@ -152,9 +152,9 @@ impl SynthPlan {
 
     /// Can `inertia` be identified from this campaign? It needs the
     /// acceleration recorded and not proportional to the force: two drop
-    /// masses and an accelerometer.
+    /// masses (so at least two repeats) and an accelerometer.
     pub fn reveals_inertia(&self) -> bool {
-        self.accelerometer.is_some() && self.second_mass_kg.is_some_and(|m| m != self.mass_kg)
+        self.accelerometer.is_some() && self.repeats >= 2 && self.second_mass_kg.is_some_and(|m| m != self.mass_kg)
     }
 
     /// The names `random` picks from on this campaign.
@@ -407,6 +407,10 @@ impl Test {
 /// `plant`: the plant the drop heights of a full-stroke plan are chosen on.
 fn plan_tests(plan: &SynthPlan, seed: u64, plant: &Plant) -> Result<Vec<Test>> {
     ensure!(plan.repeats >= 1, "at least one repeat");
+    ensure!(
+        plan.drop_masses_kg().iter().all(|m| m.is_finite() && *m > 0.0),
+        "drop masses must be positive"
+    );
     ensure!(!plan.velocities_m_s.is_empty(), "at least one impact velocity");
     ensure!(
         plan.step_at_s.is_finite() && plan.step_at_s > 0.0,
