@@ -76,6 +76,10 @@ pub struct LawConfig {
     /// τ = 5 ms, the look-ahead on): 0–1 A all within 1.13–1.21× of the
     /// issue's 1242 N, 2 A 2.98×.
     pub armed_current_a: f32,
+    /// Weight of each new observation in the force observer (0 = off): the
+    /// share of the model's force error, seen in the measured deceleration,
+    /// that the law corrects per period (see [`ImpactLaw::step`]).
+    pub observer_gain: f32,
 }
 
 /// The end of the stroke (mm) over which the law plans with this much stroke
@@ -111,6 +115,7 @@ impl Default for LawConfig {
             drive_min_a: -3.0,
             drive_max_a: 3.0,
             armed_current_a: 0.5,
+            observer_gain: 0.05,
         }
     }
 }
@@ -143,6 +148,7 @@ impl LawConfig {
             self.drive_min_a,
             self.drive_max_a,
             self.armed_current_a,
+            self.observer_gain,
         ];
         if all.iter().any(|v| !v.is_finite()) {
             return Err(ConfigError::NonFinite);
@@ -173,6 +179,9 @@ impl LawConfig {
         }
         if self.armed_current_a < self.current_min_a || self.armed_current_a > self.current_max_a {
             return Err(ConfigError::EmptyOutputRange);
+        }
+        if !(0.0..=1.0).contains(&self.observer_gain) {
+            return Err(ConfigError::NonPositive);
         }
         if self.x_valid_min_mm >= self.x_valid_max_mm {
             return Err(ConfigError::EmptySensorRange);
@@ -222,6 +231,14 @@ pub struct ImpactLaw {
     coil_alpha: f32,
     /// The look-ahead times `LEAD_TAU · τ` (s).
     lead_s: [f32; LEAD_TAU.len()],
+    /// The sampled velocity of the last period (the observer's Δv).
+    last_v_m_s: f32,
+    /// The force the model says the last command delivers (N), or 0 when
+    /// it does not (saturated, capped, fail-safe, not compressing).
+    expected_n: f32,
+    /// The observer's estimate of how much less force the plant gives than
+    /// the model (N).
+    force_error_n: f32,
 }
 
 /// How far ahead the law looks for a lagging coil, in units of τ: the
@@ -247,6 +264,9 @@ impl ImpactLaw {
             coil_tau_s: 0.0,
             coil_alpha: 1.0,
             lead_s: [0.0; LEAD_TAU.len()],
+            last_v_m_s: 0.0,
+            expected_n: 0.0,
+            force_error_n: 0.0,
         })
     }
 
@@ -278,6 +298,7 @@ impl ImpactLaw {
     /// wait for a ramp.
     pub fn fail_safe(&mut self, flags: Flags) -> Command {
         self.last_current_a = self.cfg.failsafe_current_a;
+        self.expected_n = 0.0;
         self.coil_a += self.coil_alpha * (self.cfg.failsafe_current_a - self.coil_a);
         Command {
             current_a: self.cfg.failsafe_current_a,
@@ -320,6 +341,15 @@ impl ImpactLaw {
             return self.fail_safe(input_faults);
         }
         let cfg = self.cfg;
+        // Force observer: over the last period the mass decelerated by
+        // Δv/T, so the plant gave m·(g − Δv/T); where the model said the
+        // command gives `expected_n`, the difference is the model's error.
+        if self.expected_n > 0.0 {
+            let measured_n = cfg.mass_kg * (cfg.gravity_m_s2 - (v_m_s - self.last_v_m_s) / cfg.period_s);
+            self.force_error_n += cfg.observer_gain * (self.expected_n - measured_n - self.force_error_n);
+        }
+        self.last_v_m_s = v_m_s;
+        self.expected_n = 0.0;
         let delay_s = table.terms().sensor_delay_s;
         self.prepare(table);
         let (x_mm, v_m_s) = if delay_s > 0.0 {
@@ -330,6 +360,7 @@ impl ImpactLaw {
         let branch = self.selector.update(v_m_s);
         let mut flags = Flags::NONE;
         let mut target_force_n = 0.0;
+        let mut expected_n = 0.0;
 
         let wanted_a = match branch {
             Branch::Compression => {
@@ -355,13 +386,20 @@ impl ImpactLaw {
                 match stopping_force_n(cfg.mass_kg, cfg.gravity_m_s2, v_m_s, planned_mm) {
                     Some(force_n) => {
                         target_force_n = force_n;
-                        let r = table.current_for_branch_v(x_mm, v_m_s, Branch::Compression, force_n);
+                        let ask_n = force_n + self.force_error_n;
+                        let r = table.current_for_branch_v(x_mm, v_m_s, Branch::Compression, ask_n);
                         flags |= r.flags;
-                        if self.coil_alpha < 1.0 {
-                            self.anticipate(table, x_mm, v_m_s, force_n, r.current_a)
+                        let wanted_a = if self.coil_alpha < 1.0 {
+                            self.anticipate(table, x_mm, v_m_s, ask_n, r.current_a)
                         } else {
                             r.current_a
+                        };
+                        if wanted_a == r.current_a
+                            && !r.flags.intersects(Flags::SATURATED_HIGH.union(Flags::SATURATED_LOW))
+                        {
+                            expected_n = ask_n;
                         }
+                        wanted_a
                     }
                     None => {
                         flags |= Flags::STROKE_EXHAUSTED;
@@ -414,8 +452,14 @@ impl ImpactLaw {
         if branch == Branch::Compression {
             self.last_compression_current_a = current_a;
         }
+        let drive_a = self.drive_for(current_a);
+        // The model's force is delivered only if the coil reaches the
+        // command: not where the output or the driver clamps it.
+        if current_a == wanted_a && drive_a > cfg.drive_min_a && drive_a < cfg.drive_max_a {
+            self.expected_n = expected_n;
+        }
         Command {
-            current_a: self.drive_for(current_a),
+            current_a: drive_a,
             target_force_n,
             branch,
             flags,
