@@ -23,6 +23,18 @@
 //!   changed no `mre bench-control` result and was dropped). Between impacts
 //!   (extension branch with x at contact) it pre-energises the coil to
 //!   [`LawConfig::armed_current_a`].
+//!
+//! A **force observer** closes the loop on the model itself: over each period
+//! whose command the model says gives a force F (inverse inside the table,
+//! the command neither capped, slewed nor clamped by the driver), the sampled
+//! velocity's change says what the plant gave, `m·(g − Δv/T)`. An
+//! exponential average of the difference (weight
+//! [`LawConfig::observer_gain`] per period) is added to the force the law
+//! asks the inverse for. It matters most with a lagging coil: the inversion
+//! of a τ that diagnosis got 13 % wrong leaves the coil short of the model's
+//! current for milliseconds, the plan re-plans that deficit upwards, and the
+//! peak grows (`mre bench-control`, τ = 2 ms: 1.51× the limit without the
+//! observer, 1.11× with it; BENCHMARKS.md).
 use crate::flags::Flags;
 use crate::math;
 use crate::model::{Branch, BranchSelector};
@@ -76,9 +88,11 @@ pub struct LawConfig {
     /// τ = 5 ms, the look-ahead on): 0–1 A all within 1.13–1.21× of the
     /// issue's 1242 N, 2 A 2.98×.
     pub armed_current_a: f32,
-    /// Weight of each new observation in the force observer (0 = off): the
-    /// share of the model's force error, seen in the measured deceleration,
-    /// that the law corrects per period (see [`ImpactLaw::step`]).
+    /// Weight of each new observation in the force observer (0 = off, 1 =
+    /// the last period's error alone; see the module docs). 0.05 averages
+    /// the velocity sensor's noise (one period's Δv at 2 mm/s noise is
+    /// ±160 N) over about 20 periods, 2 ms; 0.02–0.2 all met the
+    /// `mre bench-control` targets when it was chosen.
     pub observer_gain: f32,
 }
 
@@ -233,6 +247,9 @@ pub struct ImpactLaw {
     lead_s: [f32; LEAD_TAU.len()],
     /// The sampled velocity of the last period (the observer's Δv).
     last_v_m_s: f32,
+    /// `m·g` and `m/T`: the measured force is `m·g − (m/T)·Δv`.
+    weight_n: f32,
+    mass_per_period_kg_s: f32,
     /// The force the model says the last command delivers (N), or 0 when
     /// it does not (saturated, capped, fail-safe, not compressing).
     expected_n: f32,
@@ -265,6 +282,8 @@ impl ImpactLaw {
             coil_alpha: 1.0,
             lead_s: [0.0; LEAD_TAU.len()],
             last_v_m_s: 0.0,
+            weight_n: cfg.mass_kg * cfg.gravity_m_s2,
+            mass_per_period_kg_s: cfg.mass_kg / cfg.period_s,
             expected_n: 0.0,
             force_error_n: 0.0,
         })
@@ -284,6 +303,12 @@ impl ImpactLaw {
     /// The law's model of the coil current (A).
     pub fn coil_estimate_a(&self) -> f32 {
         self.coil_a
+    }
+
+    /// The force observer's estimate of how much less force the plant gives
+    /// than the model (N; negative: more).
+    pub fn force_error_n(&self) -> f32 {
+        self.force_error_n
     }
 
     pub fn config(&self) -> &LawConfig {
@@ -345,7 +370,7 @@ impl ImpactLaw {
         // Δv/T, so the plant gave m·(g − Δv/T); where the model said the
         // command gives `expected_n`, the difference is the model's error.
         if self.expected_n > 0.0 {
-            let measured_n = cfg.mass_kg * (cfg.gravity_m_s2 - (v_m_s - self.last_v_m_s) / cfg.period_s);
+            let measured_n = self.weight_n - self.mass_per_period_kg_s * (v_m_s - self.last_v_m_s);
             self.force_error_n += cfg.observer_gain * (self.expected_n - measured_n - self.force_error_n);
         }
         self.last_v_m_s = v_m_s;
