@@ -374,7 +374,6 @@ impl ImpactLaw {
             self.force_error_n += cfg.observer_gain * (self.expected_n - measured_n - self.force_error_n);
         }
         self.last_v_m_s = v_m_s;
-        self.expected_n = 0.0;
         let delay_s = table.terms().sensor_delay_s;
         self.prepare(table);
         let (x_mm, v_m_s) = if delay_s > 0.0 {
@@ -450,8 +449,11 @@ impl ImpactLaw {
             return self.fail_safe(flags | Flags::TABLE_FAULT);
         }
         let clamped_a = math::clamp(wanted_a, cfg.current_min_a, cfg.current_max_a);
+        // The model's force is delivered only if the coil gets the command:
+        // not where the output clamp or the slew limit changes it.
         if clamped_a != wanted_a {
             flags |= Flags::OUTPUT_CLAMPED;
+            expected_n = 0.0;
         }
         // With a coil model the driver's voltage limit is the physical slew
         // limit (in `drive_for`); the configured one stands in for it otherwise.
@@ -469,6 +471,7 @@ impl ImpactLaw {
             );
             if slewed_a != clamped_a {
                 flags |= Flags::SLEW_LIMITED;
+                expected_n = 0.0;
             }
             slewed_a
         };
@@ -478,11 +481,8 @@ impl ImpactLaw {
             self.last_compression_current_a = current_a;
         }
         let drive_a = self.drive_for(current_a);
-        // The model's force is delivered only if the coil reaches the
-        // command: not where the output or the driver clamps it.
-        if current_a == wanted_a && drive_a > cfg.drive_min_a && drive_a < cfg.drive_max_a {
-            self.expected_n = expected_n;
-        }
+        // Every other exit goes through `fail_safe`, which clears it.
+        self.expected_n = expected_n;
         Command {
             current_a: drive_a,
             target_force_n,
