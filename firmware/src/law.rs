@@ -24,6 +24,18 @@
 //!   changed no `mre bench-control` result and was dropped). Between impacts
 //!   (extension branch with x at contact) it pre-energises the coil to
 //!   [`LawConfig::armed_current_a`].
+//!
+//! A **force observer** closes the loop on the model itself: over each period
+//! whose command the model says gives a force F (inverse inside the table,
+//! the command neither capped, slewed nor clamped by the driver), the sampled
+//! velocity's change says what the plant gave, `m·(g − Δv/T)`. An
+//! exponential average of the difference (weight
+//! [`LawConfig::observer_gain`] per period) is added to the force the law
+//! asks the inverse for. It matters most with a lagging coil: the inversion
+//! of a τ that diagnosis got 13 % wrong leaves the coil short of the model's
+//! current for milliseconds, the plan re-plans that deficit upwards, and the
+//! peak grows (`mre bench-control`, τ = 2 ms: 1.51× the limit without the
+//! observer, 1.11× with it; BENCHMARKS.md).
 use crate::flags::Flags;
 use crate::math;
 use crate::model::{Branch, BranchSelector};
@@ -77,6 +89,12 @@ pub struct LawConfig {
     /// τ = 5 ms, the look-ahead on): 0–1 A all within 1.13–1.21× of the
     /// issue's 1242 N, 2 A 2.98×.
     pub armed_current_a: f32,
+    /// Weight of each new observation in the force observer (0 = off, 1 =
+    /// the last period's error alone; see the module docs). 0.05 averages
+    /// the velocity sensor's noise (one period's Δv at 2 mm/s noise is
+    /// ±160 N) over about 20 periods, 2 ms; 0.02–0.2 all met the
+    /// `mre bench-control` targets when it was chosen.
+    pub observer_gain: f32,
 }
 
 /// The end of the stroke (mm) over which the law plans with this much stroke
@@ -112,6 +130,7 @@ impl Default for LawConfig {
             drive_min_a: -3.0,
             drive_max_a: 3.0,
             armed_current_a: 0.5,
+            observer_gain: 0.05,
         }
     }
 }
@@ -144,6 +163,7 @@ impl LawConfig {
             self.drive_min_a,
             self.drive_max_a,
             self.armed_current_a,
+            self.observer_gain,
         ];
         if all.iter().any(|v| !v.is_finite()) {
             return Err(ConfigError::NonFinite);
@@ -174,6 +194,9 @@ impl LawConfig {
         }
         if self.armed_current_a < self.current_min_a || self.armed_current_a > self.current_max_a {
             return Err(ConfigError::EmptyOutputRange);
+        }
+        if !(0.0..=1.0).contains(&self.observer_gain) {
+            return Err(ConfigError::NonPositive);
         }
         if self.x_valid_min_mm >= self.x_valid_max_mm {
             return Err(ConfigError::EmptySensorRange);
@@ -231,6 +254,17 @@ pub struct ImpactLaw {
     /// The model's force at the last compression plan's current (N): what
     /// the sensor-delay prediction decelerates with, one period old.
     model_force_n: f32,
+    /// The sampled velocity of the last period (the observer's Δv).
+    last_v_m_s: f32,
+    /// `m·g` and `m/T`: the measured force is `m·g − (m/T)·Δv`.
+    weight_n: f32,
+    mass_per_period_kg_s: f32,
+    /// The force the model says the last command delivers (N), or 0 when
+    /// it does not (saturated, capped, fail-safe, not compressing).
+    expected_n: f32,
+    /// The observer's estimate of how much less force the plant gives than
+    /// the model (N).
+    force_error_n: f32,
 }
 
 /// How far ahead the law looks for a lagging coil, in units of τ: the
@@ -259,6 +293,11 @@ impl ImpactLaw {
             lead_factors: [[0.0; 2]; LEAD_TAU.len()],
             lead_floor_a: LEAD_GROWTH.map(|growth| cfg.drive_min_a + (cfg.current_min_a - cfg.drive_min_a) * growth),
             model_force_n: 0.0,
+            last_v_m_s: 0.0,
+            weight_n: cfg.mass_kg * cfg.gravity_m_s2,
+            mass_per_period_kg_s: cfg.mass_kg / cfg.period_s,
+            expected_n: 0.0,
+            force_error_n: 0.0,
         })
     }
 
@@ -278,6 +317,12 @@ impl ImpactLaw {
         self.coil_a
     }
 
+    /// The force observer's estimate of how much less force the plant gives
+    /// than the model (N; negative: more).
+    pub fn force_error_n(&self) -> f32 {
+        self.force_error_n
+    }
+
     pub fn config(&self) -> &LawConfig {
         &self.cfg
     }
@@ -290,6 +335,7 @@ impl ImpactLaw {
     /// wait for a ramp.
     pub fn fail_safe(&mut self, flags: Flags) -> Command {
         self.last_current_a = self.cfg.failsafe_current_a;
+        self.expected_n = 0.0;
         self.coil_a += self.coil_alpha * (self.cfg.failsafe_current_a - self.coil_a);
         Command {
             current_a: self.cfg.failsafe_current_a,
@@ -332,6 +378,14 @@ impl ImpactLaw {
             return self.fail_safe(input_faults);
         }
         let cfg = self.cfg;
+        // Force observer: over the last period the mass decelerated by
+        // Δv/T, so the plant gave m·(g − Δv/T); where the model said the
+        // command gives `expected_n`, the difference is the model's error.
+        if self.expected_n > 0.0 {
+            let measured_n = self.weight_n - self.mass_per_period_kg_s * (v_m_s - self.last_v_m_s);
+            self.force_error_n += cfg.observer_gain * (self.expected_n - measured_n - self.force_error_n);
+        }
+        self.last_v_m_s = v_m_s;
         let delay_s = table.terms().sensor_delay_s;
         self.prepare(table);
         let (x_mm, v_m_s) = if delay_s > 0.0 {
@@ -342,6 +396,7 @@ impl ImpactLaw {
         let branch = self.selector.update(v_m_s);
         let mut flags = Flags::NONE;
         let mut target_force_n = 0.0;
+        let mut expected_n = 0.0;
 
         let wanted_a = match branch {
             Branch::Compression => {
@@ -367,14 +422,21 @@ impl ImpactLaw {
                 match stopping_force_n(cfg.mass_kg, cfg.gravity_m_s2, v_m_s, planned_mm) {
                     Some(force_n) => {
                         target_force_n = force_n;
-                        let r = table.plan_current_v(x_mm, v_m_s, Branch::Compression, force_n);
+                        let ask_n = force_n + self.force_error_n;
+                        let r = table.plan_current_v(x_mm, v_m_s, Branch::Compression, ask_n);
                         flags |= r.flags;
                         self.model_force_n = r.force_n;
-                        if self.coil_alpha < 1.0 {
-                            self.anticipate(table, x_mm, v_m_s, force_n, r.current_a, r.segment)
+                        let wanted_a = if self.coil_alpha < 1.0 {
+                            self.anticipate(table, x_mm, v_m_s, ask_n, r.current_a, r.segment)
                         } else {
                             r.current_a
+                        };
+                        if wanted_a == r.current_a
+                            && !r.flags.intersects(Flags::SATURATED_HIGH.union(Flags::SATURATED_LOW))
+                        {
+                            expected_n = ask_n;
                         }
+                        wanted_a
                     }
                     None => {
                         flags |= Flags::STROKE_EXHAUSTED;
@@ -400,8 +462,11 @@ impl ImpactLaw {
             return self.fail_safe(flags | Flags::TABLE_FAULT);
         }
         let clamped_a = math::clamp(wanted_a, cfg.current_min_a, cfg.current_max_a);
+        // The model's force is delivered only if the coil gets the command:
+        // not where the output clamp or the slew limit changes it.
         if clamped_a != wanted_a {
             flags |= Flags::OUTPUT_CLAMPED;
+            expected_n = 0.0;
         }
         // With a coil model the driver's voltage limit is the physical slew
         // limit (in `drive_for`); the configured one stands in for it otherwise.
@@ -419,6 +484,7 @@ impl ImpactLaw {
             );
             if slewed_a != clamped_a {
                 flags |= Flags::SLEW_LIMITED;
+                expected_n = 0.0;
             }
             slewed_a
         };
@@ -427,8 +493,11 @@ impl ImpactLaw {
         if branch == Branch::Compression {
             self.last_compression_current_a = current_a;
         }
+        let drive_a = self.drive_for(current_a);
+        // Every other exit goes through `fail_safe`, which clears it.
+        self.expected_n = expected_n;
         Command {
-            current_a: self.drive_for(current_a),
+            current_a: drive_a,
             target_force_n,
             branch,
             flags,

@@ -1,7 +1,9 @@
 //! From recordings to flash: `mre diagnose --model-out`, the physical limit
 //! of `mre bench-control`, and one bench case end to end.
 use mre_host::control_bench::limit::physical_limit;
-use mre_host::control_bench::{run_case, Case};
+use mre_host::control_bench::{controllers_for, drop_setup, record_campaign, run_case, Case};
+use mre_host::plant::closed_loop::run_controlled;
+use mre_host::plant::synth::SynthPlan;
 use mre_host::plant::{ImpactConfig, LawParams, Plant};
 use std::path::Path;
 
@@ -74,4 +76,49 @@ fn controller_c_meets_its_target_on_a_2_ms_coil_and_beats_the_paper_table() {
     assert!(!c.bottomed_out && c.over_limit <= 1.25, "{c:?}");
     assert!(c.peak_force_n < a.peak_force_n && c.peak_force_n < b.peak_force_n);
     assert!(out.target_met);
+}
+
+#[test]
+fn controller_c_meets_the_nominal_target() {
+    // Issue 11: on a plant without a concealed effect, (c) peaks at most
+    // 1.10× the limit, within the stroke, and no higher than (a).
+    let out = run_case(&Case::Effect {
+        name: "none".to_owned(),
+        seed: 101,
+    })
+    .unwrap();
+    let (a, c) = (&out.runs[0], &out.runs[2]);
+    assert!(out.diagnosed.is_empty(), "{:?}", out.diagnosed);
+    assert!(!c.bottomed_out && c.over_limit <= 1.10, "{c:?}");
+    assert!(c.peak_force_n < a.peak_force_n);
+    assert!(out.target_met);
+}
+
+#[test]
+fn controller_c_holds_its_target_when_the_coil_time_constant_is_20_percent_off() {
+    // Diagnosis reports τ on a grid (the 2 ms coil of seed 203 comes out at
+    // 2.26 ms), and a real coil's τ drifts with temperature. With the
+    // diagnosed quartics but τ set 20 % below and above the plant's, (c)
+    // must still meet the issue's τ ≤ 2 ms target: within the stroke and at
+    // most 1.25× the limit.
+    let case = Case::CoilTau { tau_ms: 2.0, seed: 203 };
+    let plant = case.plant(&SynthPlan::default()).unwrap();
+    let (_dir, campaign) = record_campaign(&plant, case.seed()).unwrap();
+    let diagnosed = controllers_for(&campaign).unwrap().diagnosed;
+    let setup = drop_setup(&plant, campaign.recordings.len(), case.seed());
+    let limit = physical_limit(&plant, &setup.impact, (0.0, 2.0), setup.usable_stroke_mm).unwrap();
+    for tau_s in [1.6e-3f32, 2.4e-3] {
+        let terms = mre_core::table::ModelTerms {
+            coil_tau_s: tau_s,
+            ..*diagnosed.terms()
+        };
+        let table = mre_core::Table::with_terms(diagnosed.entries(), terms).unwrap();
+        let s = run_controlled(&setup, &table).unwrap().summary;
+        let ratio = s.peak_force_n / limit.envelope_n;
+        assert!(
+            s.max_stroke_mm <= setup.usable_stroke_mm && ratio <= 1.25,
+            "τ {tau_s}: {ratio:.3}× the limit, stroke {:.2} mm",
+            s.max_stroke_mm
+        );
+    }
 }

@@ -202,3 +202,60 @@ fn invalid_configurations_are_refused() {
         Some(ConfigError::NonFinite)
     );
 }
+
+/// The law of `compression_command_produces_the_stopping_force` (paper
+/// table, 1.2 mm stroke), with the given observer gain.
+fn observed_law(observer_gain: f32) -> ImpactLaw {
+    ImpactLaw::new(LawConfig {
+        stroke_max_mm: 1.2,
+        observer_gain,
+        ..fast_config()
+    })
+    .expect("valid config")
+}
+
+#[test]
+fn the_force_observer_sees_the_model_error_in_the_measured_deceleration() {
+    // At x = 0.4 mm, v = 1.0 m/s the inverse is inside the table (between
+    // 0.5 and 1 A, see above). A plant that gives 80 % of the model's force
+    // F decelerates the mass by 0.8·F/m − g over the 100 µs period; with
+    // the observer taking each observation whole (gain 1), the error it
+    // reports is F − m·(g − Δv/T) = F − 0.8·F = 0.2·F.
+    let t = paper();
+    let (m, g, period) = (5.5f32, 9.81f32, 1.0e-4f32);
+    let mut law = observed_law(1.0);
+    let first = law.step(&t, 0.4, 1.0);
+    assert!(!first.flags.intersects(Flags::SATURATED_HIGH.union(Flags::SATURATED_LOW)));
+    let asked_n = first.target_force_n;
+    let v_next = 1.0 + (g - 0.8 * asked_n / m) * period;
+    let second = law.step(&t, 0.5, v_next);
+    let error_n = law.force_error_n();
+    assert!((error_n - 0.2 * asked_n).abs() < 0.5, "{error_n} vs {}", 0.2 * asked_n);
+    // The plan is the same with the observer off; the command is higher,
+    // since it asks the model for the plan plus the error.
+    let mut plain = observed_law(0.0);
+    plain.step(&t, 0.4, 1.0);
+    let unobserved = plain.step(&t, 0.5, v_next);
+    assert_eq!(plain.force_error_n(), 0.0);
+    assert_eq!(second.target_force_n, unobserved.target_force_n);
+    assert!(second.current_a > unobserved.current_a);
+}
+
+#[test]
+fn the_force_observer_learns_nothing_where_the_model_does_not_set_the_force() {
+    let t = paper();
+    let (m, g, period) = (5.5f32, 9.81f32, 1.0e-4f32);
+    // Out of stroke: the plan asks for far more than 2 A gives (saturated).
+    // The plant then gives less than asked, but that is the coil's limit,
+    // not a model error.
+    let mut law = observed_law(1.0);
+    let cmd = law.step(&t, 1.15, 2.0);
+    assert!(cmd.flags.contains(Flags::SATURATED_HIGH), "{:?}", cmd.flags);
+    law.step(&t, 1.17, 2.0 + (g - 1000.0 / m) * period);
+    assert_eq!(law.force_error_n(), 0.0);
+    // Moving out (rebound): no plan, nothing to compare.
+    let mut law = observed_law(1.0);
+    law.step(&t, 0.5, -0.5);
+    law.step(&t, 0.45, -0.5 + (g - 500.0 / m) * period);
+    assert_eq!(law.force_error_n(), 0.0);
+}

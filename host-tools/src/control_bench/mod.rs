@@ -45,7 +45,7 @@ impl Case {
         }
     }
 
-    fn plant(&self, plan: &SynthPlan) -> Result<Plant> {
+    pub fn plant(&self, plan: &SynthPlan) -> Result<Plant> {
         match self {
             Case::Effect { name, seed } => draw_plant(name, *seed, plan),
             Case::CoilTau { tau_ms, seed } => {
@@ -61,7 +61,7 @@ impl Case {
         }
     }
 
-    fn seed(&self) -> u64 {
+    pub fn seed(&self) -> u64 {
         match self {
             Case::Effect { seed, .. } | Case::CoilTau { seed, .. } => *seed,
         }
@@ -215,10 +215,18 @@ pub fn run_anchor(setup: &SimSetup, table: &Table) -> Result<ImpactSummary> {
     .summary)
 }
 
-/// `plant`'s campaign (`mre synth`'s plan) written as recording files into a
-/// temporary folder and loaded back, as a user's recordings would be.
+/// The stroke every current of the campaign is recorded to (mm): the drop
+/// heights of `data/drop-full-stroke` (`mre synth --full-stroke-mm 15`), so
+/// the model covers the usable stroke at every current instead of ending
+/// where the paper's drop heights stop the stiff currents (4–5.5 mm).
+pub const CAMPAIGN_STROKE_MM: f64 = 15.0;
+
+/// `plant`'s campaign (`mre synth --full-stroke-mm 15`'s plan) written as
+/// recording files into a temporary folder and loaded back, as a user's
+/// recordings would be.
 pub fn record_campaign(plant: &Plant, seed: u64) -> Result<(tempfile::TempDir, Dataset)> {
-    let recorded = synthesize_plant(plant.clone(), seed, &SynthPlan::default())?.dataset;
+    let plan = SynthPlan::full_stroke(CAMPAIGN_STROKE_MM);
+    let recorded = synthesize_plant(plant.clone(), seed, &plan)?.dataset;
     let dir = tempfile::tempdir()?;
     let options = WriteOptions {
         force: true,

@@ -97,12 +97,14 @@ impl LawParams {
 
     /// The gain at `current_a`, linear between knots. `warp` maps a current to
     /// the variable the interpolation is linear in (identity for the base law;
-    /// `tanh(I/I_s)` under magnetic saturation). Currents outside the knots
-    /// are clamped to them (the coil driver's range).
+    /// `tanh(I/I_s)` under magnetic saturation). The field stiffens the
+    /// elastomer whichever way it points, so a reverse current (a half-bridge
+    /// driver decaying the coil fast can overshoot below 0 A) counts by its
+    /// magnitude; beyond the last knot the gain is held.
     pub fn gain(&self, current_a: f64, warp: impl Fn(f64) -> f64) -> f64 {
         let (lo, hi) = (GAIN_KNOT_CURRENTS_A[0], GAIN_KNOT_CURRENTS_A[4]);
         let i = if current_a.is_finite() {
-            current_a.clamp(lo, hi)
+            current_a.abs().clamp(lo, hi)
         } else {
             lo
         };
