@@ -10,14 +10,22 @@
 # registers before the call are not counted. QEMU counts instructions, not
 # cycles: FPU divides, flash wait states and pipeline stalls are not in it.
 #
-# The cases span the whole usable stroke (x 0–12 mm, including x ≥ 4 mm where
-# the stiff currents' quartics clamp x), first with the flown table
-# (firmware/src/generated_table.rs), then with the same entries and every
-# format 2 term (coil τ, sensor delay, viscous, saturation): the worst path.
+# The windows (firmware/src/board/pil.rs, mod icount) come per table, first
+# the flown one (firmware/src/generated_table.rs), then the same entries with
+# every format 2 term (coil τ, sensor delay, viscous, saturation: the worst
+# path): the model step on a grid (x 0–12 mm × 5 forces, from below the 0 A
+# force to above the 2 A force), then the control step over one whole drop
+# (5.5 kg at 2.24 m/s stopped at constant deceleration within 12 mm, sampled
+# every 0.1 ms from contact to the stop plus 10 rebound periods) on a fresh
+# controller with the velocity sensor, then again without it (estimator).
+# Printed per table and step: the most instructions, and where (the window
+# index for profile.sh, and the state); `--all` prints every window too.
 #
-# Usage: bash firmware/bench/icount.sh   (from the repository root)
+# Usage: bash firmware/bench/icount.sh [--all]   (from the repository root)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+ALL=0
+[ "${1:-}" = --all ] && ALL=1
 TARGET_DIR=target/pil-bench
 cargo build --release -q -p mre-firmware --bin mre-firmware --target thumbv7em-none-eabihf \
   --no-default-features --features pil,bench --target-dir "$TARGET_DIR"
@@ -33,17 +41,41 @@ timeout 120 qemu-system-arm -M b-l475e-iot01a -nographic -monitor none -serial n
   -accel tcg,one-insn-per-tb=on -d exec,nochain -D "$TRACE" >/dev/null
 # A "Stopped execution of TB chain before" line means the traced block did
 # not run (an interrupt came first); it is traced again when it does.
-awk -v b="$BEGIN_PC" -v e="$END_PC" '
+awk -v b="$BEGIN_PC" -v e="$END_PC" -v all="$ALL" '
   /^Trace/   { split($4, f, "/"); pc = f[2]
                if (pc == b) { on = 1; n = 0 }
                if (on && pc == e) { counts[k++] = n - 3; on = 0 }
                else if (on) n++ ; next }
   /^Stopped/ { if (on) n-- }
   END {
-    split("model x=0.5mm,v=2.2,F=900N|model x=2mm,v=2.0,F=1300N|model x=3.5mm,v=1.9,F=1250N|model x=6mm,v=1.5,F=1250N (clamped)|model x=10mm,v=0.9,F=1300N (clamped)|model x=12mm,v=0.3,F=90kN (clamped, saturated)|control x=0.5mm,v=2.2 (sensor)|control x=3mm,v=1.9 (sensor)|control x=6mm,v=1.5 (sensor)|control x=10mm (estimator)|control x=11.95mm,v=0.2 (terminal)|control x=6mm,v=-1 (rebound)", names, "|")
+    # The same constants as firmware/src/board/pil.rs (mod icount) and the
+    # 10 kHz rate of the PIL image: they only label the windows.
+    v0 = 2.24; s_mm = 12.0; period_s = 1.0e-4; grid = 13; grid_step_mm = 1.0
+    split("50 400 1200 2500 90000", forces, " "); nf = 5
+    model = grid * nf
+    per_table = k / 2; per_pass = (per_table - model) / 2
+    if (k % 2 != 0 || per_pass < 1 || per_pass != int(per_pass)) {
+      print "unexpected number of measurements: " k > "/dev/stderr"; exit 1 }
+    a = v0 * v0 / (2 * s_mm * 1.0e-3)
     for (i = 0; i < k; i++) {
-      table = (i < 12) ? "flown table" : "flown + all v2 terms"
-      printf "%-22s %-46s %6d instructions\n", table, names[i % 12 + 1], counts[i]
+      j = i % per_table
+      table = (i < per_table) ? "flown table" : "flown + all v2 terms"
+      if (j < model) {
+        kind = "model step"
+        where = sprintf("x=%.0f mm, F=%s N", int(j / nf) * grid_step_mm, forces[j % nf + 1])
+      } else {
+        c = j - model; pass = (c < per_pass) ? "sensor" : "estimator"; c = c % per_pass
+        kind = "control step (" pass ")"; t = c * period_s
+        where = sprintf("period %d: x=%.2f mm, v=%.2f m/s", c, (v0 * t - 0.5 * a * t * t) * 1.0e3, v0 - a * t)
+      }
+      if (all) printf "%-20s | %-26s | %4d | window %d, %s\n", table, kind, counts[i], i, where
+      key = sprintf("%-20s | %-26s", table, kind)
+      if (!(key in max) || counts[i] > max[key]) { max[key] = counts[i]; at[key] = "window " i ", " where }
+      windows[key]++; sum[key] += counts[i]
+      if (!(key in seen)) { seen[key] = 1; order[m++] = key }
     }
-    if (k != 24) { print "expected 24 measurements, got " k > "/dev/stderr"; exit 1 }
+    for (q = 0; q < m; q++) {
+      key = order[q]
+      printf "%s | max %4d | mean %4.0f over %3d | at %s\n", key, max[key], sum[key] / windows[key], windows[key], at[key]
+    }
   }' "$TRACE"

@@ -359,6 +359,11 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
 /// `mre_mark_end`; the script counts the instructions executed from the
 /// entry of the first to the entry of the second and subtracts the 3 of
 /// the markers themselves (begin's `nop; bx lr` and the `bl` to end).
+///
+/// The windows come in a fixed order, which `icount.sh` labels (it repeats
+/// the constants below): per table (the flown one, then the same entries
+/// with every format 2 term), the model grid, then the control step over
+/// one whole drop with the velocity sensor, then the same drop without it.
 #[cfg(feature = "bench")]
 pub mod icount {
     use core::hint::black_box;
@@ -380,47 +385,84 @@ pub mod icount {
         cortex_m::asm::nop();
     }
 
-    /// Model step cases over the whole usable stroke, (x_mm, v_m_s,
-    /// target_force_n) on the compression branch: inside every entry's
-    /// stroke, beyond the stiff entries' strokes (x ≥ 4 mm: clamped), at the
-    /// end, and saturated (above every current: the longest scan).
-    const MODEL_CASES: [(f32, f32, f32); 6] = [
-        (0.5, 2.2, 900.0),
-        (2.0, 2.0, 1300.0),
-        (3.5, 1.9, 1250.0),
-        (6.0, 1.5, 1250.0),
-        (10.0, 0.9, 1300.0),
-        (12.0, 0.3, 90_000.0),
-    ];
-    /// Control step cases over one impact: (x_mm, velocity sensor).
-    const CONTROL_CASES: [(f32, Option<f32>); 6] = [
-        (0.5, Some(2.2)),
-        (3.0, Some(1.9)),
-        (6.0, Some(1.5)),
-        (10.0, None),
-        (11.95, Some(0.2)),
-        (6.0, Some(-1.0)),
-    ];
+    /// The drop (issue 11's limit case): 5.5 kg arriving at 2.24 m/s,
+    /// stopped at constant deceleration `a = v0²/(2·s)` within the 12 mm
+    /// usable stroke, so `x(t) = v0·t − a·t²/2`, `v(t) = v0 − a·t`, sampled
+    /// every control period from contact (t = 0) until the mass stops
+    /// (t = v0/a, 107 periods at 10 kHz), then `REBOUND_PERIODS` more on
+    /// the same parabola: the mass moving back out.
+    const DROP_V0_M_S: f32 = 2.24;
+    const DROP_STROKE_MM: f32 = 12.0;
+    const REBOUND_PERIODS: u32 = 10;
+    /// Model step grid: x = 0, 1, …, 12 mm, each at the drop's velocity
+    /// there (`v² = v0²·(1 − x/s)`), and each of these forces: from below
+    /// the 0 A force to above the 2 A force (saturated: every entry scanned).
+    const GRID_STEP_MM: f32 = 1.0;
+    const GRID_POINTS: u32 = 13;
+    const GRID_FORCES_N: [f32; 5] = [50.0, 400.0, 1200.0, 2500.0, 90_000.0];
 
-    /// The model step (the inverse at the law's target) over [`MODEL_CASES`].
-    fn model_steps(table: &mre_core::Table) {
-        for &(x_mm, v_m_s, force_n) in &MODEL_CASES {
-            let (x_mm, v_m_s, force_n) = (black_box(x_mm), black_box(v_m_s), black_box(force_n));
-            mre_mark_begin();
-            let r = table.current_for_branch_v(x_mm, v_m_s, Branch::Compression, force_n);
-            mre_mark_end();
-            black_box(r);
+    /// The drop's deceleration (m/s²).
+    fn drop_decel_m_s2() -> f32 {
+        DROP_V0_M_S * DROP_V0_M_S / (2.0 * DROP_STROKE_MM * 1.0e-3)
+    }
+
+    /// The drop's state (x mm, v m/s) at time `t_s` after contact.
+    fn drop_state(t_s: f32) -> (f32, f32) {
+        let a = drop_decel_m_s2();
+        ((DROP_V0_M_S * t_s - 0.5 * a * t_s * t_s) * 1.0e3, DROP_V0_M_S - a * t_s)
+    }
+
+    /// Control periods sampled over the drop: contact to stop, then the rebound.
+    fn drop_periods(period_s: f32) -> u32 {
+        // Periods up to and including the stop (t = v0/a), as an integer
+        // without a float-to-int rounding call: count them.
+        let t_stop_s = DROP_V0_M_S / drop_decel_m_s2();
+        let mut n = 0;
+        while (n as f32) * period_s <= t_stop_s {
+            n += 1;
+        }
+        n + REBOUND_PERIODS
+    }
+
+    /// The model step (the inverse at the law's target) over the grid.
+    fn model_steps(table: &Table) {
+        let a = drop_decel_m_s2();
+        for i in 0..GRID_POINTS {
+            let x_mm = i as f32 * GRID_STEP_MM;
+            // At the stop v² rounds to ±0: no square root of a negative.
+            let v2 = DROP_V0_M_S * DROP_V0_M_S - 2.0 * a * x_mm * 1.0e-3;
+            let v_m_s = if v2 > 0.0 {
+                mre_core::math::sqrt_precise(v2)
+            } else {
+                0.0
+            };
+            for &force_n in &GRID_FORCES_N {
+                let (x_mm, v_m_s, force_n) = (black_box(x_mm), black_box(v_m_s), black_box(force_n));
+                mre_mark_begin();
+                let r = table.current_for_branch_v(x_mm, v_m_s, Branch::Compression, force_n);
+                mre_mark_end();
+                black_box(r);
+            }
         }
     }
 
-    /// The whole control step (estimator, law, faults) over [`CONTROL_CASES`].
-    fn control_steps(ctl: &mut Controller) {
-        for &(x_mm, v) in &CONTROL_CASES {
-            let (x_mm, v) = (black_box(x_mm), black_box(v));
-            mre_mark_begin();
-            let cmd = ctl.step_sample(x_mm, v);
-            mre_mark_end();
-            black_box(cmd);
+    /// The whole control step (estimator, law, faults) over the drop, on a
+    /// fresh copy of `ctl` (as booted: idle, estimator unprimed), with the
+    /// velocity sensor, then again without it (the estimator's velocity).
+    fn control_steps(ctl: &Controller) {
+        let period_s = ctl.config().period_s();
+        let periods = drop_periods(period_s);
+        for with_sensor in [true, false] {
+            let mut c = *ctl;
+            for k in 0..periods {
+                let (x_mm, v_m_s) = drop_state(k as f32 * period_s);
+                let v = with_sensor.then_some(v_m_s);
+                let (x_mm, v) = (black_box(x_mm), black_box(v));
+                mre_mark_begin();
+                let cmd = c.step_sample(x_mm, v);
+                mre_mark_end();
+                black_box(cmd);
+            }
         }
     }
 
@@ -439,14 +481,14 @@ pub mod icount {
         model_steps(&flown);
         control_steps(ctl);
         let with_terms = Table::with_terms(flown.entries(), ModelTerms::EVERY_TERM);
-        let Ok(mut ctl_terms) = Controller::new(*ctl.config(), with_terms) else {
+        let Ok(ctl_terms) = Controller::new(*ctl.config(), with_terms) else {
             defmt::error!("icount: terms table refused");
             semihosting::process::exit(1)
         };
         if let Some(t) = ctl_terms.table().copied() {
             model_steps(&t);
         }
-        control_steps(&mut ctl_terms);
+        control_steps(&ctl_terms);
         defmt::info!("icount bench done");
         semihosting::process::exit(0)
     }
