@@ -227,8 +227,15 @@ pub fn stopping_force_n(mass_kg: f32, gravity_m_s2: f32, v_m_s: f32, remaining_m
     if remaining_mm.is_nan() || remaining_mm < MIN_REMAINING_MM {
         return None;
     }
+    Some(stopping_force_at(mass_kg, v_m_s, remaining_mm, mass_kg * gravity_m_s2))
+}
+
+/// [`stopping_force_n`] without its checks, for a remaining stroke the
+/// caller knows is finite and well above zero, with `m·g` given.
+#[inline(always)]
+fn stopping_force_at(mass_kg: f32, v_m_s: f32, remaining_mm: f32, weight_n: f32) -> f32 {
     let remaining_m = remaining_mm * 1.0e-3;
-    Some(mass_kg * v_m_s * v_m_s / (2.0 * remaining_m) + mass_kg * gravity_m_s2)
+    mass_kg * v_m_s * v_m_s / (2.0 * remaining_m) + weight_n
 }
 
 /// The stateful law: branch hysteresis and the slew limiter's memory.
@@ -409,40 +416,31 @@ impl ImpactLaw {
                 // instead of past it.
                 let x_mm = x_mm + v_m_s * cfg.period_s * 1.0e3;
                 let remaining_mm = cfg.stroke_max_mm - x_mm;
-                if remaining_mm < TERMINAL_MM {
-                    flags |= Flags::STROKE_EXHAUSTED;
-                }
                 // Not `f32::max`: that is a libcall on the target; the
                 // remaining stroke is finite here (the inputs were checked).
                 let planned_mm = if remaining_mm < TERMINAL_MM {
+                    flags |= Flags::STROKE_EXHAUSTED;
                     TERMINAL_MM
                 } else {
                     remaining_mm
                 };
-                match stopping_force_n(cfg.mass_kg, cfg.gravity_m_s2, v_m_s, planned_mm) {
-                    Some(force_n) => {
-                        target_force_n = force_n;
-                        let ask_n = force_n + self.force_error_n;
-                        let r = table.plan_current_v(x_mm, v_m_s, Branch::Compression, ask_n);
-                        flags |= r.flags;
-                        self.model_force_n = r.force_n;
-                        let wanted_a = if self.coil_alpha < 1.0 {
-                            self.anticipate(table, x_mm, v_m_s, ask_n, r.current_a, r.segment)
-                        } else {
-                            r.current_a
-                        };
-                        if wanted_a == r.current_a
-                            && !r.flags.intersects(Flags::SATURATED_HIGH.union(Flags::SATURATED_LOW))
-                        {
-                            expected_n = ask_n;
-                        }
-                        wanted_a
-                    }
-                    None => {
-                        flags |= Flags::STROKE_EXHAUSTED;
-                        cfg.current_max_a
-                    }
+                // At least TERMINAL_MM and finite: no check for "no stroke
+                // left" (`stopping_force_n`'s `None`) is needed here.
+                let force_n = stopping_force_at(cfg.mass_kg, v_m_s, planned_mm, self.weight_n);
+                target_force_n = force_n;
+                let ask_n = force_n + self.force_error_n;
+                let r = table.plan_current_v(x_mm, v_m_s, Branch::Compression, ask_n);
+                flags |= r.flags;
+                self.model_force_n = r.force_n;
+                let wanted_a = if self.coil_alpha < 1.0 {
+                    self.anticipate(table, x_mm, v_m_s, ask_n, r.current_a, r.segment)
+                } else {
+                    r.current_a
+                };
+                if wanted_a == r.current_a && !r.flags.intersects(Flags::SATURATED_HIGH.union(Flags::SATURATED_LOW)) {
+                    expected_n = ask_n;
                 }
+                wanted_a
             }
             // Idle between impacts with a lagging coil: pre-energise.
             Branch::Extension if self.coil_tau_s > 0.0 && x_mm <= CONTACT_MM => cfg.armed_current_a,
