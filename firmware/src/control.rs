@@ -364,14 +364,30 @@ impl Controller {
             Some(table) if !self.latched.is_fault() => self.law.step(table, x_mm, v_m_s),
             _ => self.law.fail_safe(self.latched),
         };
+        // A fail-safe period (or a table fault) has bookkeeping to do; the
+        // usual period only clears the bad-sample run (no fault is latched:
+        // it would have failed safe).
+        if cmd.flags.intersects(Flags::FAIL_SAFE.union(Flags::TABLE_FAULT)) {
+            self.account_fail_safe(cmd.flags);
+        } else {
+            self.bad_samples = 0;
+        }
+        cmd.flags |= self.latched;
+        cmd
+    }
+
+    /// The bookkeeping of a period whose command carries `flags` with
+    /// `FAIL_SAFE` or `TABLE_FAULT` (out of line: the usual period has none).
+    #[inline(never)]
+    #[cold]
+    fn account_fail_safe(&mut self, flags: Flags) {
         // The law flags a non-finite result of the table (it cannot happen
         // with a validated table): the table is not to be trusted again.
-        if cmd.flags.contains(Flags::TABLE_FAULT) {
+        if flags.contains(Flags::TABLE_FAULT) {
             self.latch(Flags::TABLE_FAULT);
         }
-
-        let input_fault = Flags(cmd.flags.0 & (Flags::SENSOR_RANGE.0 | Flags::NON_FINITE_INPUT.0));
-        if input_fault != Flags::NONE && cmd.flags.contains(Flags::FAIL_SAFE) {
+        let input_fault = Flags(flags.0 & (Flags::SENSOR_RANGE.0 | Flags::NON_FINITE_INPUT.0));
+        if input_fault != Flags::NONE && flags.contains(Flags::FAIL_SAFE) {
             self.bad_samples = self.bad_samples.saturating_add(1);
             if self.bad_samples >= self.cfg.range_fault_samples {
                 self.latch(input_fault);
@@ -379,11 +395,9 @@ impl Controller {
         } else if !self.latched.is_fault() {
             self.bad_samples = 0;
         }
-        if cmd.flags.contains(Flags::FAIL_SAFE) {
+        if flags.contains(Flags::FAIL_SAFE) {
             self.stats.failsafe_periods = self.stats.failsafe_periods.saturating_add(1);
         }
-        cmd.flags |= self.latched;
-        cmd
     }
 
     fn check_stuck(&mut self, x_mm: f32, v_measured_m_s: Option<f32>) {
