@@ -429,7 +429,10 @@ impl Controller {
             self.disagreeing = 0;
             return;
         }
-        if self.cfg.disagree_samples == 0 || !x_mm.is_finite() || !v_m_s.is_finite() {
+        // Both finite, in one comparison (false for NaN and ±inf; a sum
+        // beyond f32::MAX is far out of range: the range check's too).
+        let finite = math::abs(x_mm) + math::abs(v_m_s) <= f32::MAX;
+        if self.cfg.disagree_samples == 0 || !finite {
             // Non-finite samples are the range check's business.
             self.disagreeing = 0;
             return;
