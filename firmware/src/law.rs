@@ -20,8 +20,9 @@
 //!   wanted current itself stays within the coil's current limits. Because
 //!   the coil can only decay so fast, the wanted current is also capped so
 //!   that, decaying at the driver's limit, it can still meet what the plan
-//!   wants 0.1 τ ahead (predictive command; a second look-ahead at 0.5 τ
-//!   changed no `mre bench-control` result and was dropped). Between impacts
+//!   wants 0.1 τ ahead (predictive command), that current extrapolated from
+//!   the plan's change over the last period: no second model evaluation.
+//!   Between impacts
 //!   (extension branch with x at contact) it pre-energises the coil to
 //!   [`LawConfig::armed_current_a`].
 //!
@@ -251,13 +252,6 @@ pub struct ImpactLaw {
     /// The τ `coil_alpha` was computed for, and `1 − e^{−T/τ}`.
     coil_tau_s: f32,
     coil_alpha: f32,
-    /// The look-ahead times `Δ = LEAD_TAU · τ` (s), and per look-ahead
-    /// `[Δ·10³, ½·Δ²·10³]`: x (mm) moves `v·f[0] + a·f[1]` in Δ.
-    lead_s: [f32; LEAD_TAU.len()],
-    lead_factors: [[f32; 2]; LEAD_TAU.len()],
-    /// Per look-ahead, the wanted current at or below which it cannot bind:
-    /// `u_min + (current_min − u_min)·e^{LEAD_TAU}` (from the configuration).
-    lead_floor_a: [f32; LEAD_TAU.len()],
     /// The model's force at the last compression plan's current (N): what
     /// the sensor-delay prediction decelerates with, one period old.
     model_force_n: f32,
@@ -272,14 +266,20 @@ pub struct ImpactLaw {
     /// The observer's estimate of how much less force the plant gives than
     /// the model (N).
     force_error_n: f32,
+    /// The look-ahead's memory: the last plan's current (A), and whether
+    /// the last period planned one (a compression, not fail-safe).
+    last_plan_a: f32,
+    planned_last: bool,
+    /// The look-ahead `LEAD_TAU·τ` in control periods.
+    lead_periods: f32,
 }
 
 /// How far ahead the law looks for a lagging coil, in units of τ: the
 /// current must be able to decay to what the plan wants there.
-pub const LEAD_TAU: [f32; 1] = [0.1];
+pub const LEAD_TAU: f32 = 0.1;
 /// `e^{LEAD_TAU}`: how much a decaying coil's distance to the drive floor
 /// shrinks over the look-ahead (computed once, by hand: e^0.1).
-const LEAD_GROWTH: [f32; 1] = [1.105_170_9];
+const LEAD_GROWTH: f32 = 1.105_170_9;
 
 impl ImpactLaw {
     /// Refuses an invalid configuration instead of running with it.
@@ -296,15 +296,15 @@ impl ImpactLaw {
             coil_a: cfg.armed_current_a,
             coil_tau_s: 0.0,
             coil_alpha: 1.0,
-            lead_s: [0.0; LEAD_TAU.len()],
-            lead_factors: [[0.0; 2]; LEAD_TAU.len()],
-            lead_floor_a: LEAD_GROWTH.map(|growth| cfg.drive_min_a + (cfg.current_min_a - cfg.drive_min_a) * growth),
             model_force_n: 0.0,
             last_v_m_s: 0.0,
             weight_n: cfg.mass_kg * cfg.gravity_m_s2,
             mass_per_period_kg_s: cfg.mass_kg / cfg.period_s,
             expected_n: 0.0,
             force_error_n: 0.0,
+            last_plan_a: 0.0,
+            planned_last: false,
+            lead_periods: 0.0,
         })
     }
 
@@ -342,6 +342,7 @@ impl ImpactLaw {
     /// wait for a ramp.
     pub fn fail_safe(&mut self, flags: Flags) -> Command {
         self.last_current_a = self.cfg.failsafe_current_a;
+        self.planned_last = false;
         self.expected_n = 0.0;
         self.coil_a += self.coil_alpha * (self.cfg.failsafe_current_a - self.coil_a);
         Command {
@@ -433,7 +434,7 @@ impl ImpactLaw {
                 flags |= r.flags;
                 self.model_force_n = r.force_n;
                 let wanted_a = if self.coil_alpha < 1.0 {
-                    self.anticipate(table, x_mm, v_m_s, ask_n, r.current_a, r.segment)
+                    self.anticipate(r.current_a)
                 } else {
                     r.current_a
                 };
@@ -488,6 +489,9 @@ impl ImpactLaw {
         };
 
         self.last_current_a = current_a;
+        if branch != Branch::Compression {
+            self.planned_last = false;
+        }
         if branch == Branch::Compression {
             self.last_compression_current_a = current_a;
         }
@@ -523,49 +527,37 @@ impl ImpactLaw {
         } else {
             1.0
         };
-        for ((lead, factors), k) in self.lead_s.iter_mut().zip(&mut self.lead_factors).zip(LEAD_TAU) {
-            *lead = k * tau_s;
-            *factors = [*lead * 1.0e3, 0.5 * *lead * *lead * 1.0e3];
-        }
+        self.lead_periods = LEAD_TAU * tau_s / self.cfg.period_s;
     }
 
     /// The wanted current now, so that a coil that can only decay at the
     /// driver's limit (`i(t+Δ) ≥ u_min + (i(t) − u_min)·e^{−Δ/τ}`) is no
-    /// higher than the law's wanted current at the states `Δ` ahead
-    /// ([`LEAD_TAU`]) along its own plan (constant deceleration under
-    /// `force_n`): `min(i_now, u_min + (i_Δ − u_min)·e^{Δ/τ})`. `i_Δ` is
-    /// solved from the plan's segment (`segment`) outwards, not by a second
-    /// scan from the lowest current: a fraction of a millisecond ahead the
-    /// answer lies on that segment or a neighbour. Out of line, so that a
-    /// table without coil lag does not carry its registers.
-    #[inline(never)]
-    fn anticipate(&self, table: &Table, x_mm: f32, v_m_s: f32, force_n: f32, now_a: f32, segment: usize) -> f32 {
-        let cfg = &self.cfg;
-        let a_m_s2 = cfg.gravity_m_s2 - force_n / cfg.mass_kg;
-        let u_min = cfg.drive_min_a;
-        let mut wanted_a = now_a;
-        let leads = self.lead_s.iter().zip(&self.lead_factors);
-        for (((&lead_s, &[mm_per_m_s, mm_per_m_s2]), &growth), &floor_a) in
-            leads.zip(&LEAD_GROWTH).zip(&self.lead_floor_a)
-        {
-            // Even the lowest current ahead bounds no lower than this: skip
-            // the inverse when the wanted current is already below it.
-            if wanted_a <= floor_a {
-                continue;
-            }
-            let v_ahead = v_m_s + a_m_s2 * lead_s;
-            if v_ahead <= 0.0 {
-                break;
-            }
-            let x_ahead = x_mm + v_m_s * mm_per_m_s + a_m_s2 * mm_per_m_s2;
-            let ahead_a = table.current_on_segment_v(x_ahead, v_ahead, Branch::Compression, force_n, segment);
-            let ahead_a = math::clamp(ahead_a, cfg.current_min_a, cfg.current_max_a);
-            let bound_a = u_min + (ahead_a - u_min) * growth;
-            if bound_a < wanted_a {
-                wanted_a = bound_a;
-            }
+    /// higher than what the plan will want `Δ = LEAD_TAU·τ` ahead:
+    /// `min(i_now, u_min + (i_Δ − u_min)·e^{Δ/τ})`. `i_Δ` is the plan's
+    /// current extrapolated along its change over the last period (`Δ/T`
+    /// periods on), clamped to the output range: no model evaluation. The
+    /// first period of a compression has no trend and is not capped.
+    #[inline(always)]
+    fn anticipate(&mut self, now_a: f32) -> f32 {
+        let prev_a = self.last_plan_a;
+        self.last_plan_a = now_a;
+        let has_trend = self.planned_last;
+        self.planned_last = true;
+        if !has_trend {
+            return now_a;
         }
-        wanted_a
+        let cfg = &self.cfg;
+        let ahead_a = math::clamp(
+            now_a + (now_a - prev_a) * self.lead_periods,
+            cfg.current_min_a,
+            cfg.current_max_a,
+        );
+        let bound_a = cfg.drive_min_a + (ahead_a - cfg.drive_min_a) * LEAD_GROWTH;
+        if bound_a < now_a {
+            bound_a
+        } else {
+            now_a
+        }
     }
 
     /// The drive that takes the modelled coil current to `wanted_a` in one

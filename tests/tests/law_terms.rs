@@ -171,3 +171,39 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn the_look_ahead_caps_the_wanted_current_from_the_plans_trend() {
+    // τ = 0.5 ms at T = 100 µs: the look-ahead Δ = 0.1·τ is 0.5 periods,
+    // α = 1 − e^{−0.2}. Period 1 at contact plans above every entry's force
+    // (saturated high: I1, the strongest entry there); period 2 plans I2 on
+    // a segment. The plan's current Δ ahead, extrapolated along its change,
+    // is clamp(I2 + 0.5·(I2 − I1), 0, 2), and a coil decaying at the −3 A
+    // drive reaches at best u_min + (i − u_min)·e^{−0.1} in Δ: the law wants
+    // min(I2, −3 + (ahead + 3)·e^{0.1}).
+    let table = with_terms(lag(5.0e-4));
+    let cfg = fast();
+    let mut law = ImpactLaw::new(cfg).unwrap();
+    let plan = |x_mm: f32, v_m_s: f32| {
+        let x_plan = x_mm + v_m_s * cfg.period_s * 1.0e3;
+        let f = stopping_force_n(cfg.mass_kg, cfg.gravity_m_s2, v_m_s, cfg.stroke_max_mm - x_plan).unwrap();
+        table.current_for_branch_v(x_plan, v_m_s, mre_core::Branch::Compression, f)
+    };
+    let p1 = plan(0.0, 2.24);
+    assert!(
+        p1.flags.contains(mre_core::Flags::SATURATED_HIGH),
+        "contact asks more than any entry gives"
+    );
+    let i1 = p1.current_a as f64;
+    law.step(&table, 0.0, 2.24);
+    let i2 = plan(1.0, 2.0).current_a as f64;
+    assert!(i2 > 0.2 && i2 < 1.0, "{i2}");
+    let ahead = (i2 + 0.5 * (i2 - i1)).clamp(0.0, 2.0);
+    let expected = i2.min(-3.0 + (ahead + 3.0) * 0.1f64.exp());
+    assert!(expected < i2 - 1e-3, "the cap binds here: {expected} < {i2}");
+    let cmd = law.step(&table, 1.0, 2.0);
+    assert!(cmd.current_a.abs() < 3.0, "drive inside the supply: {}", cmd.current_a);
+    // An unclamped drive takes the modelled coil to the wanted current.
+    let coil = law.coil_estimate_a() as f64;
+    assert!((coil - expected).abs() < 1e-4, "{coil} vs {expected}");
+}
