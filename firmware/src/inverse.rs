@@ -171,15 +171,16 @@ impl Table {
         math::clamp(current_a, i0, i1)
     }
 
-    /// The look-ahead's inverse, started on the plan's segment: the current
+    /// An inverse started on a known segment (the law's look-ahead used it
+    /// until it extrapolated the plan's trend instead): the current
     /// whose interpolated force on `branch` at `x_mm`, `v_m_s` equals
     /// `target_force_n`, found from entries `lower` and `lower + 1` (the
     /// last segment when `lower` is the last entry) by walking down or up
     /// segment by segment until the target is bracketed, and clamped to the
     /// table's currents at its ends (a NaN target gives the segment's lower
     /// current). Where the force rises with current (the segments the law
-    /// walks) this is the full inverse's answer; a fraction of a millisecond
-    /// after the plan ([`PlanResult::segment`]) it costs two quartics, plus
+    /// walks) this is the full inverse's answer; near a known solution
+    /// ([`PlanResult::segment`]) it costs two quartics, plus
     /// one per segment crossed, instead of a scan from the lowest current.
     // `!(t > 0.0)`: a NaN fraction (flat segment, NaN target) must take the
     // lower current, in one comparison.
