@@ -226,8 +226,20 @@ pub fn stopping_force_n(mass_kg: f32, gravity_m_s2: f32, v_m_s: f32, remaining_m
     if remaining_mm.is_nan() || remaining_mm < MIN_REMAINING_MM {
         return None;
     }
+    Some(stopping_force_within_n(
+        mass_kg,
+        mass_kg * gravity_m_s2,
+        v_m_s,
+        remaining_mm,
+    ))
+}
+
+/// [`stopping_force_n`] with the weight `m·g` given, for a remaining stroke
+/// the caller keeps at or above a micrometre (the law: [`TERMINAL_MM`]).
+#[inline(always)]
+fn stopping_force_within_n(mass_kg: f32, weight_n: f32, v_m_s: f32, remaining_mm: f32) -> f32 {
     let remaining_m = remaining_mm * 1.0e-3;
-    Some(mass_kg * v_m_s * v_m_s / (2.0 * remaining_m) + mass_kg * gravity_m_s2)
+    mass_kg * v_m_s * v_m_s / (2.0 * remaining_m) + weight_n
 }
 
 /// The stateful law: branch hysteresis and the slew limiter's memory.
@@ -407,29 +419,23 @@ impl ImpactLaw {
                 } else {
                     remaining_mm
                 };
-                match stopping_force_n(cfg.mass_kg, cfg.gravity_m_s2, v_m_s, planned_mm) {
-                    Some(force_n) => {
-                        target_force_n = force_n;
-                        let ask_n = force_n + self.force_error_n;
-                        let r = table.current_for_branch_v(x_mm, v_m_s, Branch::Compression, ask_n);
-                        flags |= r.flags;
-                        let wanted_a = if self.coil_alpha < 1.0 {
-                            self.anticipate(table, x_mm, v_m_s, ask_n, r.current_a)
-                        } else {
-                            r.current_a
-                        };
-                        if wanted_a == r.current_a
-                            && !r.flags.intersects(Flags::SATURATED_HIGH.union(Flags::SATURATED_LOW))
-                        {
-                            expected_n = ask_n;
-                        }
-                        wanted_a
-                    }
-                    None => {
-                        flags |= Flags::STROKE_EXHAUSTED;
-                        cfg.current_max_a
-                    }
+                // Finite and at least TERMINAL_MM: the inputs were checked.
+                let force_n = stopping_force_within_n(cfg.mass_kg, self.weight_n, v_m_s, planned_mm);
+                target_force_n = force_n;
+                let ask_n = force_n + self.force_error_n;
+                let r = table.current_for_branch_v(x_mm, v_m_s, Branch::Compression, ask_n);
+                flags |= r.flags;
+                let wanted_a = if self.coil_alpha < 1.0 {
+                    self.anticipate(table, x_mm, v_m_s, ask_n, r.current_a)
+                } else {
+                    r.current_a
+                };
+                // The observer compares only where the model sets the force:
+                // the inverse inside the table, the look-ahead not capping.
+                if wanted_a == r.current_a && !r.flags.intersects(Flags::SATURATED_HIGH.union(Flags::SATURATED_LOW)) {
+                    expected_n = ask_n;
                 }
+                wanted_a
             }
             // Idle between impacts with a lagging coil: pre-energise.
             Branch::Extension if self.coil_tau_s > 0.0 && x_mm <= CONTACT_MM => cfg.armed_current_a,
