@@ -34,7 +34,7 @@
 //! of a τ that diagnosis got 13 % wrong leaves the coil short of the model's
 //! current for milliseconds, the plan re-plans that deficit upwards, and the
 //! peak grows (`mre bench-control`, τ = 2 ms: 1.51× the limit without the
-//! observer, 1.11× with it; BENCHMARKS.md).
+//! observer, 1.10× with it; BENCHMARKS.md).
 use crate::flags::Flags;
 use crate::math;
 use crate::model::{Branch, BranchSelector};
