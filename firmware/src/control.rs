@@ -390,14 +390,15 @@ impl Controller {
         if self.cfg.stuck_samples == 0 {
             return;
         }
+        // Bit-identical: a real moving sensor changes by at least one LSB.
+        // A changed reading (the usual case) settles it without the speed.
+        let unchanged = x_mm.to_bits() == self.last_x_mm.to_bits();
+        self.last_x_mm = x_mm;
         let moving = match v_measured_m_s {
             Some(v) => v.is_finite() && math::abs(v) >= self.cfg.stuck_min_speed_m_s,
             None => false,
         };
-        // Bit-identical: a real moving sensor changes by at least one LSB.
-        let unchanged = x_mm.to_bits() == self.last_x_mm.to_bits();
-        self.last_x_mm = x_mm;
-        if moving && unchanged {
+        if unchanged && moving {
             self.unchanged_moving = self.unchanged_moving.saturating_add(1);
             if self.unchanged_moving >= self.cfg.stuck_samples {
                 self.latch(Flags::SENSOR_STUCK);
@@ -409,18 +410,19 @@ impl Controller {
 
     fn check_disagree(&mut self, x_mm: f32, v_measured_m_s: Option<f32>, v_est_m_s: f32) {
         let Some(v_m_s) = v_measured_m_s else { return };
+        // Agreement first: one comparison on the usual path (false for NaN).
+        if math::abs(v_m_s - v_est_m_s) <= self.cfg.disagree_m_s {
+            self.disagreeing = 0;
+            return;
+        }
         if self.cfg.disagree_samples == 0 || !x_mm.is_finite() || !v_m_s.is_finite() {
             // Non-finite samples are the range check's business.
             self.disagreeing = 0;
             return;
         }
-        if math::abs(v_m_s - v_est_m_s) > self.cfg.disagree_m_s {
-            self.disagreeing = self.disagreeing.saturating_add(1);
-            if self.disagreeing >= self.cfg.disagree_samples {
-                self.latch(Flags::SENSOR_DISAGREE);
-            }
-        } else {
-            self.disagreeing = 0;
+        self.disagreeing = self.disagreeing.saturating_add(1);
+        if self.disagreeing >= self.cfg.disagree_samples {
+            self.latch(Flags::SENSOR_DISAGREE);
         }
     }
 

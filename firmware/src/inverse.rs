@@ -21,6 +21,21 @@ pub struct CurrentResult {
     pub flags: Flags,
 }
 
+/// [`CurrentResult`] with what the law reuses from the same scan
+/// ([`Table::plan_current_v`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlanResult {
+    pub current_a: f32,
+    pub flags: Flags,
+    /// The model's force at `current_a`: the target when it is met, else
+    /// the nearest force (N). The law keeps it as the force one period old.
+    pub force_n: f32,
+    /// The lower entry of the segment the current lies on (for a result
+    /// saturated high the last entry, low the first):
+    /// [`Table::current_on_segment_v`] starts from it.
+    pub segment: usize,
+}
+
 impl Table {
     /// Lowest current whose interpolated force on `branch` at `x_mm` equals
     /// `target_force_n`; see the module docs for the saturated cases.
@@ -37,17 +52,32 @@ impl Table {
     /// [`Table::current_for_branch`] at velocity `v_m_s`, which a version 2
     /// table's viscous term depends on (see [`crate::model::viscous_velocity`]).
     pub fn current_for_branch_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32) -> CurrentResult {
+        let r = self.plan_current_v(x_mm, v_m_s, branch, target_force_n);
+        CurrentResult {
+            current_a: r.current_a,
+            flags: r.flags,
+        }
+    }
+
+    /// [`Table::current_for_branch_v`], with the force at the result and its
+    /// segment, for the law (inlined there, so the scan is the same code).
+    #[inline(always)]
+    pub fn plan_current_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32) -> PlanResult {
         let entries = self.entries();
         let Some(first) = entries.first() else {
-            return CurrentResult {
+            return PlanResult {
                 current_a: 0.0,
                 flags: Flags::TABLE_FAULT,
+                force_n: 0.0,
+                segment: 0,
             };
         };
         if !target_force_n.is_finite() {
-            return CurrentResult {
+            return PlanResult {
                 current_a: first.current_a,
                 flags: Flags::NON_FINITE_INPUT,
+                force_n: 0.0,
+                segment: 0,
             };
         }
         if self.has_viscous() {
@@ -71,7 +101,7 @@ impl Table {
         branch: Branch,
         target_force_n: f32,
         with_extra: impl Fn(usize, f32) -> f32,
-    ) -> CurrentResult {
+    ) -> PlanResult {
         let entries = self.entries();
         if self.in_shared_stroke(x_mm) {
             let r = match branch {
@@ -99,7 +129,7 @@ impl Table {
     /// The current at fraction `t` of segment `lower` (t = 0 and t = 1:
     /// exactly the entries' currents): linear in I, or through atanh under saturation.
     #[inline]
-    fn current_of(&self, s: Solution) -> CurrentResult {
+    fn current_of(&self, s: Solution) -> PlanResult {
         let (i0, i1) = (s.i0, s.i1);
         let current_a = if s.t <= 0.0 {
             i0
@@ -113,20 +143,120 @@ impl Table {
                 i0 + s.t * (i1 - i0)
             }
         };
-        CurrentResult {
+        PlanResult {
             current_a,
             flags: s.flags,
+            force_n: s.force_n,
+            segment: s.lower,
         }
     }
 
     /// The current at fraction `t` of segment `lower` under saturation:
-    /// w = w0 + t·(w1 − w0), I = I_s·atanh(w). `math::atanh` and the forward
-    /// model's `math::tanh` agree to ~1e-6, so no refinement is needed. Out
-    /// of line: its registers would otherwise be saved on every call.
+    /// w = w0 + t·(w1 − w0), I = I_s·atanh(w). By the addition theorem
+    /// `atanh(w) − atanh(w0) = atanh(u)`, `u = t·Δw / (1 − w0² − t·Δw·w0)`
+    /// (the segment's constants precomputed in `Table::build`), and on a
+    /// segment narrow against I_s u is small, so I = I0 + I_s·atanh(u) by
+    /// its series: no logarithm and one divide. A wide segment takes the
+    /// logarithm. Out of line: its registers would otherwise be saved on
+    /// every call.
     #[inline(never)]
     fn saturated_current_a(&self, s: Solution, i_s: f32, i0: f32, i1: f32) -> f32 {
-        let w = self.knot(s.lower) + s.t * (self.knot(s.lower + 1) - self.knot(s.lower));
-        math::clamp(i_s * math::atanh(w), i0, i1)
+        let [dw, den0, lin] = self.saturation_segment(s.lower);
+        let u = s.t * dw / (den0 - s.t * lin);
+        let current_a = if u <= math::ATANH_SERIES_MAX {
+            i0 + i_s * math::atanh_small(u)
+        } else {
+            i_s * math::atanh(self.knot(s.lower) + s.t * dw)
+        };
+        math::clamp(current_a, i0, i1)
+    }
+
+    /// The look-ahead's inverse, started on the plan's segment: the current
+    /// whose interpolated force on `branch` at `x_mm`, `v_m_s` equals
+    /// `target_force_n`, found from entries `lower` and `lower + 1` (the
+    /// last segment when `lower` is the last entry) by walking down or up
+    /// segment by segment until the target is bracketed, and clamped to the
+    /// table's currents at its ends (a NaN target gives the segment's lower
+    /// current). Where the force rises with current (the segments the law
+    /// walks) this is the full inverse's answer; a fraction of a millisecond
+    /// after the plan ([`PlanResult::segment`]) it costs two quartics, plus
+    /// one per segment crossed, instead of a scan from the lowest current.
+    // `!(t > 0.0)`: a NaN fraction (flat segment, NaN target) must take the
+    // lower current, in one comparison.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    pub fn current_on_segment_v(
+        &self,
+        x_mm: f32,
+        v_m_s: f32,
+        branch: Branch,
+        target_force_n: f32,
+        lower: usize,
+    ) -> f32 {
+        let Some((mut k, mut e0, mut e1)) = self.segment_entries(lower) else {
+            // One entry: its current is the only one.
+            return self.entries().first().map_or(0.0, |e| e.current_a);
+        };
+        let entries = self.entries();
+        let shared = self.in_shared_stroke(x_mm);
+        // As the scan: a non-finite x counts as each entry's x_min.
+        let x_mm = if x_mm.is_finite() { x_mm } else { f32::NEG_INFINITY };
+        let v = if self.has_viscous() {
+            crate::model::viscous_velocity(v_m_s)
+        } else {
+            0.0
+        };
+        let force = |index: usize, e: &CurrentEntry| {
+            let quartic_n = if shared {
+                match branch {
+                    Branch::Compression => e.compression.eval(x_mm),
+                    Branch::Extension => e.extension.eval(x_mm),
+                }
+            } else {
+                self.clamped_force_n(index, e, branch, x_mm)
+            };
+            quartic_n + self.viscous(index) * v
+        };
+        let mut f0 = force(k, e0);
+        let mut f1;
+        if target_force_n < f0 {
+            // Below the segment (the usual way while a stroke goes on): its
+            // lower entry becomes the upper one, so the upper is never needed.
+            loop {
+                let Some(below) = k.checked_sub(1).and_then(|j| entries.get(j)) else {
+                    return e0.current_a;
+                };
+                (k, e1, f1, e0) = (k - 1, e0, f0, below);
+                f0 = force(k, e0);
+                if target_force_n >= f0 {
+                    break;
+                }
+            }
+        } else {
+            f1 = force(k + 1, e1);
+            while target_force_n > f1 {
+                let Some(above) = entries.get(k + 2) else {
+                    return e1.current_a;
+                };
+                (k, e0, f0, e1) = (k + 1, e1, f1, above);
+                f1 = force(k + 1, e1);
+            }
+        }
+        let t = (target_force_n - f0) / (f1 - f0);
+        if !(t > 0.0) {
+            return e0.current_a;
+        }
+        if !(t < 1.0) {
+            return e1.current_a;
+        }
+        self.current_of(Solution {
+            lower: k,
+            i0: e0.current_a,
+            i1: e1.current_a,
+            t,
+            flags: Flags::NONE,
+            force_n: target_force_n,
+        })
+        .current_a
     }
 
     /// [`Table::current_for_branch_v`] with the branch from the sign of `v_m_s`.
@@ -149,6 +279,8 @@ struct Solution {
     i1: f32,
     t: f32,
     flags: Flags,
+    /// The force at the result (the target when met).
+    force_n: f32,
 }
 
 /// The inverse over entries whose force at the fixed x is `force_at(index, entry)`.
@@ -162,14 +294,16 @@ fn solve(
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
     let Some(first) = entries.first() else {
-        return saturated(0, 0.0, Flags::TABLE_FAULT);
+        return saturated(0, 0.0, 0.0, Flags::TABLE_FAULT);
     };
     let mut f0 = force_at(0, first);
     // One loop per side of the target, so each entry costs one comparison
     // for the crossing. Until a crossing, every force lies on the starting
     // side, so the nearest one so far is the largest (below) or smallest
-    // (above); ties keep the lowest current.
-    let mut nearest = (0, f0, first.current_a);
+    // (above); ties keep the lowest current. A saturated result reports the
+    // top (or bottom) segment, not the nearest entry's: the look-ahead walks
+    // from there, and the scan need not carry an index.
+    let mut nearest = (f0, first.current_a);
     let mut i_prev = first.current_a;
     if f0 < target_force_n {
         for (k, entry) in entries.iter().enumerate().skip(1) {
@@ -179,15 +313,20 @@ fn solve(
             if !(force < target_force_n) {
                 return bracket(k, (i_prev, entry.current_a), f0, force, target_force_n);
             }
-            if force > nearest.1 {
-                nearest = (k, force, entry.current_a);
+            if force > nearest.0 {
+                nearest = (force, entry.current_a);
             }
             (f0, i_prev) = (force, entry.current_a);
         }
-        return saturated(nearest.0, nearest.2, Flags::SATURATED_HIGH);
+        return saturated(
+            entries.len().saturating_sub(1),
+            nearest.1,
+            nearest.0,
+            Flags::SATURATED_HIGH,
+        );
     }
     if f0 == target_force_n {
-        return saturated(0, first.current_a, Flags::NONE);
+        return saturated(0, first.current_a, f0, Flags::NONE);
     }
     for (k, entry) in entries.iter().enumerate().skip(1) {
         let force = force_at(k, entry);
@@ -195,12 +334,12 @@ fn solve(
         if force <= target_force_n {
             return bracket(k, (i_prev, entry.current_a), f0, force, target_force_n);
         }
-        if force < nearest.1 {
-            nearest = (k, force, entry.current_a);
+        if force < nearest.0 {
+            nearest = (force, entry.current_a);
         }
         (f0, i_prev) = (force, entry.current_a);
     }
-    saturated(nearest.0, nearest.2, Flags::SATURATED_LOW)
+    saturated(0, nearest.1, nearest.0, Flags::SATURATED_LOW)
 }
 
 /// The target lies between entry `k − 1` (force `f0`) and entry `k` (`f1`),
@@ -213,6 +352,7 @@ fn bracket(k: usize, currents: (f32, f32), f0: f32, f1: f32, target_force_n: f32
         i1: currents.1,
         t: (target_force_n - f0) / (f1 - f0),
         flags: Flags::NONE,
+        force_n: target_force_n,
     }
 }
 
@@ -220,12 +360,13 @@ fn bracket(k: usize, currents: (f32, f32), f0: f32, f1: f32, target_force_n: f32
 /// there, or no segment brackets it and this is the nearest knot, flagged
 /// with its side.
 #[inline(always)]
-fn saturated(lower: usize, current_a: f32, side: Flags) -> Solution {
+fn saturated(lower: usize, current_a: f32, force_n: f32, side: Flags) -> Solution {
     Solution {
         lower,
         i0: current_a,
         i1: current_a,
         t: 0.0,
         flags: side,
+        force_n,
     }
 }

@@ -10,7 +10,8 @@
 //!
 //! With a version 2 table the law also compensates what diagnosis found:
 //! - **sensor delay** `d`: the sampled x, v are predicted `d` ahead with the
-//!   model's own deceleration, `x + v·d`, `v + (g − F/m)·d`;
+//!   model's own deceleration, `x + v·d`, `v + (g − F/m)·d`, F the model's
+//!   force at the last plan's current (one period old);
 //! - **coil lag** τ: the law keeps a model of the coil current (first order,
 //!   `i += α·(u − i)`, `α = 1 − e^{−T/τ}`), and commands the drive `u` that
 //!   brings the modelled current to the wanted current in one period
@@ -255,8 +256,16 @@ pub struct ImpactLaw {
     /// The τ `coil_alpha` was computed for, and `1 − e^{−T/τ}`.
     coil_tau_s: f32,
     coil_alpha: f32,
-    /// The look-ahead times `LEAD_TAU · τ` (s).
+    /// The look-ahead times `Δ = LEAD_TAU · τ` (s), and per look-ahead
+    /// `[Δ·10³, ½·Δ²·10³]`: x (mm) moves `v·f[0] + a·f[1]` in Δ.
     lead_s: [f32; LEAD_TAU.len()],
+    lead_factors: [[f32; 2]; LEAD_TAU.len()],
+    /// Per look-ahead, the wanted current at or below which it cannot bind:
+    /// `u_min + (current_min − u_min)·e^{LEAD_TAU}` (from the configuration).
+    lead_floor_a: [f32; LEAD_TAU.len()],
+    /// The model's force at the last compression plan's current (N): what
+    /// the sensor-delay prediction decelerates with, one period old.
+    model_force_n: f32,
     /// The sampled velocity of the last period (the observer's Δv).
     last_v_m_s: f32,
     /// `m·g` and `m/T`: the measured force is `m·g − (m/T)·Δv`.
@@ -293,6 +302,9 @@ impl ImpactLaw {
             coil_tau_s: 0.0,
             coil_alpha: 1.0,
             lead_s: [0.0; LEAD_TAU.len()],
+            lead_factors: [[0.0; 2]; LEAD_TAU.len()],
+            lead_floor_a: LEAD_GROWTH.map(|growth| cfg.drive_min_a + (cfg.current_min_a - cfg.drive_min_a) * growth),
+            model_force_n: 0.0,
             last_v_m_s: 0.0,
             weight_n: cfg.mass_kg * cfg.gravity_m_s2,
             mass_per_period_kg_s: cfg.mass_kg / cfg.period_s,
@@ -423,10 +435,11 @@ impl ImpactLaw {
                 let force_n = stopping_force_within_n(cfg.mass_kg, self.weight_n, v_m_s, planned_mm);
                 target_force_n = force_n;
                 let ask_n = force_n + self.force_error_n;
-                let r = table.current_for_branch_v(x_mm, v_m_s, Branch::Compression, ask_n);
+                let r = table.plan_current_v(x_mm, v_m_s, Branch::Compression, ask_n);
                 flags |= r.flags;
+                self.model_force_n = r.force_n;
                 let wanted_a = if self.coil_alpha < 1.0 {
-                    self.anticipate(table, x_mm, v_m_s, ask_n, r.current_a)
+                    self.anticipate(table, x_mm, v_m_s, ask_n, r.current_a, r.segment)
                 } else {
                     r.current_a
                 };
@@ -518,8 +531,9 @@ impl ImpactLaw {
         } else {
             1.0
         };
-        for (lead, k) in self.lead_s.iter_mut().zip(LEAD_TAU) {
+        for ((lead, factors), k) in self.lead_s.iter_mut().zip(&mut self.lead_factors).zip(LEAD_TAU) {
             *lead = k * tau_s;
+            *factors = [*lead * 1.0e3, 0.5 * *lead * *lead * 1.0e3];
         }
     }
 
@@ -527,25 +541,33 @@ impl ImpactLaw {
     /// driver's limit (`i(t+Δ) ≥ u_min + (i(t) − u_min)·e^{−Δ/τ}`) is no
     /// higher than the law's wanted current at the states `Δ` ahead
     /// ([`LEAD_TAU`]) along its own plan (constant deceleration under
-    /// `force_n`): `min(i_now, u_min + (i_Δ − u_min)·e^{Δ/τ})`.
-    fn anticipate(&self, table: &Table, x_mm: f32, v_m_s: f32, force_n: f32, now_a: f32) -> f32 {
+    /// `force_n`): `min(i_now, u_min + (i_Δ − u_min)·e^{Δ/τ})`. `i_Δ` is
+    /// solved from the plan's segment (`segment`) outwards, not by a second
+    /// scan from the lowest current: a fraction of a millisecond ahead the
+    /// answer lies on that segment or a neighbour. Out of line, so that a
+    /// table without coil lag does not carry its registers.
+    #[inline(never)]
+    fn anticipate(&self, table: &Table, x_mm: f32, v_m_s: f32, force_n: f32, now_a: f32, segment: usize) -> f32 {
         let cfg = &self.cfg;
         let a_m_s2 = cfg.gravity_m_s2 - force_n / cfg.mass_kg;
         let u_min = cfg.drive_min_a;
         let mut wanted_a = now_a;
-        for (&lead_s, &growth) in self.lead_s.iter().zip(&LEAD_GROWTH) {
+        let leads = self.lead_s.iter().zip(&self.lead_factors);
+        for (((&lead_s, &[mm_per_m_s, mm_per_m_s2]), &growth), &floor_a) in
+            leads.zip(&LEAD_GROWTH).zip(&self.lead_floor_a)
+        {
             // Even the lowest current ahead bounds no lower than this: skip
             // the inverse when the wanted current is already below it.
-            if wanted_a <= u_min + (cfg.current_min_a - u_min) * growth {
+            if wanted_a <= floor_a {
                 continue;
             }
             let v_ahead = v_m_s + a_m_s2 * lead_s;
             if v_ahead <= 0.0 {
                 break;
             }
-            let x_ahead = x_mm + (v_m_s * lead_s + 0.5 * a_m_s2 * lead_s * lead_s) * 1.0e3;
-            let ahead = table.current_for_branch_v(x_ahead, v_ahead, Branch::Compression, force_n);
-            let ahead_a = math::clamp(ahead.current_a, cfg.current_min_a, cfg.current_max_a);
+            let x_ahead = x_mm + v_m_s * mm_per_m_s + a_m_s2 * mm_per_m_s2;
+            let ahead_a = table.current_on_segment_v(x_ahead, v_ahead, Branch::Compression, force_n, segment);
+            let ahead_a = math::clamp(ahead_a, cfg.current_min_a, cfg.current_max_a);
             let bound_a = u_min + (ahead_a - u_min) * growth;
             if bound_a < wanted_a {
                 wanted_a = bound_a;
@@ -568,22 +590,24 @@ impl ImpactLaw {
         drive
     }
 
-    /// x (mm) and v `delay_s` ahead of the samples, with the model's
-    /// deceleration at the modelled coil current (on contact only: before
-    /// it the mass is free).
+    /// x (mm) and v `delay_s` ahead of the samples, decelerated by the
+    /// force the model gave at the last compression plan's current (on
+    /// contact only: before it the mass is free; a rebound, which plans
+    /// nothing, keeps the last one). That force is one period old, which a
+    /// prediction over a delay of 0.1–1 ms (1–10 periods) tolerates, and it
+    /// costs no model evaluation of its own.
+    #[inline]
     fn predict(&self, table: &Table, x_mm: f32, v_m_s: f32, delay_s: f32) -> (f32, f32) {
-        let model_n = if x_mm > 0.0 {
-            table
-                .force_on_branch_v(x_mm, v_m_s, Branch::from_velocity(v_m_s), self.coil_a)
-                .force_n
+        // Not `f32::max` (a libcall on the target); NaN → 0 as it did.
+        let force_n = if x_mm > 0.0 && self.model_force_n > 0.0 {
+            self.model_force_n
         } else {
             0.0
         };
-        // Not `f32::max` (a libcall on the target); NaN → 0 as it did.
-        let force_n = if model_n > 0.0 { model_n } else { 0.0 };
         let a_m_s2 = self.cfg.gravity_m_s2 - force_n / self.cfg.mass_kg;
+        let [mm_per_m_s, mm_per_m_s2] = table.delay_factors();
         (
-            x_mm + (v_m_s * delay_s + 0.5 * a_m_s2 * delay_s * delay_s) * 1.0e3,
+            x_mm + v_m_s * mm_per_m_s + a_m_s2 * mm_per_m_s2,
             v_m_s + a_m_s2 * delay_s,
         )
     }

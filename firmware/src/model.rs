@@ -39,7 +39,10 @@ pub const VISCOUS_V_LIMIT_M_S: f32 = 100.0;
 /// NaN → 0.
 #[inline]
 pub fn viscous_velocity(v_m_s: f32) -> f32 {
-    if v_m_s.is_nan() {
+    // One comparison on the usual path (false for NaN and beyond the limit).
+    if math::abs(v_m_s) <= VISCOUS_V_LIMIT_M_S {
+        v_m_s
+    } else if v_m_s.is_nan() {
         0.0
     } else {
         math::clamp(v_m_s, -VISCOUS_V_LIMIT_M_S, VISCOUS_V_LIMIT_M_S)

@@ -263,6 +263,15 @@ pub struct Table {
     /// Each entry's interpolation knot: its current, or `tanh(I/I_s)` under
     /// saturation (computed once here, not per period).
     knots: [f32; MAX_CURRENTS],
+    /// Per segment `[w1 − w0, 1 − w0², (w1 − w0)·w0]` under saturation:
+    /// the constants of the inverse's atanh addition theorem (see
+    /// `inverse.rs`), computed once here, not per period.
+    saturation_segments: [[f32; 3]; MAX_CURRENTS],
+    /// The highest segment's lower entry (`len − 2`, 0 for one entry).
+    last_segment: usize,
+    /// The sensor delay d as the factors of a prediction across it:
+    /// `[d·10³, ½·d²·10³]` (mm per m/s, mm per m/s²).
+    delay_factors: [f32; 2],
     has_viscous: bool,
     /// The stroke every entry was fitted on (the intersection of their
     /// ranges; empty if they share none). Inside it no x needs clamping, which
@@ -304,6 +313,12 @@ impl Table {
             crc32: content_crc(version, entries, &terms),
             terms,
             knots: [0.0; MAX_CURRENTS],
+            saturation_segments: [[0.0; 3]; MAX_CURRENTS],
+            last_segment: entries.len().saturating_sub(2),
+            delay_factors: [
+                terms.sensor_delay_s * 1.0e3,
+                0.5 * terms.sensor_delay_s * terms.sensor_delay_s * 1.0e3,
+            ],
             has_viscous: terms.viscous_n_s_per_m.iter().take(entries.len()).any(|c| *c != 0.0),
             shared_x_min_mm: f32::NEG_INFINITY,
             shared_x_max_mm: f32::INFINITY,
@@ -348,6 +363,12 @@ impl Table {
             return Err(TableError::BadTerm {
                 term: "saturation_current_a",
             });
+        }
+        let knots = table.knots.get(..table.len).unwrap_or(&[]);
+        for (segment, pair) in table.saturation_segments.iter_mut().zip(knots.windows(2)) {
+            if let [w0, w1] = *pair {
+                *segment = [w1 - w0, 1.0 - w0 * w0, (w1 - w0) * w0];
+            }
         }
         Ok(table)
     }
@@ -395,6 +416,34 @@ impl Table {
     #[inline]
     pub(crate) fn knot(&self, index: usize) -> f32 {
         self.knots.get(index).copied().unwrap_or(0.0)
+    }
+
+    /// `[d·10³, ½·d²·10³]` for the sensor delay d: x (mm) moves
+    /// `v·f[0] + a·f[1]` across it.
+    #[inline]
+    pub fn delay_factors(&self) -> [f32; 2] {
+        self.delay_factors
+    }
+
+    /// Segment `index`'s saturation constants `[Δw, 1 − w0², Δw·w0]`.
+    #[inline]
+    pub(crate) fn saturation_segment(&self, index: usize) -> [f32; 3] {
+        self.saturation_segments.get(index).copied().unwrap_or([0.0, 1.0, 0.0])
+    }
+
+    /// Entries `lower` and `lower + 1`, `lower` capped at the highest
+    /// segment; `None` for a one-entry table.
+    #[inline]
+    pub(crate) fn segment_entries(&self, lower: usize) -> Option<(usize, &CurrentEntry, &CurrentEntry)> {
+        if self.len < 2 {
+            return None;
+        }
+        let k = if lower < self.last_segment {
+            lower
+        } else {
+            self.last_segment
+        };
+        Some((k, self.entries.get(k)?, self.entries.get(k + 1)?))
     }
 
     /// True when some entry has a viscous term (else the model skips it).

@@ -129,8 +129,10 @@ enum Command {
         /// reaches this stroke (mm), instead of the paper's velocities at all.
         #[arg(long)]
         full_stroke_mm: Option<f64>,
-        /// `drop` (drop impacts, the paper's law) or `mts` (sinusoidal shaker/MTS tests, a Dahl or
-        /// Bouc–Wen base law; effects none, viscous_damping, sensor_delay, end_stop, inertia).
+        /// `drop` (drop impacts, the paper's law), `instrumented` (the same drops with a striker
+        /// accelerometer and every second repeat at 2.75 kg: reveals `inertia`) or `mts` (sinusoidal
+        /// shaker/MTS tests, a Dahl or Bouc–Wen base law; effects none, viscous_damping,
+        /// sensor_delay, end_stop, inertia).
         #[arg(long, default_value = "drop")]
         campaign: String,
     },
@@ -183,6 +185,10 @@ enum Command {
         /// Also run this many shaker/MTS cases from a rate-independent base law (Dahl / Bouc–Wen).
         #[arg(long, default_value_t = 10)]
         mts_cases: usize,
+        /// Also run this many instrumented drop cases (two drop masses, striker accelerometer),
+        /// effects in turn, `inertia` included.
+        #[arg(long, default_value_t = 16)]
+        instrumented_cases: usize,
         /// Inject effects into these real recordings instead (data set folder).
         #[arg(long)]
         real: Option<PathBuf>,
@@ -512,10 +518,17 @@ fn run(cli: Cli) -> Result<()> {
             campaign,
             full_stroke_mm,
         } => {
-            anyhow::ensure!(campaign == "drop", "unknown campaign `{campaign}`; expected drop or mts");
+            let base = match campaign.as_str() {
+                "drop" => mre_host::plant::synth::SynthPlan::default(),
+                "instrumented" => mre_host::plant::synth::SynthPlan::instrumented(),
+                _ => anyhow::bail!("unknown campaign `{campaign}`; expected drop, instrumented or mts"),
+            };
             let plan = match full_stroke_mm {
-                Some(mm) => mre_host::plant::synth::SynthPlan::full_stroke(mm),
-                None => mre_host::plant::synth::SynthPlan::default(),
+                Some(mm) => mre_host::plant::synth::SynthPlan {
+                    full_stroke_mm: Some(mm),
+                    ..base
+                },
+                None => base,
             };
             let output =
                 mre_host::plant::synth::write_synth_with_plan(&effect, seed, &plan, &out, key.as_deref(), force)?;
@@ -593,13 +606,14 @@ fn run(cli: Cli) -> Result<()> {
         Command::BenchDiagnose {
             cases,
             mts_cases,
+            instrumented_cases: inst,
             seed,
             json,
             ..
         } => {
             let opts = mre_host::diagnose::DiagnoseOptions::default();
-            let progress = mre_host::progress::bar(cases as u64, "cases");
-            let summary = mre_host::diagnose::bench::run_bench(cases, mts_cases, seed, &opts, |k, c| {
+            let progress = mre_host::progress::bar((cases + mts_cases + inst) as u64, "cases");
+            let summary = mre_host::diagnose::bench::run_bench(cases, mts_cases, inst, seed, &opts, |k, c| {
                 progress.inc();
                 progress.println(&format!(
                     "case {:>3} seed {}: truth {:<20} diagnosed {:?} ({:.2} s); first round {:?}",

@@ -79,18 +79,22 @@ fn idle_with_a_lagging_coil_pre_energises_and_without_one_rests_at_the_minimum()
     assert!(cmd.current_a < 0.0, "drives the current down: {}", cmd.current_a);
 }
 
+/// The flown entries with a sensor delay `d` only, and a fresh fast law.
+fn delayed(d: f32) -> (Table, LawConfig, ImpactLaw) {
+    let table = with_terms(ModelTerms {
+        sensor_delay_s: d,
+        ..ModelTerms::NONE
+    });
+    (table, fast(), ImpactLaw::new(fast()).unwrap())
+}
+
 #[test]
 fn sensor_delay_is_predicted_with_the_free_fall_before_contact() {
     // Before contact (x < 0) no force acts: across d = 0.5 ms the mass moves
     // v·d + ½·g·d² and speeds up by g·d. The law targets the stopping force
     // of that predicted state, one period on.
     let d = 5.0e-4f32;
-    let table = with_terms(ModelTerms {
-        sensor_delay_s: d,
-        ..ModelTerms::NONE
-    });
-    let cfg = fast();
-    let mut law = ImpactLaw::new(cfg).unwrap();
+    let (table, cfg, mut law) = delayed(d);
     let (x_mm, v) = (-0.5f32, 2.0f32);
     let cmd = law.step(&table, x_mm, v);
     let x_p = -0.5 + (2.0 * 5.0e-4 + 0.5 * 9.81 * 2.5e-7) * 1.0e3;
@@ -106,6 +110,40 @@ fn sensor_delay_is_predicted_with_the_free_fall_before_contact() {
     // Without the delay the target is that of the sample itself (lower).
     let plain = ImpactLaw::new(cfg).unwrap().step(&lagged_free(), x_mm, v);
     assert!(plain.target_force_n < cmd.target_force_n);
+}
+
+#[test]
+fn in_contact_the_delay_is_predicted_with_the_last_plans_force() {
+    // On contact the prediction decelerates with the force the model gave at
+    // the previous compression plan's current: there the target (met, not
+    // saturated), F1. Across d the mass moves v·d + ½·a·d² with
+    // a = g − F1/m and slows by a·d; the law then plans for the end of its
+    // period and targets m·v²/(2r) + m·g for that state.
+    let d = 5.0e-4f32;
+    let (table, cfg, mut law) = delayed(d);
+    let first = law.step(&table, 2.0, 2.0);
+    assert!(
+        !first
+            .flags
+            .intersects(mre_core::Flags::SATURATED_HIGH | mre_core::Flags::SATURATED_LOW),
+        "{first:?}"
+    );
+    let f1 = f64::from(first.target_force_n);
+    let (x2, v2) = (2.2f64, 1.95f64);
+    let cmd = law.step(&table, x2 as f32, v2 as f32);
+    let (m, g, dd, t) = (5.5f64, 9.81f64, f64::from(d), 1.0e-4f64);
+    let a = g - f1 / m;
+    let x_p = x2 + (v2 * dd + 0.5 * a * dd * dd) * 1.0e3;
+    let v_p = v2 + a * dd;
+    let x_end = x_p + v_p * t * 1.0e3;
+    let expected = m * v_p * v_p / (2.0 * (f64::from(cfg.stroke_max_mm) - x_end) * 1.0e-3) + m * g;
+    let got = f64::from(cmd.target_force_n);
+    assert!((got - expected).abs() < 1e-4 * expected, "{got} vs {expected}");
+    // The first step had no plan yet: the mass counted as free (a = g).
+    let v_free = 2.0 + g * dd;
+    let x_free = 2.0 + (2.0 * dd + 0.5 * g * dd * dd) * 1.0e3 + v_free * t * 1.0e3;
+    let free = m * v_free * v_free / (2.0 * (f64::from(cfg.stroke_max_mm) - x_free) * 1.0e-3) + m * g;
+    assert!((f1 - free).abs() < 1e-4 * free, "{f1} vs {free}");
 }
 
 proptest! {

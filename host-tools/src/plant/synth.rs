@@ -6,7 +6,7 @@
 //! (effect choice, base plant, effect parameters, test campaign), and every
 //! recording's noise has its own seed, so the output is byte-identical for a
 //! seed whatever the thread count.
-use super::effects::{draw_effect, Effect, EffectScale, EFFECT_NAMES};
+use super::effects::{draw_effect, Effect, EffectScale, EFFECT_NAMES, INSTRUMENTED_EFFECT_NAMES};
 use super::law::LawParams;
 use super::measure::MeasurementModel;
 use super::stepper::{simulate, CurrentSource, ImpactConfig, Plant, Trajectory};
@@ -53,6 +53,38 @@ pub struct SynthPlan {
     /// stroke as the soft ones are (see [`SynthPlan::full_stroke`]). `None`:
     /// the same velocities at every current (the paper's drop test).
     pub full_stroke_mm: Option<f64>,
+    /// A second drop mass (kg): when set, every even-numbered repeat of a
+    /// constant-current test drops this mass instead of `mass_kg` (an
+    /// instrumented drop tower's carriage with or without its added-mass
+    /// plates), from the height that gives it the same impact energy:
+    /// velocities × √(mass_kg / second_mass_kg). Controlled impacts keep
+    /// `mass_kg`.
+    pub second_mass_kg: Option<f64>,
+    /// A striker accelerometer: when set, every recording has an
+    /// `acceleration_m_s2` column.
+    pub accelerometer: Option<Accelerometer>,
+}
+
+/// The striker accelerometer of an instrumented drop tower. It records the
+/// drop mass's acceleration ẍ (positive compressing, the derivative of the
+/// velocity channel: +g in free fall, g − F/M in contact).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Accelerometer {
+    /// Noise, 1 σ (m/s²).
+    pub noise_m_s2: f64,
+    /// One ADC count (m/s²).
+    pub lsb_m_s2: f64,
+}
+
+impl Default for Accelerometer {
+    /// A ±500 g piezo-electric accelerometer on a 16-bit channel, 2 m/s²
+    /// of noise (the 2 A drops of the light carriage reach ~2500 m/s²).
+    fn default() -> Self {
+        Self {
+            noise_m_s2: 2.0,
+            lsb_m_s2: 2.0 * 500.0 * 9.81 / 65_536.0,
+        }
+    }
 }
 
 impl Default for SynthPlan {
@@ -86,6 +118,8 @@ impl Default for SynthPlan {
             // (2 A, stiffest law).
             step_at_s: 0.8e-3,
             full_stroke_mm: None,
+            second_mass_kg: None,
+            accelerometer: None,
         }
     }
 }
@@ -100,6 +134,56 @@ impl SynthPlan {
             full_stroke_mm: Some(stroke_mm),
             ..Self::default()
         }
+    }
+
+    /// The default campaign on an instrumented drop tower: a striker
+    /// accelerometer, and every second repeat dropped with the carriage's
+    /// added mass removed (2.75 kg instead of 5.5 kg). The only drop
+    /// campaign in which `inertia` is identifiable: at one mass `a = g −
+    /// F/M`, so `m_s·a` is a scale on F that the quartics absorb; with two
+    /// masses the same force comes with two accelerations.
+    pub fn instrumented() -> Self {
+        Self {
+            second_mass_kg: Some(2.75),
+            accelerometer: Some(Accelerometer::default()),
+            ..Self::default()
+        }
+    }
+
+    /// Can `inertia` be identified from this campaign? It needs the
+    /// acceleration recorded and not proportional to the force: two drop
+    /// masses (so at least two repeats) and an accelerometer.
+    pub fn reveals_inertia(&self) -> bool {
+        self.accelerometer.is_some() && self.repeats >= 2 && self.second_mass_kg.is_some_and(|m| m != self.mass_kg)
+    }
+
+    /// The names `random` picks from on this campaign.
+    pub fn effect_names(&self) -> &'static [&'static str] {
+        if self.reveals_inertia() {
+            &INSTRUMENTED_EFFECT_NAMES
+        } else {
+            &EFFECT_NAMES
+        }
+    }
+
+    /// The drop mass of a constant-current test's `repeat` (1-based).
+    fn mass_for_repeat_kg(&self, repeat: u32) -> f64 {
+        match self.second_mass_kg {
+            Some(m) if repeat.is_multiple_of(2) => m,
+            _ => self.mass_kg,
+        }
+    }
+
+    /// Impact velocity factor of a drop of `mass_kg`: the same impact energy
+    /// as `self.mass_kg` at the planned velocity, so both masses reach about
+    /// the same stroke (an end stop is met by both; the force ranges overlap).
+    fn energy_matched_factor(&self, mass_kg: f64) -> f64 {
+        (self.mass_kg / mass_kg).sqrt()
+    }
+
+    /// Every drop mass of the constant-current tests.
+    fn drop_masses_kg(&self) -> Vec<f64> {
+        std::iter::once(self.mass_kg).chain(self.second_mass_kg).collect()
     }
 }
 
@@ -145,7 +229,7 @@ pub const SYNTH_PRECISION: Precision = Precision {
     x_mm: Some(4),
     v_m_s: Some(4),
     force_n: Some(1),
-    accel_m_s2: None,
+    accel_m_s2: Some(2),
     current_a: Some(3),
     temperature_c: Some(2),
 };
@@ -168,18 +252,31 @@ pub(crate) fn stream(seed: u64, id: u64) -> ChaCha8Rng {
 }
 
 /// `random` → one of [`EFFECT_NAMES`] (`none` included) picked by the seed;
-/// any other name is checked and returned.
+/// any other name (`inertia` included) is checked and returned.
 pub fn resolve_effect_name(effect: &str, seed: u64) -> Result<&'static str> {
+    resolve_effect_name_from(effect, seed, &EFFECT_NAMES)
+}
+
+/// [`resolve_effect_name`] with `random` picking from the names `plan` can reveal.
+pub fn resolve_effect_name_for(effect: &str, seed: u64, plan: &SynthPlan) -> Result<&'static str> {
+    resolve_effect_name_from(effect, seed, plan.effect_names())
+}
+
+fn resolve_effect_name_from(effect: &str, seed: u64, random_from: &[&'static str]) -> Result<&'static str> {
     if effect == "random" {
-        let i = stream(seed, 1).random_range(0..EFFECT_NAMES.len());
-        return Ok(EFFECT_NAMES[i]);
+        let i = stream(seed, 1).random_range(0..random_from.len());
+        return Ok(random_from[i]);
     }
-    EFFECT_NAMES.iter().copied().find(|n| *n == effect).with_context(|| {
-        format!(
-            "unknown effect `{effect}`; expected one of {} or `random`",
-            EFFECT_NAMES.join(", ")
-        )
-    })
+    INSTRUMENTED_EFFECT_NAMES
+        .iter()
+        .copied()
+        .find(|n| *n == effect)
+        .with_context(|| {
+            format!(
+                "unknown effect `{effect}`; expected one of {} or `random`",
+                INSTRUMENTED_EFFECT_NAMES.join(", ")
+            )
+        })
 }
 
 /// The base plant for a seed: law parameters and noise varied around the
@@ -222,22 +319,31 @@ pub fn effect_scale(base: &Plant, plan: &SynthPlan) -> Result<EffectScale> {
         .copied()
         .fold(f64::INFINITY, f64::min);
     let fastest = plan.velocities_m_s.iter().copied().fold(0.0, f64::max);
-    let cfg = ImpactConfig {
-        mass_kg: plan.mass_kg,
-        impact_velocity_m_s: fastest,
-        ..ImpactConfig::default()
+    let mut longest = EffectScale {
+        longest_stroke_mm: 0.0,
+        peak_force_at_longest_n: 0.0,
     };
-    let s = simulate(base, &cfg, CurrentSource::Constant(lowest_a))?.summary;
-    Ok(EffectScale {
-        longest_stroke_mm: s.max_stroke_mm,
-        peak_force_at_longest_n: s.peak_force_n,
-    })
+    for mass_kg in plan.drop_masses_kg() {
+        let cfg = ImpactConfig {
+            mass_kg,
+            impact_velocity_m_s: fastest * plan.energy_matched_factor(mass_kg),
+            ..ImpactConfig::default()
+        };
+        let s = simulate(base, &cfg, CurrentSource::Constant(lowest_a))?.summary;
+        if s.max_stroke_mm > longest.longest_stroke_mm {
+            longest = EffectScale {
+                longest_stroke_mm: s.max_stroke_mm,
+                peak_force_at_longest_n: s.peak_force_n,
+            };
+        }
+    }
+    Ok(longest)
 }
 
 /// The plant for (effect, seed): the seed's base plant plus the effect with
 /// parameters drawn from the seed.
 pub fn draw_plant(effect: &str, seed: u64, plan: &SynthPlan) -> Result<Plant> {
-    let name = resolve_effect_name(effect, seed)?;
+    let name = resolve_effect_name_for(effect, seed, plan)?;
     let base = draw_base_plant(seed);
     let scale = effect_scale(&base, plan)?;
     let effect = draw_effect(name, &mut stream(seed, 3), scale)?;
@@ -252,6 +358,9 @@ struct Test {
     role: Role,
     nominal_velocity_m_s: f64,
     repeat: u32,
+    mass_kg: f64,
+    /// Name the mass in the file (campaigns with two drop masses).
+    mass_in_name: bool,
     sequence: u32,
     actual_velocity_m_s: f64,
     recorded_velocity_m_s: f64,
@@ -267,6 +376,8 @@ impl Test {
             role,
             nominal_velocity_m_s,
             repeat,
+            mass_kg: 0.0,
+            mass_in_name: false,
             sequence: 0,
             actual_velocity_m_s: nominal_velocity_m_s,
             recorded_velocity_m_s: nominal_velocity_m_s,
@@ -281,6 +392,10 @@ impl Test {
                 "step_i{:.1}-{:.1}_v{:.2}.csv",
                 self.current_a, to_a, self.nominal_velocity_m_s
             ),
+            None if self.mass_in_name => format!(
+                "i{:.1}_v{:.2}_m{:.2}_r{}.csv",
+                self.current_a, self.nominal_velocity_m_s, self.mass_kg, self.repeat
+            ),
             None => format!(
                 "i{:.1}_v{:.2}_r{}.csv",
                 self.current_a, self.nominal_velocity_m_s, self.repeat
@@ -292,6 +407,10 @@ impl Test {
 /// `plant`: the plant the drop heights of a full-stroke plan are chosen on.
 fn plan_tests(plan: &SynthPlan, seed: u64, plant: &Plant) -> Result<Vec<Test>> {
     ensure!(plan.repeats >= 1, "at least one repeat");
+    ensure!(
+        plan.drop_masses_kg().iter().all(|m| m.is_finite() && *m > 0.0),
+        "drop masses must be positive"
+    );
     ensure!(!plan.velocities_m_s.is_empty(), "at least one impact velocity");
     ensure!(
         plan.step_at_s.is_finite() && plan.step_at_s > 0.0,
@@ -312,15 +431,23 @@ fn plan_tests(plan: &SynthPlan, seed: u64, plant: &Plant) -> Result<Vec<Test>> {
                 None => 1.0,
             };
             for &v in &plan.velocities_m_s {
-                let v = (v * scale * 100.0).round() / 100.0;
                 for repeat in 1..=plan.repeats {
-                    tests.push(Test::new(current_a, None, role, v, repeat));
+                    let mass_kg = plan.mass_for_repeat_kg(repeat);
+                    let v = (v * scale * plan.energy_matched_factor(mass_kg) * 100.0).round() / 100.0;
+                    tests.push(Test {
+                        mass_kg,
+                        mass_in_name: plan.second_mass_kg.is_some(),
+                        ..Test::new(current_a, None, role, v, repeat)
+                    });
                 }
             }
         }
     }
     for c in &plan.controlled {
-        tests.push(Test::new(c.from_a, Some(c.to_a), Role::Validate, c.velocity_m_s, 1));
+        tests.push(Test {
+            mass_kg: plan.mass_kg,
+            ..Test::new(c.from_a, Some(c.to_a), Role::Validate, c.velocity_m_s, 1)
+        });
     }
     let mut rng = stream(seed, 4);
     // Shuffled run order.
@@ -349,14 +476,53 @@ fn plan_tests(plan: &SynthPlan, seed: u64, plant: &Plant) -> Result<Vec<Test>> {
     Ok(tests)
 }
 
+/// Runs one test and returns what the instruments recorded.
+///
+/// With an accelerometer or a striker below the load cell (`inertia`) the
+/// plant runs on an ideal instrument and is measured here: both need the
+/// true acceleration at each sample, `a = g − F/M` with F the undelayed
+/// contact force, which the stepper does not record. The load cell then
+/// reads `F(t − τ) + m_s·a` (τ of `sensor_delay`, m_s of `inertia`; one
+/// effect per plant), every channel with its noise and ADC step.
+fn record(
+    plant: &Plant,
+    cfg: &ImpactConfig,
+    source: CurrentSource<'_>,
+    command_per_sample: bool,
+    accelerometer: Option<&Accelerometer>,
+) -> Result<Samples> {
+    let m_s_kg = plant.effect.inertia_mass_kg();
+    if accelerometer.is_none() && m_s_kg == 0.0 {
+        return Ok(to_samples(&simulate(plant, cfg, source)?, command_per_sample, None));
+    }
+    let ideal = Plant {
+        measurement: plant.measurement.ideal(),
+        ..plant.clone()
+    };
+    let mut t = simulate(&ideal, cfg, source)?;
+    let m = &plant.measurement;
+    let mut rng = ChaCha8Rng::seed_from_u64(cfg.noise_seed);
+    let mut accel = Vec::with_capacity(t.samples.len());
+    for s in &mut t.samples {
+        let a_m_s2 = cfg.gravity_m_s2 - plant.force_n(s.x_mm, s.v_m_s, s.current_a, cfg.sequence) / cfg.mass_kg;
+        s.x_mm = MeasurementModel::read(s.x_mm, m.x_noise_mm, m.x_lsb_mm, &mut rng);
+        s.v_m_s = MeasurementModel::read(s.v_m_s, m.v_noise_m_s, m.v_lsb_m_s, &mut rng);
+        s.force_n = MeasurementModel::read(s.force_n + m_s_kg * a_m_s2, m.force_noise_n, m.force_lsb_n, &mut rng);
+        if let Some(acc) = accelerometer {
+            accel.push(MeasurementModel::read(a_m_s2, acc.noise_m_s2, acc.lsb_m_s2, &mut rng));
+        }
+    }
+    Ok(to_samples(&t, command_per_sample, accelerometer.map(|_| accel)))
+}
+
 /// `command_per_sample`: write the coil command as the `current_a` column.
-fn to_samples(t: &Trajectory, command_per_sample: bool) -> Samples {
+fn to_samples(t: &Trajectory, command_per_sample: bool, accel_m_s2: Option<Vec<f64>>) -> Samples {
     Samples {
         time_s: t.samples.iter().map(|s| s.time_s).collect(),
         x_mm: t.samples.iter().map(|s| s.x_mm).collect(),
         v_m_s: t.samples.iter().map(|s| s.v_m_s).collect(),
         force_n: t.samples.iter().map(|s| s.force_n).collect(),
-        accel_m_s2: None,
+        accel_m_s2,
         // The command (what the rig logs), not the coil current, so a lag
         // stays concealed.
         current_a: command_per_sample.then(|| t.samples.iter().map(|s| s.command_a).collect()),
@@ -391,7 +557,7 @@ pub fn synthesize_plant(plant: Plant, seed: u64, plan: &SynthPlan) -> Result<Syn
             // The coil is energised at the initial command before contact,
             // so a constant-current test has no transient even with a lag.
             let cfg = ImpactConfig {
-                mass_kg: plan.mass_kg,
+                mass_kg: test.mass_kg,
                 impact_velocity_m_s: test.actual_velocity_m_s,
                 coil_lag_s: plant.effect.coil_lag_s(),
                 initial_current_a: test.current_a,
@@ -405,7 +571,13 @@ pub fn synthesize_plant(plant: Plant, seed: u64, plan: &SynthPlan) -> Result<Syn
                 }
                 None => CurrentSource::Constant(test.current_a),
             };
-            let trajectory = simulate(&plant, &cfg, source)?;
+            let samples = record(
+                &plant,
+                &cfg,
+                source,
+                test.step_to_a.is_some(),
+                plan.accelerometer.as_ref(),
+            )?;
             let mut tags = BTreeMap::new();
             if test.step_to_a.is_some() {
                 let ms = (plan.step_at_s * 1.0e6).round() / 1.0e3;
@@ -415,22 +587,25 @@ pub fn synthesize_plant(plant: Plant, seed: u64, plan: &SynthPlan) -> Result<Syn
                 file: test.file_name(),
                 current_a: test.current_a,
                 role: test.role,
-                mass_kg: Some(plan.mass_kg),
+                mass_kg: Some(test.mass_kg),
                 impact_velocity_m_s: Some(test.recorded_velocity_m_s),
                 sequence: Some(test.sequence),
                 temperature_c: Some(test.temperature_c),
                 tags,
-                samples: to_samples(&trajectory, test.step_to_a.is_some()),
+                samples,
                 velocity_estimated: false,
             })
         })
         .collect::<Result<Vec<_>>>()?;
     let dataset = Dataset {
-        name: format!("synthetic drop impact, {} kg, seed {seed}", plan.mass_kg),
+        name: match plan.second_mass_kg {
+            Some(m) => format!("synthetic drop impact, {} and {m} kg, seed {seed}", plan.mass_kg),
+            None => format!("synthetic drop impact, {} kg, seed {seed}", plan.mass_kg),
+        },
         root: PathBuf::new(),
         recordings,
     };
-    let key = key_json(&plant, seed)?;
+    let key = key_json(&plant, seed, plan)?;
     Ok(SynthOutput {
         dataset,
         plant,
@@ -439,20 +614,48 @@ pub fn synthesize_plant(plant: Plant, seed: u64, plan: &SynthPlan) -> Result<Syn
     })
 }
 
-fn key_json(plant: &Plant, seed: u64) -> Result<serde_json::Value> {
+/// The answer key. Plain drop campaigns keep the key's original fields (the
+/// bundled keys stay byte-identical); an instrumented campaign adds its
+/// masses and accelerometer, and an effect the campaign cannot reveal is
+/// marked `"identifiable": false` with the reason, so a benchmark neither
+/// counts a miss as a failure nor a guess as a hit.
+fn key_json(plant: &Plant, seed: u64, plan: &SynthPlan) -> Result<serde_json::Value> {
     let effect = serde_json::to_value(&plant.effect)?;
     let parameters = effect
         .get("parameters")
         .cloned()
         .unwrap_or_else(|| serde_json::json!({}));
-    Ok(serde_json::json!({
+    let mut key = serde_json::json!({
         "effect": plant.effect.name(),
         "parameters": parameters,
         "seed": seed,
         "law": plant.law,
         "measurement": plant.measurement,
         "generator": "mre synth",
-    }))
+    });
+    if let Some(m) = plan.second_mass_kg {
+        key["drop_masses_kg"] = serde_json::json!([plan.mass_kg, m]);
+    }
+    if let Some(acc) = &plan.accelerometer {
+        key["accelerometer"] = serde_json::to_value(acc)?;
+    }
+    if plant.effect.name() == "inertia" && !plan.reveals_inertia() {
+        key["identifiable"] = serde_json::json!(false);
+        key["not_identifiable_because"] = serde_json::json!(
+            "one drop mass and no accelerometer: in a free drop a = g − F/M, so the striker's m_s·a is the \
+             scale 1 − m_s/M on the force, which the quartics absorb (record acceleration with two drop \
+             masses: `mre synth --campaign instrumented`)"
+        );
+    }
+    Ok(key)
+}
+
+/// Can the key's effect be identified from its campaign? (`false` only when
+/// the key says so.)
+pub fn key_identifiable(key: &serde_json::Value) -> bool {
+    key.get("identifiable")
+        .and_then(serde_json::Value::as_bool)
+        .unwrap_or(true)
 }
 
 /// Where the key goes by default: `<folder>.key.json` beside the folder.
