@@ -228,13 +228,18 @@ pub fn stopping_force_n(mass_kg: f32, gravity_m_s2: f32, v_m_s: f32, remaining_m
     if remaining_mm.is_nan() || remaining_mm < MIN_REMAINING_MM {
         return None;
     }
-    Some(stopping_force_at(mass_kg, v_m_s, remaining_mm, mass_kg * gravity_m_s2))
+    Some(stopping_force_within_n(
+        mass_kg,
+        mass_kg * gravity_m_s2,
+        v_m_s,
+        remaining_mm,
+    ))
 }
 
-/// [`stopping_force_n`] without its checks, for a remaining stroke the
-/// caller knows is finite and well above zero, with `m·g` given.
+/// [`stopping_force_n`] with the weight `m·g` given, for a remaining stroke
+/// the caller keeps at or above a micrometre (the law: [`TERMINAL_MM`]).
 #[inline(always)]
-fn stopping_force_at(mass_kg: f32, v_m_s: f32, remaining_mm: f32, weight_n: f32) -> f32 {
+fn stopping_force_within_n(mass_kg: f32, weight_n: f32, v_m_s: f32, remaining_mm: f32) -> f32 {
     let remaining_m = remaining_mm * 1.0e-3;
     mass_kg * v_m_s * v_m_s / (2.0 * remaining_m) + weight_n
 }
@@ -425,9 +430,8 @@ impl ImpactLaw {
                 } else {
                     remaining_mm
                 };
-                // At least TERMINAL_MM and finite: no check for "no stroke
-                // left" (`stopping_force_n`'s `None`) is needed here.
-                let force_n = stopping_force_at(cfg.mass_kg, v_m_s, planned_mm, self.weight_n);
+                // Finite and at least TERMINAL_MM: the inputs were checked.
+                let force_n = stopping_force_within_n(cfg.mass_kg, self.weight_n, v_m_s, planned_mm);
                 target_force_n = force_n;
                 let ask_n = force_n + self.force_error_n;
                 let r = table.plan_current_v(x_mm, v_m_s, Branch::Compression, ask_n);
@@ -438,6 +442,8 @@ impl ImpactLaw {
                 } else {
                     r.current_a
                 };
+                // The observer compares only where the model sets the force:
+                // the inverse inside the table, the look-ahead not capping.
                 if wanted_a == r.current_a && !r.flags.intersects(Flags::SATURATED_HIGH.union(Flags::SATURATED_LOW)) {
                     expected_n = ask_n;
                 }
