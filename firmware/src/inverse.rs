@@ -30,10 +30,6 @@ pub struct PlanResult {
     /// The model's force at `current_a`: the target when it is met, else
     /// the nearest force (N). The law keeps it as the force one period old.
     pub force_n: f32,
-    /// The lower entry of the segment the current lies on (for a result
-    /// saturated high the last entry, low the first):
-    /// [`Table::current_on_segment_v`] starts from it.
-    pub segment: usize,
 }
 
 impl Table {
@@ -69,7 +65,6 @@ impl Table {
                 current_a: 0.0,
                 flags: Flags::TABLE_FAULT,
                 force_n: 0.0,
-                segment: 0,
             };
         };
         if !target_force_n.is_finite() {
@@ -77,7 +72,6 @@ impl Table {
                 current_a: first.current_a,
                 flags: Flags::NON_FINITE_INPUT,
                 force_n: 0.0,
-                segment: 0,
             };
         }
         if self.has_viscous() {
@@ -147,7 +141,6 @@ impl Table {
             current_a,
             flags: s.flags,
             force_n: s.force_n,
-            segment: s.lower,
         }
     }
 
@@ -169,95 +162,6 @@ impl Table {
             i_s * math::atanh(self.knot(s.lower) + s.t * dw)
         };
         math::clamp(current_a, i0, i1)
-    }
-
-    /// An inverse started on a known segment (the law's look-ahead used it
-    /// until it extrapolated the plan's trend instead): the current
-    /// whose interpolated force on `branch` at `x_mm`, `v_m_s` equals
-    /// `target_force_n`, found from entries `lower` and `lower + 1` (the
-    /// last segment when `lower` is the last entry) by walking down or up
-    /// segment by segment until the target is bracketed, and clamped to the
-    /// table's currents at its ends (a NaN target gives the segment's lower
-    /// current). Where the force rises with current (the segments the law
-    /// walks) this is the full inverse's answer; near a known solution
-    /// ([`PlanResult::segment`]) it costs two quartics, plus
-    /// one per segment crossed, instead of a scan from the lowest current.
-    // `!(t > 0.0)`: a NaN fraction (flat segment, NaN target) must take the
-    // lower current, in one comparison.
-    #[allow(clippy::neg_cmp_op_on_partial_ord)]
-    pub fn current_on_segment_v(
-        &self,
-        x_mm: f32,
-        v_m_s: f32,
-        branch: Branch,
-        target_force_n: f32,
-        lower: usize,
-    ) -> f32 {
-        let Some((mut k, mut e0, mut e1)) = self.segment_entries(lower) else {
-            // One entry: its current is the only one.
-            return self.entries().first().map_or(0.0, |e| e.current_a);
-        };
-        let entries = self.entries();
-        let shared = self.in_shared_stroke(x_mm);
-        // As the scan: a non-finite x counts as each entry's x_min.
-        let x_mm = if x_mm.is_finite() { x_mm } else { f32::NEG_INFINITY };
-        let v = if self.has_viscous() {
-            crate::model::viscous_velocity(v_m_s)
-        } else {
-            0.0
-        };
-        let force = |index: usize, e: &CurrentEntry| {
-            let quartic_n = if shared {
-                match branch {
-                    Branch::Compression => e.compression.eval(x_mm),
-                    Branch::Extension => e.extension.eval(x_mm),
-                }
-            } else {
-                self.clamped_force_n(index, e, branch, x_mm)
-            };
-            quartic_n + self.viscous(index) * v
-        };
-        let mut f0 = force(k, e0);
-        let mut f1;
-        if target_force_n < f0 {
-            // Below the segment (the usual way while a stroke goes on): its
-            // lower entry becomes the upper one, so the upper is never needed.
-            loop {
-                let Some(below) = k.checked_sub(1).and_then(|j| entries.get(j)) else {
-                    return e0.current_a;
-                };
-                (k, e1, f1, e0) = (k - 1, e0, f0, below);
-                f0 = force(k, e0);
-                if target_force_n >= f0 {
-                    break;
-                }
-            }
-        } else {
-            f1 = force(k + 1, e1);
-            while target_force_n > f1 {
-                let Some(above) = entries.get(k + 2) else {
-                    return e1.current_a;
-                };
-                (k, e0, f0, e1) = (k + 1, e1, f1, above);
-                f1 = force(k + 1, e1);
-            }
-        }
-        let t = (target_force_n - f0) / (f1 - f0);
-        if !(t > 0.0) {
-            return e0.current_a;
-        }
-        if !(t < 1.0) {
-            return e1.current_a;
-        }
-        self.current_of(Solution {
-            lower: k,
-            i0: e0.current_a,
-            i1: e1.current_a,
-            t,
-            flags: Flags::NONE,
-            force_n: target_force_n,
-        })
-        .current_a
     }
 
     /// [`Table::current_for_branch_v`] with the branch from the sign of `v_m_s`.
@@ -302,8 +206,8 @@ fn solve(
     // for the crossing. Until a crossing, every force lies on the starting
     // side, so the nearest one so far is the largest (below) or smallest
     // (above); ties keep the lowest current. A saturated result reports the
-    // top (or bottom) segment, not the nearest entry's: the look-ahead walks
-    // from there, and the scan need not carry an index.
+    // top (or bottom) segment, not the nearest entry's, so the scan need not
+    // carry an index.
     let mut nearest = (f0, first.current_a);
     let mut i_prev = first.current_a;
     if f0 < target_force_n {

@@ -267,8 +267,6 @@ pub struct Table {
     /// the constants of the inverse's atanh addition theorem (see
     /// `inverse.rs`), computed once here, not per period.
     saturation_segments: [[f32; 3]; MAX_CURRENTS],
-    /// The highest segment's lower entry (`len − 2`, 0 for one entry).
-    last_segment: usize,
     /// The sensor delay d as the factors of a prediction across it:
     /// `[d·10³, ½·d²·10³]` (mm per m/s, mm per m/s²).
     delay_factors: [f32; 2],
@@ -314,7 +312,6 @@ impl Table {
             terms,
             knots: [0.0; MAX_CURRENTS],
             saturation_segments: [[0.0; 3]; MAX_CURRENTS],
-            last_segment: entries.len().saturating_sub(2),
             delay_factors: [
                 terms.sensor_delay_s * 1.0e3,
                 0.5 * terms.sensor_delay_s * terms.sensor_delay_s * 1.0e3,
@@ -429,21 +426,6 @@ impl Table {
     #[inline]
     pub(crate) fn saturation_segment(&self, index: usize) -> [f32; 3] {
         self.saturation_segments.get(index).copied().unwrap_or([0.0, 1.0, 0.0])
-    }
-
-    /// Entries `lower` and `lower + 1`, `lower` capped at the highest
-    /// segment; `None` for a one-entry table.
-    #[inline]
-    pub(crate) fn segment_entries(&self, lower: usize) -> Option<(usize, &CurrentEntry, &CurrentEntry)> {
-        if self.len < 2 {
-            return None;
-        }
-        let k = if lower < self.last_segment {
-            lower
-        } else {
-            self.last_segment
-        };
-        Some((k, self.entries.get(k)?, self.entries.get(k + 1)?))
     }
 
     /// True when some entry has a viscous term (else the model skips it).

@@ -103,39 +103,6 @@ fn saturated_inverse_maps_back_through_atanh_on_narrow_and_wide_segments() {
 }
 
 #[test]
-fn the_look_ahead_walks_from_the_plans_segment_to_the_bracketing_one() {
-    // Three linear entries, 0/1/2 A giving 100/300/400·x N. At x = 3 mm they
-    // give 300/900/1200 N: 1000 N lies a third of the way up 1–2 A
-    // (1.333 A, linear in I without saturation), 500 N a third of the way
-    // up 0–1 A (0.333 A).
-    let e = linear_entry;
-    let t = Table::with_terms(&[e(0.0, 100.0), e(1.0, 300.0), e(2.0, 400.0)], ModelTerms::NONE).unwrap();
-    let on = |lower, target| t.current_on_segment_v(3.0, 0.0, Branch::Compression, target, lower);
-    let close = |got: f32, want: f32| assert!((got - want).abs() < 1e-5, "{got} vs {want}");
-    close(on(1, 1000.0), 4.0 / 3.0);
-    // Started one segment too low or too high it walks there.
-    close(on(0, 1000.0), 4.0 / 3.0);
-    close(on(1, 500.0), 1.0 / 3.0);
-    // A lower past the last segment means the last one.
-    close(on(7, 1000.0), 4.0 / 3.0);
-    // Beyond every force: the table's end currents.
-    assert_eq!(on(1, 100.0), 0.0);
-    assert_eq!(on(0, 2000.0), 2.0);
-    // Beyond the stroke the clamped end forces are used: at 12 mm the
-    // entries give 1000/3000/4000 N, 3500 N lies half way up 1–2 A.
-    close(t.current_on_segment_v(12.0, 0.0, Branch::Compression, 3500.0, 0), 1.5);
-    // It is the full inverse's answer (the forces rise with current).
-    for target in [350.0, 600.0, 899.0, 901.0, 1100.0] {
-        let full = t.current_for_branch(3.0, Branch::Compression, target).current_a;
-        for lower in 0..3 {
-            close(on(lower, target), full);
-        }
-    }
-    // NaN target: the segment's lower current, never NaN.
-    assert_eq!(on(1, f32::NAN), 1.0);
-}
-
-#[test]
 fn a_version_1_table_is_the_paper_model_whatever_the_velocity() {
     let plain = Table::new(&linear_entries()).unwrap();
     assert_eq!(plain.terms(), &ModelTerms::NONE);
@@ -169,23 +136,6 @@ fn generated_with(terms: ModelTerms) -> Table {
 }
 
 proptest! {
-    /// On the flown entries with every term, from 1 mm on (where the force
-    /// rises with current at any drop speed), the look-ahead's walk from any
-    /// segment lands where the full inverse does.
-    #[test]
-    fn the_look_ahead_agrees_with_the_full_inverse_where_force_rises_with_current(
-        x_mm in 1.0f32..14.0,
-        v_m_s in 0.0f32..3.0,
-        current_a in 0.0f32..=2.0,
-        lower in 0usize..6,
-    ) {
-        let t = generated_with(ModelTerms::EVERY_TERM);
-        let target = t.force_on_branch_v(x_mm, v_m_s, Branch::Compression, current_a).force_n;
-        let full = t.current_for_branch_v(x_mm, v_m_s, Branch::Compression, target).current_a;
-        let walked = t.current_on_segment_v(x_mm, v_m_s, Branch::Compression, target, lower);
-        prop_assert!((walked - full).abs() <= 1e-6, "{walked} vs {full}");
-    }
-
     /// A force produced by some current is given back by the inverse: the
     /// current it returns (no higher than the one that made it) reproduces
     /// it, with the viscous term and the saturating variable in play.
