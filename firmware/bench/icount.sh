@@ -13,7 +13,8 @@
 # The windows (firmware/src/board/pil.rs, mod icount) come per table, first
 # the flown one (firmware/src/generated_table.rs), then the same entries with
 # every format 2 term (coil τ, sensor delay, viscous, saturation: the worst
-# path): the model step on a grid (x 0–12 mm × 5 forces, from below the 0 A
+# path), then with coil lag and sensor delay only (what `mre pil` flies for
+# controller (c)): the model step on a grid (x 0–12 mm × 5 forces, from below the 0 A
 # force to above the 2 A force), then the control step over one whole drop
 # (5.5 kg at 2.24 m/s stopped at constant deceleration within 12 mm, sampled
 # every 0.1 ms from contact to the stop plus 10 rebound periods) on a fresh
@@ -53,13 +54,14 @@ awk -v b="$BEGIN_PC" -v e="$END_PC" -v all="$ALL" '
     v0 = 2.24; s_mm = 12.0; period_s = 1.0e-4; grid = 13; grid_step_mm = 1.0
     split("50 400 1200 2500 90000", forces, " "); nf = 5
     model = grid * nf
-    per_table = k / 2; per_pass = (per_table - model) / 2
-    if (k % 2 != 0 || per_pass < 1 || per_pass != int(per_pass)) {
+    split("flown table|flown + all v2 terms|flown + lag, delay", names, "|"); tables = 3
+    per_table = k / tables; per_pass = (per_table - model) / 2
+    if (k % tables != 0 || per_pass < 1 || per_pass != int(per_pass)) {
       print "unexpected number of measurements: " k > "/dev/stderr"; exit 1 }
     a = v0 * v0 / (2 * s_mm * 1.0e-3)
     for (i = 0; i < k; i++) {
       j = i % per_table
-      table = (i < per_table) ? "flown table" : "flown + all v2 terms"
+      table = names[int(i / per_table) + 1]
       if (j < model) {
         kind = "model step"
         where = sprintf("x=%.0f mm, F=%s N", int(j / nf) * grid_step_mm, forces[j % nf + 1])
