@@ -361,14 +361,14 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
     }
     let _ = writeln!(
         s,
-        "| round | candidate | held-out RMSE before → after (N) | ratio | 95 % CI | scoring units improved | ΔBIC | accepted |"
+        "| round | candidate | held-out RMSE before → after (N) | ratio | 95 % CI | scoring units improved | on its support: ratio, share, recordings improved, z | ΔBIC | accepted |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
     for (k, r) in d.selection.rounds.iter().enumerate() {
         for (j, c) in r.tested.iter().enumerate() {
             let _ = writeln!(
                 s,
-                "| {} | {} | {:.3} → {:.3} | {:.3} | {:.3}–{:.3} | {}/{} | {:.0} | {} |",
+                "| {} | {} | {:.3} → {:.3} | {:.3} | {:.3}–{:.3} | {}/{} | {:.3}, {:.0} %, {}/{}, {:.1} | {:.0} | {} |",
                 k + 1,
                 c.effect.map_or("turn-around memory", |e| e.name()),
                 c.rmse_before_n,
@@ -378,8 +378,18 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
                 c.ratio_ci95[1],
                 c.units_improved,
                 c.n_units,
+                c.local.ratio,
+                100.0 * c.local.share,
+                c.local.units_improved,
+                c.local.n_units,
+                c.local.z,
                 c.delta_bic,
-                if r.accepted == Some(j) { "**yes**" } else { "no" }
+                match (r.accepted == Some(j), c.route) {
+                    (true, Some(route)) => format!("**yes** ({route})"),
+                    (true, None) => "**yes**".to_string(),
+                    (false, Some(route)) => format!("passed ({route}), ranked lower"),
+                    (false, None) => "no".to_string(),
+                }
             );
         }
     }
