@@ -283,8 +283,7 @@ pub fn refinements(prep: &Prepared, best: &Terms, effect: Effect) -> Vec<Terms> 
     match effect {
         Effect::SensorDelay => match best.delay_s {
             Some(tau) => {
-                // In time units: quarter periods of the finest sampling.
-                let dt = dt_range_s(prep).0;
+                let dt = median_dt_s(prep);
                 [-0.5, -0.25, 0.25, 0.5]
                     .iter()
                     .map(|f| Terms {
@@ -319,15 +318,6 @@ pub fn refinements(prep: &Prepared, best: &Terms, effect: Effect) -> Vec<Terms> 
     }
 }
 
-/// The finest and coarsest sampling period of the fit recordings (s).
-fn dt_range_s(prep: &Prepared) -> (f64, f64) {
-    prep.fit_indices()
-        .iter()
-        .map(|&i| prep.recs[i].dt_s())
-        .filter(|d| *d > 0.0)
-        .fold((f64::INFINITY, 0.0), |(l, h), d| (l.min(d), h.max(d)))
-}
-
 fn median_dt_s(prep: &Prepared) -> f64 {
     let mut dts: Vec<f64> = prep.fit_indices().iter().map(|&i| prep.recs[i].dt_s()).collect();
     dts.sort_by(f64::total_cmp);
@@ -357,23 +347,16 @@ pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
             out
         }
         Effect::SensorDelay => {
+            let dt = median_dt_s(prep);
             // Finer where delays are common (a few samples of filter group
             // delay), and both signs: a DAQ offset can lead as well as lag.
-            // In time units: with mixed sampling rates (1 ms and 5 ms files)
-            // the grid runs in periods of the finest and of the coarsest, so
-            // a delay of a few ms is neither rounded to a coarse period nor
-            // beyond the reach of a fine one.
             let lags = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0, 12.0];
             let leads = [1.0, 2.0, 4.0, 8.0];
-            let (fine, coarse) = dt_range_s(prep);
-            let mut taus: Vec<f64> = Vec::new();
-            for dt in [fine, coarse] {
-                taus.extend(lags.iter().map(|s| s * dt).chain(leads.iter().map(|s| -s * dt)));
-            }
-            // One grid when the rates agree (within a few per cent).
-            taus.sort_by(f64::total_cmp);
-            taus.dedup_by(|a, b| (*a - *b).abs() <= 0.02 * fine);
-            taus.into_iter().map(|tau| with(&|t| t.delay_s = Some(tau))).collect()
+            lags.iter()
+                .map(|s| s * dt)
+                .chain(leads.iter().map(|s| -s * dt))
+                .map(|tau| with(&|t| t.delay_s = Some(tau)))
+                .collect()
         }
         Effect::StressSoftening => {
             if distinct_sequences(prep) >= 3 {

@@ -46,6 +46,13 @@ pub struct Thresholds {
     /// …and at least this share of at least `min_local_units` support units improving.
     pub min_local_unit_share: f64,
     pub min_local_units: usize,
+    /// …and the ratio over the whole decision pool at least this: the term
+    /// must also help overall, not only where it acts.
+    pub min_local_pool_ratio: f64,
+    /// The local route only when the current model's held-out RMSE is at
+    /// least this multiple of the force noise: where the model class's own
+    /// misfit, not noise, is what remains (the real MR damper: ≈ 1500×).
+    pub local_min_residual_over_noise: f64,
     pub bootstrap_resamples: usize,
     pub seed: u64,
 }
@@ -68,6 +75,8 @@ impl Default for Thresholds {
             min_local_z: 3.0,
             min_local_unit_share: 2.0 / 3.0,
             min_local_units: 3,
+            min_local_pool_ratio: 1.02,
+            local_min_residual_over_noise: 20.0,
             bootstrap_resamples: 1000,
             seed: 1,
         }
@@ -386,6 +395,8 @@ pub struct Comparison {
     pub ratio_pool: f64,
     /// Which route accepted it: `large`, `consistent` or `local`.
     pub route: Option<&'static str>,
+    /// Whether the local route was open to it.
+    pub local_open: bool,
 }
 
 pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<Effect>, th: &Thresholds) -> Comparison {
@@ -418,14 +429,30 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
     // The consistency route is for a residual far above the force noise
     // (where a fixed ratio gate has no power); near the noise a spurious
     // term can improve every fold by a few per cent.
-    let large_residual = rmse_before_n >= th.consistent_min_residual_over_noise * force_noise_n(prep);
-    let min_units = if effect == Some(Effect::HysteresisMemory) || !large_residual {
+    let noise_n = force_noise_n(prep);
+    let vocabulary = effect != Some(Effect::HysteresisMemory);
+    let large_residual = rmse_before_n >= th.consistent_min_residual_over_noise * noise_n;
+    let min_units = if !vocabulary || !large_residual {
         usize::MAX
     } else {
         th.min_consistent_units
     };
-    let pool = decision_pool(prep, after.insample_on_validate);
-    let local_stats = support::local(before, &after, &pool, force_noise_n(prep));
+    // On simulated drops a residual 5.7× the noise left after a delay was
+    // turn-around structure of the base law, which a low-knee viscous term
+    // fitted 2× better on 5 % of the samples (a spurious second effect).
+    let local_open = vocabulary && rmse_before_n >= th.local_min_residual_over_noise * noise_n;
+    // `hysteresis_memory` (the reference, and its share at the end) is still
+    // judged over every recording, as before: on fit recordings alone its
+    // share passed in 2 of 60 simulated drops where the validate recordings
+    // (interpolated currents, where the memory term is not modelled) showed
+    // it no longer helps. Known limit: that decision reads the validate recordings.
+    let all_recordings = !vocabulary;
+    let pool = if all_recordings {
+        (0..prep.recs.len()).collect()
+    } else {
+        decision_pool(prep, after.insample_on_validate)
+    };
+    let local_stats = support::local(before, &after, &pool, noise_n);
     let j = judge(
         prep,
         &sse_before,
@@ -434,7 +461,8 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
         &[],
         th,
         min_units,
-        &local_stats,
+        local_open.then_some(&local_stats),
+        all_recordings,
     );
     // BIC on the in-sample fit: n·ln(SSE/n) + k·ln(n). For saturation the
     // in-sample data are the validate recordings, before and after.
@@ -477,6 +505,7 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
         local_stats,
         ratio_pool: j.ratio,
         route: j.route.filter(|_| accepted),
+        local_open,
     }
 }
 
@@ -511,10 +540,11 @@ struct Judgement {
 ///   (≥ `min_ratio_consistent`) that holds in every held-out scoring unit —
 ///   a sign test across units, each a whole group of recordings, so the
 ///   autocorrelated samples of a recording count once;
-/// - *local*, under the same condition: judged where the term acts
+/// - *local* (`local` given: vocabulary candidates, residual ≥
+///   `local_min_residual_over_noise` × noise): judged where the term acts
 ///   ([`support`]): ratio on the support ≥ `min_local_ratio`, a paired
-///   z ≥ `min_local_z` with autocorrelation-corrected sample counts, and
-///   most support recordings improving.
+///   z ≥ `min_local_z` with autocorrelation-corrected sample counts, most
+///   support recordings improving, and the pool's ratio ≥ `min_local_pool_ratio`.
 #[allow(clippy::too_many_arguments)]
 fn judge(
     prep: &Prepared,
@@ -524,19 +554,26 @@ fn judge(
     excluded: &[usize],
     th: &Thresholds,
     min_units: usize,
-    local: &LocalStats,
+    local: Option<&LocalStats>,
+    all_recordings: bool,
 ) -> Judgement {
-    let pool: Vec<usize> = decision_pool(prep, on_validate)
-        .into_iter()
-        .filter(|i| !excluded.contains(i))
-        .collect();
+    let pool: Vec<usize> = if all_recordings {
+        (0..sse_before.len()).collect()
+    } else {
+        decision_pool(prep, on_validate)
+    }
+    .into_iter()
+    .filter(|i| !excluded.contains(i))
+    .collect();
     let units: Vec<Vec<usize>> = scoring_units(prep, on_validate)
         .into_iter()
         .filter(|u| !u.iter().any(|i| excluded.contains(i)))
         .collect();
     let mut j = judge_units(sse_before, sse_after, &pool, &units, th, min_units);
-    // The local route is open exactly when the consistency route is.
-    if j.route.is_none() && min_units != usize::MAX && local_passes(&local.summary(excluded), th) {
+    if j.route.is_none()
+        && j.ratio >= th.min_local_pool_ratio
+        && local.is_some_and(|l| local_passes(&l.summary(excluded), th))
+    {
         j.route = Some("local");
     }
     j
@@ -615,7 +652,8 @@ pub fn nested_ratio(prep: &Prepared, tested: &[Comparison], winner: usize, th: &
                     u,
                     th,
                     min_units,
-                    &c.local_stats,
+                    c.local_open.then_some(&c.local_stats),
+                    c.effect == Some(Effect::HysteresisMemory),
                 );
                 (j.route.is_some() && c.delta_bic < th.max_delta_bic).then_some((k, j.ratio))
             })

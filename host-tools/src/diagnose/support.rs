@@ -67,7 +67,9 @@ impl LocalStats {
         let (mut sum_d, mut var_sum) = (0.0, 0.0);
         let (mut units_improved, mut n_units) = (0, 0);
         for (i, r) in self.recs.iter().enumerate() {
-            let Some(r) = r.filter(|_| !excluded.contains(&i)) else { continue };
+            let Some(r) = r.filter(|_| !excluded.contains(&i)) else {
+                continue;
+            };
             sb += r.sse_before;
             sa += r.sse_after;
             n += r.n;
@@ -92,16 +94,36 @@ impl LocalStats {
 /// The support reads only the two models' held-out predictions, never the
 /// recorded force.
 pub fn local(before: &Scored, after: &Scored, pool: &[usize], noise_n: f64) -> LocalStats {
+    fn side(s: &Scored) -> Side<'_> {
+        Side {
+            pred: &s.heldout_pred,
+            se: &s.heldout_se,
+            mask: &s.mask,
+        }
+    }
+    local_from(side(before), side(after), pool, noise_n)
+}
+
+/// One model's held-out predictions, squared errors and scored samples, per recording.
+#[derive(Clone, Copy)]
+pub struct Side<'a> {
+    pub pred: &'a [Vec<f64>],
+    pub se: &'a [Vec<f64>],
+    pub mask: &'a [Vec<bool>],
+}
+
+/// [`local`] on plain per-recording channels.
+pub fn local_from(before: Side, after: Side, pool: &[usize], noise_n: f64) -> LocalStats {
     // The samples both models score.
-    let common = |i: usize| {
+    let common = |i: usize| -> Vec<bool> {
         before.mask[i]
             .iter()
             .zip(&after.mask[i])
             .map(|(a, b)| *a && *b)
-            .collect::<Vec<bool>>()
+            .collect()
     };
     let masks: Vec<(usize, Vec<bool>)> = pool.iter().map(|&i| (i, common(i))).collect();
-    let change = |i: usize, t: usize| after.heldout_pred[i][t] - before.heldout_pred[i][t];
+    let change = |i: usize, t: usize| after.pred[i][t] - before.pred[i][t];
     let (mut s2, mut n_common) = (0.0, 0usize);
     for (i, m) in &masks {
         for t in (0..m.len()).filter(|&t| m[t]) {
@@ -115,13 +137,10 @@ pub fn local(before: &Scored, after: &Scored, pool: &[usize], noise_n: f64) -> L
         let on: Vec<usize> = (0..m.len())
             .filter(|&t| m[t] && change(*i, t).abs() > threshold_n)
             .collect();
-        let d: Vec<f64> = on
-            .iter()
-            .map(|&t| before.heldout_se[*i][t] - after.heldout_se[*i][t])
-            .collect();
+        let d: Vec<f64> = on.iter().map(|&t| before.se[*i][t] - after.se[*i][t]).collect();
         let mut r = LocalRec {
-            sse_before: on.iter().map(|&t| before.heldout_se[*i][t]).sum(),
-            sse_after: on.iter().map(|&t| after.heldout_se[*i][t]).sum(),
+            sse_before: on.iter().map(|&t| before.se[*i][t]).sum(),
+            sse_after: on.iter().map(|&t| after.se[*i][t]).sum(),
             n: d.len(),
             sum_d: 0.0,
             var_sum: 0.0,
@@ -156,5 +175,58 @@ fn lag1(d: &[f64], mean: f64) -> f64 {
         num / den
     } else {
         0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_support_is_where_the_prediction_changes_and_only_there_is_scored() {
+        // One recording, six samples; the candidate changes the prediction
+        // by 10 N on samples 2 and 3 only (RMS change √(200/6) = 5.77 N,
+        // above 2 × 1 N noise, so the threshold is 5.77 N).
+        let f = [0.0, 0.0, 10.0, 10.0, 0.0, 0.0];
+        let pred_b = vec![vec![1.0, -1.0, 0.0, 0.0, 1.0, -1.0]];
+        let pred_a = vec![vec![1.0, -1.0, 10.0, 10.0, 1.0, -1.0]];
+        let se = |p: &[f64]| -> Vec<f64> { p.iter().zip(&f).map(|(p, f)| (p - f) * (p - f)).collect() };
+        let (se_b, se_a) = (vec![se(&pred_b[0])], vec![se(&pred_a[0])]);
+        let mask = vec![vec![true; 6]];
+        let b = Side {
+            pred: &pred_b,
+            se: &se_b,
+            mask: &mask,
+        };
+        let a = Side {
+            pred: &pred_a,
+            se: &se_a,
+            mask: &mask,
+        };
+        let st = local_from(b, a, &[0], 1.0);
+        assert!((st.threshold_n - (200.0f64 / 6.0).sqrt()).abs() < 1e-12);
+        let r = st.recs[0].expect("in the pool");
+        // Support = samples 2, 3: SSE before 100 + 100, after 0.
+        assert_eq!(r.n, 2);
+        assert_eq!((r.sse_before, r.sse_after), (200.0, 0.0));
+        let l = st.summary(&[]);
+        assert!(l.ratio > 1e100, "every support error removed");
+        assert!((l.share - 2.0 / 6.0).abs() < 1e-12);
+        // Two support samples are fewer than a unit needs.
+        assert_eq!((l.units_improved, l.n_units), (0, 0));
+        // Whole-recording ratio would be √(204/4) = 7.1: the ±1 N errors
+        // elsewhere are untouched and do not dilute the support's.
+        assert!(st.summary(&[0]).n_units == 0 && st.summary(&[0]).ratio == 1.0);
+    }
+
+    #[test]
+    fn lag1_autocorrelation_by_hand() {
+        // Values 2 and 0 about their mean 1 (deviations ±1), n = 40.
+        // Blocks of ten: 36 neighbour pairs agree, 3 disagree → ρ = 33/40.
+        // Alternating: all 39 pairs disagree → ρ = −39/40.
+        let blocks: Vec<f64> = (0..40).map(|k| if (k / 10) % 2 == 0 { 2.0 } else { 0.0 }).collect();
+        let alternating: Vec<f64> = (0..40).map(|k| if k % 2 == 0 { 2.0 } else { 0.0 }).collect();
+        assert!((lag1(&blocks, 1.0) - 33.0 / 40.0).abs() < 1e-12);
+        assert!((lag1(&alternating, 1.0) + 39.0 / 40.0).abs() < 1e-12);
     }
 }
