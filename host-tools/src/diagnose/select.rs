@@ -71,7 +71,7 @@ impl Default for Thresholds {
             min_ratio_consistent: 1.05,
             min_consistent_units: 5,
             consistent_min_residual_over_noise: 5.0,
-            min_local_ratio: 1.15,
+            min_local_ratio: 1.20,
             min_local_z: 3.0,
             min_local_unit_share: 2.0 / 3.0,
             min_local_units: 3,
@@ -875,6 +875,62 @@ mod tests {
         let th = Thresholds::default();
         let pool: Vec<usize> = (0..10).collect();
         assert!(judge_units(&b, &a, &pool, &units(5), &th, 5).route.is_none());
+    }
+
+    #[test]
+    fn the_local_route_needs_the_support_ratio_the_paired_z_and_most_recordings() {
+        use crate::diagnose::support::LocalRec;
+        let rec = |sb: f64, sa: f64, sum_d: f64| {
+            Some(LocalRec {
+                sse_before: sb,
+                sse_after: sa,
+                n: 20,
+                sum_d,
+                var_sum: 36.0,
+            })
+        };
+        // Two support recordings 100 → 49, one 100 → 110: ratio √(300/208)
+        // = 1.201, z = (51 + 51 − 10)/√108 = 8.85, 2 of 3 improve.
+        let stats = LocalStats {
+            recs: vec![rec(100.0, 49.0, 51.0), rec(100.0, 49.0, 51.0), rec(100.0, 110.0, -10.0)],
+            threshold_n: 1.0,
+            n_common: 600,
+        };
+        let th = Thresholds::default();
+        let l = stats.summary(&[]);
+        assert!((l.ratio - (300.0f64 / 208.0).sqrt()).abs() < 1e-12);
+        assert!((l.z - 92.0 / 108.0f64.sqrt()).abs() < 1e-12);
+        assert_eq!((l.units_improved, l.n_units), (2, 3));
+        assert!((l.share - 60.0 / 600.0).abs() < 1e-12);
+        assert!(local_passes(&l, &th));
+        // Without the first recording: two units are too few.
+        assert!(!local_passes(&stats.summary(&[0]), &th));
+        // A third recording that worsens: 1 of 3 improve.
+        let mut worse = stats.clone();
+        worse.recs[1] = rec(100.0, 110.0, -10.0);
+        assert!(!local_passes(&worse.summary(&[]), &th));
+        // Improving everywhere by a little (ratio √(300/270) = 1.054) is not enough.
+        let small = LocalStats {
+            recs: vec![rec(100.0, 90.0, 10.0); 3],
+            ..stats.clone()
+        };
+        assert!(!local_passes(&small.summary(&[]), &th));
+        // A large ratio that the paired test cannot tell from noise (z = 153/530 = 0.29).
+        let noisy = LocalStats {
+            recs: vec![rec(100.0, 49.0, 51.0); 3]
+                .into_iter()
+                .map(|r| {
+                    r.map(|r| LocalRec {
+                        var_sum: 3.0 * 51.0 * 51.0 * 4.0 * 3.0,
+                        ..r
+                    })
+                })
+                .collect(),
+            ..stats
+        };
+        let l = noisy.summary(&[]);
+        assert!(l.ratio > 1.4 && l.z < th.min_local_z, "{l:?}");
+        assert!(!local_passes(&l, &th));
     }
 
     #[test]
