@@ -934,6 +934,37 @@ mod tests {
     }
 
     #[test]
+    fn a_fitted_term_is_decided_without_the_validate_recordings() {
+        let synth = crate::plant::synth::synthesize("none", 3).unwrap();
+        let plan = crate::diagnose::prepared::FoldPlan::Stratified { k: 5 };
+        let prep = crate::diagnose::prepared::prepare(&synth.dataset, &plan, &[]).unwrap();
+        let (fit, val) = (prep.fit_indices(), prep.validate_indices());
+        assert!(!fit.is_empty() && !val.is_empty());
+        let th = Thresholds::default();
+        // Every validate recording 100 → 1, the fit recordings unchanged.
+        let b = vec![100.0; prep.recs.len()];
+        let mut a = b.clone();
+        for &i in &val {
+            a[i] = 1.0;
+        }
+        // A term fitted on the fit recordings: its pool shows no change.
+        let j = judge(&prep, &b, &a, false, &[], &th, 5, None, false);
+        assert!(j.route.is_none());
+        assert!((j.ratio - 1.0).abs() < 1e-12);
+        // Read over every recording (as `hysteresis_memory` still is), it would pass:
+        // √(100·n / (100·n_fit + n_val)).
+        let n = prep.recs.len() as f64;
+        let all = (100.0 * n / (100.0 * fit.len() as f64 + val.len() as f64)).sqrt();
+        let j = judge(&prep, &b, &a, false, &[], &th, 5, None, true);
+        assert!((j.ratio - all).abs() < 1e-12);
+        assert_eq!(j.route, Some("large"));
+        // A term that only changes validate predictions is judged on them: √(100/1) = 10.
+        let j = judge(&prep, &b, &a, true, &[], &th, 5, None, false);
+        assert!((j.ratio - 10.0).abs() < 1e-9);
+        assert_eq!(j.route, Some("large"));
+    }
+
+    #[test]
     fn a_large_improvement_passes_without_every_unit() {
         // Four units 100 → 25 (ratio 2 each), one 100 → 110: ratio
         // √(1000/(8·25 + 2·110)) = √(1000/420) = 1.54; every bootstrap
