@@ -6,10 +6,10 @@
 //! candidate's nonlinear parameter chosen inside the training folds. Validate
 //! recordings are never fitted; for a candidate that only changes how
 //! validate currents are predicted (magnetic saturation) its parameter is
-//! chosen leave-one-validate-recording-out. A candidate is accepted only if
-//! (1) held-out RMSE improves by at least `min_ratio`, (2) the 95 % bootstrap
-//! interval of that ratio over recordings stays above `min_ratio_lo`, and
-//! (3) the Bayesian information criterion of the in-sample fit drops.
+//! chosen leave-one-validate-recording-out. A candidate is accepted by one of
+//! the three routes of [`judge`] (a large held-out improvement, a consistent
+//! one, or one where its term acts), each reading only its decision pool
+//! ([`decision_pool`]); ΔBIC is reported, not a gate.
 use super::candidates::{self, Effect};
 use super::design::{Designs, Solution, Terms};
 use super::prepared::Prepared;
