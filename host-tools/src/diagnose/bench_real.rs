@@ -388,14 +388,20 @@ pub fn run_real_bench(
                         .iter()
                         .map(|c| {
                             format!(
-                                "{} {:.3} [{:.3}, {:.3}] {}/{} units{}",
+                                "{} {:.3} [{:.3}, {:.3}] {}/{} units; pool {:.3}; support {:.3} share {:.3} {}/{} rec z {:.1}{}",
                                 c.effect.map_or("memory", |e| e.name()),
                                 c.ratio,
                                 c.ratio_ci95[0],
                                 c.ratio_ci95[1],
                                 c.units_improved,
                                 c.n_units,
-                                if c.accepted { " accepted" } else { "" }
+                                c.ratio_pool,
+                                c.local.ratio,
+                                c.local.share,
+                                c.local.units_improved,
+                                c.local.n_units,
+                                c.local.z,
+                                c.route.map(|r| format!(" accepted ({r})")).unwrap_or_default()
                             )
                         })
                         .collect()

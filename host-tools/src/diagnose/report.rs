@@ -305,13 +305,24 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
          recordings) ≥ {:.2}, or every held-out scoring unit improves — whole cross-validation folds of fit \
          recordings, or each validate recording for a term that only changes how validate currents are \
          predicted; at least {} units, a sign test at p ≤ 2^−{} — and the ratio is ≥ {:.2}; this second route \
-         only for vocabulary terms and while the model's held-out RMSE is ≥ {}× the force noise{bic_gate}.\n",
+         only for vocabulary terms and while the model's held-out RMSE is ≥ {}× the force noise; or, for \
+         vocabulary terms while that RMSE is ≥ {}× the noise, judged on the term's support (the samples where \
+         its held-out prediction changes by more than 2× the noise and the change's RMS): ratio there ≥ {:.2}, \
+         a paired z ≥ {:.1} with autocorrelation-corrected sample counts, ≥ {:.0} % of at least {} support \
+         recordings improving, and the ratio over the pool ≥ {:.2}. Each decision reads only its pool: the fit \
+         recordings, or the validate recordings for a term that only changes their prediction{bic_gate}.\n",
         d.thresholds.min_ratio,
         d.thresholds.min_ratio_lo,
         d.thresholds.min_consistent_units,
         d.thresholds.min_consistent_units,
         d.thresholds.min_ratio_consistent,
-        d.thresholds.consistent_min_residual_over_noise
+        d.thresholds.consistent_min_residual_over_noise,
+        d.thresholds.local_min_residual_over_noise,
+        d.thresholds.min_local_ratio,
+        d.thresholds.min_local_z,
+        100.0 * d.thresholds.min_local_unit_share,
+        d.thresholds.min_local_units,
+        d.thresholds.min_local_pool_ratio
     );
     if let Some(m) = &d.selection.memory {
         let t = &m.scored.terms;
@@ -361,14 +372,14 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
     }
     let _ = writeln!(
         s,
-        "| round | candidate | held-out RMSE before → after (N) | ratio | 95 % CI | scoring units improved | ΔBIC | accepted |"
+        "| round | candidate | held-out RMSE before → after (N) | ratio | 95 % CI | scoring units improved | on its support: ratio, share, recordings improved, z | ΔBIC | accepted |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
     for (k, r) in d.selection.rounds.iter().enumerate() {
         for (j, c) in r.tested.iter().enumerate() {
             let _ = writeln!(
                 s,
-                "| {} | {} | {:.3} → {:.3} | {:.3} | {:.3}–{:.3} | {}/{} | {:.0} | {} |",
+                "| {} | {} | {:.3} → {:.3} | {:.3} | {:.3}–{:.3} | {}/{} | {:.3}, {:.0} %, {}/{}, {:.1} | {:.0} | {} |",
                 k + 1,
                 c.effect.map_or("turn-around memory", |e| e.name()),
                 c.rmse_before_n,
@@ -378,8 +389,18 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
                 c.ratio_ci95[1],
                 c.units_improved,
                 c.n_units,
+                c.local.ratio,
+                100.0 * c.local.share,
+                c.local.units_improved,
+                c.local.n_units,
+                c.local.z,
                 c.delta_bic,
-                if r.accepted == Some(j) { "**yes**" } else { "no" }
+                match (r.accepted == Some(j), c.route) {
+                    (true, Some(route)) => format!("**yes** ({route})"),
+                    (true, None) => "**yes**".to_string(),
+                    (false, Some(route)) => format!("passed ({route}), ranked lower"),
+                    (false, None) => "no".to_string(),
+                }
             );
         }
     }

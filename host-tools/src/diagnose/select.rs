@@ -6,13 +6,14 @@
 //! candidate's nonlinear parameter chosen inside the training folds. Validate
 //! recordings are never fitted; for a candidate that only changes how
 //! validate currents are predicted (magnetic saturation) its parameter is
-//! chosen leave-one-validate-recording-out. A candidate is accepted only if
-//! (1) held-out RMSE improves by at least `min_ratio`, (2) the 95 % bootstrap
-//! interval of that ratio over recordings stays above `min_ratio_lo`, and
-//! (3) the Bayesian information criterion of the in-sample fit drops.
+//! chosen leave-one-validate-recording-out. A candidate is accepted by one of
+//! the three routes of [`judge`] (a large held-out improvement, a consistent
+//! one, or one where its term acts), each reading only its decision pool
+//! ([`decision_pool`]); ΔBIC is reported, not a gate.
 use super::candidates::{self, Effect};
 use super::design::{Designs, Solution, Terms};
 use super::prepared::Prepared;
+use super::support::{self, Local, LocalStats};
 use super::unexplained::force_noise_n;
 use anyhow::{bail, Result};
 use rand::{Rng, SeedableRng};
@@ -37,6 +38,21 @@ pub struct Thresholds {
     /// The consistency route only when the current model's held-out RMSE is
     /// at least this multiple of the force channel's noise.
     pub consistent_min_residual_over_noise: f64,
+    /// The local route (same residual condition): the held-out RMSE ratio
+    /// on the candidate's support ([`support`]) at least this…
+    pub min_local_ratio: f64,
+    /// …with the paired, autocorrelation-corrected z at least this…
+    pub min_local_z: f64,
+    /// …and at least this share of at least `min_local_units` support units improving.
+    pub min_local_unit_share: f64,
+    pub min_local_units: usize,
+    /// …and the ratio over the whole decision pool at least this: the term
+    /// must also help overall, not only where it acts.
+    pub min_local_pool_ratio: f64,
+    /// The local route only when the current model's held-out RMSE is at
+    /// least this multiple of the force noise: where the model class's own
+    /// misfit, not noise, is what remains (the real MR damper: ≈ 1500×).
+    pub local_min_residual_over_noise: f64,
     pub bootstrap_resamples: usize,
     pub seed: u64,
 }
@@ -55,6 +71,12 @@ impl Default for Thresholds {
             min_ratio_consistent: 1.05,
             min_consistent_units: 5,
             consistent_min_residual_over_noise: 5.0,
+            min_local_ratio: 1.20,
+            min_local_z: 3.0,
+            min_local_unit_share: 2.0 / 3.0,
+            min_local_units: 3,
+            min_local_pool_ratio: 1.02,
+            local_min_residual_over_noise: 20.0,
             bootstrap_resamples: 1000,
             seed: 1,
         }
@@ -75,6 +97,8 @@ struct VariantEval {
     /// Per recording and sample: held-out squared errors (as `heldout_sse`),
     /// and the samples this variant is scored on.
     heldout_se: Vec<Vec<f64>>,
+    /// Per recording and sample: the held-out prediction those errors come from.
+    heldout_pred: Vec<Vec<f64>>,
     mask: Vec<Vec<bool>>,
     /// Lag-1 autocorrelation of the full fit's residual on fit recordings.
     residual_lag1: f64,
@@ -101,6 +125,8 @@ pub struct Scored {
     /// Per recording and sample: held-out squared error, and whether the
     /// sample is scored (comparisons use the samples both models score).
     pub heldout_se: Vec<Vec<f64>>,
+    /// Per recording and sample: the held-out prediction (N) behind `heldout_se`.
+    pub heldout_pred: Vec<Vec<f64>>,
     pub mask: Vec<Vec<bool>>,
     /// Number of parameters (linear + searched).
     pub n_params: usize,
@@ -155,6 +181,7 @@ fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
         .collect();
     // Validate recordings are held out of every fit: their full-fit errors are held out.
     let mut heldout_se = full_se;
+    let mut heldout_pred = full_pred;
     let mut heldout_sse = full_sse.clone();
     for &i in &fit {
         heldout_sse[i] = 0.0;
@@ -167,7 +194,8 @@ fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
         let sol = d.solve(prep, &prep.training_for(f))?;
         fold_train_sse.push(sol.sse);
         for i in prep.fold_members(f) {
-            heldout_se[i] = squared_errors(&d.predict(prep, i, &sol), &prep.recs[i].force_n);
+            heldout_pred[i] = d.predict(prep, i, &sol);
+            heldout_se[i] = squared_errors(&heldout_pred[i], &prep.recs[i].force_n);
             heldout_sse[i] = masked_sum(&heldout_se[i], &mask[i]);
         }
     }
@@ -179,6 +207,7 @@ fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
         full_sse,
         full_fit_sse,
         heldout_se,
+        heldout_pred,
         mask,
         residual_lag1,
     })
@@ -326,6 +355,9 @@ pub fn score_refined(
         heldout_se: (0..prep.recs.len())
             .map(|i| ev(source[i]).heldout_se[i].clone())
             .collect(),
+        heldout_pred: (0..prep.recs.len())
+            .map(|i| ev(source[i]).heldout_pred[i].clone())
+            .collect(),
         mask: (0..prep.recs.len()).map(|i| ev(source[i]).mask[i].clone()).collect(),
         n_params,
         variant_sse: ok.iter().map(|&v| (variants[v], ev(v).full_sse.clone())).collect(),
@@ -354,6 +386,17 @@ pub struct Comparison {
     pub sse_after: Vec<f64>,
     pub accepted: bool,
     pub scored: Scored,
+    /// The same comparison on the candidate's support, over the recordings
+    /// the decision may read ([`decision_pool`]).
+    pub local: Local,
+    pub local_stats: LocalStats,
+    /// Held-out RMSE ratio over the decision pool only: what the decision
+    /// and the ranking between accepted candidates read.
+    pub ratio_pool: f64,
+    /// Which route accepted it: `large`, `consistent` or `local`.
+    pub route: Option<&'static str>,
+    /// Whether the local route was open to it.
+    pub local_open: bool,
 }
 
 pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<Effect>, th: &Thresholds) -> Comparison {
@@ -386,12 +429,30 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
     // The consistency route is for a residual far above the force noise
     // (where a fixed ratio gate has no power); near the noise a spurious
     // term can improve every fold by a few per cent.
-    let large_residual = rmse_before_n >= th.consistent_min_residual_over_noise * force_noise_n(prep);
-    let min_units = if effect == Some(Effect::HysteresisMemory) || !large_residual {
+    let noise_n = force_noise_n(prep);
+    let vocabulary = effect != Some(Effect::HysteresisMemory);
+    let large_residual = rmse_before_n >= th.consistent_min_residual_over_noise * noise_n;
+    let min_units = if !vocabulary || !large_residual {
         usize::MAX
     } else {
         th.min_consistent_units
     };
+    // On simulated drops a residual 5.7× the noise left after a delay was
+    // turn-around structure of the base law, which a low-knee viscous term
+    // fitted 2× better on 5 % of the samples (a spurious second effect).
+    let local_open = vocabulary && rmse_before_n >= th.local_min_residual_over_noise * noise_n;
+    // `hysteresis_memory` (the reference, and its share at the end) is still
+    // judged over every recording, as before: on fit recordings alone its
+    // share passed in 2 of 60 simulated drops where the validate recordings
+    // (interpolated currents, where the memory term is not modelled) showed
+    // it no longer helps. Known limit: that decision reads the validate recordings.
+    let all_recordings = !vocabulary;
+    let pool = if all_recordings {
+        (0..prep.recs.len()).collect()
+    } else {
+        decision_pool(prep, after.insample_on_validate)
+    };
+    let local_stats = support::local(before, &after, &pool, noise_n);
     let j = judge(
         prep,
         &sse_before,
@@ -400,6 +461,8 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
         &[],
         th,
         min_units,
+        local_open.then_some(&local_stats),
+        all_recordings,
     );
     // BIC on the in-sample fit: n·ln(SSE/n) + k·ln(n). For saturation the
     // in-sample data are the validate recordings, before and after.
@@ -424,7 +487,7 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
         |sse: f64, n: usize, k: usize| n_eff(n) * (sse / n.max(1) as f64).max(1e-300).ln() + k as f64 * n_eff(n).ln();
     let k_added = after.n_params.saturating_sub(before.n_params).max(1);
     let delta_bic = bic(after.insample_sse, after.insample_n, k_added) - bic(sse_b, n_b, 0);
-    let accepted = j.passes && delta_bic < th.max_delta_bic;
+    let accepted = j.route.is_some() && delta_bic < th.max_delta_bic;
     Comparison {
         effect,
         rmse_before_n,
@@ -438,6 +501,22 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
         sse_after,
         accepted,
         scored: after,
+        local: local_stats.summary(&[]),
+        local_stats,
+        ratio_pool: j.ratio,
+        route: j.route.filter(|_| accepted),
+        local_open,
+    }
+}
+
+/// The recordings a candidate's acceptance may read: the fit recordings
+/// (each held out by its fold), or the validate recordings for a term that
+/// only changes how they are predicted.
+pub fn decision_pool(prep: &Prepared, on_validate: bool) -> Vec<usize> {
+    if on_validate {
+        prep.validate_indices()
+    } else {
+        prep.fit_indices()
     }
 }
 
@@ -447,16 +526,26 @@ struct Judgement {
     ci95: [f64; 2],
     units_improved: usize,
     n_units: usize,
-    passes: bool,
+    /// The route that accepts, if any.
+    route: Option<&'static str>,
 }
 
-/// Two routes. A large improvement: held-out RMSE ratio over the recordings
-/// ≥ `min_ratio` with its bootstrap interval's lower end ≥ `min_ratio_lo`.
-/// Or, when the model's own residual is large (real data: a 5 % term then
-/// improves the RMSE by only a few per cent), a smaller one (≥
-/// `min_ratio_consistent`) that holds in every held-out scoring unit — a
-/// sign test across units, each a whole group of recordings, so the
-/// autocorrelated samples of a recording count once.
+/// Three routes, each reading only the decision pool ([`decision_pool`]):
+/// never the validate recordings for a term fitted on the fit recordings,
+/// so those stay an honest check of what was chosen.
+/// - *large*: held-out RMSE ratio over the pool's recordings ≥ `min_ratio`
+///   with its bootstrap interval's lower end ≥ `min_ratio_lo`;
+/// - *consistent*, when the model's own residual is large (real data: a 5 %
+///   term then improves the RMSE by only a few per cent): a smaller ratio
+///   (≥ `min_ratio_consistent`) that holds in every held-out scoring unit —
+///   a sign test across units, each a whole group of recordings, so the
+///   autocorrelated samples of a recording count once;
+/// - *local* (`local` given: vocabulary candidates, residual ≥
+///   `local_min_residual_over_noise` × noise): judged where the term acts
+///   ([`support`]): ratio on the support ≥ `min_local_ratio`, a paired
+///   z ≥ `min_local_z` with autocorrelation-corrected sample counts, most
+///   support recordings improving, and the pool's ratio ≥ `min_local_pool_ratio`.
+#[allow(clippy::too_many_arguments)]
 fn judge(
     prep: &Prepared,
     sse_before: &[f64],
@@ -465,16 +554,39 @@ fn judge(
     excluded: &[usize],
     th: &Thresholds,
     min_units: usize,
+    local: Option<&LocalStats>,
+    all_recordings: bool,
 ) -> Judgement {
-    let pool: Vec<usize> = (0..sse_before.len()).filter(|i| !excluded.contains(i)).collect();
+    let pool: Vec<usize> = if all_recordings {
+        (0..sse_before.len()).collect()
+    } else {
+        decision_pool(prep, on_validate)
+    }
+    .into_iter()
+    .filter(|i| !excluded.contains(i))
+    .collect();
     let units: Vec<Vec<usize>> = scoring_units(prep, on_validate)
         .into_iter()
         .filter(|u| !u.iter().any(|i| excluded.contains(i)))
         .collect();
-    judge_units(sse_before, sse_after, &pool, &units, th, min_units)
+    let mut j = judge_units(sse_before, sse_after, &pool, &units, th, min_units);
+    if j.route.is_none()
+        && j.ratio >= th.min_local_pool_ratio
+        && local.is_some_and(|l| local_passes(&l.summary(excluded), th))
+    {
+        j.route = Some("local");
+    }
+    j
 }
 
-/// [`judge`] on explicit recordings (`pool`) and scoring units.
+fn local_passes(l: &Local, th: &Thresholds) -> bool {
+    l.n_units >= th.min_local_units
+        && l.units_improved as f64 >= th.min_local_unit_share * l.n_units as f64
+        && l.ratio >= th.min_local_ratio
+        && l.z >= th.min_local_z
+}
+
+/// [`judge`]'s first two routes on explicit recordings (`pool`) and scoring units.
 fn judge_units(
     sse_before: &[f64],
     sse_after: &[f64],
@@ -489,12 +601,21 @@ fn judge_units(
     let units_improved = units.iter().filter(|u| sum(u, sse_after) < sum(u, sse_before)).count();
     let large = ratio >= th.min_ratio && ci95[0] >= th.min_ratio_lo;
     let consistent = units.len() >= min_units && units_improved == units.len() && ratio >= th.min_ratio_consistent;
+    let route = if pool.is_empty() {
+        None
+    } else if large {
+        Some("large")
+    } else if consistent {
+        Some("consistent")
+    } else {
+        None
+    };
     Judgement {
         ratio,
         ci95,
         units_improved,
         n_units: units.len(),
-        passes: !pool.is_empty() && (large || consistent),
+        route,
     }
 }
 
@@ -523,8 +644,18 @@ pub fn nested_ratio(prep: &Prepared, tested: &[Comparison], winner: usize, th: &
                 let on_validate = c.scored.insample_on_validate;
                 let own = scoring_units(prep, on_validate).contains(u);
                 let min_units = th.min_consistent_units.saturating_sub(usize::from(own));
-                let j = judge(prep, &c.sse_before, &c.sse_after, on_validate, u, th, min_units);
-                (j.passes && c.delta_bic < th.max_delta_bic).then_some((k, j.ratio))
+                let j = judge(
+                    prep,
+                    &c.sse_before,
+                    &c.sse_after,
+                    on_validate,
+                    u,
+                    th,
+                    min_units,
+                    c.local_open.then_some(&c.local_stats),
+                    c.effect == Some(Effect::HysteresisMemory),
+                );
+                (j.route.is_some() && c.delta_bic < th.max_delta_bic).then_some((k, j.ratio))
             })
             .max_by(|x, y| x.1.total_cmp(&y.1))
             .map(|(k, _)| k);
@@ -661,7 +792,7 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
         }
         let accepted = (0..tested.len())
             .filter(|&i| tested[i].accepted)
-            .max_by(|&a, &b| tested[a].ratio.total_cmp(&tested[b].ratio));
+            .max_by(|&a, &b| tested[a].ratio_pool.total_cmp(&tested[b].ratio_pool));
         let next = accepted.map(|i| tested[i].scored.clone());
         let nested_ratio = accepted.map(|w| nested_ratio(prep, &tested, w, th));
         rounds.push(Round {
@@ -723,7 +854,7 @@ mod tests {
         let j = judge_units(&b, &a, &pool, &units(5), &th, th.min_consistent_units);
         assert!((j.ratio - (100.0f64 / 88.0).sqrt()).abs() < 1e-12);
         assert_eq!(j.units_improved, 5);
-        assert!(j.passes);
+        assert!(j.route.is_some());
         // One unit (recordings 8, 9) a little worse: 4 of 5 is no sign test
         // at p ≤ 1/32, and 1.06 is no large improvement.
         let mut a2 = a.clone();
@@ -731,10 +862,10 @@ mod tests {
         a2[9] = 101.0;
         let j = judge_units(&b, &a2, &pool, &units(5), &th, th.min_consistent_units);
         assert_eq!(j.units_improved, 4);
-        assert!(!j.passes, "{}", j.ratio);
+        assert!(j.route.is_none(), "{}", j.ratio);
         // Four units are too few for the route even when all improve.
         let j = judge_units(&b[..8], &a[..8], &pool[..8], &units(4), &th, th.min_consistent_units);
-        assert!(!j.passes);
+        assert!(j.route.is_none());
     }
 
     #[test]
@@ -743,7 +874,94 @@ mod tests {
         let (b, a) = (vec![100.0; 10], vec![99.0; 10]);
         let th = Thresholds::default();
         let pool: Vec<usize> = (0..10).collect();
-        assert!(!judge_units(&b, &a, &pool, &units(5), &th, 5).passes);
+        assert!(judge_units(&b, &a, &pool, &units(5), &th, 5).route.is_none());
+    }
+
+    #[test]
+    fn the_local_route_needs_the_support_ratio_the_paired_z_and_most_recordings() {
+        use crate::diagnose::support::LocalRec;
+        let rec = |sb: f64, sa: f64, sum_d: f64| {
+            Some(LocalRec {
+                sse_before: sb,
+                sse_after: sa,
+                n: 20,
+                sum_d,
+                var_sum: 36.0,
+            })
+        };
+        // Two support recordings 100 → 49, one 100 → 110: ratio √(300/208)
+        // = 1.201, z = (51 + 51 − 10)/√108 = 8.85, 2 of 3 improve.
+        let stats = LocalStats {
+            recs: vec![rec(100.0, 49.0, 51.0), rec(100.0, 49.0, 51.0), rec(100.0, 110.0, -10.0)],
+            threshold_n: 1.0,
+            n_common: 600,
+        };
+        let th = Thresholds::default();
+        let l = stats.summary(&[]);
+        assert!((l.ratio - (300.0f64 / 208.0).sqrt()).abs() < 1e-12);
+        assert!((l.z - 92.0 / 108.0f64.sqrt()).abs() < 1e-12);
+        assert_eq!((l.units_improved, l.n_units), (2, 3));
+        assert!((l.share - 60.0 / 600.0).abs() < 1e-12);
+        assert!(local_passes(&l, &th));
+        // Without the first recording: two units are too few.
+        assert!(!local_passes(&stats.summary(&[0]), &th));
+        // A third recording that worsens: 1 of 3 improve.
+        let mut worse = stats.clone();
+        worse.recs[1] = rec(100.0, 110.0, -10.0);
+        assert!(!local_passes(&worse.summary(&[]), &th));
+        // Improving everywhere by a little (ratio √(300/270) = 1.054) is not enough.
+        let small = LocalStats {
+            recs: vec![rec(100.0, 90.0, 10.0); 3],
+            ..stats.clone()
+        };
+        assert!(!local_passes(&small.summary(&[]), &th));
+        // A large ratio that the paired test cannot tell from noise (z = 153/530 = 0.29).
+        let noisy = LocalStats {
+            recs: vec![rec(100.0, 49.0, 51.0); 3]
+                .into_iter()
+                .map(|r| {
+                    r.map(|r| LocalRec {
+                        var_sum: 3.0 * 51.0 * 51.0 * 4.0 * 3.0,
+                        ..r
+                    })
+                })
+                .collect(),
+            ..stats
+        };
+        let l = noisy.summary(&[]);
+        assert!(l.ratio > 1.4 && l.z < th.min_local_z, "{l:?}");
+        assert!(!local_passes(&l, &th));
+    }
+
+    #[test]
+    fn a_fitted_term_is_decided_without_the_validate_recordings() {
+        let synth = crate::plant::synth::synthesize("none", 3).unwrap();
+        let plan = crate::diagnose::prepared::FoldPlan::Stratified { k: 5 };
+        let prep = crate::diagnose::prepared::prepare(&synth.dataset, &plan, &[]).unwrap();
+        let (fit, val) = (prep.fit_indices(), prep.validate_indices());
+        assert!(!fit.is_empty() && !val.is_empty());
+        let th = Thresholds::default();
+        // Every validate recording 100 → 1, the fit recordings unchanged.
+        let b = vec![100.0; prep.recs.len()];
+        let mut a = b.clone();
+        for &i in &val {
+            a[i] = 1.0;
+        }
+        // A term fitted on the fit recordings: its pool shows no change.
+        let j = judge(&prep, &b, &a, false, &[], &th, 5, None, false);
+        assert!(j.route.is_none());
+        assert!((j.ratio - 1.0).abs() < 1e-12);
+        // Read over every recording (as `hysteresis_memory` still is), it would pass:
+        // √(100·n / (100·n_fit + n_val)).
+        let n = prep.recs.len() as f64;
+        let all = (100.0 * n / (100.0 * fit.len() as f64 + val.len() as f64)).sqrt();
+        let j = judge(&prep, &b, &a, false, &[], &th, 5, None, true);
+        assert!((j.ratio - all).abs() < 1e-12);
+        assert_eq!(j.route, Some("large"));
+        // A term that only changes validate predictions is judged on them: √(100/1) = 10.
+        let j = judge(&prep, &b, &a, true, &[], &th, 5, None, false);
+        assert!((j.ratio - 10.0).abs() < 1e-9);
+        assert_eq!(j.route, Some("large"));
     }
 
     #[test]
@@ -759,6 +977,6 @@ mod tests {
         let pool: Vec<usize> = (0..10).collect();
         let j = judge_units(&b, &a, &pool, &units(5), &th, 5);
         assert!((j.ratio - (1000.0f64 / 420.0).sqrt()).abs() < 1e-12);
-        assert!(j.ci95[0] >= th.min_ratio_lo && j.passes);
+        assert!(j.ci95[0] >= th.min_ratio_lo && j.route == Some("large"));
     }
 }
