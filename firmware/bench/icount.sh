@@ -31,15 +31,7 @@ TARGET_DIR=target/pil-bench
 cargo build --release -q -p mre-firmware --bin mre-firmware --target thumbv7em-none-eabihf \
   --no-default-features --features pil,bench --target-dir "$TARGET_DIR"
 ELF=$TARGET_DIR/thumbv7em-none-eabihf/release/mre-firmware
-NM=$(command -v llvm-nm || command -v arm-none-eabi-nm || command -v rust-nm)
-addr() { printf '%016x' "0x$("$NM" "$ELF" | awk -v s="$1" '$3==s {print $1}')"; }
-BEGIN_PC=$(addr mre_mark_begin)
-END_PC=$(addr mre_mark_end)
-TRACE=$(mktemp)
-trap 'rm -f "$TRACE"' EXIT
-timeout 120 qemu-system-arm -M b-l475e-iot01a -nographic -monitor none -serial null \
-  -semihosting-config enable=on,target=native -kernel "$ELF" \
-  -accel tcg,one-insn-per-tb=on -d exec,nochain -D "$TRACE" >/dev/null
+. firmware/bench/trace.sh
 # A "Stopped execution of TB chain before" line means the traced block did
 # not run (an interrupt came first); it is traced again when it does.
 awk -v b="$BEGIN_PC" -v e="$END_PC" -v all="$ALL" '

@@ -11,16 +11,9 @@ cd "$(dirname "$0")/../.."
 N=${1:?window index}
 MODE=${2:-functions}
 ELF=target/pil-bench/thumbv7em-none-eabihf/release/mre-firmware
-NM=$(command -v llvm-nm || command -v arm-none-eabi-nm)
-addr() { printf '%016x' "0x$("$NM" "$ELF" | awk -v s="$1" '$3==s {print $1}')"; }
-BEGIN_PC=$(addr mre_mark_begin)
-END_PC=$(addr mre_mark_end)
-TRACE=$(mktemp)
 PCS=$(mktemp)
-trap 'rm -f "$TRACE" "$PCS"' EXIT
-timeout 120 qemu-system-arm -M b-l475e-iot01a -nographic -monitor none -serial null \
-  -semihosting-config enable=on,target=native -kernel "$ELF" \
-  -accel tcg,one-insn-per-tb=on -d exec,nochain -D "$TRACE" >/dev/null
+TRACE_CLEANUP=$PCS
+. firmware/bench/trace.sh
 awk -v b="$BEGIN_PC" -v e="$END_PC" -v want="$N" '
   /^Trace/   { split($4, f, "/"); pc = f[2]
                if (pc == b) { on = 1; last = "" ; next}
