@@ -447,11 +447,7 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
     // (interpolated currents, where the memory term is not modelled) showed
     // it no longer helps. Known limit: that decision reads the validate recordings.
     let all_recordings = !vocabulary;
-    let pool = if all_recordings {
-        (0..prep.recs.len()).collect()
-    } else {
-        decision_pool(prep, after.insample_on_validate)
-    };
+    let pool = decision_pool(prep, after.insample_on_validate, all_recordings);
     let local_stats = support::local(before, &after, &pool, noise_n);
     let j = judge(
         prep,
@@ -511,9 +507,12 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
 
 /// The recordings a candidate's acceptance may read: the fit recordings
 /// (each held out by its fold), or the validate recordings for a term that
-/// only changes how they are predicted.
-pub fn decision_pool(prep: &Prepared, on_validate: bool) -> Vec<usize> {
-    if on_validate {
+/// only changes how they are predicted; every recording when
+/// `all_recordings` (`hysteresis_memory`, see [`compare`]).
+pub fn decision_pool(prep: &Prepared, on_validate: bool, all_recordings: bool) -> Vec<usize> {
+    if all_recordings {
+        (0..prep.recs.len()).collect()
+    } else if on_validate {
         prep.validate_indices()
     } else {
         prep.fit_indices()
@@ -557,14 +556,10 @@ fn judge(
     local: Option<&LocalStats>,
     all_recordings: bool,
 ) -> Judgement {
-    let pool: Vec<usize> = if all_recordings {
-        (0..sse_before.len()).collect()
-    } else {
-        decision_pool(prep, on_validate)
-    }
-    .into_iter()
-    .filter(|i| !excluded.contains(i))
-    .collect();
+    let pool: Vec<usize> = decision_pool(prep, on_validate, all_recordings)
+        .into_iter()
+        .filter(|i| !excluded.contains(i))
+        .collect();
     let units: Vec<Vec<usize>> = scoring_units(prep, on_validate)
         .into_iter()
         .filter(|u| !u.iter().any(|i| excluded.contains(i)))

@@ -146,10 +146,11 @@ pub fn local_from(before: Side, after: Side, pool: &[usize], noise_n: f64) -> Lo
             var_sum: 0.0,
         };
         if d.len() >= 2 {
-            let mean = d.iter().sum::<f64>() / d.len() as f64;
+            let sum_d: f64 = d.iter().sum();
+            let mean = sum_d / d.len() as f64;
             let var = d.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (d.len() - 1) as f64;
             let rho = lag1(&d, mean).clamp(0.0, 0.999);
-            r.sum_d = d.iter().sum::<f64>();
+            r.sum_d = sum_d;
             r.var_sum = d.len() as f64 * var * (1.0 + rho) / (1.0 - rho);
         }
         recs[*i] = Some(r);
