@@ -495,11 +495,11 @@ impl ImpactLaw {
         };
 
         self.last_current_a = current_a;
-        if branch != Branch::Compression {
-            self.planned_last = false;
-        }
         if branch == Branch::Compression {
             self.last_compression_current_a = current_a;
+        } else {
+            // No plan this period: the look-ahead's trend starts afresh.
+            self.planned_last = false;
         }
         let drive_a = self.drive_for(current_a);
         // Every other exit goes through `fail_safe`, which clears it.
