@@ -198,6 +198,10 @@ enum Command {
         /// With --real: treat recordings at this current (A) as `validate`; repeatable.
         #[arg(long)]
         validate_current: Vec<f64>,
+        /// With --real: run only the cases injecting these effects (`none` included by name);
+        /// each case keeps its seed, so the cases run are the same as in the full benchmark.
+        #[arg(long, value_delimiter = ',')]
+        only: Vec<String>,
     },
     /// Fit the paper's polynomial, the polynomial with diagnose's terms and five
     /// nonlinear families (GSA + Levenberg–Marquardt) side by side (Fig. 15).
@@ -581,11 +585,12 @@ fn run(cli: Cli) -> Result<()> {
             real: Some(real),
             folds_by,
             validate_current,
+            only,
             ..
         } => {
             let opts = mre_host::diagnose::options_from_cli(None, folds_by, 5, validate_current, seed)?;
             let ds = mre_host::dataset::Dataset::load(&real)?;
-            let summary = mre_host::diagnose::bench_real::run_real_bench(&ds, cases, seed, &opts, |c| {
+            let summary = mre_host::diagnose::bench_real::run_real_bench(&ds, cases, seed, &only, &opts, |c| {
                 eprintln!(
                     "case {:>3}: {} at {:.1} % {:?}: found {:?} ({:.2} s); tested {:?}",
                     c.case + 1,

@@ -348,10 +348,14 @@ pub fn run_real_bench(
     ds: &Dataset,
     n_cases: usize,
     seed: u64,
+    only: &[String],
     opts: &DiagnoseOptions,
     mut progress: impl FnMut(&RealCase),
 ) -> Result<RealSummary> {
     let effects = injectable(ds, opts)?;
+    if let Some(unknown) = only.iter().find(|name| !effects.contains(&name.as_str())) {
+        bail!("--only {unknown}: not an effect this data set can be injected with ({effects:?})");
+    }
     let untouched: Vec<String> = diagnose(ds, opts)?
         .findings
         .iter()
@@ -361,6 +365,9 @@ pub fn run_real_bench(
     for k in 0..n_cases {
         let mut rng = ChaCha8Rng::seed_from_u64(super::bench::case_seed(seed, k));
         let effect = effects[k % effects.len()];
+        if !only.is_empty() && !only.iter().any(|name| name == effect) {
+            continue;
+        }
         let strength = rng.random_range(STRENGTH_RANGE);
         let (injected, injection) = inject(ds, effect, strength, &mut rng, opts)?;
         let start = Instant::now();
@@ -510,18 +517,27 @@ pub fn format_real_summary(s: &RealSummary) -> String {
     }
     let _ = writeln!(
         out,
-        "found at strength ≥ 5 %: {:.1} %; top-1: {:.1} %; all strengths: found {:.1} %, top-1 {:.1} %",
-        100.0 * s.found_rate_at_target,
-        100.0 * s.top1_rate_at_target,
-        100.0 * s.found_rate,
-        100.0 * s.top1_rate
+        "found at strength ≥ 5 %: {}; top-1: {}; all strengths: found {}, top-1 {}",
+        percent(s.found_rate_at_target),
+        percent(s.top1_rate_at_target),
+        percent(s.found_rate),
+        percent(s.top1_rate)
     );
     let _ = writeln!(
         out,
-        "false positives: {:.1} % of none cases, {:.1} % of injected cases; slowest diagnosis {:.2} s",
-        100.0 * s.false_positive_rate_none,
-        100.0 * s.false_positive_rate_injected,
+        "false positives: {} of none cases, {} of injected cases; slowest diagnosis {:.2} s",
+        percent(s.false_positive_rate_none),
+        percent(s.false_positive_rate_injected),
         s.max_seconds
     );
     out
+}
+
+/// A rate as a percentage; "n/a" where no case of its kind was run (`--only`).
+fn percent(rate: f64) -> String {
+    if rate.is_nan() {
+        "n/a".into()
+    } else {
+        format!("{:.1} %", 100.0 * rate)
+    }
 }
