@@ -204,6 +204,7 @@ fn signature_of(effect: Effect) -> &'static str {
         Effect::Inertia => "acceleration",
         Effect::CoilLag => locate::CURRENT_NOT_FOLLOWED,
         Effect::HysteresisMemory => "peak stroke",
+        Effect::None => "nothing (no model term)",
     }
 }
 

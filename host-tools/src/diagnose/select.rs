@@ -752,7 +752,7 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
     let mut rounds = Vec::new();
     let mut not_identifiable = Vec::new();
     let mut testable = Vec::new();
-    for e in Effect::ALL {
+    for e in Effect::CANDIDATES {
         match candidates::identifiable(prep, e) {
             Ok(()) => testable.push(e),
             Err(needs) => not_identifiable.push((e, needs)),
