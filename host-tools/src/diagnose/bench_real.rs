@@ -117,7 +117,7 @@ pub fn delayed_force(ds: &Dataset, delay_s: f64) -> Vec<Vec<f64>> {
             let mut hint = 0;
             s.time_s
                 .iter()
-                .map(|&t| super::design::sample_at(&s.time_s, &s.force_n, t - delay_s, &mut hint))
+                .map(|&t| super::signals::sample_at(&s.time_s, &s.force_n, t - delay_s, &mut hint))
                 .collect()
         })
         .collect()

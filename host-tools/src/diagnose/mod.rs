@@ -2,8 +2,13 @@
 //! physics from the vocabulary (`shared/spec/effects.md`), model it, and show
 //! the out-of-sample fit improve.
 //!
-//! Stages: [`baseline`] → [`locate`] → [`candidates`] scored by [`select`]
-//! (forward selection on held-out data) → [`report`].
+//! Stages, each using only those before it: [`prepared`] (channels, folds,
+//! branches; on the primitives of [`signals`]) → [`baseline`] (the paper's
+//! model) → [`locate`] (where the residual sits) → [`candidates`] (one term
+//! per word of [`crate::vocabulary`], built by [`design`]) → [`select`]
+//! (forward selection on held-out data, judged by [`support`]) →
+//! [`parameters`] (values and intervals) → [`report`] (with what stays
+//! [`unexplained`]).
 pub mod baseline;
 pub mod bench;
 pub mod bench_real;
@@ -16,6 +21,7 @@ pub mod plots;
 pub mod prepared;
 pub mod report;
 pub mod select;
+pub mod signals;
 pub mod support;
 pub mod unexplained;
 
