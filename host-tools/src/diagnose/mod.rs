@@ -181,7 +181,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
         .recs
         .iter()
         .zip(&selection.final_model.mask)
-        .map(|(r, m)| r.in_domain.iter().zip(m).map(|(a, b)| *a && *b).collect())
+        .map(|(r, m)| prepared::scored_by_both(&r.in_domain, m))
         .collect();
     let unexplained = unexplained::locate_unexplained(&prep, &final_pred, &scored_mask);
     Ok(Diagnosis {

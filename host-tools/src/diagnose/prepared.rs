@@ -394,6 +394,26 @@ fn mark_range(recs: &mut [Rec], currents_a: &[f64]) {
     }
 }
 
+/// The one scoring rule, for every stage. A sample of a recording is scored
+/// under a model whose force channel lags by τ when it is in range and its
+/// branch is clear at t − τ ([`Rec::scored_mask`]; `in_domain` is the rule at
+/// τ = 0). Two models (a candidate and the model it would extend in
+/// selection and support, the final model and the baseline in the report)
+/// are scored on the samples both score: a delay that moves the chance
+/// turn-around samples then cannot win by dropping them.
+pub fn scored_by_both(a: &[bool], b: &[bool]) -> Vec<bool> {
+    a.iter().zip(b).map(|(a, b)| *a && *b).collect()
+}
+
+/// The items of `values` at the samples `mask` scores, in order.
+pub fn scored<'a, I>(values: I, mask: &'a [bool]) -> impl Iterator<Item = I::Item> + 'a
+where
+    I: IntoIterator,
+    I::IntoIter: 'a,
+{
+    values.into_iter().zip(mask).filter(|(_, m)| **m).map(|(v, _)| v)
+}
+
 /// A sample's branch counts as ambiguous when its speed is within this many
 /// standard deviations of the velocity noise (two-sided ≈ 95 %).
 pub const BRANCH_AMBIGUITY_SIGMAS: f64 = 2.0;
