@@ -625,7 +625,7 @@ fn run(cli: Cli) -> Result<()> {
                     k + 1,
                     c.seed,
                     c.truth,
-                    c.found,
+                    mre_host::vocabulary::names(&c.found),
                     c.seconds,
                     c.first_round
                         .iter()
