@@ -293,7 +293,10 @@ impl Designs {
         // Unconstrained, the 1 A tests of the real MR damper fit k_e < 0 (their
         // own misfit at the stroke ends), which made a true stop's prediction
         // worse there.
-        let stop_cols = self.layout.end_stop_at.map_or(0..0, |at| at..at + self.layout.n_currents);
+        let stop_cols = self
+            .layout
+            .end_stop_at
+            .map_or(0..0, |at| at..at + self.layout.n_currents);
         loop {
             let ls = linalg::solve(&a.select_columns(&used), &y)?;
             let mut beta = vec![0.0; p];

@@ -83,7 +83,9 @@ pub fn final_table(d: &Diagnosis) -> Result<Table> {
         };
         let with_end_stop = |p: [f64; QUARTIC_TERMS]| -> Result<Quartic> {
             let p = match (terms.end_stop_x_mm, layout.end_stop_at) {
-                (Some(x_e), Some(at)) => add_end_stop(p, softening * sol.beta[at + k], x_e, terms.end_stop_lower, lo, hi)?,
+                (Some(x_e), Some(at)) => {
+                    add_end_stop(p, softening * sol.beta[at + k], x_e, terms.end_stop_lower, lo, hi)?
+                }
                 _ => p,
             };
             // The core stores the highest power first.
