@@ -34,6 +34,9 @@ use crate::table::{CurrentEntry, Quartic, MAX_CURRENTS};
 /// stroke): fine enough to end within a few hundredths of a millimetre of a
 /// crossing, and a few thousand quartics per table build (not per period).
 pub const PROOF_STEPS: u32 = 512;
+/// How much finer the pieces get next to a crossing (2¹⁰: a few
+/// hundredths of a micrometre), so that the proven regions reach nearly to it.
+const REFINE: f32 = 1024.0;
 
 /// A bound on one f32 Horner evaluation's error, relative to `Σ|c_i|·|x|^i`:
 /// twice γ₈ (8 roundings at 2⁻²⁴ each).
@@ -180,22 +183,23 @@ fn prove(
         return None;
     }
     let q = |k: usize| entries.get(k).map(|e| quartic(e, branch));
-    let point = |i: u32| {
-        if i >= PROOF_STEPS {
-            hi_mm
-        } else {
-            lo_mm + (hi_mm - lo_mm) * (i as f32 / PROOF_STEPS as f32)
-        }
-    };
     // Each pair's smallest proven margin so far (N).
     let mut margin_n = [f32::INFINITY; MAX_CURRENTS];
+    let base_mm = (hi_mm - lo_mm) / PROOF_STEPS as f32;
+    let mut width_mm = base_mm;
     let mut edge_mm = None;
-    for step in 0..PROOF_STEPS {
-        let i = match walk {
-            Walk::Down => PROOF_STEPS - 1 - step,
-            Walk::Up => step,
+    let mut at_mm = match walk {
+        Walk::Down => hi_mm,
+        Walk::Up => lo_mm,
+    };
+    // Each step either proves a piece at least `base / 2^REFINE` wide or
+    // halves the width: bounded (the cap is far above what a table needs).
+    for _ in 0..PROOF_STEPS * 8 {
+        let (a, b) = match walk {
+            Walk::Down if at_mm > lo_mm => ((at_mm - width_mm).max(lo_mm), at_mm),
+            Walk::Up if at_mm < hi_mm => (at_mm, (at_mm + width_mm).min(hi_mm)),
+            _ => break,
         };
-        let (a, b) = (point(i), point(i + 1));
         let mut piece_margin_n = [f32::INFINITY; MAX_CURRENTS];
         let proven = pairs.iter().zip(piece_margin_n.iter_mut()).all(|(&(low, high), m)| {
             let (Some(low), Some(high)) = (q(low), q(high)) else {
@@ -205,13 +209,21 @@ fn prove(
             // `> 0` is false for NaN too.
             *m > 0.0
         });
-        if !proven {
-            break;
+        if proven {
+            for (m, p) in margin_n.iter_mut().zip(piece_margin_n) {
+                *m = m.min(p);
+            }
+            at_mm = if walk == Walk::Down { a } else { b };
+            edge_mm = Some(at_mm);
+            width_mm = base_mm.min(2.0 * width_mm);
+        } else {
+            // Closer to a crossing the margin shrinks: smaller pieces
+            // prove more of the way to it.
+            width_mm *= 0.5;
+            if width_mm < base_mm / REFINE {
+                break;
+            }
         }
-        for (m, p) in margin_n.iter_mut().zip(piece_margin_n) {
-            *m = m.min(p);
-        }
-        edge_mm = Some(if walk == Walk::Down { a } else { b });
     }
     let edge_mm = edge_mm?;
     // The viscous terms add `(c_high − c_low)·v` to each pair's difference,
