@@ -77,19 +77,14 @@ impl Table {
         if self.has_viscous() {
             let v = crate::model::viscous_velocity(v_m_s);
             let c = &self.terms().viscous_n_s_per_m;
-            // The order proof holds below a speed: past it the viscous
-            // terms could reorder the entries (false for NaN).
-            let v_abs = math::abs(v_m_s);
-            self.solve_at(
-                x_mm,
-                branch,
-                target_force_n,
-                |v_max| v_abs < v_max,
-                |k, f| f + c.get(k).copied().unwrap_or(0.0) * v,
-            )
+            // The order facts are proven for the quartics alone (a viscous
+            // term can reorder the entries at speed): the full scan.
+            self.solve_at(x_mm, branch, target_force_n, false, |k, f| {
+                f + c.get(k).copied().unwrap_or(0.0) * v
+            })
         } else {
             // No rate term: nothing per entry beyond the quartic.
-            self.solve_at(x_mm, branch, target_force_n, |_| true, |_, f| f)
+            self.solve_at(x_mm, branch, target_force_n, true, |_, f| f)
         }
     }
 
@@ -101,39 +96,39 @@ impl Table {
         x_mm: f32,
         branch: Branch,
         target_force_n: f32,
-        slow_enough: impl Fn(f32) -> bool,
+        use_order: bool,
         with_extra: impl Fn(usize, f32) -> f32,
     ) -> PlanResult {
         let entries = self.entries();
         // Where the forces are proven to rise with current, or one entry's
         // to be the largest (order.rs), the same answer as the scan below
-        // comes from fewer quartics. The proofs hold below a speed: past it
-        // the viscous terms could reorder the entries (`slow_enough`).
-        let ascending = self.ascending(branch);
-        if x_mm >= ascending.from_mm {
-            if x_mm <= self.shared_x_max_mm() && slow_enough(ascending.v_max_m_s) {
-                let r = match branch {
-                    Branch::Compression => {
-                        solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.compression.eval(x_mm)))
-                    }
-                    Branch::Extension => {
-                        solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.extension.eval(x_mm)))
-                    }
-                };
-                return self.current_of(r);
-            }
-        } else {
-            let top = self.top(branch);
-            if x_mm <= top.to_mm && x_mm >= self.shared_x_min_mm() && slow_enough(top.v_max_m_s) {
-                let r = match branch {
-                    Branch::Compression => solve_below_top(entries, top.index, target_force_n, |k, e| {
-                        with_extra(k, e.compression.eval(x_mm))
-                    }),
-                    Branch::Extension => solve_below_top(entries, top.index, target_force_n, |k, e| {
-                        with_extra(k, e.extension.eval(x_mm))
-                    }),
-                };
-                return self.current_of(r);
+        // comes from fewer quartics.
+        if use_order {
+            let order = self.order_facts(branch);
+            if x_mm >= order.ascending_from_mm {
+                if x_mm <= self.shared_x_max_mm() {
+                    let r = match branch {
+                        Branch::Compression => {
+                            solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.compression.eval(x_mm)))
+                        }
+                        Branch::Extension => {
+                            solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.extension.eval(x_mm)))
+                        }
+                    };
+                    return self.current_of(r);
+                }
+            } else {
+                if x_mm <= order.top_to_mm && x_mm >= self.shared_x_min_mm() {
+                    let r = match branch {
+                        Branch::Compression => solve_below_top(entries, order.top, target_force_n, |k, e| {
+                            with_extra(k, e.compression.eval(x_mm))
+                        }),
+                        Branch::Extension => solve_below_top(entries, order.top, target_force_n, |k, e| {
+                            with_extra(k, e.extension.eval(x_mm))
+                        }),
+                    };
+                    return self.current_of(r);
+                }
             }
         }
         if self.in_shared_stroke(x_mm) {

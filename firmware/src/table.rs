@@ -8,7 +8,7 @@
 //! and only become a usable [`Table`] through a validating constructor, so a
 //! corrupt or inconsistent table is never evaluated.
 use crate::model::Branch;
-use crate::order::{Ascending, Top};
+use crate::order::OrderFacts;
 use crc::{Crc, CRC_32_ISO_HDLC};
 
 /// Most currents one table can hold (fixed size: no heap on the board).
@@ -284,12 +284,10 @@ pub struct Table {
     end_low_n: [[f32; 2]; MAX_CURRENTS],
     end_high_n: [[f32; 2]; MAX_CURRENTS],
     /// Per branch `[compression, extension]`: where in the shared stroke
-    /// the forces are proven to rise strictly with current (`order.rs`),
-    /// which lets the inverse answer with fewer quartics there.
-    ascending: [Ascending; 2],
-    /// Per branch: from the bottom of the shared stroke up to where one
-    /// entry's force is proven strictly the largest (`order.rs`).
-    top: [Top; 2],
+    /// the forces are proven to rise strictly with current, and where one
+    /// entry's is the largest (`order.rs`), which lets the inverse answer
+    /// with fewer quartics there. None with a viscous term.
+    order: [OrderFacts; 2],
 }
 
 impl Table {
@@ -329,8 +327,7 @@ impl Table {
             shared_x_max_mm: f32::INFINITY,
             end_low_n: [[0.0; 2]; MAX_CURRENTS],
             end_high_n: [[0.0; 2]; MAX_CURRENTS],
-            ascending: [Ascending::NOWHERE; 2],
-            top: [Top::NOWHERE; 2],
+            order: [OrderFacts::NONE; 2],
         };
         let ends = table.end_low_n.iter_mut().zip(table.end_high_n.iter_mut());
         for (((slot, knot), entry), (low, high)) in table
@@ -371,11 +368,11 @@ impl Table {
                 term: "saturation_current_a",
             });
         }
-        let (lo_mm, hi_mm) = (table.shared_x_min_mm, table.shared_x_max_mm);
-        let branches = [Branch::Compression, Branch::Extension];
-        for ((ascending, top), branch) in table.ascending.iter_mut().zip(table.top.iter_mut()).zip(branches) {
-            *ascending = crate::order::ascending(entries, &terms.viscous_n_s_per_m, branch, lo_mm, hi_mm);
-            *top = crate::order::top(entries, &terms.viscous_n_s_per_m, branch, lo_mm, hi_mm);
+        if !table.has_viscous {
+            let (lo_mm, hi_mm) = (table.shared_x_min_mm, table.shared_x_max_mm);
+            for (facts, branch) in table.order.iter_mut().zip([Branch::Compression, Branch::Extension]) {
+                *facts = OrderFacts::prove(entries, branch, lo_mm, hi_mm);
+            }
         }
         let knots = table.knots.get(..table.len).unwrap_or(&[]);
         for (segment, pair) in table.saturation_segments.iter_mut().zip(knots.windows(2)) {
@@ -463,42 +460,6 @@ impl Table {
         x_mm >= self.shared_x_min_mm && x_mm <= self.shared_x_max_mm
     }
 
-    /// Where on `branch` the forces rise strictly with current (see `order.rs`).
-    #[inline(always)]
-    pub(crate) fn ascending(&self, branch: Branch) -> &Ascending {
-        match branch {
-            Branch::Compression => &self.ascending[0],
-            Branch::Extension => &self.ascending[1],
-        }
-    }
-
-    /// Where on `branch` one entry's force is proven the largest.
-    #[inline(always)]
-    pub(crate) fn top(&self, branch: Branch) -> &Top {
-        match branch {
-            Branch::Compression => &self.top[0],
-            Branch::Extension => &self.top[1],
-        }
-    }
-
-    /// The proven order facts of `branch` (`order.rs`): where the forces
-    /// rise with current, and where one entry's is the largest.
-    pub fn order_facts(&self, branch: Branch) -> (Ascending, Top) {
-        (*self.ascending(branch), *self.top(branch))
-    }
-
-    /// The same table without the proven order facts: the inverse then
-    /// always scans every entry it needs, keeping the nearest force. The
-    /// reference the shortcut is tested against.
-    #[doc(hidden)]
-    pub fn without_order_facts(&self) -> Table {
-        Table {
-            ascending: [Ascending::NOWHERE; 2],
-            top: [Top::NOWHERE; 2],
-            ..*self
-        }
-    }
-
     /// The stroke every entry was fitted on (empty if they share none).
     #[inline(always)]
     pub(crate) fn shared_x_min_mm(&self) -> f32 {
@@ -508,6 +469,26 @@ impl Table {
     #[inline(always)]
     pub(crate) fn shared_x_max_mm(&self) -> f32 {
         self.shared_x_max_mm
+    }
+
+    /// The proven order facts of `branch` (`order.rs`).
+    #[inline(always)]
+    pub fn order_facts(&self, branch: Branch) -> &OrderFacts {
+        match branch {
+            Branch::Compression => &self.order[0],
+            Branch::Extension => &self.order[1],
+        }
+    }
+
+    /// The same table without the proven order facts: the inverse then
+    /// always scans every entry it needs, keeping the nearest force. The
+    /// reference the shortcut is tested against.
+    #[doc(hidden)]
+    pub fn without_order_facts(&self) -> Table {
+        Table {
+            order: [OrderFacts::NONE; 2],
+            ..*self
+        }
     }
 
     /// Entry `index` (= `e`)'s force on `branch` at `x_mm` clamped to its
