@@ -8,7 +8,10 @@
 //! force need not grow with current (the paper's 2 A loop lies below its 1.5 A
 //! loop in places), so segments are scanned from the lowest current up rather
 //! than bisected. If no current gives the target, the knot with the nearest
-//! force is returned and flagged `SATURATED_HIGH` or `SATURATED_LOW`.
+//! force is returned and flagged `SATURATED_HIGH` or `SATURATED_LOW`. Where
+//! the table's forces are proven to rise with current, or one entry's to be
+//! the largest (`order.rs`, when the table is built), the same answer comes
+//! from fewer quartics and without carrying the nearest force.
 use crate::flags::Flags;
 use crate::math;
 use crate::model::Branch;

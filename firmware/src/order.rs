@@ -68,8 +68,8 @@ impl OrderFacts {
     /// The facts for `branch` of `entries` on the shared stroke
     /// `[lo_mm, hi_mm]` (every entry fitted on it; none if it is empty).
     pub fn prove(entries: &[CurrentEntry], branch: Branch, lo_mm: f32, hi_mm: f32) -> OrderFacts {
-        // `!(lo < hi)`: an empty shared stroke (or NaN) proves nothing.
-        if !(lo_mm < hi_mm) || !lo_mm.is_finite() || !hi_mm.is_finite() {
+        // An empty (or non-finite) shared stroke proves nothing.
+        if !lo_mm.is_finite() || !hi_mm.is_finite() || lo_mm >= hi_mm {
             return OrderFacts::NONE;
         }
         let mut quartics = [Quartic::new([0.0; 5]); MAX_CURRENTS];
