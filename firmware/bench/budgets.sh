@@ -7,8 +7,8 @@
 #   format 2 term at once (the synthetic worst path) the model and control
 #   steps are held to their measured worst (2026-11-23, BENCHMARKS.md,
 #   "Instructions per step", which says where those cycles go), over budget;
-#   flash ≤ 64 KiB and RAM ≤ 16 KiB (static: .data + .bss + .uninit) for the
-#   `cargo fw` image.
+#   flash ≤ 64 KiB and RAM ≤ 16 KiB (static: .data + .bss + .uninit) for
+#   both hardware images (`cargo fw`, `cargo fw-nucleo`).
 # Usage: bash firmware/bench/budgets.sh   (from the repository root; builds
 # the images it measures)
 set -euo pipefail
@@ -21,9 +21,9 @@ TERMS_CONTROL_CEILING=464
 
 COUNTS=$(bash firmware/bench/icount.sh)
 echo "$COUNTS"
-cargo build --release -q -p mre-firmware --bin mre-firmware --target thumbv7em-none-eabihf
-ELF=target/thumbv7em-none-eabihf/release/mre-firmware
-SIZES=$(llvm-size -A "$ELF")
+# Both hardware images are flashed, so both are held to the memory budgets.
+cargo fw -q
+cargo fw-nucleo -q
 
 echo "$COUNTS" | awk -F' [|] ' -v m="$MODEL_MAX" -v c="$CONTROL_MAX" \
   -v tmc="$TERMS_MODEL_CEILING" -v tcc="$TERMS_CONTROL_CEILING" '
@@ -50,11 +50,14 @@ echo "$COUNTS" | awk -F' [|] ' -v m="$MODEL_MAX" -v c="$CONTROL_MAX" \
     bad += row("every format 2 term, control step", tc, c, tcc)
     if (bad) { print "BUDGET EXCEEDED: instructions per step" > "/dev/stderr"; exit 1 }
   }'
-echo "$SIZES" | awk -v f="$FLASH_MAX" -v r="$RAM_MAX" '
-  $1 ~ /^\.(vector_table|text|rodata|data)$/ { flash += $2 }
-  $1 ~ /^\.(data|bss|uninit)$/ { ram += $2 }
-  END {
-    printf "flash %d / %d bytes, static RAM %d / %d bytes\n", flash, f, ram, r
-    if (flash == 0) { print "no sections measured" > "/dev/stderr"; exit 1 }
-    if (flash > f || ram > r) { print "BUDGET EXCEEDED: memory" > "/dev/stderr"; exit 1 }
-  }'
+for image in "cargo fw:target/thumbv7em-none-eabihf/release/mre-firmware" \
+  "cargo fw-nucleo:target/nucleo/thumbv7em-none-eabihf/release/mre-firmware"; do
+  llvm-size -A "${image#*:}" | awk -v name="${image%%:*}" -v f="$FLASH_MAX" -v r="$RAM_MAX" '
+    $1 ~ /^\.(vector_table|text|rodata|data)$/ { flash += $2 }
+    $1 ~ /^\.(data|bss|uninit)$/ { ram += $2 }
+    END {
+      printf "%s: flash %d / %d bytes, static RAM %d / %d bytes\n", name, flash, f, ram, r
+      if (flash == 0) { print "no sections measured" > "/dev/stderr"; exit 1 }
+      if (flash > f || ram > r) { print "BUDGET EXCEEDED: memory" > "/dev/stderr"; exit 1 }
+    }'
+done
