@@ -16,6 +16,7 @@ pub mod plots;
 pub mod prepared;
 pub mod report;
 pub mod select;
+pub mod scale;
 pub mod support;
 pub mod unexplained;
 
