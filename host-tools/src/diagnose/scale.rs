@@ -46,6 +46,10 @@ pub struct ScaleStats {
     pub gains: Vec<Gain>,
     pub permutations: usize,
     pub seed: u64,
+    /// The permutations stop once the p-value must exceed this, and are not
+    /// run when the ratio is below `min_ratio` (the decision is then made).
+    pub max_p: f64,
+    pub min_ratio: f64,
 }
 
 /// The scale test's result.
@@ -53,7 +57,9 @@ pub struct ScaleStats {
 pub struct ScaleTest {
     /// √(Σ e²_level / Σ e²_law) of the leave-one-out gain predictions.
     pub ratio: f64,
-    /// Share of run-order permutations with a ratio at least as large.
+    /// Share of run-order permutations with a ratio at least as large
+    /// (over the permutations run: NaN when none was, at least `max_p`
+    /// when they stopped early).
     pub p: f64,
     /// Recordings whose gain was predicted.
     pub n: usize,
@@ -222,18 +228,31 @@ impl ScaleStats {
         let g = covariates(&seq);
         let (ratio, n) = loo_ratio(&gains, &g, n_levels);
         let (depth, k) = fit_law(&gains, &g, &vec![true; gains.len()], n_levels);
-        let as_good = (0..self.permutations)
-            .into_par_iter()
-            .filter(|&k| {
-                let mut rng = ChaCha8Rng::seed_from_u64(self.seed.wrapping_add(k as u64));
-                let mut s = seq.clone();
-                s.shuffle(&mut rng);
-                loo_ratio(&gains, &covariates(&s), n_levels).0 >= ratio
-            })
-            .count();
+        // In blocks, each permutation seeded by its index (the same result
+        // whatever the thread count); stop once p ≤ max_p is out of reach.
+        let (mut as_good, mut done) = (0usize, 0usize);
+        let enough = (self.max_p * (1 + self.permutations) as f64).floor() as usize;
+        if ratio >= self.min_ratio {
+            while done < self.permutations && 1 + as_good <= enough {
+                let block = (done..(done + 64).min(self.permutations)).into_par_iter();
+                as_good += block
+                    .filter(|&k| {
+                        let mut rng = ChaCha8Rng::seed_from_u64(self.seed.wrapping_add(k as u64));
+                        let mut s = seq.clone();
+                        s.shuffle(&mut rng);
+                        loo_ratio(&gains, &covariates(&s), n_levels).0 >= ratio
+                    })
+                    .count();
+                done = (done + 64).min(self.permutations);
+            }
+        }
         ScaleTest {
             ratio,
-            p: (1 + as_good) as f64 / (1 + self.permutations) as f64,
+            p: if done == 0 {
+                f64::NAN
+            } else {
+                (1 + as_good) as f64 / (1 + done) as f64
+            },
             n,
             depth,
             n0: N0_GRID[k],
@@ -290,6 +309,8 @@ mod tests {
             gains: softened(&NOISE),
             permutations: 199,
             seed: 1,
+            max_p: 1.0,
+            min_ratio: 0.0,
         };
         let t = st.test(&[]);
         assert_eq!(t.n, 12);
@@ -309,9 +330,30 @@ mod tests {
             gains: flat,
             permutations: 199,
             seed: 1,
+            max_p: 1.0,
+            min_ratio: 0.0,
         }
         .test(&[]);
         assert!(t.ratio < 1.1 && t.p > 0.05, "{t:?}");
+    }
+
+    #[test]
+    fn the_permutations_stop_once_the_decision_is_made() {
+        let flat: Vec<Gain> = (0..12)
+            .map(|k| gain(k, [1.0, 0.9][k % 2] + NOISE[k], (k + 1) as f64, k % 2))
+            .collect();
+        let st = |max_p: f64, min_ratio: f64| ScaleStats {
+            gains: flat.clone(),
+            permutations: 999,
+            seed: 1,
+            max_p,
+            min_ratio,
+        };
+        // Below the ratio gate no permutation runs.
+        assert!(st(0.002, 10.0).test(&[]).p.is_nan());
+        // Without softening p ≤ 0.002 is soon out of reach: p stays above it.
+        let t = st(0.002, 0.0).test(&[]);
+        assert!(t.p > 0.002, "{t:?}");
     }
 
     #[test]
@@ -320,6 +362,8 @@ mod tests {
             gains: softened(&NOISE),
             permutations: 19,
             seed: 1,
+            max_p: 1.0,
+            min_ratio: 0.0,
         };
         // Without the first three tests: nine gains predicted, and the
         // remaining trend (22 % of Δ left at test 4, 3 % at test 8)

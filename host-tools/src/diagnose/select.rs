@@ -576,6 +576,8 @@ fn scale_stats(
         gains,
         permutations: th.scale_permutations,
         seed: th.seed,
+        max_p: th.max_scale_p,
+        min_ratio: th.min_scale_ratio,
     })
 }
 
