@@ -17,6 +17,7 @@
 //! the run order permuted among the recordings (under no softening the order
 //! says nothing about the gains, so every permutation is as likely); the
 //! p-value is the share of permutations that do at least as well.
+use super::prepared::scored;
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -82,11 +83,9 @@ pub fn gains<'a>(
         .filter_map(|&i| {
             let n = sequence(i)?;
             let (mut yp, mut pp) = (0.0, 0.0);
-            for ((p, y), m) in pred[i].iter().zip(force_n(i)).zip(&mask[i]) {
-                if *m {
-                    yp += y * p;
-                    pp += p * p;
-                }
+            for (p, y) in scored(pred[i].iter().zip(force_n(i)), &mask[i]) {
+                yp += y * p;
+                pp += p * p;
             }
             (pp > 0.0).then(|| Gain {
                 index: i,
