@@ -302,16 +302,27 @@ mod tests {
         0.002, -0.003, 0.001, 0.004, -0.002, 0.0, -0.004, 0.003, -0.001, 0.002, 0.001, -0.003,
     ];
 
-    #[test]
-    fn softening_over_the_run_order_is_found_and_its_law_recovered() {
-        let st = ScaleStats {
-            gains: softened(&NOISE),
-            permutations: 199,
+    /// The same levels and noise without softening.
+    fn flat() -> Vec<Gain> {
+        (0..12)
+            .map(|k| gain(k, [1.0, 0.9][k % 2] + NOISE[k], (k + 1) as f64, k % 2))
+            .collect()
+    }
+
+    /// Every permutation run (no early stop).
+    fn stats(gains: Vec<Gain>, permutations: usize) -> ScaleStats {
+        ScaleStats {
+            gains,
+            permutations,
             seed: 1,
             max_p: 1.0,
             min_ratio: 0.0,
-        };
-        let t = st.test(&[]);
+        }
+    }
+
+    #[test]
+    fn softening_over_the_run_order_is_found_and_its_law_recovered() {
+        let t = stats(softened(&NOISE), 199).test(&[]);
         assert_eq!(t.n, 12);
         // The law explains the first tests' scale; the level alone cannot.
         assert!(t.ratio > 3.0, "{t:?}");
@@ -322,31 +333,16 @@ mod tests {
     #[test]
     fn gains_that_ignore_the_run_order_give_no_evidence() {
         // The same noise, no softening: the law cannot predict better.
-        let flat: Vec<Gain> = (0..12)
-            .map(|k| gain(k, [1.0, 0.9][k % 2] + NOISE[k], (k + 1) as f64, k % 2))
-            .collect();
-        let t = ScaleStats {
-            gains: flat,
-            permutations: 199,
-            seed: 1,
-            max_p: 1.0,
-            min_ratio: 0.0,
-        }
-        .test(&[]);
+        let t = stats(flat(), 199).test(&[]);
         assert!(t.ratio < 1.1 && t.p > 0.05, "{t:?}");
     }
 
     #[test]
     fn the_permutations_stop_once_the_decision_is_made() {
-        let flat: Vec<Gain> = (0..12)
-            .map(|k| gain(k, [1.0, 0.9][k % 2] + NOISE[k], (k + 1) as f64, k % 2))
-            .collect();
         let st = |max_p: f64, min_ratio: f64| ScaleStats {
-            gains: flat.clone(),
-            permutations: 999,
-            seed: 1,
             max_p,
             min_ratio,
+            ..stats(flat(), 999)
         };
         // Below the ratio gate no permutation runs.
         assert!(st(0.002, 10.0).test(&[]).p.is_nan());
@@ -357,13 +353,7 @@ mod tests {
 
     #[test]
     fn leaving_recordings_out_removes_their_gains() {
-        let st = ScaleStats {
-            gains: softened(&NOISE),
-            permutations: 19,
-            seed: 1,
-            max_p: 1.0,
-            min_ratio: 0.0,
-        };
+        let st = stats(softened(&NOISE), 19);
         // Without the first three tests: nine gains predicted, and the
         // remaining trend (22 % of Δ left at test 4, 3 % at test 8)
         // carries less evidence than the whole run order.
