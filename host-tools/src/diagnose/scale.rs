@@ -232,7 +232,7 @@ impl ScaleStats {
         let (mut as_good, mut done) = (0usize, 0usize);
         let enough = (self.max_p * (1 + self.permutations) as f64).floor() as usize;
         if ratio >= self.min_ratio {
-            while done < self.permutations && 1 + as_good <= enough {
+            while done < self.permutations && as_good < enough {
                 let block = (done..(done + 64).min(self.permutations)).into_par_iter();
                 as_good += block
                     .filter(|&k| {
