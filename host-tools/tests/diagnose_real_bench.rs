@@ -174,6 +174,17 @@ fn every_case_records_a_random_run_order_and_none_changes_no_force() {
     )
     .unwrap();
     let (depth, n0) = (inj.parameters["depth"], inj.parameters["tests_n0"]);
+    // The injection: a random recorded run order (a permutation of
+    // 1..=n), n0 of 2–8 tests, and 5 % of the force RMS over every sample.
+    let mut order: Vec<u32> = out.recordings.iter().map(|r| r.sequence.unwrap()).collect();
+    order.sort_unstable();
+    assert_eq!(order, vec![1, 2, 3, 4]);
+    assert!((2.0..8.0).contains(&n0) && depth > 0.0 && depth <= 0.6, "{depth} {n0}");
+    let (s2, n) = added(&ds, &out)
+        .iter()
+        .flatten()
+        .fold((0.0, 0usize), |(s, n), d| (s + d * d, n + 1));
+    assert!(((s2 / n as f64).sqrt() / force_rms_n(&ds) - 0.05).abs() < 1e-9);
     for (r, o) in ds.recordings.iter().zip(&out.recordings) {
         let n = f64::from(o.sequence.unwrap());
         let factor = 1.0 - depth * (1.0 - (-(n - 1.0) / n0).exp());

@@ -417,7 +417,7 @@ pub fn run_real_bench(
                                 c.local.n_units,
                                 c.local.z,
                                 c.route.map(|r| format!(" accepted ({r})")).unwrap_or_default()
-                            )
+                            ) + &scale_note(c, &d.prep.validate_indices())
                         })
                         .collect()
                 })
@@ -431,6 +431,20 @@ pub fn run_real_bench(
         cases.push(c);
     }
     Ok(summarize(&ds.name, untouched, cases))
+}
+
+/// The scale route's numbers for `stress_softening` (all gains; fit recordings' only).
+fn scale_note(c: &super::select::Comparison, validate: &[usize]) -> String {
+    match (&c.scale, c.scale_test) {
+        (Some(s), Some(t)) => {
+            let f = s.test(validate);
+            format!(
+                "; scale {:.3} p {:.3} (n {}, Δ {:.3}, n0 {}); fit-only {:.3} p {:.3}",
+                t.ratio, t.p, t.n, t.depth, t.n0, f.ratio, f.p
+            )
+        }
+        _ => String::new(),
+    }
 }
 
 fn rate(cases: &[&RealCase], ok: impl Fn(&RealCase) -> bool) -> f64 {

@@ -21,6 +21,7 @@ pub mod plots;
 pub mod prepared;
 pub mod report;
 pub mod select;
+pub mod scale;
 pub mod signals;
 pub mod support;
 pub mod unexplained;

@@ -320,6 +320,24 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
         d.thresholds.min_local_units,
         d.thresholds.min_local_pool_ratio
     );
+    if d.selection
+        .rounds
+        .iter()
+        .flat_map(|r| &r.tested)
+        .any(|c| c.scale.is_some())
+    {
+        let _ = writeln!(
+            s,
+            "`stress_softening` over the run order may also pass on each recording's scale: the gain that maps the \
+             current model's held-out prediction onto the recording, fitted as `a(I)·(1 − Δ·(1 − e^(−(n−1)/n0)))` \
+             against a level per current, each gain predicted leave-one-recording-out; accepted when that ratio is \
+             ≥ {:.2} and at most {:.1} % of {} run-order permutations do as well. Every recording with a run order \
+             contributes its gain, validate ones included.\n",
+            d.thresholds.min_scale_ratio,
+            100.0 * d.thresholds.max_scale_p,
+            d.thresholds.scale_permutations
+        );
+    }
     if let Some(m) = &d.selection.memory {
         let t = &m.scored.terms;
         let form = match (t.memory_mm, t.friction_v0_m_s) {
