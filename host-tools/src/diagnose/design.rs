@@ -110,11 +110,7 @@ pub fn memory_feature(x: &[f64], delta_mm: f64) -> (Vec<Option<(f64, f64)>>, Vec
 /// opposite branch, so that stretch gets its own coefficients. Without it
 /// the first quarter cycle of every real MTS test was predicted on the
 /// steady branch (≈ 13 % of the final residual energy on the bundled set).
-pub fn memory_feature_on_branches(
-    time_s: &[f64],
-    x: &[f64],
-    v: &[f64],
-) -> (Vec<Option<(f64, f64, bool)>>, Vec<bool>) {
+pub fn memory_feature_on_branches(time_s: &[f64], x: &[f64], v: &[f64]) -> (Vec<Option<(f64, f64, bool)>>, Vec<bool>) {
     let compressing: Vec<bool> = v.iter().map(|v| *v > 0.0).collect();
     let peak = v.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let mut anchor: Option<(f64, bool)> = match (x.first(), v.first()) {
@@ -589,7 +585,9 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
                     let e = (-d / (len * delta)).exp();
                     for &(k, w) in weights.iter().filter(|(_, w)| *w != 0.0) {
                         let columns: &mut dyn Iterator<Item = (usize, f64)> = match (from_rest, l == START_LENGTH) {
-                            (false, _) => &mut (0..MEMORY_POWERS).map(|p| (l * MEMORY_POWERS + p, w * e * x_r.powi(p as i32))),
+                            (false, _) => {
+                                &mut (0..MEMORY_POWERS).map(|p| (l * MEMORY_POWERS + p, w * e * x_r.powi(p as i32)))
+                            }
                             (true, true) => &mut std::iter::once((MEMORY_TERMS - 1, w * e)),
                             (true, false) => &mut std::iter::empty(),
                         };
