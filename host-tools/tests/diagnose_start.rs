@@ -79,13 +79,13 @@ fn a_start_from_rest_is_anchored_and_a_running_start_is_not() {
     let (feature, compressing) = memory_feature_on_branches(&t, &x, &v);
     // Before the first reversal (at +A, half a cycle later) the
     // anchor is the first sample, flagged as the start from rest.
-    let (d, x_r, rest) = feature[10].expect("anchored from the first sample");
-    assert!(rest && compressing[10]);
-    assert!((x_r - x[0]).abs() < 1e-12 && (d - (x[10] - x[0])).abs() < 1e-12);
+    let a = feature[10].expect("anchored from the first sample");
+    assert!(a.from_rest && compressing[10]);
+    assert!((a.x_r_mm - x[0]).abs() < 1e-12 && (a.distance_mm - (x[10] - x[0])).abs() < 1e-12);
     // After the reversal at the +A end: an ordinary turn-around near +2 mm.
     let half = (0.25 / DT_S) as usize + 20;
-    let (_, x_r, rest) = feature[half].expect("after the reversal");
-    assert!(!rest && (x_r - 2.0).abs() < 0.01, "x_r {x_r}");
+    let a = feature[half].expect("after the reversal");
+    assert!(!a.from_rest && (a.x_r_mm - 2.0).abs() < 0.01, "x_r {}", a.x_r_mm);
 
     // A sinusoid already running (x = A·sin ωt starts at its peak speed).
     let w = 2.0 * std::f64::consts::PI * 2.0;

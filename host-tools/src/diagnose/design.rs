@@ -93,6 +93,17 @@ pub fn memory_feature(x: &[f64], delta_mm: f64) -> (Vec<Option<(f64, f64)>>, Vec
     (feature, compressing)
 }
 
+/// Where the memory's current stretch of travel started, seen from one sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Anchor {
+    /// Travel since the anchor (mm).
+    pub distance_mm: f64,
+    /// Displacement at the anchor (mm).
+    pub x_r_mm: f64,
+    /// The anchor is the start from rest, not a reversal.
+    pub from_rest: bool,
+}
+
 /// [`memory_feature`] for the model's own branches: a reversal is where the
 /// sign of v changes (the quartic's branch switch), anchored at x there.
 /// Using the same direction as the quartic matters: where a displacement-
@@ -110,7 +121,7 @@ pub fn memory_feature(x: &[f64], delta_mm: f64) -> (Vec<Option<(f64, f64)>>, Vec
 /// opposite branch, so that stretch gets its own coefficients. Without it
 /// the first quarter cycle of every real MTS test was predicted on the
 /// steady branch (≈ 13 % of the final residual energy on the bundled set).
-pub fn memory_feature_on_branches(time_s: &[f64], x: &[f64], v: &[f64]) -> (Vec<Option<(f64, f64, bool)>>, Vec<bool>) {
+pub fn memory_feature_on_branches(time_s: &[f64], x: &[f64], v: &[f64]) -> (Vec<Option<Anchor>>, Vec<bool>) {
     let compressing: Vec<bool> = v.iter().map(|v| *v > 0.0).collect();
     let peak = v.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let mut anchor: Option<(f64, bool)> = match (x.first(), v.first()) {
@@ -122,7 +133,11 @@ pub fn memory_feature_on_branches(time_s: &[f64], x: &[f64], v: &[f64]) -> (Vec<
             if t > 0 && compressing[t] != compressing[t - 1] {
                 anchor = Some((turning_point_mm(time_s, x, v, t), false));
             }
-            anchor.map(|(x_r, rest)| ((x[t] - x_r).abs(), x_r, rest))
+            anchor.map(|(x_r_mm, from_rest)| Anchor {
+                distance_mm: (x[t] - x_r_mm).abs(),
+                x_r_mm,
+                from_rest,
+            })
         })
         .collect();
     (feature, compressing)
@@ -580,7 +595,12 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
             }
         }
         if let (Some((m, dir)), Some(delta)) = (&memory, terms.memory_mm) {
-            if let Some((d, x_r, from_rest)) = m[t] {
+            if let Some(Anchor {
+                distance_mm: d,
+                x_r_mm: x_r,
+                from_rest,
+            }) = m[t]
+            {
                 for (l, len) in MEMORY_LENGTHS.iter().enumerate() {
                     let e = (-d / (len * delta)).exp();
                     for &(k, w) in weights.iter().filter(|(_, w)| *w != 0.0) {
