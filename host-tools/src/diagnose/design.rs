@@ -30,11 +30,15 @@ pub const MEMORY_POWERS: usize = 2;
 /// each length after a turn-around, and one column for the start from rest
 /// (see [`START_FROM_REST`]).
 pub const MEMORY_TERMS: usize = MEMORY_LENGTHS.len() * MEMORY_POWERS + 1;
-/// The start from rest relaxes over the middle length δ only: it spans a
-/// quarter cycle of each test, too few samples (5 on a 5 Hz, 5 ms test) to
-/// pin three nearly collinear lengths, whose held-out predictions then blew
-/// up.
-const START_LENGTH: usize = 1;
+/// The start from rest relaxes over one length, this fraction of the fit
+/// recordings' stroke span (the middle of the δ searched by
+/// `candidates::memory_variants`), the same in every memory variant. One
+/// length: a start spans a quarter cycle, as few as 5 samples on a 5 Hz,
+/// 5 ms test, too few to pin three nearly collinear lengths (their held-out
+/// predictions blew up). Not tied to δ: then the start's fit steered the
+/// choice of δ (a 4.4 ms delay injected into the real set picked δ = 0.6 mm
+/// for the start's sake, and every candidate then failed on top of it).
+pub const START_SPAN_FRACTION: f64 = 0.025;
 /// A recording starts from rest when its first speed is at most this
 /// fraction of its peak speed (an MTS test started at standstill; a drop or
 /// a sinusoid already running starts near its peak speed).
@@ -386,7 +390,17 @@ pub struct Solution {
 impl Designs {
     pub fn build(prep: &Prepared, terms: &Terms) -> Designs {
         let layout = Layout::new(prep.currents_a.len(), terms);
-        let recs = prep.recs.iter().map(|r| design_for(prep, r, terms, &layout)).collect();
+        let span = prep
+            .fit_indices()
+            .iter()
+            .flat_map(|&i| prep.recs[i].x_mm.iter().copied())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)));
+        let start_mm = (START_SPAN_FRACTION * (span.1 - span.0)).max(1e-9);
+        let recs = prep
+            .recs
+            .iter()
+            .map(|r| design_for(prep, r, terms, &layout, start_mm))
+            .collect();
         Designs {
             terms: *terms,
             layout,
@@ -496,7 +510,8 @@ impl Designs {
     }
 }
 
-fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> RecDesign {
+/// `start_mm`: the relaxation length of a start from rest ([`START_SPAN_FRACTION`]).
+fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_mm: f64) -> RecDesign {
     // Interpolation weights per sample: one set for a held current, one per
     // sample when the recorded current changes during the test.
     // A delayed force channel shows the current of τ ago too.
@@ -601,20 +616,24 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout) -> Rec
                 from_rest,
             }) = m[t]
             {
-                for (l, len) in MEMORY_LENGTHS.iter().enumerate() {
-                    let e = (-d / (len * delta)).exp();
-                    for &(k, w) in weights.iter().filter(|(_, w)| *w != 0.0) {
-                        let columns: &mut dyn Iterator<Item = (usize, f64)> = match (from_rest, l == START_LENGTH) {
-                            (false, _) => {
-                                &mut (0..MEMORY_POWERS).map(|p| (l * MEMORY_POWERS + p, w * e * x_r.powi(p as i32)))
-                            }
-                            (true, true) => &mut std::iter::once((MEMORY_TERMS - 1, w * e)),
-                            (true, false) => &mut std::iter::empty(),
-                        };
-                        for (j, value) in columns {
-                            if let Some(c) = layout.memory_col(dir[t], j, k) {
-                                a[(t, local(c))] += value;
-                            }
+                // (column, basis value before the current weight), no allocation per sample
+                let mut basis = [(0usize, 0.0f64); MEMORY_TERMS];
+                let used = if from_rest {
+                    basis[0] = (MEMORY_TERMS - 1, (-d / start_mm).exp());
+                    1
+                } else {
+                    for (l, len) in MEMORY_LENGTHS.iter().enumerate() {
+                        let e = (-d / (len * delta)).exp();
+                        for p in 0..MEMORY_POWERS {
+                            basis[l * MEMORY_POWERS + p] = (l * MEMORY_POWERS + p, e * x_r.powi(p as i32));
+                        }
+                    }
+                    MEMORY_TERMS - 1
+                };
+                for &(k, w) in weights.iter().filter(|(_, w)| *w != 0.0) {
+                    for &(j, value) in &basis[..used] {
+                        if let Some(c) = layout.memory_col(dir[t], j, k) {
+                            a[(t, local(c))] += w * value;
                         }
                     }
                 }
