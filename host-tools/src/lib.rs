@@ -18,3 +18,4 @@ pub mod table_file;
 pub mod tables;
 pub mod upload;
 pub mod validate;
+pub mod vocabulary;

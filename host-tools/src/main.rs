@@ -597,7 +597,7 @@ fn run(cli: Cli) -> Result<()> {
                     c.injection.effect,
                     100.0 * c.injection.achieved_strength,
                     c.injection.parameters,
-                    c.found,
+                    mre_host::vocabulary::names(&c.found),
                     c.seconds,
                     c.tested
                 )
@@ -625,7 +625,7 @@ fn run(cli: Cli) -> Result<()> {
                     k + 1,
                     c.seed,
                     c.truth,
-                    c.found,
+                    mre_host::vocabulary::names(&c.found),
                     c.seconds,
                     c.first_round
                         .iter()

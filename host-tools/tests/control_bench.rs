@@ -83,7 +83,7 @@ fn controller_c_meets_the_nominal_target() {
     // Issue 11: on a plant without a concealed effect, (c) peaks at most
     // 1.10× the limit, within the stroke, and no higher than (a).
     let out = run_case(&Case::Effect {
-        name: "none".to_owned(),
+        name: mre_host::vocabulary::Effect::None,
         seed: 101,
     })
     .unwrap();

@@ -4,6 +4,7 @@
 use mre_host::dataset::{Dataset, Recording, Role, Samples};
 use mre_host::diagnose::bench_real::{acceleration_from_x, force_rms_n, inject};
 use mre_host::diagnose::DiagnoseOptions;
+use mre_host::vocabulary::Effect;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::PI;
@@ -69,7 +70,7 @@ fn added(before: &Dataset, after: &Dataset) -> Vec<Vec<f64>> {
 fn a_delay_is_injected_in_seconds_whatever_the_sampling_rate() {
     let ds = sinusoid_set();
     let mut rng = ChaCha8Rng::seed_from_u64(1);
-    let (out, inj) = inject(&ds, "sensor_delay", 0.08, &mut rng, &DiagnoseOptions::default()).unwrap();
+    let (out, inj) = inject(&ds, Effect::SensorDelay, 0.08, &mut rng, &DiagnoseOptions::default()).unwrap();
     // F(t − τ) − F(t) for F = F0·sin ωt has RMS F0·√2·sin(ωτ/2) against the
     // force RMS F0/√2: strength 2·sin(ωτ/2), so τ = 2·asin(s/2)/ω.
     let expected_s = 2.0 * (0.08f64 / 2.0).asin() / (2.0 * PI * F_HZ);
@@ -123,7 +124,7 @@ fn end_stops_act_at_either_end_with_the_requested_strength() {
     let mut sides = Vec::new();
     for seed in 0..12 {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let (out, inj) = inject(&ds, "end_stop", 0.05, &mut rng, &DiagnoseOptions::default()).unwrap();
+        let (out, inj) = inject(&ds, Effect::EndStop, 0.05, &mut rng, &DiagnoseOptions::default()).unwrap();
         let x_e = inj.parameters["x_e_mm"];
         let lower = inj.parameters["lower_end"] == 1.0;
         sides.push(lower);
@@ -157,14 +158,21 @@ fn end_stops_act_at_either_end_with_the_requested_strength() {
 fn every_case_records_a_random_run_order_and_none_changes_no_force() {
     let ds = sinusoid_set();
     let mut rng = ChaCha8Rng::seed_from_u64(3);
-    let (out, inj) = inject(&ds, "none", 0.1, &mut rng, &DiagnoseOptions::default()).unwrap();
+    let (out, inj) = inject(&ds, Effect::None, 0.1, &mut rng, &DiagnoseOptions::default()).unwrap();
     assert_eq!(inj.achieved_strength, 0.0);
     assert!(added(&ds, &out).iter().flatten().all(|d| *d == 0.0));
     let mut order: Vec<u32> = out.recordings.iter().map(|r| r.sequence.unwrap()).collect();
     order.sort_unstable();
     assert_eq!(order, vec![1, 2, 3, 4]);
     // Softening: test n scaled by 1 − Δ·(1 − e^{−(n−1)/n0}), the first untouched.
-    let (out, inj) = inject(&ds, "stress_softening", 0.05, &mut rng, &DiagnoseOptions::default()).unwrap();
+    let (out, inj) = inject(
+        &ds,
+        Effect::StressSoftening,
+        0.05,
+        &mut rng,
+        &DiagnoseOptions::default(),
+    )
+    .unwrap();
     let (depth, n0) = (inj.parameters["depth"], inj.parameters["tests_n0"]);
     for (r, o) in ds.recordings.iter().zip(&out.recordings) {
         let n = f64::from(o.sequence.unwrap());

@@ -2,8 +2,9 @@
 //! the coil lag, and the velocity noise behind the branch-ambiguity mask.
 mod diagnose_support;
 use diagnose_support::{dataset_with_steps, lagged_step_a, Added, SAMPLE_PERIOD_S, STEPS_A, STEP_SAMPLE};
-use mre_host::diagnose::design::{current_weights, effective_current_a, memory_feature};
+use mre_host::diagnose::design::effective_current_a;
 use mre_host::diagnose::prepared::{prepare, velocity_noise_m_s, FoldPlan};
+use mre_host::diagnose::signals::{current_weights, memory_feature};
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 

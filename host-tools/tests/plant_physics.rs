@@ -1,7 +1,7 @@
 //! Physics checks of the drop-impact plant, with expected values from
 //! physics and from the paper (never from the simulator's own output).
 use mre_host::plant::synth::step_command;
-use mre_host::plant::{simulate, CurrentSource, Effect, ImpactConfig, LawParams, MeasurementModel, Plant, Trajectory};
+use mre_host::plant::{simulate, ConcealedEffect, CurrentSource, ImpactConfig, LawParams, MeasurementModel, Plant, Trajectory};
 
 /// The paper's Table 5 measured peak forces (`shared/paper/table4.toml`).
 const TABLE5: [(f64, f64); 5] = [
@@ -139,7 +139,7 @@ fn recordings_hold_measured_samples_on_the_instrument_grid() {
         mean_abs_diff > 0.5 * sigma && mean_abs_diff < 1.5 * sigma,
         "mean |noise| {mean_abs_diff} N"
     );
-    assert_eq!(Effect::None.name(), "none");
+    assert_eq!(ConcealedEffect::None.name(), "none");
 }
 
 #[test]

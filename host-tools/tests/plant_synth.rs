@@ -10,7 +10,7 @@ use mre_host::dataset::{Recording, Role, TagValue};
 use mre_host::plant::synth::{
     draw_base_plant, draw_plant, resolve_effect_name, step_command, synthesize, write_synth, SynthPlan,
 };
-use mre_host::plant::{simulate, CurrentSource, Effect, ImpactConfig, LawParams, Plant, EFFECT_NAMES};
+use mre_host::plant::{simulate, ConcealedEffect, CurrentSource, ImpactConfig, LawParams, Plant, DROP_EFFECTS};
 use std::collections::BTreeSet;
 
 const SEED: u64 = 7;
@@ -106,7 +106,7 @@ fn none_follows_the_paper_structure() {
 #[test]
 fn viscous_damping_adds_c_times_v() {
     let (with, without) = pair("viscous_damping");
-    let Effect::ViscousDamping {
+    let ConcealedEffect::ViscousDamping {
         c0_n_s_per_m,
         increase_per_a,
     } = with.plant.effect
@@ -130,7 +130,7 @@ fn viscous_damping_adds_c_times_v() {
 #[test]
 fn sensor_delay_shifts_force_but_not_displacement() {
     let (with, without) = pair("sensor_delay");
-    let Effect::SensorDelay { delay_s } = with.plant.effect else {
+    let ConcealedEffect::SensorDelay { delay_s } = with.plant.effect else {
         panic!("wrong effect")
     };
     let dt = with.plant.measurement.sample_period_s;
@@ -188,7 +188,7 @@ fn sensor_delay_shifts_force_but_not_displacement() {
 #[test]
 fn stress_softening_grows_with_sequence() {
     let (with, without) = pair("stress_softening");
-    let Effect::StressSoftening { depth, tests_n0 } = with.plant.effect else {
+    let ConcealedEffect::StressSoftening { depth, tests_n0 } = with.plant.effect else {
         panic!("wrong effect")
     };
     for (a, b) in with.dataset.recordings.iter().zip(&without.dataset.recordings) {
@@ -218,7 +218,7 @@ fn stress_softening_grows_with_sequence() {
 #[test]
 fn end_stop_acts_only_beyond_its_stroke() {
     let (with, without) = pair("end_stop");
-    let Effect::EndStop { x_e_mm, .. } = with.plant.effect else {
+    let ConcealedEffect::EndStop { x_e_mm, .. } = with.plant.effect else {
         panic!("wrong effect")
     };
     let mut reached = 0;
@@ -319,8 +319,19 @@ fn same_seed_same_bytes_and_seeds_vary_the_plant() {
 
 #[test]
 fn random_effect_covers_the_vocabulary_including_none() {
-    let picked: BTreeSet<&str> = (0..200).map(|s| resolve_effect_name("random", s).unwrap()).collect();
-    assert_eq!(picked, EFFECT_NAMES.iter().copied().collect());
+    let picked: BTreeSet<&str> = (0..200).map(|s| resolve_effect_name("random", s).unwrap().name()).collect();
+    // The spec's words a plain drop campaign can reveal (not `inertia`, not
+    // `hysteresis_memory`), and `none`.
+    let expected = [
+        "none",
+        "viscous_damping",
+        "sensor_delay",
+        "stress_softening",
+        "end_stop",
+        "magnetic_saturation",
+        "coil_lag",
+    ];
+    assert_eq!(picked, expected.into_iter().collect());
     assert!(resolve_effect_name("inertia_typo", 0).is_err());
 }
 
@@ -334,19 +345,19 @@ fn effect_terms_match_the_spec_formulas() {
     let loading = |gain: f64| gain * elastic * (1.0 + 0.5 * (v / 0.003f64).tanh());
     assert!((base.force_n(x, v, 0.0, 1) - loading(1.0)).abs() < 1e-9);
 
-    let sat = base.clone().with_effect(Effect::MagneticSaturation { i_s_a: 0.4 });
+    let sat = base.clone().with_effect(ConcealedEffect::MagneticSaturation { i_s_a: 0.4 });
     let u = |i: f64| (i / 0.4f64).tanh();
     let gain = 1.0 + (u(0.3) - u(0.0)) / (u(0.5) - u(0.0)) * (10.15 - 1.0);
     assert!((sat.force_n(x, v, 0.3, 1) - loading(gain)).abs() < 1e-6);
     assert_eq!(sat.force_n(x, v, 0.5, 1), base.force_n(x, v, 0.5, 1));
 
-    let stop = base.clone().with_effect(Effect::EndStop {
+    let stop = base.clone().with_effect(ConcealedEffect::EndStop {
         x_e_mm: 4.0,
         k_e_n_per_mm2: 100.0,
     });
     assert!((stop.force_n(x, v, 0.0, 1) - (loading(1.0) + 100.0)).abs() < 1e-9);
 
-    let soft = base.clone().with_effect(Effect::StressSoftening {
+    let soft = base.clone().with_effect(ConcealedEffect::StressSoftening {
         depth: 0.2,
         tests_n0: 5.0,
     });
@@ -354,11 +365,11 @@ fn effect_terms_match_the_spec_formulas() {
     assert!((soft.force_n(x, v, 0.0, 11) - factor * loading(1.0)).abs() < 1e-9);
 
     // The coil lag acts on the current, not on the force law at a given current.
-    let lag = base.clone().with_effect(Effect::CoilLag { time_constant_s: 5e-4 });
+    let lag = base.clone().with_effect(ConcealedEffect::CoilLag { time_constant_s: 5e-4 });
     assert_eq!(lag.force_n(x, v, 1.0, 1), base.force_n(x, v, 1.0, 1));
     assert_eq!(lag.effect.coil_lag_s(), Some(5e-4));
 
-    let visc = base.with_effect(Effect::ViscousDamping {
+    let visc = base.with_effect(ConcealedEffect::ViscousDamping {
         c0_n_s_per_m: 300.0,
         increase_per_a: 0.5,
     });
@@ -379,8 +390,8 @@ fn every_campaign_has_the_same_plan_with_six_controlled_impacts() {
     ]
     .into();
     let mut plans = Vec::new();
-    for effect in EFFECT_NAMES {
-        let out = synthesize(effect, SEED).unwrap();
+    for effect in DROP_EFFECTS {
+        let out = synthesize(effect.name(), SEED).unwrap();
         let recs = &out.dataset.recordings;
         assert_eq!(recs.len(), 60, "{effect}");
         let controlled: Vec<&Recording> = recs.iter().filter(|r| is_controlled(r)).collect();
@@ -460,7 +471,7 @@ fn none_controlled_impacts_follow_the_law_at_the_commanded_current() {
 #[test]
 fn coil_lag_changes_only_the_controlled_impacts() {
     let (with, without) = pair("coil_lag");
-    let Effect::CoilLag { time_constant_s: tau } = with.plant.effect else {
+    let ConcealedEffect::CoilLag { time_constant_s: tau } = with.plant.effect else {
         panic!("wrong effect")
     };
     assert!((0.2e-3..=0.8e-3).contains(&tau), "τ = {tau} s");
@@ -528,7 +539,7 @@ fn coil_lag_key_and_drawn_time_constant_in_range() {
     let drawn: Vec<f64> = (0..40)
         .map(|seed| draw_plant("coil_lag", seed, &plan).unwrap().effect.clone())
         .map(|e| match e {
-            Effect::CoilLag { time_constant_s } => time_constant_s,
+            ConcealedEffect::CoilLag { time_constant_s } => time_constant_s,
             other => panic!("{other:?}"),
         })
         .collect();

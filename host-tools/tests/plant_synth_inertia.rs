@@ -10,7 +10,7 @@
 //! `a = g − F/M`, and that a single-mass campaign's key says inertia cannot
 //! be identified there.
 use mre_host::dataset::Recording;
-use mre_host::plant::effects::INSTRUMENTED_EFFECT_NAMES;
+use mre_host::plant::effects::{Effect, INSTRUMENTED_EFFECTS};
 use mre_host::plant::synth::{
     key_identifiable, resolve_effect_name_for, synthesize, synthesize_with_plan, SynthOutput, SynthPlan,
 };
@@ -228,18 +228,29 @@ fn single_mass_inertia_is_a_pure_scale_and_its_key_says_it_cannot_be_identified(
 fn random_on_the_instrumented_campaign_covers_inertia_and_the_plain_one_never_draws_it() {
     let instrumented = SynthPlan::instrumented();
     let picked: BTreeSet<&str> = (0..200)
-        .map(|s| resolve_effect_name_for("random", s, &instrumented).unwrap())
+        .map(|s| resolve_effect_name_for("random", s, &instrumented).unwrap().name())
         .collect();
-    let mut vocabulary: BTreeSet<&str> = mre_host::plant::EFFECT_NAMES.iter().copied().collect();
-    vocabulary.insert("inertia");
-    assert_eq!(vocabulary.len(), 8);
+    // Every word of the spec but `hysteresis_memory` (not a concealable
+    // effect), and `none`.
+    let vocabulary: BTreeSet<&str> = [
+        "none",
+        "viscous_damping",
+        "sensor_delay",
+        "stress_softening",
+        "end_stop",
+        "magnetic_saturation",
+        "coil_lag",
+        "inertia",
+    ]
+    .into_iter()
+    .collect();
     assert_eq!(picked, vocabulary);
     assert_eq!(
-        INSTRUMENTED_EFFECT_NAMES.iter().copied().collect::<BTreeSet<_>>(),
+        INSTRUMENTED_EFFECTS.iter().map(|e| e.name()).collect::<BTreeSet<_>>(),
         vocabulary
     );
     let plain = SynthPlan::default();
-    assert!((0..200).all(|s| resolve_effect_name_for("random", s, &plain).unwrap() != "inertia"));
+    assert!((0..200).all(|s| resolve_effect_name_for("random", s, &plain).unwrap() != Effect::Inertia));
     assert!(instrumented.reveals_inertia() && !plain.reveals_inertia());
     // An accelerometer alone does not reveal it: one mass keeps a ∝ g − F/M.
     let one_mass = SynthPlan {

@@ -17,7 +17,7 @@ pub mod limit;
 use crate::dataset::write::{write_dataset, WriteOptions};
 use crate::dataset::Dataset;
 use crate::plant::closed_loop::{law_config, run_controlled, SimSetup, USABLE_STROKE_MM};
-use crate::plant::effects::Effect;
+use crate::plant::effects::{ConcealedEffect, Effect, DROP_EFFECTS};
 use crate::plant::stepper::{simulate, CurrentSource, ImpactConfig, ImpactSummary, Plant};
 use crate::plant::synth::{draw_base_plant, draw_plant, synthesize_plant, SynthPlan, SYNTH_PRECISION};
 use anyhow::{anyhow, Context, Result};
@@ -32,7 +32,7 @@ use serde::Serialize;
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub enum Case {
     /// A concealed effect with parameters drawn from the seed (`mre synth`).
-    Effect { name: String, seed: u64 },
+    Effect { name: Effect, seed: u64 },
     /// The seed's base plant with a coil of this time constant (0 = none).
     CoilTau { tau_ms: f64, seed: u64 },
 }
@@ -47,11 +47,11 @@ impl Case {
 
     pub fn plant(&self, plan: &SynthPlan) -> Result<Plant> {
         match self {
-            Case::Effect { name, seed } => draw_plant(name, *seed, plan),
+            Case::Effect { name, seed } => draw_plant(name.name(), *seed, plan),
             Case::CoilTau { tau_ms, seed } => {
                 let base = draw_base_plant(*seed);
                 Ok(if *tau_ms > 0.0 {
-                    base.with_effect(Effect::CoilLag {
+                    base.with_effect(ConcealedEffect::CoilLag {
                         time_constant_s: tau_ms * 1e-3,
                     })
                 } else {
@@ -70,7 +70,7 @@ impl Case {
     /// The target for controller (c), as a multiple of the limit.
     pub fn target_ratio(&self) -> f64 {
         match self {
-            Case::Effect { name, .. } if name == "none" => 1.10,
+            Case::Effect { name, .. } if *name == Effect::None => 1.10,
             Case::CoilTau { tau_ms, .. } if *tau_ms == 0.0 => 1.10,
             Case::CoilTau { tau_ms, .. } if *tau_ms > 2.0 => 1.5,
             _ => 1.25,
@@ -81,13 +81,10 @@ impl Case {
 /// The default cases: every effect on the seeds of the bundled data sets
 /// (`data/generate.sh`), and coil τ ∈ {0, 1, 2, 5} ms.
 pub fn default_cases() -> Vec<Case> {
-    let mut cases: Vec<Case> = crate::plant::EFFECT_NAMES
-        .iter()
+    let mut cases: Vec<Case> = DROP_EFFECTS
+        .into_iter()
         .zip(101u64..)
-        .map(|(name, seed)| Case::Effect {
-            name: (*name).to_owned(),
-            seed,
-        })
+        .map(|(name, seed)| Case::Effect { name, seed })
         .collect();
     cases.extend(
         [0.0, 1.0, 2.0, 5.0]

@@ -7,8 +7,9 @@
 //! --campaign instrumented`: two drop masses and a striker accelerometer,
 //! every effect including `inertia`) and shaker/MTS campaigns.
 use super::{diagnose, DiagnoseOptions};
-use crate::plant::effects::{EFFECT_NAMES, INSTRUMENTED_EFFECT_NAMES};
+use crate::plant::effects::{Effect, DROP_EFFECTS, INSTRUMENTED_EFFECTS};
 use crate::plant::synth::{key_identifiable, synthesize_with_plan, SynthPlan};
+use crate::vocabulary::names;
 use anyhow::Result;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -18,15 +19,15 @@ use std::time::Instant;
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct BenchCase {
     pub seed: u64,
-    pub truth: String,
+    pub truth: Effect,
     /// Accepted effects, most important first.
-    pub found: Vec<String>,
+    pub found: Vec<Effect>,
     /// `none` when nothing was accepted.
-    pub top1: String,
+    pub top1: Effect,
     /// Held-out RMSE ratio of the true effect's term (1 when not found; absent for `none`).
     pub heldout_improvement: Option<f64>,
     /// First-round held-out ratio of every candidate tested.
-    pub first_round: Vec<(String, f64)>,
+    pub first_round: Vec<(Effect, f64)>,
     pub seconds: f64,
     /// False when the key says the campaign cannot reveal the effect: such
     /// a case is reported but neither a hit nor a miss.
@@ -54,7 +55,7 @@ pub struct BenchSummary {
     /// MTS cases whose concealed effect was found (`none`: nothing but `hysteresis_memory`).
     pub mts_found: usize,
     /// Instrumented drop campaigns (two drop masses, striker accelerometer),
-    /// effects in turn over [`INSTRUMENTED_EFFECT_NAMES`], scored as the
+    /// effects in turn over [`INSTRUMENTED_EFFECTS`], scored as the
     /// plain drops are.
     pub instrumented: Option<Box<BenchSummary>>,
 }
@@ -72,33 +73,28 @@ pub fn run_case(seed: u64, opts: &DiagnoseOptions) -> Result<BenchCase> {
 /// One drop case of `effect` (or `random`) on the campaign `plan`.
 pub fn run_drop_case(effect: &str, seed: u64, plan: &SynthPlan, opts: &DiagnoseOptions) -> Result<BenchCase> {
     let synth = synthesize_with_plan(effect, seed, plan)?;
-    let truth = synth.key["effect"].as_str().unwrap_or("none").to_string();
+    let truth = synth.plant.effect.kind();
     let start = Instant::now();
     let d = diagnose(&synth.dataset, opts)?;
     let seconds = start.elapsed().as_secs_f64();
-    let found: Vec<String> = d.findings.iter().map(|f| f.effect.name().to_string()).collect();
-    let heldout_improvement = (truth != "none").then(|| {
+    let found: Vec<Effect> = d.findings.iter().map(|f| f.effect).collect();
+    let heldout_improvement = (truth != Effect::None).then(|| {
         d.findings
             .iter()
-            .find(|f| f.effect.name() == truth)
+            .find(|f| f.effect == truth)
             .map_or(1.0, |f| f.heldout_improvement)
     });
     let first_round = d
         .selection
         .rounds
         .first()
-        .map(|r| {
-            r.tested
-                .iter()
-                .filter_map(|c| c.effect.map(|e| (e.name().to_string(), c.ratio)))
-                .collect()
-        })
+        .map(|r| r.tested.iter().filter_map(|c| c.effect.map(|e| (e, c.ratio))).collect())
         .unwrap_or_default();
     Ok(BenchCase {
         first_round,
         seed,
         truth,
-        top1: found.first().cloned().unwrap_or_else(|| "none".into()),
+        top1: found.first().copied().unwrap_or(Effect::None),
         found,
         heldout_improvement,
         seconds,
@@ -126,23 +122,23 @@ pub fn summarize(cases: Vec<BenchCase>) -> BenchSummary {
     let scored: Vec<&BenchCase> = cases.iter().filter(|c| c.identifiable).collect();
     for c in &scored {
         *confusion
-            .entry(c.truth.clone())
+            .entry(c.truth.name().to_string())
             .or_default()
-            .entry(c.top1.clone())
+            .entry(c.top1.name().to_string())
             .or_default() += 1;
     }
     let correct = scored.iter().filter(|c| c.top1 == c.truth).count();
-    let none: Vec<&&BenchCase> = scored.iter().filter(|c| c.truth == "none").collect();
+    let none: Vec<&&BenchCase> = scored.iter().filter(|c| c.truth == Effect::None).collect();
     let fp = none.iter().filter(|c| !c.found.is_empty()).count();
     let mut median_improvement = BTreeMap::new();
-    for name in INSTRUMENTED_EFFECT_NAMES.iter().filter(|n| **n != "none") {
+    for effect in INSTRUMENTED_EFFECTS.into_iter().filter(|e| *e != Effect::None) {
         let mut v: Vec<f64> = scored
             .iter()
-            .filter(|c| c.truth == *name)
+            .filter(|c| c.truth == effect)
             .filter_map(|c| c.heldout_improvement)
             .collect();
         if !v.is_empty() {
-            median_improvement.insert(name.to_string(), median(&mut v));
+            median_improvement.insert(effect.name().to_string(), median(&mut v));
         }
     }
     let mut secs: Vec<f64> = cases.iter().map(|c| c.seconds).collect();
@@ -168,22 +164,20 @@ pub fn summarize(cases: Vec<BenchCase>) -> BenchSummary {
 /// out, 0.5 A as the validate current.
 pub fn run_mts_case(seed: u64) -> Result<BenchCase> {
     let synth = crate::plant::synth_mts::synthesize_mts("random", seed)?;
-    let truth = synth.effect.name().to_string();
+    let truth = synth.effect.kind();
     let opts = super::options_from_cli(None, Some("frequency_hz".into()), 5, vec![0.5], 1)?;
     let start = Instant::now();
     let d = diagnose(&synth.dataset, &opts)?;
     let seconds = start.elapsed().as_secs_f64();
-    let found: Vec<String> = d.findings.iter().map(|f| f.effect.name().to_string()).collect();
-    let beyond_base: Vec<&String> = found.iter().filter(|n| *n != "hysteresis_memory").collect();
+    let found: Vec<Effect> = d.findings.iter().map(|f| f.effect).collect();
+    let beyond_base = found.iter().copied().find(|e| *e != Effect::HysteresisMemory);
     Ok(BenchCase {
         seed,
-        top1: beyond_base
-            .first()
-            .map_or_else(|| "none".to_string(), |n| n.to_string()),
-        heldout_improvement: (truth != "none").then(|| {
+        top1: beyond_base.unwrap_or(Effect::None),
+        heldout_improvement: (truth != Effect::None).then(|| {
             d.findings
                 .iter()
-                .find(|f| f.effect.name() == truth)
+                .find(|f| f.effect == truth)
                 .map_or(1.0, |f| f.heldout_improvement)
         }),
         first_round: Vec::new(),
@@ -219,7 +213,7 @@ pub fn run_bench(
     let mut s = summarize(cases);
     s.mts_viscous_invented = mts
         .iter()
-        .filter(|c| c.truth != "viscous_damping" && c.found.iter().any(|n| n == "viscous_damping"))
+        .filter(|c| c.truth != Effect::ViscousDamping && c.found.contains(&Effect::ViscousDamping))
         .count();
     s.mts_found = mts.iter().filter(|c| c.top1 == c.truth).count();
     s.mts_cases = mts;
@@ -230,8 +224,8 @@ pub fn run_bench(
         let plan = SynthPlan::instrumented();
         let mut cases = Vec::with_capacity(n_instrumented);
         for k in 0..n_instrumented {
-            let effect = INSTRUMENTED_EFFECT_NAMES[k % INSTRUMENTED_EFFECT_NAMES.len()];
-            let c = run_drop_case(effect, case_seed(seed, n_cases + n_mts + k), &plan, opts)?;
+            let effect = INSTRUMENTED_EFFECTS[k % INSTRUMENTED_EFFECTS.len()];
+            let c = run_drop_case(effect.name(), case_seed(seed, n_cases + n_mts + k), &plan, opts)?;
             progress(n_cases + n_mts + k, &c);
             cases.push(c);
         }
@@ -242,26 +236,26 @@ pub fn run_bench(
 
 /// The printed summary: confusion matrix, accuracy, false positives, improvements.
 pub fn format_summary(s: &BenchSummary) -> String {
-    let mut out = format_drop_arm(s, &EFFECT_NAMES);
+    let mut out = format_drop_arm(s, &DROP_EFFECTS);
     if let Some(inst) = &s.instrumented {
         let _ = writeln!(
             out,
             "instrumented drops (two drop masses, striker accelerometer; `mre synth --campaign instrumented`):"
         );
-        out.push_str(&format_drop_arm(inst, &INSTRUMENTED_EFFECT_NAMES));
+        out.push_str(&format_drop_arm(inst, &INSTRUMENTED_EFFECTS));
     }
     format_mts_arm(s, &mut out);
     out
 }
 
 /// Confusion matrix, accuracy, false positives and improvements of drop cases.
-fn format_drop_arm(s: &BenchSummary, names: &[&str]) -> String {
+fn format_drop_arm(s: &BenchSummary, effects: &[Effect]) -> String {
     let mut out = String::new();
-    let mut labels: Vec<String> = names.iter().map(|n| n.to_string()).collect();
+    let mut labels: Vec<Effect> = effects.to_vec();
     for c in &s.cases {
         for l in c.found.iter().chain([&c.top1]) {
             if !labels.contains(l) {
-                labels.push(l.clone());
+                labels.push(*l);
             }
         }
     }
@@ -272,10 +266,10 @@ fn format_drop_arm(s: &BenchSummary, names: &[&str]) -> String {
     }
     let _ = writeln!(out);
     for t in &labels {
-        let Some(row) = s.confusion.get(t) else { continue };
+        let Some(row) = s.confusion.get(t.name()) else { continue };
         let _ = write!(out, "{t:>20}");
         for l in &labels {
-            let _ = write!(out, " {:>8}", row.get(l).copied().unwrap_or(0));
+            let _ = write!(out, " {:>8}", row.get(l.name()).copied().unwrap_or(0));
         }
         let _ = writeln!(out);
     }
@@ -290,10 +284,16 @@ fn format_drop_arm(s: &BenchSummary, names: &[&str]) -> String {
         let _ = writeln!(
             out,
             "  not scored (the campaign cannot reveal it): seed {} {} → found {:?}",
-            c.seed, c.truth, c.found
+            c.seed,
+            c.truth,
+            names(&c.found)
         );
     }
-    let n_none = s.cases.iter().filter(|c| c.identifiable && c.truth == "none").count();
+    let n_none = s
+        .cases
+        .iter()
+        .filter(|c| c.identifiable && c.truth == Effect::None)
+        .count();
     let _ = writeln!(
         out,
         "false-positive rate on none: {:.1} % (of {n_none} cases)",
@@ -301,7 +301,7 @@ fn format_drop_arm(s: &BenchSummary, names: &[&str]) -> String {
     );
     let _ = writeln!(out, "median held-out RMSE improvement of the true effect's term:");
     for (e, m) in &s.median_improvement {
-        let n = s.cases.iter().filter(|c| &c.truth == e).count();
+        let n = s.cases.iter().filter(|c| c.truth.name() == e).count();
         let _ = writeln!(out, "  {e:<20} {m:.2}× (n = {n})");
     }
     let _ = writeln!(out, "median diagnosis time per case: {:.2} s", s.median_seconds);
@@ -317,10 +317,16 @@ fn format_mts_arm(s: &BenchSummary, out: &mut String) {
              {}/{n}; viscous_damping named without concealed viscosity in {} of {} cases",
             s.mts_found,
             s.mts_viscous_invented,
-            s.mts_cases.iter().filter(|c| c.truth != "viscous_damping").count()
+            s.mts_cases.iter().filter(|c| c.truth != Effect::ViscousDamping).count()
         );
         for c in &s.mts_cases {
-            let _ = writeln!(out, "  seed {}: truth {:<16} found {:?}", c.seed, c.truth, c.found);
+            let _ = writeln!(
+                out,
+                "  seed {}: truth {:<16} found {:?}",
+                c.seed,
+                c.truth,
+                names(&c.found)
+            );
         }
     }
 }
@@ -329,13 +335,12 @@ fn format_mts_arm(s: &BenchSummary, out: &mut String) {
 mod tests {
     use super::*;
 
-    fn case(truth: &str, found: &[&str], identifiable: bool) -> BenchCase {
-        let found: Vec<String> = found.iter().map(|s| s.to_string()).collect();
+    fn case(truth: Effect, found: &[Effect], identifiable: bool) -> BenchCase {
         BenchCase {
             seed: 0,
-            truth: truth.into(),
-            top1: found.first().cloned().unwrap_or_else(|| "none".into()),
-            found,
+            truth,
+            top1: found.first().copied().unwrap_or(Effect::None),
+            found: found.to_vec(),
             heldout_improvement: None,
             first_round: Vec::new(),
             seconds: 0.0,
@@ -348,11 +353,11 @@ mod tests {
         // 2 of 3 scored cases right; the unidentifiable miss and the
         // unidentifiable "hit" both stay out of the accuracy.
         let s = summarize(vec![
-            case("end_stop", &["end_stop"], true),
-            case("none", &[], true),
-            case("viscous_damping", &["sensor_delay"], true),
-            case("inertia", &[], false),
-            case("inertia", &["inertia"], false),
+            case(Effect::EndStop, &[Effect::EndStop], true),
+            case(Effect::None, &[], true),
+            case(Effect::ViscousDamping, &[Effect::SensorDelay], true),
+            case(Effect::Inertia, &[], false),
+            case(Effect::Inertia, &[Effect::Inertia], false),
         ]);
         assert!((s.top1_accuracy - 2.0 / 3.0).abs() < 1e-12);
         assert!(!s.confusion.contains_key("inertia"));

@@ -7,6 +7,7 @@
 //! and scores it against what the untouched recordings already give.
 use super::{baseline, diagnose, prepared, DiagnoseOptions};
 use crate::dataset::Dataset;
+use crate::vocabulary::{names, Effect};
 use anyhow::{bail, Result};
 use mre_core::model::Branch;
 use rand::seq::SliceRandom;
@@ -24,7 +25,7 @@ pub const TARGET_STRENGTH: f64 = 0.05;
 /// One injection with the parameters that realise its strength.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Injection {
-    pub effect: String,
+    pub effect: Effect,
     /// Requested strength (fraction of the force RMS).
     pub strength: f64,
     /// Strength actually reached (saturation is bounded by the data).
@@ -38,14 +39,14 @@ pub struct RealCase {
     pub case: usize,
     pub injection: Injection,
     /// Every accepted effect, in order of acceptance.
-    pub found: Vec<String>,
+    pub found: Vec<Effect>,
     /// Accepted effects the untouched recordings do not give.
-    pub new_found: Vec<String>,
+    pub new_found: Vec<Effect>,
     /// First of `new_found`, or `none`.
-    pub top1: String,
+    pub top1: Effect,
     pub found_at_all: bool,
     /// `new_found` other than the injected effect.
-    pub false_positives: Vec<String>,
+    pub false_positives: Vec<Effect>,
     /// Held-out RMSE ratio of the injected effect's term (absent when not found or `none`).
     pub heldout_improvement: Option<f64>,
     /// Every candidate tested, per round: `name ratio [ci lo, ci hi] ΔBIC`.
@@ -57,7 +58,7 @@ pub struct RealCase {
 pub struct RealSummary {
     pub dataset: String,
     /// What the untouched recordings give (not counted as false positives).
-    pub untouched: Vec<String>,
+    pub untouched: Vec<Effect>,
     pub cases: Vec<RealCase>,
     /// Over injected (non-`none`) cases at strength ≥ [`TARGET_STRENGTH`].
     pub found_rate_at_target: f64,
@@ -116,7 +117,7 @@ pub fn delayed_force(ds: &Dataset, delay_s: f64) -> Vec<Vec<f64>> {
             let mut hint = 0;
             s.time_s
                 .iter()
-                .map(|&t| super::design::sample_at(&s.time_s, &s.force_n, t - delay_s, &mut hint))
+                .map(|&t| super::signals::sample_at(&s.time_s, &s.force_n, t - delay_s, &mut hint))
                 .collect()
         })
         .collect()
@@ -152,12 +153,17 @@ pub fn acceleration_from_x(time_s: &[f64], x_mm: &[f64], span_s: f64) -> Vec<f64
 }
 
 /// The effects that can be injected into this data set under `opts`.
-pub fn injectable(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Vec<&'static str>> {
-    let mut out = vec!["sensor_delay", "end_stop", "stress_softening", "inertia"];
+pub fn injectable(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Vec<Effect>> {
+    let mut out = vec![
+        Effect::SensorDelay,
+        Effect::EndStop,
+        Effect::StressSoftening,
+        Effect::Inertia,
+    ];
     if saturation_pairs(ds, opts)?.len() >= 2 {
-        out.push("magnetic_saturation");
+        out.push(Effect::MagneticSaturation);
     }
-    out.push("none");
+    out.push(Effect::None);
     Ok(out)
 }
 
@@ -180,7 +186,7 @@ fn saturation_pairs(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Vec<(usize, 
 /// Injects `effect` at `strength` (RMS of the added force over the force RMS).
 pub fn inject(
     ds: &Dataset,
-    effect: &str,
+    effect: Effect,
     strength: f64,
     rng: &mut ChaCha8Rng,
     opts: &DiagnoseOptions,
@@ -189,8 +195,8 @@ pub fn inject(
     let mut out = ds.clone();
     let mut params = BTreeMap::new();
     let added: Vec<Vec<f64>> = match effect {
-        "none" => ds.recordings.iter().map(|r| vec![0.0; r.samples.len()]).collect(),
-        "sensor_delay" => {
+        Effect::None => ds.recordings.iter().map(|r| vec![0.0; r.samples.len()]).collect(),
+        Effect::SensorDelay => {
             let diff = |tau: f64| -> Vec<Vec<f64>> {
                 delayed_force(ds, tau)
                     .into_iter()
@@ -202,7 +208,7 @@ pub fn inject(
             params.insert("delay_s".into(), tau);
             diff(tau)
         }
-        "end_stop" => {
+        Effect::EndStop => {
             let (lo, hi) = ds
                 .recordings
                 .iter()
@@ -231,7 +237,7 @@ pub fn inject(
                 .map(|v| v.into_iter().map(|s| k * s).collect())
                 .collect()
         }
-        "stress_softening" => {
+        Effect::StressSoftening => {
             // The run order is assigned to every case (below); here the force
             // of test n is scaled by 1 − Δ·(1 − e^{−(n−1)/n0}).
             let n0 = rng.random_range(2.0..8.0);
@@ -256,7 +262,7 @@ pub fn inject(
                 .map(|v| v.into_iter().map(|s| depth * s).collect())
                 .collect()
         }
-        "inertia" => {
+        Effect::Inertia => {
             let acc: Vec<Vec<f64>> = ds
                 .recordings
                 .iter()
@@ -268,7 +274,7 @@ pub fn inject(
                 .map(|v| v.into_iter().map(|a| m * a).collect())
                 .collect()
         }
-        "magnetic_saturation" => {
+        Effect::MagneticSaturation => {
             let pairs = saturation_pairs(ds, opts)?;
             let prep = prepared::prepare(ds, &opts.folds, &opts.validate_currents_a)?;
             let table = baseline::fit_table(&prep)?;
@@ -316,7 +322,7 @@ pub fn inject(
             *f += d;
         }
     }
-    if effect != "stress_softening" {
+    if effect != Effect::StressSoftening {
         // Every case records a run order, so softening is always testable
         // and a `none` case checks that a random order invents nothing.
         let order = run_order(ds.recordings.len(), rng);
@@ -328,7 +334,7 @@ pub fn inject(
     Ok((
         out,
         Injection {
-            effect: effect.to_string(),
+            effect,
             strength,
             achieved_strength,
             parameters: params,
@@ -353,19 +359,21 @@ pub fn run_real_bench(
     mut progress: impl FnMut(&RealCase),
 ) -> Result<RealSummary> {
     let effects = injectable(ds, opts)?;
-    if let Some(unknown) = only.iter().find(|name| !effects.contains(&name.as_str())) {
-        bail!("--only {unknown}: not an effect this data set can be injected with ({effects:?})");
-    }
-    let untouched: Vec<String> = diagnose(ds, opts)?
-        .findings
+    if let Some(unknown) = only
         .iter()
-        .map(|f| f.effect.name().to_string())
-        .collect();
+        .find(|name| !Effect::from_name(name).is_some_and(|e| effects.contains(&e)))
+    {
+        bail!(
+            "--only {unknown}: not an effect this data set can be injected with ({:?})",
+            names(&effects)
+        );
+    }
+    let untouched: Vec<Effect> = diagnose(ds, opts)?.findings.iter().map(|f| f.effect).collect();
     let mut cases = Vec::with_capacity(n_cases);
     for k in 0..n_cases {
         let mut rng = ChaCha8Rng::seed_from_u64(super::bench::case_seed(seed, k));
         let effect = effects[k % effects.len()];
-        if !only.is_empty() && !only.iter().any(|name| name == effect) {
+        if !only.is_empty() && !only.iter().any(|name| name == effect.name()) {
             continue;
         }
         let strength = rng.random_range(STRENGTH_RANGE);
@@ -373,18 +381,18 @@ pub fn run_real_bench(
         let start = Instant::now();
         let d = diagnose(&injected, opts)?;
         let seconds = start.elapsed().as_secs_f64();
-        let found: Vec<String> = d.findings.iter().map(|f| f.effect.name().to_string()).collect();
-        let new_found: Vec<String> = found.iter().filter(|n| !untouched.contains(n)).cloned().collect();
-        let truth = effect.to_string();
+        let found: Vec<Effect> = d.findings.iter().map(|f| f.effect).collect();
+        let new_found: Vec<Effect> = found.iter().filter(|e| !untouched.contains(e)).copied().collect();
+        let truth = effect;
         let c = RealCase {
             case: k,
-            top1: new_found.first().cloned().unwrap_or_else(|| "none".into()),
-            found_at_all: truth == "none" || found.contains(&truth),
-            false_positives: new_found.iter().filter(|n| **n != truth).cloned().collect(),
+            top1: new_found.first().copied().unwrap_or(Effect::None),
+            found_at_all: truth == Effect::None || found.contains(&truth),
+            false_positives: new_found.iter().filter(|e| **e != truth).copied().collect(),
             heldout_improvement: d
                 .findings
                 .iter()
-                .find(|f| f.effect.name() == truth)
+                .find(|f| f.effect == truth)
                 .map(|f| f.heldout_improvement),
             tested: d
                 .selection
@@ -432,18 +440,18 @@ fn rate(cases: &[&RealCase], ok: impl Fn(&RealCase) -> bool) -> f64 {
     cases.iter().filter(|c| ok(c)).count() as f64 / cases.len() as f64
 }
 
-pub fn summarize(dataset: &str, untouched: Vec<String>, cases: Vec<RealCase>) -> RealSummary {
-    let injected: Vec<&RealCase> = cases.iter().filter(|c| c.injection.effect != "none").collect();
+pub fn summarize(dataset: &str, untouched: Vec<Effect>, cases: Vec<RealCase>) -> RealSummary {
+    let injected: Vec<&RealCase> = cases.iter().filter(|c| c.injection.effect != Effect::None).collect();
     let at_target: Vec<&RealCase> = injected
         .iter()
         .copied()
         .filter(|c| c.injection.achieved_strength >= TARGET_STRENGTH)
         .collect();
-    let none: Vec<&RealCase> = cases.iter().filter(|c| c.injection.effect == "none").collect();
+    let none: Vec<&RealCase> = cases.iter().filter(|c| c.injection.effect == Effect::None).collect();
     let mut median_improvement = BTreeMap::new();
     for c in &injected {
         median_improvement
-            .entry(c.injection.effect.clone())
+            .entry(c.injection.effect.name().to_string())
             .or_insert_with(Vec::new)
             .push(c.heldout_improvement.unwrap_or(1.0));
     }
@@ -476,26 +484,28 @@ pub fn format_real_summary(s: &RealSummary) -> String {
     let _ = writeln!(
         out,
         "untouched data give: {:?} (not counted as false positives)",
-        s.untouched
+        names(&s.untouched)
     );
     let _ = writeln!(
         out,
         "{:<20} {:>5} {:>14} {:>14} {:>10} {:>16}",
         "injected", "cases", "found (≥5 %)", "top-1 (≥5 %)", "found all", "median held-out"
     );
-    let mut names: Vec<&str> = s.cases.iter().map(|c| c.injection.effect.as_str()).collect();
-    names.sort();
-    names.dedup();
-    for name in names {
-        let all: Vec<&RealCase> = s.cases.iter().filter(|c| c.injection.effect == name).collect();
+    // Rows in the order of the names, as the JSON's maps are.
+    let mut injected: Vec<Effect> = s.cases.iter().map(|c| c.injection.effect).collect();
+    injected.sort_by_key(|e| e.name());
+    injected.dedup();
+    for effect in injected {
+        let name = effect.name();
+        let all: Vec<&RealCase> = s.cases.iter().filter(|c| c.injection.effect == effect).collect();
         // `none` has no strength: its row counts cases with nothing invented.
         let strong: Vec<&RealCase> = all
             .iter()
             .copied()
-            .filter(|c| name == "none" || c.injection.achieved_strength >= TARGET_STRENGTH)
+            .filter(|c| effect == Effect::None || c.injection.achieved_strength >= TARGET_STRENGTH)
             .collect();
         let ok = |c: &RealCase| {
-            if name == "none" {
+            if effect == Effect::None {
                 c.false_positives.is_empty()
             } else {
                 c.found_at_all
@@ -510,7 +520,7 @@ pub fn format_real_summary(s: &RealSummary) -> String {
             name,
             all.len(),
             count(&strong, &ok),
-            count(&strong, &|c| c.top1 == name),
+            count(&strong, &|c| c.top1 == effect),
             count(&all, &ok),
             s.median_improvement.get(name).copied().unwrap_or(1.0)
         );

@@ -3,24 +3,12 @@
 use super::design::{SofteningLaw, Terms, Viscous};
 use super::prepared::Prepared;
 
-/// The missing-physics vocabulary. Names are a contract.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Effect {
-    ViscousDamping,
-    SensorDelay,
-    StressSoftening,
-    EndStop,
-    MagneticSaturation,
-    Inertia,
-    CoilLag,
-    /// Rate-independent hysteresis with memory (turn-around memory, with dry
-    /// friction / yield as its limiting case): tested first, as the
-    /// reference the other candidates must beat.
-    HysteresisMemory,
-}
+pub use crate::vocabulary::Effect;
 
 impl Effect {
-    pub const ALL: [Effect; 7] = [
+    /// The candidates forward selection adds to the reference model
+    /// ([`Effect::HysteresisMemory`], tested first, is not among them).
+    pub const CANDIDATES: [Effect; 7] = [
         Effect::ViscousDamping,
         Effect::SensorDelay,
         Effect::StressSoftening,
@@ -29,26 +17,6 @@ impl Effect {
         Effect::Inertia,
         Effect::CoilLag,
     ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Effect::ViscousDamping => "viscous_damping",
-            Effect::SensorDelay => "sensor_delay",
-            Effect::StressSoftening => "stress_softening",
-            Effect::EndStop => "end_stop",
-            Effect::MagneticSaturation => "magnetic_saturation",
-            Effect::Inertia => "inertia",
-            Effect::CoilLag => "coil_lag",
-            Effect::HysteresisMemory => "hysteresis_memory",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<Effect> {
-        Effect::ALL
-            .into_iter()
-            .chain([Effect::HysteresisMemory])
-            .find(|e| e.name() == name)
-    }
 
     /// Is the term already in the model?
     pub fn present_in(self, t: &Terms) -> bool {
@@ -61,6 +29,7 @@ impl Effect {
             Effect::Inertia => t.inertia,
             Effect::CoilLag => t.coil_lag_s.is_some(),
             Effect::HysteresisMemory => t.memory_mm.is_some() || t.friction_v0_m_s.is_some(),
+            Effect::None => false,
         }
     }
 }
@@ -249,6 +218,8 @@ pub fn identifiable(prep: &Prepared, effect: Effect) -> Result<(), String> {
             }
         }
         Effect::HysteresisMemory => Ok(()),
+        // No term: nothing to separate from the baseline.
+        Effect::None => Ok(()),
         Effect::CoilLag => {
             let n = stepped_validate_count(prep);
             if n >= 2 {
@@ -397,6 +368,7 @@ pub fn variants(prep: &Prepared, base: &Terms, effect: Effect) -> Vec<Terms> {
                 .collect()
         }
         Effect::Inertia => vec![with(&|t| t.inertia = true)],
+        Effect::None => Vec::new(),
         Effect::HysteresisMemory => memory_variants(prep)
             .into_iter()
             .map(|m| {

@@ -2,8 +2,13 @@
 //! physics from the vocabulary (`shared/spec/effects.md`), model it, and show
 //! the out-of-sample fit improve.
 //!
-//! Stages: [`baseline`] → [`locate`] → [`candidates`] scored by [`select`]
-//! (forward selection on held-out data) → [`report`].
+//! Stages, each using only those before it: [`prepared`] (channels, folds,
+//! branches; on the primitives of [`signals`]) → [`baseline`] (the paper's
+//! model) → [`locate`] (where the residual sits) → [`candidates`] (one term
+//! per word of [`crate::vocabulary`], built by [`design`]) → [`select`]
+//! (forward selection on held-out data, judged by [`support`]) →
+//! [`parameters`] (values and intervals) → [`report`] (with what stays
+//! [`unexplained`]).
 pub mod baseline;
 pub mod bench;
 pub mod bench_real;
@@ -16,6 +21,7 @@ pub mod plots;
 pub mod prepared;
 pub mod report;
 pub mod select;
+pub mod signals;
 pub mod support;
 pub mod unexplained;
 
@@ -175,7 +181,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
         .recs
         .iter()
         .zip(&selection.final_model.mask)
-        .map(|(r, m)| r.in_domain.iter().zip(m).map(|(a, b)| *a && *b).collect())
+        .map(|(r, m)| prepared::scored_by_both(&r.in_domain, m))
         .collect();
     let unexplained = unexplained::locate_unexplained(&prep, &final_pred, &scored_mask);
     Ok(Diagnosis {
@@ -204,6 +210,7 @@ fn signature_of(effect: Effect) -> &'static str {
         Effect::Inertia => "acceleration",
         Effect::CoilLag => locate::CURRENT_NOT_FOLLOWED,
         Effect::HysteresisMemory => "peak stroke",
+        Effect::None => "nothing (no model term)",
     }
 }
 

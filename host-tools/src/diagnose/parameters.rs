@@ -67,6 +67,7 @@ pub fn extract(prep: &Prepared, effect: Effect, terms: &Terms, sol: &Solution) -
                 push("m_s_kg".into(), sol.beta[at], "kg");
             }
         }
+        Effect::None => {}
         Effect::HysteresisMemory => {
             if let Some(delta) = terms.memory_mm {
                 push("delta_mm".into(), delta, "mm");

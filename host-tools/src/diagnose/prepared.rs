@@ -92,7 +92,7 @@ impl Rec {
         (0..self.len())
             .map(|t| {
                 let v = match delay_s {
-                    Some(tau) => super::design::sample_at(&self.time_s, &self.v_m_s, self.time_s[t] - tau, &mut hint),
+                    Some(tau) => super::signals::sample_at(&self.time_s, &self.v_m_s, self.time_s[t] - tau, &mut hint),
                     None => self.v_m_s[t],
                 };
                 self.in_range[t] && v.abs() >= limit
@@ -317,7 +317,7 @@ fn assign_folds(recs: &mut [Rec], ds: &Dataset, plan: &FoldPlan) -> Result<usize
 
 /// Reversal points of a recording: `(x_r, was_a_maximum)`.
 fn reversals(x: &[f64], band_mm: f64) -> Vec<(f64, bool)> {
-    let (feature, compressing) = super::design::memory_feature(x, band_mm * 5.0);
+    let (feature, compressing) = super::signals::memory_feature(x, band_mm * 5.0);
     let mut out: Vec<(f64, bool)> = Vec::new();
     let mut last: Option<usize> = None;
     for t in 0..x.len() {
@@ -363,7 +363,7 @@ fn mark_range(recs: &mut [Rec], currents_a: &[f64]) {
     // Limits of the tabulated currents bracketing `current_a`.
     let limits = |current_a: f64| {
         let mut lim = [(f64::NEG_INFINITY, f64::INFINITY); 3];
-        for (k, w) in super::design::current_weights(currents_a, current_a, None) {
+        for (k, w) in super::signals::current_weights(currents_a, current_a, None) {
             if w > 0.0 {
                 for (l, p) in lim.iter_mut().zip(&per_current[k]) {
                     l.0 = l.0.max(p.0 - margin);
@@ -374,7 +374,7 @@ fn mark_range(recs: &mut [Rec], currents_a: &[f64]) {
         lim
     };
     for r in recs.iter_mut().filter(|r| !r.is_fit()) {
-        let (feature, compressing) = super::design::memory_feature(&r.x_mm, band * 5.0);
+        let (feature, compressing) = super::signals::memory_feature(&r.x_mm, band * 5.0);
         r.in_range = (0..r.len())
             .map(|t| {
                 let lim = limits(r.current_at(t));
@@ -392,6 +392,26 @@ fn mark_range(recs: &mut [Rec], currents_a: &[f64]) {
             })
             .collect();
     }
+}
+
+/// The one scoring rule, for every stage. A sample of a recording is scored
+/// under a model whose force channel lags by τ when it is in range and its
+/// branch is clear at t − τ ([`Rec::scored_mask`]; `in_domain` is the rule at
+/// τ = 0). Two models (a candidate and the model it would extend in
+/// selection and support, the final model and the baseline in the report)
+/// are scored on the samples both score: a delay that moves the chance
+/// turn-around samples then cannot win by dropping them.
+pub fn scored_by_both(a: &[bool], b: &[bool]) -> Vec<bool> {
+    a.iter().zip(b).map(|(a, b)| *a && *b).collect()
+}
+
+/// The items of `values` at the samples `mask` scores, in order.
+pub fn scored<'a, I>(values: I, mask: &'a [bool]) -> impl Iterator<Item = I::Item> + 'a
+where
+    I: IntoIterator,
+    I::IntoIter: 'a,
+{
+    values.into_iter().zip(mask).filter(|(_, m)| **m).map(|(v, _)| v)
 }
 
 /// A sample's branch counts as ambiguous when its speed is within this many

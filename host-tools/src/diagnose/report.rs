@@ -1,6 +1,7 @@
 //! Outputs: `report.json` (a contract scripts read), one predictions CSV per
 //! recording, and a readable `report.md` with plots.
 use super::parameters::Param;
+use super::prepared::scored;
 use super::{plots, Diagnosis};
 use crate::atomic_write::{write_atomic, write_atomic_with};
 use anyhow::Result;
@@ -54,7 +55,7 @@ pub fn metrics(d: &Diagnosis, pred: &[Vec<f64>]) -> Metrics {
     let (mut se, mut n) = (0.0, 0usize);
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for ((r, p), mask) in d.prep.recs.iter().zip(pred).zip(&d.scored_mask) {
-        for ((f, q), _) in r.force_n.iter().zip(p).zip(mask).filter(|(_, m)| **m) {
+        for (f, q) in scored(r.force_n.iter().zip(p), mask) {
             se += (f - q) * (f - q);
             lo = lo.min(*f);
             hi = hi.max(*f);
@@ -175,12 +176,7 @@ pub fn write_predictions(d: &Diagnosis, dir: &Path) -> Result<()> {
 
 /// RMSE over the samples where the model is defined (`mask`).
 fn rec_rmse(f: &[f64], p: &[f64], mask: &[bool]) -> f64 {
-    let (sse, n) = f
-        .iter()
-        .zip(p)
-        .zip(mask)
-        .filter(|(_, m)| **m)
-        .fold((0.0, 0usize), |(s, n), ((a, b), _)| (s + (a - b) * (a - b), n + 1));
+    let (sse, n) = scored(f.iter().zip(p), mask).fold((0.0, 0usize), |(s, n), (a, b)| (s + (a - b) * (a - b), n + 1));
     (sse / n.max(1) as f64).sqrt()
 }
 

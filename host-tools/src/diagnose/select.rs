@@ -12,7 +12,7 @@
 //! ([`decision_pool`]); ΔBIC is reported, not a gate.
 use super::candidates::{self, Effect};
 use super::design::{Designs, Solution, Terms};
-use super::prepared::Prepared;
+use super::prepared::{scored, scored_by_both, Prepared};
 use super::support::{self, Local, LocalStats};
 use super::unexplained::force_noise_n;
 use anyhow::{bail, Result};
@@ -149,7 +149,7 @@ fn squared_errors(a: &[f64], b: &[f64]) -> Vec<f64> {
 
 /// Sum over the samples where `mask` holds.
 fn masked_sum(se: &[f64], mask: &[bool]) -> f64 {
-    se.iter().zip(mask).filter(|(_, m)| **m).map(|(e, _)| e).sum()
+    scored(se, mask).sum()
 }
 
 fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
@@ -411,12 +411,11 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
             n_total += before.n[i];
             continue;
         }
-        for t in 0..prep.recs[i].len() {
-            if before.mask[i][t] && after.mask[i][t] {
-                sse_before[i] += before.heldout_se[i][t];
-                sse_after[i] += after.heldout_se[i][t];
-                n_total += 1;
-            }
+        let both = scored_by_both(&before.mask[i], &after.mask[i]);
+        for t in (0..prep.recs[i].len()).filter(|&t| both[t]) {
+            sse_before[i] += before.heldout_se[i][t];
+            sse_after[i] += after.heldout_se[i][t];
+            n_total += 1;
         }
     }
     let n_total = n_total.max(1);
@@ -752,7 +751,7 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
     let mut rounds = Vec::new();
     let mut not_identifiable = Vec::new();
     let mut testable = Vec::new();
-    for e in Effect::ALL {
+    for e in Effect::CANDIDATES {
         match candidates::identifiable(prep, e) {
             Ok(()) => testable.push(e),
             Err(needs) => not_identifiable.push((e, needs)),

@@ -14,6 +14,7 @@
 //! support improves, and a paired test of the squared-error differences
 //! whose sample count is corrected for autocorrelation (AR(1): n·(1 − ρ)/(1 + ρ)
 //! per recording).
+use super::prepared::scored_by_both;
 use super::select::Scored;
 
 /// A recording counts as a unit of the support with at least this many support samples.
@@ -115,13 +116,7 @@ pub struct Side<'a> {
 /// [`local`] on plain per-recording channels.
 pub fn local_from(before: Side, after: Side, pool: &[usize], noise_n: f64) -> LocalStats {
     // The samples both models score.
-    let common = |i: usize| -> Vec<bool> {
-        before.mask[i]
-            .iter()
-            .zip(&after.mask[i])
-            .map(|(a, b)| *a && *b)
-            .collect()
-    };
+    let common = |i: usize| scored_by_both(&before.mask[i], &after.mask[i]);
     let masks: Vec<(usize, Vec<bool>)> = pool.iter().map(|&i| (i, common(i))).collect();
     let change = |i: usize, t: usize| after.pred[i][t] - before.pred[i][t];
     let (mut s2, mut n_common) = (0.0, 0usize);

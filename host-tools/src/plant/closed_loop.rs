@@ -231,19 +231,19 @@ pub const DEFAULT_RUNS: [RunSpec; 3] = [RunSpec::Passive(0.0), RunSpec::Passive(
 /// The calibrated plant with the requested effect (parameters drawn from the
 /// seed, sized as `mre synth` sizes them), and the drop.
 pub fn setup_for(request: &SimRequest) -> Result<SimSetup> {
-    use super::effects::{draw_effect, Effect};
+    use super::effects::{draw_effect, ConcealedEffect};
     use super::synth::{effect_scale, resolve_effect_name, SynthPlan};
     use rand::SeedableRng;
-    let name = resolve_effect_name(&request.effect, request.seed)?;
+    let kind = resolve_effect_name(&request.effect, request.seed)?;
     let base = Plant::nominal();
     let scale = effect_scale(&base, &SynthPlan::default())?;
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(request.seed);
     rng.set_stream(3);
-    let mut plant = base.with_effect(draw_effect(name, &mut rng, scale)?);
+    let mut plant = base.with_effect(draw_effect(kind, &mut rng, scale)?);
     // `--coil-lag-ms` on a plant without an effect is the coil_lag effect,
     // so the campaign controller (c) is made from shows it too.
-    if let (Some(tau_s), Effect::None) = (request.coil_lag_s, &plant.effect) {
-        plant = plant.with_effect(Effect::CoilLag { time_constant_s: tau_s });
+    if let (Some(tau_s), ConcealedEffect::None) = (request.coil_lag_s, &plant.effect) {
+        plant = plant.with_effect(ConcealedEffect::CoilLag { time_constant_s: tau_s });
     }
     let impact = ImpactConfig {
         mass_kg: request.mass_kg,

@@ -5,44 +5,46 @@ use anyhow::{bail, Result};
 use rand::Rng;
 use serde::Serialize;
 
+pub use crate::vocabulary::Effect;
+
 /// Range of the drawn coil time constant (s); see [`draw_effect`].
 pub const COIL_LAG_RANGE_S: std::ops::Range<f64> = 0.2e-3..0.8e-3;
 
-/// Names as in the spec's vocabulary (a contract): the effects a plain drop
-/// campaign can reveal, which `random` picks from there (and `mre
-/// bench-control` runs). `inertia` is not among them: in a free drop
-/// `a = g − F/M`, so it only rescales the force (see [`INSTRUMENTED_EFFECT_NAMES`]).
-pub const EFFECT_NAMES: [&str; 7] = [
-    "none",
-    "viscous_damping",
-    "sensor_delay",
-    "stress_softening",
-    "end_stop",
-    "magnetic_saturation",
-    "coil_lag",
+/// The vocabulary's effects a plain drop campaign can reveal, which `random`
+/// picks from there (and `mre bench-control` runs); the order is part of the
+/// seeded pick. `inertia` is not among them: in a free drop `a = g − F/M`, so
+/// it only rescales the force (see [`INSTRUMENTED_EFFECTS`]).
+pub const DROP_EFFECTS: [Effect; 7] = [
+    Effect::None,
+    Effect::ViscousDamping,
+    Effect::SensorDelay,
+    Effect::StressSoftening,
+    Effect::EndStop,
+    Effect::MagneticSaturation,
+    Effect::CoilLag,
 ];
 
 /// What an instrumented drop campaign (two drop masses, striker accelerometer:
 /// [`crate::plant::synth::SynthPlan::instrumented`]) can reveal: every plain-drop
 /// effect and `inertia`. `random` picks from these there.
-pub const INSTRUMENTED_EFFECT_NAMES: [&str; 8] = {
-    let mut names = [""; 8];
+pub const INSTRUMENTED_EFFECTS: [Effect; 8] = {
+    let mut all = [Effect::Inertia; 8];
     let mut i = 0;
-    while i < EFFECT_NAMES.len() {
-        names[i] = EFFECT_NAMES[i];
+    while i < DROP_EFFECTS.len() {
+        all[i] = DROP_EFFECTS[i];
         i += 1;
     }
-    names[7] = "inertia";
-    names
+    all
 };
 
 /// Range of the drawn striker mass below the load cell (kg); see [`draw_effect`].
 pub const INERTIA_MASS_RANGE_KG: std::ops::Range<f64> = 0.3..0.8;
 
-/// One concealed effect with its parameters.
+/// One concealed effect with its parameters; [`ConcealedEffect::kind`] is
+/// its word in the vocabulary.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "effect", content = "parameters", rename_all = "snake_case")]
-pub enum Effect {
+pub enum ConcealedEffect {
     None,
     /// `+ c(I)·v` with `c(I) = c0·(1 + per_a·I)`, v in m/s.
     ViscousDamping {
@@ -83,24 +85,28 @@ pub enum Effect {
     },
 }
 
-impl Effect {
-    pub fn name(&self) -> &'static str {
+impl ConcealedEffect {
+    pub fn kind(&self) -> Effect {
         match self {
-            Effect::None => "none",
-            Effect::ViscousDamping { .. } => "viscous_damping",
-            Effect::SensorDelay { .. } => "sensor_delay",
-            Effect::StressSoftening { .. } => "stress_softening",
-            Effect::EndStop { .. } => "end_stop",
-            Effect::MagneticSaturation { .. } => "magnetic_saturation",
-            Effect::CoilLag { .. } => "coil_lag",
-            Effect::Inertia { .. } => "inertia",
+            ConcealedEffect::None => Effect::None,
+            ConcealedEffect::ViscousDamping { .. } => Effect::ViscousDamping,
+            ConcealedEffect::SensorDelay { .. } => Effect::SensorDelay,
+            ConcealedEffect::StressSoftening { .. } => Effect::StressSoftening,
+            ConcealedEffect::EndStop { .. } => Effect::EndStop,
+            ConcealedEffect::MagneticSaturation { .. } => Effect::MagneticSaturation,
+            ConcealedEffect::CoilLag { .. } => Effect::CoilLag,
+            ConcealedEffect::Inertia { .. } => Effect::Inertia,
         }
+    }
+
+    pub fn name(&self) -> &'static str {
+        self.kind().name()
     }
 
     /// The coil's L/R time constant (s), if this effect adds one.
     pub fn coil_lag_s(&self) -> Option<f64> {
         match *self {
-            Effect::CoilLag { time_constant_s } => Some(time_constant_s),
+            ConcealedEffect::CoilLag { time_constant_s } => Some(time_constant_s),
             _ => None,
         }
     }
@@ -108,7 +114,7 @@ impl Effect {
     /// Current → the variable the gain is interpolated linearly in.
     pub fn current_warp(&self) -> impl Fn(f64) -> f64 {
         let i_s = match *self {
-            Effect::MagneticSaturation { i_s_a } => Some(i_s_a),
+            ConcealedEffect::MagneticSaturation { i_s_a } => Some(i_s_a),
             _ => None,
         };
         move |i: f64| match i_s {
@@ -120,7 +126,7 @@ impl Effect {
     /// Multiplier on the material force for the test at `sequence` (1 = first).
     pub fn softening_factor(&self, sequence: u32) -> f64 {
         match *self {
-            Effect::StressSoftening { depth, tests_n0 } => {
+            ConcealedEffect::StressSoftening { depth, tests_n0 } => {
                 let n = f64::from(sequence.max(1));
                 1.0 - depth * (1.0 - (-(n - 1.0) / tests_n0).exp())
             }
@@ -131,11 +137,11 @@ impl Effect {
     /// Force added to the material force (N).
     pub fn added_force_n(&self, x_mm: f64, v_m_s: f64, current_a: f64) -> f64 {
         match *self {
-            Effect::ViscousDamping {
+            ConcealedEffect::ViscousDamping {
                 c0_n_s_per_m,
                 increase_per_a,
             } => c0_n_s_per_m * (1.0 + increase_per_a * current_a.max(0.0)) * v_m_s,
-            Effect::EndStop { x_e_mm, k_e_n_per_mm2 } => {
+            ConcealedEffect::EndStop { x_e_mm, k_e_n_per_mm2 } => {
                 let over = (x_mm - x_e_mm).max(0.0);
                 k_e_n_per_mm2 * over * over
             }
@@ -146,7 +152,7 @@ impl Effect {
     /// Mass whose acceleration the load cell also reads (kg; 0 for none).
     pub fn inertia_mass_kg(&self) -> f64 {
         match *self {
-            Effect::Inertia { m_s_kg } => m_s_kg,
+            ConcealedEffect::Inertia { m_s_kg } => m_s_kg,
             _ => 0.0,
         }
     }
@@ -154,7 +160,7 @@ impl Effect {
     /// Delay of the force channel (s).
     pub fn force_delay_s(&self) -> f64 {
         match *self {
-            Effect::SensorDelay { delay_s } => delay_s,
+            ConcealedEffect::SensorDelay { delay_s } => delay_s,
             _ => 0.0,
         }
     }
@@ -162,17 +168,17 @@ impl Effect {
     /// Checks the parameters are finite and in a physical range.
     pub fn validate(&self) -> Result<()> {
         let ok = match *self {
-            Effect::None => true,
-            Effect::ViscousDamping {
+            ConcealedEffect::None => true,
+            ConcealedEffect::ViscousDamping {
                 c0_n_s_per_m,
                 increase_per_a,
             } => c0_n_s_per_m >= 0.0 && increase_per_a >= 0.0 && increase_per_a.is_finite(),
-            Effect::SensorDelay { delay_s } => (0.0..0.01).contains(&delay_s),
-            Effect::StressSoftening { depth, tests_n0 } => (0.0..1.0).contains(&depth) && tests_n0 > 0.0,
-            Effect::EndStop { x_e_mm, k_e_n_per_mm2 } => x_e_mm >= 0.0 && k_e_n_per_mm2 >= 0.0,
-            Effect::MagneticSaturation { i_s_a } => i_s_a > 0.0,
-            Effect::CoilLag { time_constant_s } => time_constant_s > 0.0 && time_constant_s < 0.01,
-            Effect::Inertia { m_s_kg } => m_s_kg >= 0.0,
+            ConcealedEffect::SensorDelay { delay_s } => (0.0..0.01).contains(&delay_s),
+            ConcealedEffect::StressSoftening { depth, tests_n0 } => (0.0..1.0).contains(&depth) && tests_n0 > 0.0,
+            ConcealedEffect::EndStop { x_e_mm, k_e_n_per_mm2 } => x_e_mm >= 0.0 && k_e_n_per_mm2 >= 0.0,
+            ConcealedEffect::MagneticSaturation { i_s_a } => i_s_a > 0.0,
+            ConcealedEffect::CoilLag { time_constant_s } => time_constant_s > 0.0 && time_constant_s < 0.01,
+            ConcealedEffect::Inertia { m_s_kg } => m_s_kg >= 0.0,
         };
         let finite = serde_json::to_value(self)
             .ok()
@@ -194,26 +200,26 @@ pub struct EffectScale {
     pub peak_force_at_longest_n: f64,
 }
 
-/// Draws plausible parameters for the effect `name`, each sized to leave a
+/// Draws plausible parameters for `effect`, each sized to leave a
 /// signature of several percent of the force where it acts.
-pub fn draw_effect(name: &str, rng: &mut impl Rng, scale: EffectScale) -> Result<Effect> {
-    Ok(match name {
-        "none" => Effect::None,
+pub fn draw_effect(effect: Effect, rng: &mut impl Rng, scale: EffectScale) -> Result<ConcealedEffect> {
+    Ok(match effect {
+        Effect::None => ConcealedEffect::None,
         // 200–400 N·s/m at 0 A: at the impact speeds 1.4–2.24 m/s the
         // velocity spread alone moves the force by 170–340 N (8–16 % of the
         // 0 A peak) at the same displacement.
-        "viscous_damping" => Effect::ViscousDamping {
+        Effect::ViscousDamping => ConcealedEffect::ViscousDamping {
             c0_n_s_per_m: rng.random_range(200.0..400.0),
             increase_per_a: rng.random_range(0.2..0.6),
         },
         // 3–6 samples at 20 kHz: the group delay of a ~1 kHz anti-alias
         // filter on the load cell channel.
-        "sensor_delay" => Effect::SensorDelay {
+        Effect::SensorDelay => ConcealedEffect::SensorDelay {
             delay_s: rng.random_range(150.0e-6..300.0e-6),
         },
         // Mullins softening of a filled elastomer: 15–30 % over the
         // campaign, most of it within the first 3–10 tests.
-        "stress_softening" => Effect::StressSoftening {
+        Effect::StressSoftening => ConcealedEffect::StressSoftening {
             depth: rng.random_range(0.15..0.3),
             tests_n0: rng.random_range(3.0..10.0),
         },
@@ -222,16 +228,16 @@ pub fn draw_effect(name: &str, rng: &mut impl Rng, scale: EffectScale) -> Result
         // at full depth. Sharp enough that no per-current quartic follows it
         // (a softer, wider stop is absorbed by the quartics: along one
         // current every test follows the same F(x), stop included).
-        "end_stop" => {
+        Effect::EndStop => {
             let x_e_mm = scale.longest_stroke_mm * rng.random_range(0.75..0.85);
             let over = scale.longest_stroke_mm - x_e_mm;
             let added_n = scale.peak_force_at_longest_n * rng.random_range(1.0..2.0);
-            Effect::EndStop {
+            ConcealedEffect::EndStop {
                 x_e_mm,
                 k_e_n_per_mm2: added_n / (over * over),
             }
         }
-        "magnetic_saturation" => Effect::MagneticSaturation {
+        Effect::MagneticSaturation => ConcealedEffect::MagneticSaturation {
             i_s_a: rng.random_range(0.3..0.55),
         },
         // 0.2–0.8 ms: a small coil (a few mH, a few Ω) on a current-regulated
@@ -240,7 +246,7 @@ pub fn draw_effect(name: &str, rng: &mut impl Rng, scale: EffectScale) -> Result
         // sample after a step, and at 0.8 ms the current is at 90 % (2.3τ)
         // before the shortest compression ends. Only a changing command
         // shows it.
-        "coil_lag" => Effect::CoilLag {
+        Effect::CoilLag => ConcealedEffect::CoilLag {
             time_constant_s: rng.random_range(COIL_LAG_RANGE_S),
         },
         // A steel striker (tup and adapter) of 0.3–0.8 kg below the load
@@ -248,12 +254,12 @@ pub fn draw_effect(name: &str, rng: &mut impl Rng, scale: EffectScale) -> Result
         // force differs by m_s·F·(1/2.75 − 1/5.5) = 5–15 % of F between the
         // two masses: the strength range the issue asks for. In a
         // single-mass drop the same term is the pure scale 1 − m_s/M.
-        "inertia" => Effect::Inertia {
+        Effect::Inertia => ConcealedEffect::Inertia {
             m_s_kg: rng.random_range(INERTIA_MASS_RANGE_KG),
         },
-        other => bail!(
-            "unknown effect `{other}`; expected one of {} or `random`",
-            INSTRUMENTED_EFFECT_NAMES.join(", ")
+        Effect::HysteresisMemory => bail!(
+            "`mre synth` cannot conceal `hysteresis_memory`; expected one of {} or `random`",
+            crate::vocabulary::join_names(&INSTRUMENTED_EFFECTS)
         ),
     })
 }

@@ -23,7 +23,7 @@ pub mod stepper;
 pub mod synth;
 pub mod synth_mts;
 
-pub use effects::{Effect, EFFECT_NAMES};
+pub use effects::{ConcealedEffect, Effect, DROP_EFFECTS};
 pub use law::LawParams;
 pub use measure::MeasurementModel;
 pub use stepper::{simulate, CoilDriver, CurrentSource, ImpactConfig, ImpactSummary, Plant, PlantStepper, Sample, Trajectory};

@@ -6,7 +6,7 @@
 //! command held (zero-order hold), so a controller — in process, or the real
 //! firmware over a serial link — closes the loop in lockstep. [`simulate`]
 //! runs a whole impact on top of it.
-use super::effects::Effect;
+use super::effects::ConcealedEffect;
 use super::law::LawParams;
 use super::measure::MeasurementModel;
 use anyhow::{ensure, Result};
@@ -18,7 +18,7 @@ use serde::Serialize;
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Plant {
     pub law: LawParams,
-    pub effect: Effect,
+    pub effect: ConcealedEffect,
     pub measurement: MeasurementModel,
 }
 
@@ -33,12 +33,12 @@ impl Plant {
     pub fn nominal() -> Self {
         Self {
             law: LawParams::nominal(),
-            effect: Effect::None,
+            effect: ConcealedEffect::None,
             measurement: MeasurementModel::default(),
         }
     }
 
-    pub fn with_effect(self, effect: Effect) -> Self {
+    pub fn with_effect(self, effect: ConcealedEffect) -> Self {
         Self { effect, ..self }
     }
 

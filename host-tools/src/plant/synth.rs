@@ -6,7 +6,7 @@
 //! (effect choice, base plant, effect parameters, test campaign), and every
 //! recording's noise has its own seed, so the output is byte-identical for a
 //! seed whatever the thread count.
-use super::effects::{draw_effect, Effect, EffectScale, EFFECT_NAMES, INSTRUMENTED_EFFECT_NAMES};
+use super::effects::{draw_effect, ConcealedEffect, Effect, EffectScale, DROP_EFFECTS, INSTRUMENTED_EFFECTS};
 use super::law::LawParams;
 use super::measure::MeasurementModel;
 use super::stepper::{simulate, CurrentSource, ImpactConfig, Plant, Trajectory};
@@ -157,12 +157,12 @@ impl SynthPlan {
         self.accelerometer.is_some() && self.repeats >= 2 && self.second_mass_kg.is_some_and(|m| m != self.mass_kg)
     }
 
-    /// The names `random` picks from on this campaign.
-    pub fn effect_names(&self) -> &'static [&'static str] {
+    /// The effects `random` picks from on this campaign.
+    pub fn effects(&self) -> &'static [Effect] {
         if self.reveals_inertia() {
-            &INSTRUMENTED_EFFECT_NAMES
+            &INSTRUMENTED_EFFECTS
         } else {
-            &EFFECT_NAMES
+            &DROP_EFFECTS
         }
     }
 
@@ -251,30 +251,28 @@ pub(crate) fn stream(seed: u64, id: u64) -> ChaCha8Rng {
     rng
 }
 
-/// `random` → one of [`EFFECT_NAMES`] (`none` included) picked by the seed;
+/// `random` → one of [`DROP_EFFECTS`] (`none` included) picked by the seed;
 /// any other name (`inertia` included) is checked and returned.
-pub fn resolve_effect_name(effect: &str, seed: u64) -> Result<&'static str> {
-    resolve_effect_name_from(effect, seed, &EFFECT_NAMES)
+pub fn resolve_effect_name(effect: &str, seed: u64) -> Result<Effect> {
+    resolve_effect_name_from(effect, seed, &DROP_EFFECTS)
 }
 
-/// [`resolve_effect_name`] with `random` picking from the names `plan` can reveal.
-pub fn resolve_effect_name_for(effect: &str, seed: u64, plan: &SynthPlan) -> Result<&'static str> {
-    resolve_effect_name_from(effect, seed, plan.effect_names())
+/// [`resolve_effect_name`] with `random` picking from the effects `plan` can reveal.
+pub fn resolve_effect_name_for(effect: &str, seed: u64, plan: &SynthPlan) -> Result<Effect> {
+    resolve_effect_name_from(effect, seed, plan.effects())
 }
 
-fn resolve_effect_name_from(effect: &str, seed: u64, random_from: &[&'static str]) -> Result<&'static str> {
+fn resolve_effect_name_from(effect: &str, seed: u64, random_from: &[Effect]) -> Result<Effect> {
     if effect == "random" {
         let i = stream(seed, 1).random_range(0..random_from.len());
         return Ok(random_from[i]);
     }
-    INSTRUMENTED_EFFECT_NAMES
-        .iter()
-        .copied()
-        .find(|n| *n == effect)
+    Effect::from_name(effect)
+        .filter(|e| INSTRUMENTED_EFFECTS.contains(e))
         .with_context(|| {
             format!(
                 "unknown effect `{effect}`; expected one of {} or `random`",
-                INSTRUMENTED_EFFECT_NAMES.join(", ")
+                crate::vocabulary::join_names(&INSTRUMENTED_EFFECTS)
             )
         })
 }
@@ -304,7 +302,7 @@ pub fn draw_base_plant(seed: u64) -> Plant {
     };
     Plant {
         law,
-        effect: Effect::None,
+        effect: ConcealedEffect::None,
         measurement,
     }
 }
@@ -343,10 +341,10 @@ pub fn effect_scale(base: &Plant, plan: &SynthPlan) -> Result<EffectScale> {
 /// The plant for (effect, seed): the seed's base plant plus the effect with
 /// parameters drawn from the seed.
 pub fn draw_plant(effect: &str, seed: u64, plan: &SynthPlan) -> Result<Plant> {
-    let name = resolve_effect_name_for(effect, seed, plan)?;
+    let kind = resolve_effect_name_for(effect, seed, plan)?;
     let base = draw_base_plant(seed);
     let scale = effect_scale(&base, plan)?;
-    let effect = draw_effect(name, &mut stream(seed, 3), scale)?;
+    let effect = draw_effect(kind, &mut stream(seed, 3), scale)?;
     Ok(base.with_effect(effect))
 }
 
@@ -639,7 +637,7 @@ fn key_json(plant: &Plant, seed: u64, plan: &SynthPlan) -> Result<serde_json::Va
     if let Some(acc) = &plan.accelerometer {
         key["accelerometer"] = serde_json::to_value(acc)?;
     }
-    if plant.effect.name() == "inertia" && !plan.reveals_inertia() {
+    if plant.effect.kind() == Effect::Inertia && !plan.reveals_inertia() {
         key["identifiable"] = serde_json::json!(false);
         key["not_identifiable_because"] = serde_json::json!(
             "one drop mass and no accelerometer: in a free drop a = g − F/M, so the striker's m_s·a is the \

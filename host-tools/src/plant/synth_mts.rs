@@ -6,7 +6,8 @@
 use super::base_laws::{Hysteresis, HystereticLaw};
 use super::synth::stream;
 use crate::dataset::{Dataset, Recording, Role, Samples, TagValue};
-use anyhow::{bail, Result};
+use crate::vocabulary::{join_names, Effect};
+use anyhow::{bail, Context, Result};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
@@ -14,8 +15,14 @@ use std::collections::BTreeMap;
 use std::f64::consts::PI;
 use std::path::PathBuf;
 
-/// Effects an MTS campaign can conceal.
-pub const MTS_EFFECT_NAMES: [&str; 5] = ["none", "viscous_damping", "sensor_delay", "end_stop", "inertia"];
+/// Effects an MTS campaign can conceal (the order is part of the seeded pick).
+pub const MTS_EFFECTS: [Effect; 5] = [
+    Effect::None,
+    Effect::ViscousDamping,
+    Effect::SensorDelay,
+    Effect::EndStop,
+    Effect::Inertia,
+];
 
 /// (amplitude mm, frequency Hz, sample period s): the bundled real set's
 /// pattern, peak speeds 16–94 mm/s.
@@ -56,14 +63,18 @@ pub enum MtsEffect {
 }
 
 impl MtsEffect {
-    pub fn name(&self) -> &'static str {
+    pub fn kind(&self) -> Effect {
         match self {
-            MtsEffect::None => "none",
-            MtsEffect::ViscousDamping { .. } => "viscous_damping",
-            MtsEffect::SensorDelay { .. } => "sensor_delay",
-            MtsEffect::EndStop { .. } => "end_stop",
-            MtsEffect::Inertia { .. } => "inertia",
+            MtsEffect::None => Effect::None,
+            MtsEffect::ViscousDamping { .. } => Effect::ViscousDamping,
+            MtsEffect::SensorDelay { .. } => Effect::SensorDelay,
+            MtsEffect::EndStop { .. } => Effect::EndStop,
+            MtsEffect::Inertia { .. } => Effect::Inertia,
         }
+    }
+
+    pub fn name(&self) -> &'static str {
+        self.kind().name()
     }
 }
 
@@ -95,21 +106,21 @@ pub fn draw_law(seed: u64) -> HystereticLaw {
     }
 }
 
-/// Draws the effect `name` sized to several percent of the force.
-pub fn draw_mts_effect(name: &str, rng: &mut ChaCha8Rng, law: &HystereticLaw) -> Result<MtsEffect> {
-    Ok(match name {
-        "none" => MtsEffect::None,
+/// Draws `effect` sized to several percent of the force.
+pub fn draw_mts_effect(effect: Effect, rng: &mut ChaCha8Rng, law: &HystereticLaw) -> Result<MtsEffect> {
+    Ok(match effect {
+        Effect::None => MtsEffect::None,
         // 0.15–0.3 of the 0 A yield at the fastest test (94 mm/s).
-        "viscous_damping" => MtsEffect::ViscousDamping {
+        Effect::ViscousDamping => MtsEffect::ViscousDamping {
             c0_n_s_per_m: law.f_y_n * rng.random_range(0.15..0.3) / 0.094,
         },
-        "sensor_delay" => MtsEffect::SensorDelay {
+        Effect::SensorDelay => MtsEffect::SensorDelay {
             delay_s: rng.random_range(3e-3..8e-3),
         },
         // Beyond the 10 mm tests, reached by the 25 mm ones at different
         // depths only through the other currents: adds 0.5–1× the 0 A yield
         // at full stroke.
-        "end_stop" => {
+        Effect::EndStop => {
             let depth_mm = rng.random_range(12.0..18.0);
             let over = 25.0 - depth_mm;
             let lower_end = rng.random_bool(0.5);
@@ -120,25 +131,30 @@ pub fn draw_mts_effect(name: &str, rng: &mut ChaCha8Rng, law: &HystereticLaw) ->
             }
         }
         // a reaches (2π·5)²·2 mm ≈ 2 m/s² in the 5 Hz test.
-        "inertia" => MtsEffect::Inertia {
+        Effect::Inertia => MtsEffect::Inertia {
             m_s_kg: law.f_y_n * rng.random_range(0.1..0.2) / 2.0,
         },
         other => bail!(
             "unknown MTS effect `{other}`; expected one of {}",
-            MTS_EFFECT_NAMES.join(", ")
+            join_names(&MTS_EFFECTS)
         ),
     })
 }
 
 /// Synthesises an MTS campaign for (effect, seed); `effect` may be `random`.
 pub fn synthesize_mts(effect: &str, seed: u64) -> Result<MtsOutput> {
-    let name = if effect == "random" {
-        MTS_EFFECT_NAMES[stream(seed, 11).random_range(0..MTS_EFFECT_NAMES.len())]
+    let kind = if effect == "random" {
+        MTS_EFFECTS[stream(seed, 11).random_range(0..MTS_EFFECTS.len())]
     } else {
-        effect
+        Effect::from_name(effect).with_context(|| {
+            format!(
+                "unknown MTS effect `{effect}`; expected one of {}",
+                join_names(&MTS_EFFECTS)
+            )
+        })?
     };
     let law = draw_law(seed);
-    let effect = draw_mts_effect(name, &mut stream(seed, 13), &law)?;
+    let effect = draw_mts_effect(kind, &mut stream(seed, 13), &law)?;
     synthesize_mts_with(&law, &effect, seed)
 }
 
