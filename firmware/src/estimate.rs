@@ -110,7 +110,11 @@ impl AlphaBeta {
             return (self.v_m_s, flags);
         }
         if !self.primed {
-            self.reset(z_mm, 0.0);
+            // `reset(z_mm, 0.0)` without its checks: z is finite and within
+            // ±MAX_ABS_X_MM here (the first period of every impact runs this).
+            self.x_mm = z_mm;
+            self.v_m_s = 0.0;
+            self.primed = true;
             return (0.0, Flags::NONE);
         }
         let predicted_mm = self.x_mm + self.v_m_s * self.period_mm_per_m_s;

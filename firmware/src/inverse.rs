@@ -8,7 +8,10 @@
 //! force need not grow with current (the paper's 2 A loop lies below its 1.5 A
 //! loop in places), so segments are scanned from the lowest current up rather
 //! than bisected. If no current gives the target, the knot with the nearest
-//! force is returned and flagged `SATURATED_HIGH` or `SATURATED_LOW`.
+//! force is returned and flagged `SATURATED_HIGH` or `SATURATED_LOW`. Where
+//! the table's forces are proven to rise with current, or one entry's to be
+//! the largest (`order.rs`, when the table is built), the same answer comes
+//! from fewer quartics and without carrying the nearest force.
 use crate::flags::Flags;
 use crate::math;
 use crate::model::Branch;
@@ -77,12 +80,14 @@ impl Table {
         if self.has_viscous() {
             let v = crate::model::viscous_velocity(v_m_s);
             let c = &self.terms().viscous_n_s_per_m;
-            self.solve_at(x_mm, branch, target_force_n, |k, f| {
+            // The order facts are proven for the quartics alone (a viscous
+            // term can reorder the entries at speed): the full scan.
+            self.solve_at(x_mm, branch, target_force_n, false, |k, f| {
                 f + c.get(k).copied().unwrap_or(0.0) * v
             })
         } else {
             // No rate term: nothing per entry beyond the quartic.
-            self.solve_at(x_mm, branch, target_force_n, |_, f| f)
+            self.solve_at(x_mm, branch, target_force_n, true, |_, f| f)
         }
     }
 
@@ -94,9 +99,41 @@ impl Table {
         x_mm: f32,
         branch: Branch,
         target_force_n: f32,
+        use_order: bool,
         with_extra: impl Fn(usize, f32) -> f32,
     ) -> PlanResult {
         let entries = self.entries();
+        // Where the forces are proven to rise with current, or one entry's
+        // to be the largest (order.rs), the same answer as the scan below
+        // comes from fewer quartics.
+        if use_order {
+            let order = self.order_facts(branch);
+            if x_mm >= order.ascending_from_mm {
+                if x_mm <= self.shared_x_max_mm() {
+                    let r = match branch {
+                        Branch::Compression => {
+                            solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.compression.eval(x_mm)))
+                        }
+                        Branch::Extension => {
+                            solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.extension.eval(x_mm)))
+                        }
+                    };
+                    return self.current_of(r);
+                }
+            } else {
+                if x_mm <= order.top_to_mm && x_mm >= self.shared_x_min_mm() {
+                    let r = match branch {
+                        Branch::Compression => solve_below_top(entries, order.top, target_force_n, |k, e| {
+                            with_extra(k, e.compression.eval(x_mm))
+                        }),
+                        Branch::Extension => solve_below_top(entries, order.top, target_force_n, |k, e| {
+                            with_extra(k, e.extension.eval(x_mm))
+                        }),
+                    };
+                    return self.current_of(r);
+                }
+            }
+        }
         if self.in_shared_stroke(x_mm) {
             let r = match branch {
                 Branch::Compression => solve(entries, target_force_n, |k, e| with_extra(k, e.compression.eval(x_mm))),
@@ -201,7 +238,20 @@ fn solve(
     let Some(first) = entries.first() else {
         return saturated(0, 0.0, 0.0, Flags::TABLE_FAULT);
     };
-    let mut f0 = force_at(0, first);
+    let f0 = force_at(0, first);
+    solve_from(entries, first, f0, target_force_n, force_at)
+}
+
+/// [`solve`] once entry 0 (`first`)'s force `f0` is known.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+#[inline(always)]
+fn solve_from(
+    entries: &[CurrentEntry],
+    first: &CurrentEntry,
+    mut f0: f32,
+    target_force_n: f32,
+    mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
+) -> Solution {
     // One loop per side of the target, so each entry costs one comparison
     // for the crossing. Until a crossing, every force lies on the starting
     // side, so the nearest one so far is the largest (below) or smallest
@@ -245,6 +295,80 @@ fn solve(
         (f0, i_prev) = (force, entry.current_a);
     }
     saturated(0, nearest.1, nearest.0, Flags::SATURATED_LOW)
+}
+
+/// [`solve`] where the forces are proven to rise strictly with current
+/// (`order.rs`): a target at or below entry 0's force is answered by entry 0,
+/// and the first entry at or above the target brackets it; none: the last
+/// entry, the largest force. The scan's answer, without the nearest force.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+#[inline(always)]
+fn solve_ascending(
+    entries: &[CurrentEntry],
+    target_force_n: f32,
+    mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
+) -> Solution {
+    let Some(first) = entries.first() else {
+        return saturated(0, 0.0, 0.0, Flags::TABLE_FAULT);
+    };
+    let f0 = force_at(0, first);
+    if !(f0 < target_force_n) {
+        let side = if f0 == target_force_n {
+            Flags::NONE
+        } else {
+            Flags::SATURATED_LOW
+        };
+        return saturated(0, first.current_a, f0, side);
+    }
+    let (mut f_prev, mut i_prev) = (f0, first.current_a);
+    for (k, entry) in entries.iter().enumerate().skip(1) {
+        let force = force_at(k, entry);
+        if !(force < target_force_n) {
+            return bracket(k, (i_prev, entry.current_a), f_prev, force, target_force_n);
+        }
+        (f_prev, i_prev) = (force, entry.current_a);
+    }
+    saturated(entries.len().saturating_sub(1), i_prev, f_prev, Flags::SATURATED_HIGH)
+}
+
+/// [`solve`] where entry `top` is proven to give strictly the largest force
+/// (`order.rs`): a target above it is answered by it, and a target below it
+/// is first reached at or before it, so the scan from below needs no
+/// nearest force and stops at `top`. A target at or below entry 0's force
+/// takes the scan from above.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+#[inline(always)]
+fn solve_below_top(
+    entries: &[CurrentEntry],
+    top: usize,
+    target_force_n: f32,
+    mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
+) -> Solution {
+    let (Some(first), Some(top_entry)) = (entries.first(), entries.get(top)) else {
+        return saturated(0, 0.0, 0.0, Flags::TABLE_FAULT);
+    };
+    let f0 = force_at(0, first);
+    if !(f0 < target_force_n) {
+        return solve_from(entries, first, f0, target_force_n, force_at);
+    }
+    let f_top = force_at(top, top_entry);
+    if f_top < target_force_n {
+        return saturated(
+            entries.len().saturating_sub(1),
+            top_entry.current_a,
+            f_top,
+            Flags::SATURATED_HIGH,
+        );
+    }
+    let (mut f_prev, mut i_prev) = (f0, first.current_a);
+    for (k, entry) in (1..).zip(entries.get(1..top).unwrap_or(&[])) {
+        let force = force_at(k, entry);
+        if !(force < target_force_n) {
+            return bracket(k, (i_prev, entry.current_a), f_prev, force, target_force_n);
+        }
+        (f_prev, i_prev) = (force, entry.current_a);
+    }
+    bracket(top, (i_prev, top_entry.current_a), f_prev, f_top, target_force_n)
 }
 
 /// The target lies between entry `k − 1` (force `f0`) and entry `k` (`f1`),

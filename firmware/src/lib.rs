@@ -21,6 +21,7 @@ pub mod inverse;
 pub mod law;
 pub mod math;
 pub mod model;
+pub mod order;
 pub mod overcurrent;
 pub mod pacing;
 pub mod status;

@@ -8,6 +8,7 @@
 //! and only become a usable [`Table`] through a validating constructor, so a
 //! corrupt or inconsistent table is never evaluated.
 use crate::model::Branch;
+use crate::order::OrderFacts;
 use crc::{Crc, CRC_32_ISO_HDLC};
 
 /// Most currents one table can hold (fixed size: no heap on the board).
@@ -126,7 +127,7 @@ impl Quartic {
 
     /// A bound on |p(x)| and on every Horner partial for |x| ≤ `x_abs_max`
     /// (≥ 1): Horner over the coefficients' magnitudes. Infinite on overflow.
-    fn magnitude_bound(&self, x_abs_max: f32) -> f32 {
+    pub(crate) fn magnitude_bound(&self, x_abs_max: f32) -> f32 {
         self.coeffs
             .iter()
             .fold(0.0, |acc, c| acc * x_abs_max + crate::math::abs(*c))
@@ -282,6 +283,11 @@ pub struct Table {
     /// costs a load instead of a clamp and a quartic on the hot path.
     end_low_n: [[f32; 2]; MAX_CURRENTS],
     end_high_n: [[f32; 2]; MAX_CURRENTS],
+    /// Per branch `[compression, extension]`: where in the shared stroke
+    /// the forces are proven to rise strictly with current, and where one
+    /// entry's is the largest (`order.rs`), which lets the inverse answer
+    /// with fewer quartics there. None with a viscous term.
+    order: [OrderFacts; 2],
 }
 
 impl Table {
@@ -321,6 +327,7 @@ impl Table {
             shared_x_max_mm: f32::INFINITY,
             end_low_n: [[0.0; 2]; MAX_CURRENTS],
             end_high_n: [[0.0; 2]; MAX_CURRENTS],
+            order: [OrderFacts::NONE; 2],
         };
         let ends = table.end_low_n.iter_mut().zip(table.end_high_n.iter_mut());
         for (((slot, knot), entry), (low, high)) in table
@@ -360,6 +367,12 @@ impl Table {
             return Err(TableError::BadTerm {
                 term: "saturation_current_a",
             });
+        }
+        if !table.has_viscous {
+            let (lo_mm, hi_mm) = (table.shared_x_min_mm, table.shared_x_max_mm);
+            for (facts, branch) in table.order.iter_mut().zip([Branch::Compression, Branch::Extension]) {
+                *facts = OrderFacts::prove(entries, branch, lo_mm, hi_mm);
+            }
         }
         let knots = table.knots.get(..table.len).unwrap_or(&[]);
         for (segment, pair) in table.saturation_segments.iter_mut().zip(knots.windows(2)) {
@@ -445,6 +458,37 @@ impl Table {
     #[inline]
     pub fn in_shared_stroke(&self, x_mm: f32) -> bool {
         x_mm >= self.shared_x_min_mm && x_mm <= self.shared_x_max_mm
+    }
+
+    /// The stroke every entry was fitted on (empty if they share none).
+    #[inline(always)]
+    pub(crate) fn shared_x_min_mm(&self) -> f32 {
+        self.shared_x_min_mm
+    }
+
+    #[inline(always)]
+    pub(crate) fn shared_x_max_mm(&self) -> f32 {
+        self.shared_x_max_mm
+    }
+
+    /// The proven order facts of `branch` (`order.rs`).
+    #[inline(always)]
+    pub fn order_facts(&self, branch: Branch) -> &OrderFacts {
+        match branch {
+            Branch::Compression => &self.order[0],
+            Branch::Extension => &self.order[1],
+        }
+    }
+
+    /// The same table without the proven order facts: the inverse then
+    /// always scans every entry it needs, keeping the nearest force. The
+    /// reference the shortcut is tested against.
+    #[doc(hidden)]
+    pub fn without_order_facts(&self) -> Table {
+        Table {
+            order: [OrderFacts::NONE; 2],
+            ..*self
+        }
     }
 
     /// Entry `index` (= `e`)'s force on `branch` at `x_mm` clamped to its

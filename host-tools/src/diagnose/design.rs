@@ -185,7 +185,7 @@ impl Layout {
             at
         };
         let viscous_at = terms.viscous.map(|_| next(n_currents));
-        let end_stop_at = terms.end_stop_x_mm.map(|_| next(1));
+        let end_stop_at = terms.end_stop_x_mm.map(|_| next(n_currents));
         let inertia_at = terms.inertia.then(|| next(1));
         let memory_at = terms.memory_mm.map(|_| next(2 * MEMORY_TERMS * n_currents));
         let friction_at = terms.friction_v0_m_s.map(|_| next(n_currents));
@@ -339,18 +339,32 @@ impl Designs {
         let _ = prep;
         // Columns no training recording touches (e.g. an end stop nobody
         // reached) are left out and get a zero coefficient.
-        let used: Vec<usize> = (0..p).filter(|&c| a.column(c).iter().any(|v| *v != 0.0)).collect();
-        let a_used = a.select_columns(&used);
-        let ls = linalg::solve(&a_used, &y)?;
-        let mut beta = vec![0.0; p];
-        for (k, &c) in used.iter().enumerate() {
-            beta[c] = ls.coeffs[k];
+        let mut used: Vec<usize> = (0..p).filter(|&c| a.column(c).iter().any(|v| *v != 0.0)).collect();
+        // An end stop only pushes back (k_e ≥ 0 at every current): a current
+        // whose stop coefficient comes out negative is refitted without it.
+        // Unconstrained, the 1 A tests of the real MR damper fit k_e < 0 (their
+        // own misfit at the stroke ends), which made a true stop's prediction
+        // worse there.
+        let stop_cols = self
+            .layout
+            .end_stop_at
+            .map_or(0..0, |at| at..at + self.layout.n_currents);
+        loop {
+            let ls = linalg::solve(&a.select_columns(&used), &y)?;
+            let mut beta = vec![0.0; p];
+            for (k, &c) in used.iter().enumerate() {
+                beta[c] = ls.coeffs[k];
+            }
+            let negative: Vec<usize> = stop_cols.clone().filter(|&c| beta[c] < 0.0).collect();
+            if negative.is_empty() {
+                return Ok(Solution {
+                    beta,
+                    delta: 0.0,
+                    sse: ls.sse,
+                });
+            }
+            used.retain(|c| !negative.contains(c));
         }
-        Ok(Solution {
-            beta,
-            delta: 0.0,
-            sse: ls.sse,
-        })
     }
 
     /// Solves over `train`. With softening, `F = (1 − Δ·g_r)·Q(x)`: for a
@@ -452,6 +466,9 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
         if let Some(at) = layout.friction_at {
             cols.push(at + k);
         }
+        if let Some(at) = layout.end_stop_at {
+            cols.push(at + k);
+        }
     }
     for comp in [true, false] {
         for j in 0..MEMORY_TERMS {
@@ -460,7 +477,6 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
             }
         }
     }
-    cols.extend(layout.end_stop_at);
     cols.extend(layout.inertia_at);
     cols.sort_unstable();
     cols.dedup();
@@ -512,6 +528,9 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
             if let (Some(at), Some(v0)) = (layout.friction_at, terms.friction_v0_m_s) {
                 a[(t, local(at + k))] += w * (v / v0).tanh();
             }
+            if let (Some(at), Some(xe)) = (layout.end_stop_at, terms.end_stop_x_mm) {
+                a[(t, local(at + k))] += w * end_stop_shape(x, xe, terms.end_stop_lower);
+            }
         }
         if let (Some((m, dir)), Some(delta)) = (&memory, terms.memory_mm) {
             if let Some(Anchor {
@@ -542,9 +561,6 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
                     }
                 }
             }
-        }
-        if let (Some(at), Some(xe)) = (layout.end_stop_at, terms.end_stop_x_mm) {
-            a[(t, local(at))] = end_stop_shape(x, xe, terms.end_stop_lower);
         }
         if let Some(at) = layout.inertia_at {
             a[(t, local(at))] = acc;

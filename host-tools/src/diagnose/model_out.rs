@@ -10,7 +10,8 @@
 //!
 //! Folded in rather than carried: stress softening scales the quartics and
 //! viscous terms by the softening factor of the latest recording (the damper
-//! as it is now); an end stop `k_e·max(0, x − x_e)²` is added to each
+//! as it is now); an end stop `k_e(I)·max(0, x − x_e)²` (or its mirror at the
+//! extension end) is added to each
 //! quartic by a least-squares refit over its stroke.
 //!
 //! Not carried: a delay between the recorded force and displacement channels
@@ -19,7 +20,7 @@
 //! (`sensor_delay_s` stays 0: it means the controller's own x/v samples lag);
 //! load-cell inertia (a scale in a free drop) and turn-around memory (the
 //! core has one quartic per branch) are left out.
-use super::design::{Layout, Viscous, QUARTIC_TERMS};
+use super::design::{end_stop_shape, Layout, Viscous, QUARTIC_TERMS};
 use super::report::{write_all, ReportJson};
 use super::{diagnose, DiagnoseOptions, Diagnosis};
 use crate::dataset::Dataset;
@@ -82,7 +83,9 @@ pub fn final_table(d: &Diagnosis) -> Result<Table> {
         };
         let with_end_stop = |p: [f64; QUARTIC_TERMS]| -> Result<Quartic> {
             let p = match (terms.end_stop_x_mm, layout.end_stop_at) {
-                (Some(x_e), Some(at)) => add_end_stop(p, softening * sol.beta[at], x_e, lo, hi)?,
+                (Some(x_e), Some(at)) => {
+                    add_end_stop(p, softening * sol.beta[at + k], x_e, terms.end_stop_lower, lo, hi)?
+                }
                 _ => p,
             };
             // The core stores the highest power first.
@@ -110,16 +113,23 @@ pub fn final_table(d: &Diagnosis) -> Result<Table> {
     Table::with_terms(&entries, mt).map_err(|e| anyhow!("final model: {e}"))
 }
 
-/// `p(x) + k_e·max(0, x − x_e)²` projected onto a quartic by least squares
+/// `p(x) + k_e·`[`end_stop_shape`] projected onto a quartic by least squares
 /// on 200 points over `[lo, hi]` (powers x⁰..x⁴).
-fn add_end_stop(p: [f64; QUARTIC_TERMS], k_e: f64, x_e: f64, lo: f64, hi: f64) -> Result<[f64; QUARTIC_TERMS]> {
+fn add_end_stop(
+    p: [f64; QUARTIC_TERMS],
+    k_e: f64,
+    x_e: f64,
+    lower: bool,
+    lo: f64,
+    hi: f64,
+) -> Result<[f64; QUARTIC_TERMS]> {
     const N: usize = 200;
     let x = |r: usize| lo + (hi - lo) * r as f64 / (N - 1) as f64;
     let a = DMatrix::from_fn(N, QUARTIC_TERMS, |r, c| x(r).powi(c as i32));
     let y = DVector::from_fn(N, |r, _| {
         let xr = x(r);
         let q: f64 = p.iter().rev().fold(0.0, |acc, c| acc * xr + c);
-        q + k_e * (xr - x_e).max(0.0).powi(2)
+        q + k_e * end_stop_shape(xr, x_e, lower)
     });
     let fit = solve(&a, &y)?;
     Ok(std::array::from_fn(|i| fit.coeffs[i]))

@@ -51,7 +51,11 @@ pub fn extract(prep: &Prepared, effect: Effect, terms: &Terms, sol: &Solution) -
         },
         Effect::EndStop => {
             if let (Some(at), Some(xe)) = (layout.end_stop_at, terms.end_stop_x_mm) {
-                push("k_e_n_per_mm2".into(), sol.beta[at], "N/mm²");
+                // Per tabulated current (fitted ≥ 0; 0 where a current's tests
+                // give no push-back at the stop).
+                for (k, c) in prep.currents_a.iter().enumerate() {
+                    push(format!("k_e_at_{c}a_n_per_mm2"), sol.beta[at + k], "N/mm²");
+                }
                 push("x_e_mm".into(), xe, "mm");
                 // 1: the stop acts at the extension end (x < x_e); 0: the compression end.
                 push("lower_end".into(), f64::from(u8::from(terms.end_stop_lower)), "1");

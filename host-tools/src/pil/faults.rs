@@ -216,14 +216,24 @@ struct Tally {
 }
 
 /// Reads answers until one for `seq` arrives; `None` on a timeout.
+///
+/// An answer to an earlier sequence is skipped: it answers a retry whose
+/// first answer was already taken (a slow host or emulator makes the retry
+/// timer fire before the answer lands, and the firmware answers both copies).
+/// An answer to a later sequence is a protocol error.
 fn answer_for(link: &mut PilLink, seq: u32) -> Result<Option<CommandFrame>> {
-    match link.read_command() {
-        Ok(cmd) if cmd.seq == seq => Ok(Some(cmd)),
-        Ok(cmd) => bail!("answer to sequence {} arrived for sample {seq}", cmd.seq),
-        Err(e) => match e.downcast_ref::<std::io::Error>() {
-            Some(io) if matches!(io.kind(), std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut) => Ok(None),
-            _ => Err(e),
-        },
+    loop {
+        match link.read_command() {
+            Ok(cmd) if cmd.seq == seq => return Ok(Some(cmd)),
+            Ok(cmd) if cmd.seq < seq => continue,
+            Ok(cmd) => bail!("answer to sequence {} arrived for sample {seq}", cmd.seq),
+            Err(e) => match e.downcast_ref::<std::io::Error>() {
+                Some(io) if matches!(io.kind(), std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut) => {
+                    return Ok(None)
+                }
+                _ => return Err(e),
+            },
+        }
     }
 }
 

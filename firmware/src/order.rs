@@ -1,0 +1,169 @@
+//! Where a table's forces rise with current: proven once, when the table is
+//! built, so that the inverse can skip work every period.
+//!
+//! The inverse scans the entries from the lowest current up and, for a target
+//! it cannot reach, keeps the nearest force seen, because in general the
+//! force need not rise with current (the paper's 2 A loop lies below its
+//! 1.5 A loop in places; the generated table's 1.5 A and 2 A compression
+//! quartics cross at x ≈ 0.435 mm). Where the forces do rise strictly with
+//! current, the answer needs less: a target below entry 0's force is
+//! answered by entry 0 alone and the scan need not carry the nearest force.
+//! Near contact, where every force is close to 0 and the fitted entries'
+//! order is noise, one entry still stays the largest for a while: there a
+//! target above it is answered by it alone. Each shortcut must give the
+//! scan's answer bit for bit, so the order has to hold for the f32 forces the
+//! core computes, not only for the exact quartics.
+//!
+//! The proof, per branch and per pair of entries (low, high): walk over the
+//! shared stroke in pieces of 1/[`PROOF_STEPS`] of it, halving a piece that
+//! fails (down to 1/[`REFINE`] of that) so that a proven region ends close to
+//! a crossing. On a piece `[a, b]` with midpoint `c` the exact difference
+//! `D = F_high − F_low` satisfies `D(x) ≥ D(c) − L·|x − c|`, where
+//! `L = Σ i·|d_i|·X^{i−1}` bounds `|D'|` for `|x| ≤ X = max(|a|, |b|)`.
+//! `D(c)` is computed in f32 from two Horner evaluations, each within
+//! `EVAL_ERR · Σ|c_i|·X^i` of the exact value (Horner with separate multiply
+//! and add rounds at most 8 times: γ₈ ≈ 4.8e-7 of that sum; `EVAL_ERR` is
+//! twice it). The piece is proven when that lower bound, less both
+//! evaluations' errors again (for the f32 forces at any x of the piece),
+//! stays above zero.
+//!
+//! A viscous term `c_k·v` can reorder the entries at speed; tables with one
+//! carry no order facts and always take the full scan.
+use crate::math::abs;
+use crate::model::Branch;
+use crate::table::{CurrentEntry, Quartic, MAX_CURRENTS};
+
+/// Pieces of the shared stroke the proof walks (0.03 mm each on a 15 mm
+/// stroke): a few thousand quartics per table build, not per period.
+pub const PROOF_STEPS: u32 = 512;
+/// How much finer a piece may get next to a crossing (2¹⁰: a few hundredths
+/// of a micrometre), so that the proven regions reach nearly to it.
+const REFINE: f32 = 1024.0;
+
+/// A bound on one f32 Horner evaluation's error, relative to `Σ|c_i|·|x|^i`:
+/// twice γ₈ (8 roundings at 2⁻²⁴ each).
+const EVAL_ERR: f32 = 1.0e-6;
+/// f32's unit roundoff, doubled, for the proof's own arithmetic.
+const ROUND: f32 = 2.0 * f32::EPSILON;
+
+/// What is proven about one branch's forces.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OrderFacts {
+    /// From here to the top of the shared stroke every entry's force is
+    /// above the one below it (+∞: nowhere).
+    pub ascending_from_mm: f32,
+    /// From the bottom of the shared stroke up to here, entry `top` gives
+    /// strictly the largest force (−∞: nowhere).
+    pub top_to_mm: f32,
+    pub top: usize,
+}
+
+impl OrderFacts {
+    pub const NONE: OrderFacts = OrderFacts {
+        ascending_from_mm: f32::INFINITY,
+        top_to_mm: f32::NEG_INFINITY,
+        top: 0,
+    };
+
+    /// The facts for `branch` of `entries` on the shared stroke
+    /// `[lo_mm, hi_mm]` (every entry fitted on it; none if it is empty).
+    pub fn prove(entries: &[CurrentEntry], branch: Branch, lo_mm: f32, hi_mm: f32) -> OrderFacts {
+        // An empty (or non-finite) shared stroke proves nothing.
+        if !lo_mm.is_finite() || !hi_mm.is_finite() || lo_mm >= hi_mm {
+            return OrderFacts::NONE;
+        }
+        let mut quartics = [Quartic::new([0.0; 5]); MAX_CURRENTS];
+        for (q, e) in quartics.iter_mut().zip(entries) {
+            *q = match branch {
+                Branch::Compression => e.compression,
+                Branch::Extension => e.extension,
+            };
+        }
+        let quartics = quartics.get(..entries.len()).unwrap_or(&[]);
+        // Neighbours rise, walking down from the top of the stroke.
+        let rising = |a: f32, b: f32| {
+            quartics
+                .windows(2)
+                .all(|w| matches!(w, [low, high] if rise_lower_bound(low, high, a, b) > 0.0))
+        };
+        let ascending_from_mm = walk(lo_mm, hi_mm, true, rising).unwrap_or(f32::INFINITY);
+        // The largest entry at the bottom, and how far up it stays so.
+        let mut top = 0;
+        let mut best = f32::NEG_INFINITY;
+        for (k, q) in quartics.iter().enumerate() {
+            let f = q.eval(lo_mm);
+            if f > best {
+                (best, top) = (f, k);
+            }
+        }
+        let largest = |a: f32, b: f32| match quartics.get(top) {
+            Some(high) => quartics
+                .iter()
+                .enumerate()
+                .all(|(k, low)| k == top || rise_lower_bound(low, high, a, b) > 0.0),
+            None => false,
+        };
+        let top_to_mm = walk(lo_mm, hi_mm, false, largest).unwrap_or(f32::NEG_INFINITY);
+        OrderFacts {
+            ascending_from_mm,
+            top_to_mm,
+            top,
+        }
+    }
+}
+
+/// Walks pieces of `[lo_mm, hi_mm]` from its top (`down`) or bottom while
+/// `proven(a, b)` holds for each, halving a piece that fails; returns where
+/// the proven region ends (`None`: no piece proven).
+fn walk(lo_mm: f32, hi_mm: f32, down: bool, proven: impl Fn(f32, f32) -> bool) -> Option<f32> {
+    let base_mm = (hi_mm - lo_mm) / PROOF_STEPS as f32;
+    let mut width_mm = base_mm;
+    let mut at_mm = if down { hi_mm } else { lo_mm };
+    let mut edge_mm = None;
+    // Each step proves a piece at least `base / REFINE` wide or halves the
+    // width: bounded (the cap is far above what a table needs).
+    for _ in 0..PROOF_STEPS * 8 {
+        let (a, b) = if down && at_mm > lo_mm {
+            ((at_mm - width_mm).max(lo_mm), at_mm)
+        } else if !down && at_mm < hi_mm {
+            (at_mm, (at_mm + width_mm).min(hi_mm))
+        } else {
+            break;
+        };
+        if proven(a, b) {
+            at_mm = if down { a } else { b };
+            edge_mm = Some(at_mm);
+            width_mm = base_mm.min(2.0 * width_mm);
+        } else {
+            // Closer to a crossing the margin shrinks: smaller pieces prove
+            // more of the way to it.
+            width_mm *= 0.5;
+            if width_mm < base_mm / REFINE {
+                break;
+            }
+        }
+    }
+    edge_mm
+}
+
+/// A lower bound of `high(x) − low(x)` as the core computes both in f32,
+/// for every x in `[a, b]` (NaN or ≤ 0: not proven).
+fn rise_lower_bound(low: &Quartic, high: &Quartic, a: f32, b: f32) -> f32 {
+    let c = 0.5 * (a + b);
+    // The farthest point of [a, b] from c, rounded up.
+    let r = (b - c).max(c - a) * (1.0 + ROUND);
+    let x_abs = abs(a).max(abs(b));
+    // Both evaluations' error bound anywhere in [a, b] (c included).
+    let eval_err = EVAL_ERR * (low.magnitude_bound(x_abs) + high.magnitude_bound(x_abs));
+    // |D'| ≤ Σ i·|d_i|·X^{i−1}, d the coefficient differences (highest power first).
+    let [h4, h3, h2, h1, _] = high.coeffs;
+    let [l4, l3, l2, l1, _] = low.coeffs;
+    let slope =
+        (((4.0 * abs(h4 - l4)) * x_abs + 3.0 * abs(h3 - l3)) * x_abs + 2.0 * abs(h2 - l2)) * x_abs + abs(h1 - l1);
+    let d = high.eval(c) - low.eval(c);
+    let spread = slope * (1.0 + 16.0 * ROUND) * r;
+    // The exact difference on [a, b] is at least `d − eval_err − spread`
+    // (less the rounding of d and of this sum); the f32 forces at any x of
+    // the piece may each be off by their share of `eval_err` again.
+    d - 2.0 * eval_err - spread - 4.0 * ROUND * (abs(d) + eval_err + spread)
+}

@@ -1,0 +1,180 @@
+//! The inverse's shortcuts where the forces are proven ordered (`order.rs`)
+//! give exactly the full scan's answer: every result is compared bit for bit
+//! with the same table stripped of its order facts. The proven regions are
+//! checked against crossings found independently (f64 bisection).
+use mre_core::table::{CurrentEntry, ModelTerms, Quartic, MAX_CURRENTS};
+use mre_core::{Branch, Table};
+use proptest::prelude::*;
+
+fn same_answer(t: &Table, x_mm: f32, v_m_s: f32, branch: Branch, target_n: f32) -> Result<(), TestCaseError> {
+    let fast = t.current_for_branch_v(x_mm, v_m_s, branch, target_n);
+    let scan = t
+        .without_order_facts()
+        .current_for_branch_v(x_mm, v_m_s, branch, target_n);
+    prop_assert_eq!(
+        fast.current_a.to_bits(),
+        scan.current_a.to_bits(),
+        "x {} v {} F {} {:?}: {:?} vs {:?}",
+        x_mm,
+        v_m_s,
+        target_n,
+        branch,
+        fast,
+        scan
+    );
+    prop_assert_eq!(fast.flags, scan.flags);
+    Ok(())
+}
+
+fn generated(terms: ModelTerms) -> Table {
+    Table::with_terms(&mre_core::generated_table::GENERATED_ENTRIES, terms).unwrap()
+}
+
+fn branch(compression: bool) -> Branch {
+    if compression {
+        Branch::Compression
+    } else {
+        Branch::Extension
+    }
+}
+
+/// Entries whose forces rise with current except near x = 0, where each
+/// has its own small offset (as fitted tables do): F_k = base + k·slope·x
+/// + offset_k, plus small higher-order differences.
+fn nearly_ordered_table() -> impl Strategy<Value = Table> {
+    (
+        2usize..=MAX_CURRENTS,
+        0.0f32..2000.0,
+        1.0f32..800.0,
+        proptest::array::uniform8(-20.0f32..20.0),
+        proptest::array::uniform8(-0.05f32..0.05),
+        prop::array::uniform8(-100.0f32..100.0),
+        any::<bool>(),
+    )
+        .prop_map(|(n, base, slope, offsets, cubic, viscous, with_viscous)| {
+            let entries: Vec<CurrentEntry> = (0..n)
+                .map(|k| {
+                    let q = Quartic::new([0.0, cubic[k], 0.5, base + k as f32 * slope, offsets[k]]);
+                    CurrentEntry {
+                        current_a: 0.5 * k as f32,
+                        compression: q,
+                        extension: Quartic::new([0.0, -cubic[k], 0.1, 0.3 * (base + k as f32 * slope), offsets[k]]),
+                        x_min_mm: -0.01,
+                        x_max_mm: 15.0,
+                    }
+                })
+                .collect();
+            let mut terms = ModelTerms::NONE;
+            if with_viscous {
+                terms.viscous_n_s_per_m = viscous;
+            }
+            Table::with_terms(&entries, terms).unwrap()
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    #[test]
+    fn shortcuts_give_the_full_scans_answer(
+        t in nearly_ordered_table(),
+        x_mm in -0.5f32..16.0,
+        v_m_s in prop_oneof![-3.0f32..3.0, Just(0.0f32), -200.0f32..200.0],
+        target_n in prop_oneof![-100.0f32..500.0, 0.0f32..40_000.0],
+        compression in any::<bool>(),
+    ) {
+        same_answer(&t, x_mm, v_m_s, branch(compression), target_n)?;
+    }
+
+    #[test]
+    fn shortcuts_on_the_flown_entries_with_any_terms(
+        every in any::<bool>(),
+        x_mm in -0.1f32..15.5,
+        v_m_s in -3.0f32..3.0,
+        target_n in prop_oneof![-50.0f32..800.0, 0.0f32..40_000.0],
+        compression in any::<bool>(),
+    ) {
+        let t = generated(if every { ModelTerms::EVERY_TERM } else { ModelTerms::NONE });
+        same_answer(&t, x_mm, v_m_s, branch(compression), target_n)?;
+    }
+}
+
+/// Around the crossings the proofs stop at: a dense grid on the flown
+/// table, the paper's, and each with a viscous term.
+#[test]
+fn shortcuts_agree_on_a_dense_grid_near_contact() {
+    let paper = Table::paper().unwrap();
+    let mut viscous = ModelTerms::NONE;
+    viscous.viscous_n_s_per_m = [0.0, 30.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    let paper_viscous = Table::with_terms(paper.entries(), viscous).unwrap();
+    for t in [
+        generated(ModelTerms::NONE),
+        generated(ModelTerms::EVERY_TERM),
+        paper,
+        paper_viscous,
+    ] {
+        for i in 0..=1200 {
+            let x_mm = -0.02 + i as f32 * 0.001;
+            for target_n in [-5.0, 0.0, 3.0, 20.0, 60.0, 150.0, 300.0, 500.0, 700.0, 1000.0, 5000.0] {
+                for v_m_s in [0.0, 0.01, 0.5, 2.24, -1.0] {
+                    for b in [Branch::Compression, Branch::Extension] {
+                        same_answer(&t, x_mm, v_m_s, b, target_n).unwrap();
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn quartic_f64(q: &Quartic, x: f64) -> f64 {
+    q.coeffs.iter().fold(0.0, |acc, &c| acc * x + c as f64)
+}
+
+/// The flown table's 1.5 A and 2 A compression quartics cross near contact
+/// (found here by f64 bisection on their difference): the "1.5 A is the
+/// largest" region ends below the crossing, the "forces rise with current"
+/// region starts above it, each within 0.01 mm of it.
+#[test]
+fn the_proven_regions_end_at_the_flown_tables_crossing() {
+    let e = &mre_core::generated_table::GENERATED_ENTRIES;
+    let d = |x: f64| quartic_f64(&e[4].compression, x) - quartic_f64(&e[3].compression, x);
+    let (mut lo, mut hi) = (0.1, 1.0);
+    assert!(d(lo) < 0.0 && d(hi) > 0.0);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if d(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let crossing_mm = lo as f32;
+    let facts = *generated(ModelTerms::NONE).order_facts(Branch::Compression);
+    assert!(
+        facts.ascending_from_mm > crossing_mm && facts.ascending_from_mm < crossing_mm + 0.01,
+        "{facts:?} vs {crossing_mm}"
+    );
+    assert_eq!(facts.top, 3);
+    assert!(
+        facts.top_to_mm < crossing_mm && facts.top_to_mm > crossing_mm - 0.01,
+        "{facts:?} vs {crossing_mm}"
+    );
+}
+
+/// A viscous term can reorder the entries at speed: such a table carries
+/// no order facts, and its inverse is the full scan.
+#[test]
+fn a_viscous_term_leaves_no_order_facts() {
+    let t = generated(ModelTerms::EVERY_TERM);
+    for b in [Branch::Compression, Branch::Extension] {
+        assert_eq!(*t.order_facts(b), *t.without_order_facts().order_facts(b));
+        assert_eq!(t.order_facts(b).ascending_from_mm, f32::INFINITY);
+    }
+    // Without it the same entries do have them.
+    assert!(
+        generated(ModelTerms::NONE)
+            .order_facts(Branch::Compression)
+            .ascending_from_mm
+            < 1.0
+    );
+}
