@@ -2,7 +2,9 @@
 //! extension end): one stiffness per tabulated current, never negative.
 //! Expected values by construction: the recordings are exactly a line in x
 //! per current plus the stop, which the model class holds.
-use mre_host::dataset::{Dataset, Recording, Role, Samples};
+mod diagnose_support;
+
+use mre_host::dataset::{Dataset, Samples};
 use mre_host::diagnose::design::{Designs, Terms};
 use mre_host::diagnose::prepared::{prepare, FoldPlan};
 use std::f64::consts::PI;
@@ -20,24 +22,17 @@ fn set(extra: &dyn Fn(f64, f64) -> f64) -> Dataset {
             let time_s: Vec<f64> = (0..n).map(|i| i as f64 * dt).collect();
             let x_mm: Vec<f64> = time_s.iter().map(|t| amp_mm * (w * t).sin()).collect();
             let slope = 20.0 + 80.0 * current_a;
-            recordings.push(Recording {
-                file: format!("a{amp_mm}_i{current_a}.csv"),
+            recordings.push(diagnose_support::fit_recording(
+                format!("a{amp_mm}_i{current_a}.csv"),
                 current_a,
-                role: Role::Fit,
-                mass_kg: None,
-                impact_velocity_m_s: None,
-                sequence: None,
-                temperature_c: None,
-                tags: Default::default(),
-                samples: Samples {
+                Samples {
                     v_m_s: time_s.iter().map(|t| 1e-3 * amp_mm * w * (w * t).cos()).collect(),
                     force_n: x_mm.iter().map(|&x| slope * x + extra(current_a, x)).collect(),
                     x_mm,
                     time_s,
                     ..Samples::default()
                 },
-                velocity_estimated: false,
-            });
+            ));
         }
     }
     Dataset {

@@ -1,7 +1,9 @@
 //! `mre bench-diagnose --real`: the injections realise the strength they
 //! claim, in time units whatever the sampling rate, at either end of a
 //! two-sided stroke. Expected values from closed forms of sinusoids.
-use mre_host::dataset::{Dataset, Recording, Role, Samples};
+mod diagnose_support;
+
+use mre_host::dataset::{Dataset, Samples};
 use mre_host::diagnose::bench_real::{acceleration_from_x, force_rms_n, inject};
 use mre_host::diagnose::DiagnoseOptions;
 use mre_host::vocabulary::Effect;
@@ -24,24 +26,17 @@ fn sinusoid_set() -> Dataset {
         let n = (10.0 / F_HZ / dt) as usize;
         let time_s: Vec<f64> = (0..n).map(|i| i as f64 * dt).collect();
         let x_mm: Vec<f64> = time_s.iter().map(|t| AMP_MM * (w * t).sin()).collect();
-        recordings.push(Recording {
-            file: format!("r{k}.csv"),
+        recordings.push(diagnose_support::fit_recording(
+            format!("r{k}.csv"),
             current_a,
-            role: Role::Fit,
-            mass_kg: None,
-            impact_velocity_m_s: None,
-            sequence: None,
-            temperature_c: None,
-            tags: Default::default(),
-            samples: Samples {
+            Samples {
                 v_m_s: time_s.iter().map(|t| 1e-3 * AMP_MM * w * (w * t).cos()).collect(),
                 force_n: x_mm.iter().map(|x| 100.0 * x).collect(),
                 x_mm,
                 time_s,
                 ..Samples::default()
             },
-            velocity_estimated: false,
-        });
+        ));
     }
     Dataset {
         name: "sinusoids".into(),

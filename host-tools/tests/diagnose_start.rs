@@ -6,14 +6,15 @@
 //! δ = x_y with its own coefficient for the start (relaxing over 2.5 % of the
 //! 20 mm stroke span, also x_y) fits the first quarter cycle to the noise; without it that stretch is predicted on the steady
 //! branch, G·f_y (150–900 N here) off at the start.
-use mre_host::dataset::{Dataset, Recording, Role, Samples};
+mod diagnose_support;
+
+use mre_host::dataset::{Dataset, Samples};
 use mre_host::diagnose::design::{memory_feature_on_branches, Designs, Terms, START_FROM_REST};
 use mre_host::diagnose::prepared::{prepare, FoldPlan};
 use mre_host::plant::base_laws::{Hysteresis, HystereticLaw};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 const DT_S: f64 = 0.002;
@@ -44,24 +45,17 @@ fn dahl_from_rest(seed: u64) -> (Dataset, HystereticLaw) {
                 .into_iter()
                 .map(|f| f + noise.sample(&mut rng))
                 .collect();
-            recordings.push(Recording {
-                file: format!("a{amp_mm}_i{current_a}.csv"),
+            recordings.push(diagnose_support::fit_recording(
+                format!("a{amp_mm}_i{current_a}.csv"),
                 current_a,
-                role: Role::Fit,
-                mass_kg: None,
-                impact_velocity_m_s: None,
-                sequence: None,
-                temperature_c: None,
-                tags: BTreeMap::new(),
-                samples: Samples {
+                Samples {
                     time_s,
                     x_mm,
                     v_m_s,
                     force_n,
                     ..Samples::default()
                 },
-                velocity_estimated: false,
-            });
+            ));
         }
     }
     let ds = Dataset {

@@ -175,3 +175,19 @@ pub fn dataset(added: Added, seed: u64) -> Dataset {
         recordings,
     }
 }
+
+/// A fit recording that carries only its current (no mass, run order or tags).
+pub fn fit_recording(file: String, current_a: f64, samples: Samples) -> Recording {
+    Recording {
+        file,
+        current_a,
+        role: Role::Fit,
+        mass_kg: None,
+        impact_velocity_m_s: None,
+        sequence: None,
+        temperature_c: None,
+        tags: BTreeMap::new(),
+        samples,
+        velocity_estimated: false,
+    }
+}
