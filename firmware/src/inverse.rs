@@ -80,14 +80,16 @@ impl Table {
         if self.has_viscous() {
             let v = crate::model::viscous_velocity(v_m_s);
             let c = &self.terms().viscous_n_s_per_m;
-            // The order facts are proven for the quartics alone (a viscous
-            // term can reorder the entries at speed): the full scan.
-            self.solve_at(x_mm, branch, target_force_n, false, |k, f| {
+            // A viscous term can reorder the entries at speed: the order
+            // facts hold for the velocities they were proven for only.
+            let facts = self.order_facts(branch);
+            let use_order = v >= facts.v_min_m_s && v <= facts.v_max_m_s;
+            self.solve_at(x_mm, branch, target_force_n, use_order, false, |k, f| {
                 f + c.get(k).copied().unwrap_or(0.0) * v
             })
         } else {
             // No rate term: nothing per entry beyond the quartic.
-            self.solve_at(x_mm, branch, target_force_n, true, |_, f| f)
+            self.solve_at(x_mm, branch, target_force_n, true, true, |_, f| f)
         }
     }
 
@@ -100,6 +102,7 @@ impl Table {
         branch: Branch,
         target_force_n: f32,
         use_order: bool,
+        use_top: bool,
         with_extra: impl Fn(usize, f32) -> f32,
     ) -> PlanResult {
         let entries = self.entries();
@@ -120,7 +123,7 @@ impl Table {
                     };
                     return self.current_of(r);
                 }
-            } else {
+            } else if use_top {
                 if x_mm <= order.top_to_mm && x_mm >= self.shared_x_min_mm() {
                     let r = match branch {
                         Branch::Compression => solve_below_top(entries, order.top, target_force_n, |k, e| {
@@ -193,12 +196,19 @@ impl Table {
     fn saturated_current_a(&self, s: Solution, i_s: f32, i0: f32, i1: f32) -> f32 {
         let [dw, den0, lin] = self.saturation_segment(s.lower);
         let u = s.t * dw / (den0 - s.t * lin);
-        let current_a = if u <= math::ATANH_SERIES_MAX {
-            i0 + i_s * math::atanh_small(u)
+        if u <= math::ATANH_SERIES_MAX {
+            // u ≥ 0 (0 < t < 1, Δw > 0, and the denominator is at least
+            // 1 − w0·w1 > 0), so the series is ≥ 0 and the sum ≥ i0: only
+            // the upper end can be passed (by rounding).
+            let current_a = i0 + i_s * math::atanh_small(u);
+            if current_a > i1 {
+                i1
+            } else {
+                current_a
+            }
         } else {
-            i_s * math::atanh(self.knot(s.lower) + s.t * dw)
-        };
-        math::clamp(current_a, i0, i1)
+            math::clamp(i_s * math::atanh(self.knot(s.lower) + s.t * dw), i0, i1)
+        }
     }
 
     /// [`Table::current_for_branch_v`] with the branch from the sign of `v_m_s`.
