@@ -109,6 +109,9 @@ impl Table {
         // Where the forces are proven to rise with current, or one entry's
         // to be the largest (order.rs), the same answer as the scan below
         // comes from fewer quartics.
+        // Entry 0 proven the smallest (in the shared stroke: the region
+        // ends at its top).
+        let bottom = use_order && x_mm >= self.order_facts(branch).bottom_from_mm;
         if use_order {
             let order = self.order_facts(branch);
             if x_mm >= order.ascending_from_mm {
@@ -126,10 +129,10 @@ impl Table {
             } else if use_top {
                 if x_mm <= order.top_to_mm && x_mm >= self.shared_x_min_mm() {
                     let r = match branch {
-                        Branch::Compression => solve_below_top(entries, order.top, target_force_n, |k, e| {
+                        Branch::Compression => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
                             with_extra(k, e.compression.eval(x_mm))
                         }),
-                        Branch::Extension => solve_below_top(entries, order.top, target_force_n, |k, e| {
+                        Branch::Extension => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
                             with_extra(k, e.extension.eval(x_mm))
                         }),
                     };
@@ -139,8 +142,12 @@ impl Table {
         }
         if self.in_shared_stroke(x_mm) {
             let r = match branch {
-                Branch::Compression => solve(entries, target_force_n, |k, e| with_extra(k, e.compression.eval(x_mm))),
-                Branch::Extension => solve(entries, target_force_n, |k, e| with_extra(k, e.extension.eval(x_mm))),
+                Branch::Compression => solve(entries, target_force_n, bottom, |k, e| {
+                    with_extra(k, e.compression.eval(x_mm))
+                }),
+                Branch::Extension => solve(entries, target_force_n, bottom, |k, e| {
+                    with_extra(k, e.extension.eval(x_mm))
+                }),
             };
             return self.current_of(r);
         }
@@ -152,7 +159,7 @@ impl Table {
             (Flags::NON_FINITE_INPUT, f32::NEG_INFINITY)
         };
         // A clamped entry's force is its precomputed stroke end.
-        let r = solve(entries, target_force_n, |k, e| {
+        let r = solve(entries, target_force_n, false, |k, e| {
             with_extra(k, self.clamped_force_n(k, e, branch, x_mm))
         });
         let mut r = self.current_of(r);
@@ -192,7 +199,7 @@ impl Table {
     /// its series: no logarithm and one divide. A wide segment takes the
     /// logarithm. Out of line: its registers would otherwise be saved on
     /// every call.
-    #[inline(never)]
+    #[inline(always)]
     fn saturated_current_a(&self, s: Solution, i_s: f32, i0: f32, i1: f32) -> f32 {
         let [dw, den0, lin] = self.saturation_segment(s.lower);
         let u = s.t * dw / (den0 - s.t * lin);
@@ -243,16 +250,19 @@ struct Solution {
 fn solve(
     entries: &[CurrentEntry],
     target_force_n: f32,
+    bottom: bool,
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
     let Some(first) = entries.first() else {
         return saturated(0, 0.0, 0.0, Flags::TABLE_FAULT);
     };
     let f0 = force_at(0, first);
-    solve_from(entries, first, f0, target_force_n, force_at)
+    solve_from(entries, first, f0, target_force_n, bottom, force_at)
 }
 
-/// [`solve`] once entry 0 (`first`)'s force `f0` is known.
+/// [`solve`] once entry 0 (`first`)'s force `f0` is known. `bottom`: entry
+/// 0's force is proven strictly the smallest (`order.rs`), so a target below
+/// it is answered by entry 0 without scanning the rest.
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 #[inline(always)]
 fn solve_from(
@@ -260,6 +270,7 @@ fn solve_from(
     first: &CurrentEntry,
     mut f0: f32,
     target_force_n: f32,
+    bottom: bool,
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
     // One loop per side of the target, so each entry costs one comparison
@@ -292,6 +303,10 @@ fn solve_from(
     }
     if f0 == target_force_n {
         return saturated(0, first.current_a, f0, Flags::NONE);
+    }
+    if bottom {
+        // Entry 0 is proven the smallest force: nothing falls to the target.
+        return saturated(0, first.current_a, f0, Flags::SATURATED_LOW);
     }
     for (k, entry) in entries.iter().enumerate().skip(1) {
         let force = force_at(k, entry);
@@ -352,6 +367,7 @@ fn solve_below_top(
     entries: &[CurrentEntry],
     top: usize,
     target_force_n: f32,
+    bottom: bool,
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
     let (Some(first), Some(top_entry)) = (entries.first(), entries.get(top)) else {
@@ -359,7 +375,7 @@ fn solve_below_top(
     };
     let f0 = force_at(0, first);
     if !(f0 < target_force_n) {
-        return solve_from(entries, first, f0, target_force_n, force_at);
+        return solve_from(entries, first, f0, target_force_n, bottom, force_at);
     }
     let f_top = force_at(top, top_entry);
     if f_top < target_force_n {

@@ -10,7 +10,9 @@
 //! answered by entry 0 alone and the scan need not carry the nearest force.
 //! Near contact, where every force is close to 0 and the fitted entries'
 //! order is noise, one entry still stays the largest for a while: there a
-//! target above it is answered by it alone. Each shortcut must give the
+//! target above it is answered by it alone. And entry 0 (the lowest current)
+//! usually gives the smallest force nearly down to contact, even where the
+//! others cross: there a target at or below it is answered by it alone. Each shortcut must give the
 //! scan's answer bit for bit, so the order has to hold for the f32 forces the
 //! core computes, not only for the exact quartics.
 //!
@@ -66,6 +68,9 @@ pub struct OrderFacts {
     /// From here to the top of the shared stroke every entry's force is
     /// above the one below it (+∞: nowhere).
     pub ascending_from_mm: f32,
+    /// From here to the top of the shared stroke entry 0 gives strictly the
+    /// smallest force (+∞: nowhere); at or below `ascending_from_mm`.
+    pub bottom_from_mm: f32,
     /// From the bottom of the shared stroke up to here, entry `top` gives
     /// strictly the largest force (−∞: nowhere).
     pub top_to_mm: f32,
@@ -79,6 +84,7 @@ pub struct OrderFacts {
 impl OrderFacts {
     pub const NONE: OrderFacts = OrderFacts {
         ascending_from_mm: f32::INFINITY,
+        bottom_from_mm: f32::INFINITY,
         top_to_mm: f32::NEG_INFINITY,
         top: 0,
         v_min_m_s: f32::INFINITY,
@@ -125,6 +131,11 @@ impl OrderFacts {
         // Neighbours rise, walking down from the top of the stroke.
         let rising = |a: f32, b: f32| (1..quartics.len()).all(|k| rises(k - 1, k, a, b));
         let ascending_from_mm = walk(lo_mm, hi_mm, true, rising).unwrap_or(f32::INFINITY);
+        // Entry 0 below every other entry (implied where they all rise).
+        let lowest = |a: f32, b: f32| (1..quartics.len()).all(|k| rises(0, k, a, b));
+        let bottom_from_mm = walk(lo_mm, hi_mm, true, lowest)
+            .unwrap_or(f32::INFINITY)
+            .min(ascending_from_mm);
         // The largest entry at the bottom (at either end of the velocity
         // range: with a viscous term they may differ), and how far up it
         // stays so; the longer region of the two.
@@ -149,6 +160,7 @@ impl OrderFacts {
         }
         OrderFacts {
             ascending_from_mm,
+            bottom_from_mm,
             top_to_mm,
             top,
             v_min_m_s,
