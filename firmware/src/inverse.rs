@@ -81,15 +81,17 @@ impl Table {
             let v = crate::model::viscous_velocity(v_m_s);
             let c = &self.terms().viscous_n_s_per_m;
             // A viscous term can reorder the entries at speed: the order
-            // facts hold for the velocities they were proven for only.
+            // facts hold for the velocities they were proven for only
+            // (asked only where a fact's x region applies).
             let facts = self.order_facts(branch);
-            let use_order = v >= facts.v_min_m_s && v <= facts.v_max_m_s;
-            self.solve_at(x_mm, branch, target_force_n, use_order, false, |k, f| {
+            let in_range = || v >= facts.v_min_m_s && v <= facts.v_max_m_s;
+            self.solve_at(x_mm, branch, target_force_n, in_range, false, |k, f| {
                 f + c.get(k).copied().unwrap_or(0.0) * v
             })
         } else {
-            // No rate term: nothing per entry beyond the quartic.
-            self.solve_at(x_mm, branch, target_force_n, true, true, |_, f| f)
+            // No rate term: nothing per entry beyond the quartic, and the
+            // facts hold at any velocity.
+            self.solve_at(x_mm, branch, target_force_n, || true, true, |_, f| f)
         }
     }
 
@@ -101,7 +103,7 @@ impl Table {
         x_mm: f32,
         branch: Branch,
         target_force_n: f32,
-        use_order: bool,
+        in_range: impl Fn() -> bool,
         use_top: bool,
         with_extra: impl Fn(usize, f32) -> f32,
     ) -> PlanResult {
@@ -109,37 +111,35 @@ impl Table {
         // Where the forces are proven to rise with current, or one entry's
         // to be the largest (order.rs), the same answer as the scan below
         // comes from fewer quartics.
-        // Entry 0 proven the smallest (in the shared stroke: the region
-        // ends at its top).
-        let bottom = use_order && x_mm >= self.order_facts(branch).bottom_from_mm;
-        if use_order {
-            let order = self.order_facts(branch);
-            if x_mm >= order.ascending_from_mm {
-                if x_mm <= self.shared_x_max_mm() {
-                    let r = match branch {
-                        Branch::Compression => {
-                            solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.compression.eval(x_mm)))
-                        }
-                        Branch::Extension => {
-                            solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.extension.eval(x_mm)))
-                        }
-                    };
-                    return self.current_of(r);
-                }
-            } else if use_top {
-                if x_mm <= order.top_to_mm && x_mm >= self.shared_x_min_mm() {
-                    let r = match branch {
-                        Branch::Compression => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
-                            with_extra(k, e.compression.eval(x_mm))
-                        }),
-                        Branch::Extension => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
-                            with_extra(k, e.extension.eval(x_mm))
-                        }),
-                    };
-                    return self.current_of(r);
-                }
+        let order = self.order_facts(branch);
+        if x_mm >= order.ascending_from_mm {
+            if x_mm <= self.shared_x_max_mm() && in_range() {
+                let r = match branch {
+                    Branch::Compression => {
+                        solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.compression.eval(x_mm)))
+                    }
+                    Branch::Extension => {
+                        solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.extension.eval(x_mm)))
+                    }
+                };
+                return self.current_of(r);
             }
+        } else if use_top && x_mm <= order.top_to_mm && x_mm >= self.shared_x_min_mm() && in_range() {
+            // (bottom_from ≤ ascending_from: no fact for entry 0 below.)
+            let bottom = || x_mm >= order.bottom_from_mm;
+            let r = match branch {
+                Branch::Compression => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
+                    with_extra(k, e.compression.eval(x_mm))
+                }),
+                Branch::Extension => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
+                    with_extra(k, e.extension.eval(x_mm))
+                }),
+            };
+            return self.current_of(r);
         }
+        // Entry 0 proven the smallest: asked only when a target lies below
+        // it (the region lies in the shared stroke).
+        let bottom = || x_mm >= order.bottom_from_mm && in_range();
         if self.in_shared_stroke(x_mm) {
             let r = match branch {
                 Branch::Compression => solve(entries, target_force_n, bottom, |k, e| {
@@ -159,7 +159,7 @@ impl Table {
             (Flags::NON_FINITE_INPUT, f32::NEG_INFINITY)
         };
         // A clamped entry's force is its precomputed stroke end.
-        let r = solve(entries, target_force_n, false, |k, e| {
+        let r = solve(entries, target_force_n, || false, |k, e| {
             with_extra(k, self.clamped_force_n(k, e, branch, x_mm))
         });
         let mut r = self.current_of(r);
@@ -250,7 +250,7 @@ struct Solution {
 fn solve(
     entries: &[CurrentEntry],
     target_force_n: f32,
-    bottom: bool,
+    bottom: impl Fn() -> bool,
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
     let Some(first) = entries.first() else {
@@ -270,7 +270,7 @@ fn solve_from(
     first: &CurrentEntry,
     mut f0: f32,
     target_force_n: f32,
-    bottom: bool,
+    bottom: impl Fn() -> bool,
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
     // One loop per side of the target, so each entry costs one comparison
@@ -304,7 +304,7 @@ fn solve_from(
     if f0 == target_force_n {
         return saturated(0, first.current_a, f0, Flags::NONE);
     }
-    if bottom {
+    if bottom() {
         // Entry 0 is proven the smallest force: nothing falls to the target.
         return saturated(0, first.current_a, f0, Flags::SATURATED_LOW);
     }
@@ -367,7 +367,7 @@ fn solve_below_top(
     entries: &[CurrentEntry],
     top: usize,
     target_force_n: f32,
-    bottom: bool,
+    bottom: impl Fn() -> bool,
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
     let (Some(first), Some(top_entry)) = (entries.first(), entries.get(top)) else {
