@@ -159,9 +159,12 @@ impl Table {
             (Flags::NON_FINITE_INPUT, f32::NEG_INFINITY)
         };
         // A clamped entry's force is its precomputed stroke end.
-        let r = solve(entries, target_force_n, || false, |k, e| {
-            with_extra(k, self.clamped_force_n(k, e, branch, x_mm))
-        });
+        let r = solve(
+            entries,
+            target_force_n,
+            || false,
+            |k, e| with_extra(k, self.clamped_force_n(k, e, branch, x_mm)),
+        );
         let mut r = self.current_of(r);
         r.flags |= flag;
         r

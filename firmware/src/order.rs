@@ -12,9 +12,9 @@
 //! order is noise, one entry still stays the largest for a while: there a
 //! target above it is answered by it alone. And entry 0 (the lowest current)
 //! usually gives the smallest force nearly down to contact, even where the
-//! others cross: there a target at or below it is answered by it alone. Each shortcut must give the
-//! scan's answer bit for bit, so the order has to hold for the f32 forces the
-//! core computes, not only for the exact quartics.
+//! others cross: there a target below it is answered by it alone. Each
+//! shortcut must give the scan's answer bit for bit, so the order has to hold
+//! for the f32 forces the core computes, not only for the exact quartics.
 //!
 //! The proof, per branch and per pair of entries (low, high): walk over the
 //! shared stroke in pieces of 1/[`PROOF_STEPS`] of it, halving a piece that
@@ -37,9 +37,12 @@
 //! difference `Q_h − Q_l + (c_h − c_l)·v` is linear in v, so on that range it
 //! is least at one of its ends: the proof adds `min(0, Δc·v)` over both ends
 //! to the quartics' bound, less the rounding of the two products and the two
-//! sums (each within f32's unit roundoff of its magnitude). Where `c` does
-//! not fall with current (`Δc ≥ 0`) the viscous term only widens the gap, so
-//! the quartics' facts hold for every v of the branch's sign up to V.
+//! sums (each within f32's unit roundoff of its magnitude; the last
+//! subtraction of the bound keeps its sign exactly). On the compression
+//! branch, where `c` does not fall with current (`Δc ≥ 0`), the viscous term
+//! only widens the gap, so the quartics' facts hold there for every
+//! `0 ≤ v ≤ V`; a falling `c` narrows them, and near contact, where the
+//! quartics are all close to 0, can leave none (`ModelTerms::EVERY_TERM`).
 use crate::math::abs;
 use crate::model::Branch;
 use crate::table::{CurrentEntry, Quartic, MAX_CURRENTS};
@@ -141,6 +144,7 @@ impl OrderFacts {
         // stays so; the longer region of the two.
         let mut top = 0;
         let mut top_to_mm = f32::NEG_INFINITY;
+        let mut tried = None;
         for v_m_s in ends {
             let v = if v_m_s.is_finite() { v_m_s } else { 0.0 };
             let mut candidate = 0;
@@ -150,6 +154,10 @@ impl OrderFacts {
                 if f > best {
                     (best, candidate) = (f, k);
                 }
+            }
+            // Without a viscous term both ends pick the same entry.
+            if tried.replace(candidate) == Some(candidate) {
+                continue;
             }
             let largest = |a: f32, b: f32| (0..quartics.len()).all(|k| k == candidate || rises(k, candidate, a, b));
             if let Some(to_mm) = walk(lo_mm, hi_mm, false, largest) {
