@@ -82,7 +82,9 @@ impl Table {
             let c = &self.terms().viscous_n_s_per_m;
             // A viscous term can reorder the entries at speed: the order
             // facts hold for the velocities they were proven for only
-            // (asked only where a fact's x region applies).
+            // (asked only where a fact's x region applies). No "largest
+            // entry" fact: near contact it rarely holds at every velocity,
+            // and its path cost the full scan there 7 instructions.
             let facts = self.order_facts(branch);
             let in_range = || v >= facts.v_min_m_s && v <= facts.v_max_m_s;
             self.solve_at(x_mm, branch, target_force_n, in_range, false, |k, f| {
@@ -125,7 +127,7 @@ impl Table {
                 return self.current_of(r);
             }
         } else if use_top && x_mm <= order.top_to_mm && x_mm >= self.shared_x_min_mm() && in_range() {
-            // (bottom_from ≤ ascending_from: no fact for entry 0 below.)
+            // (The velocity range is checked just above.)
             let bottom = || x_mm >= order.bottom_from_mm;
             let r = match branch {
                 Branch::Compression => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
@@ -200,8 +202,8 @@ impl Table {
     /// (the segment's constants precomputed in `Table::build`), and on a
     /// segment narrow against I_s u is small, so I = I0 + I_s·atanh(u) by
     /// its series: no logarithm and one divide. A wide segment takes the
-    /// logarithm. Out of line: its registers would otherwise be saved on
-    /// every call.
+    /// logarithm. Inlined: out of line, its call and register moves cost the
+    /// every-term control step 15 instructions (BENCHMARKS.md).
     #[inline(always)]
     fn saturated_current_a(&self, s: Solution, i_s: f32, i0: f32, i1: f32) -> f32 {
         let [dw, den0, lin] = self.saturation_segment(s.lower);

@@ -43,6 +43,9 @@
 //! only widens the gap, so the quartics' facts hold there for every
 //! `0 ≤ v ≤ V`; a falling `c` narrows them, and near contact, where the
 //! quartics are all close to 0, can leave none (`ModelTerms::EVERY_TERM`).
+//! The "largest entry" fact is not proven with a viscous term: near contact
+//! the largest entry changes with the velocity, and the inverse does not use
+//! it then (its path cost the full scan more than it saved, BENCHMARKS.md).
 use crate::math::abs;
 use crate::model::Branch;
 use crate::table::{CurrentEntry, Quartic, MAX_CURRENTS};
@@ -75,7 +78,8 @@ pub struct OrderFacts {
     /// smallest force (+∞: nowhere); at or below `ascending_from_mm`.
     pub bottom_from_mm: f32,
     /// From the bottom of the shared stroke up to here, entry `top` gives
-    /// strictly the largest force (−∞: nowhere).
+    /// strictly the largest force (−∞: nowhere; not proven with a viscous
+    /// term, which the inverse would not use it for).
     pub top_to_mm: f32,
     pub top: usize,
     /// The viscous term's velocities (m/s, after its clamp) the facts hold
@@ -117,7 +121,8 @@ impl OrderFacts {
         let c = c.get(..entries.len()).unwrap_or(&[]);
         // The velocity range: every one without a viscous term (it adds
         // exactly 0), else the branch's sign up to ORDER_V_MAX_M_S.
-        let (v_min_m_s, v_max_m_s) = if c.iter().all(|c| *c == 0.0) {
+        let viscous_free = c.iter().all(|c| *c == 0.0);
+        let (v_min_m_s, v_max_m_s) = if viscous_free {
             (f32::NEG_INFINITY, f32::INFINITY)
         } else {
             match branch {
@@ -139,32 +144,22 @@ impl OrderFacts {
         let bottom_from_mm = walk(lo_mm, hi_mm, true, lowest)
             .unwrap_or(f32::INFINITY)
             .min(ascending_from_mm);
-        // The largest entry at the bottom (at either end of the velocity
-        // range: with a viscous term they may differ), and how far up it
-        // stays so; the longer region of the two.
+        // The largest entry at the bottom, and how far up it stays so. Not
+        // with a viscous term: near contact, where every quartic is close
+        // to 0, the largest entry changes with the velocity, and the inverse
+        // does not use this fact then (see `plan_current_v`).
         let mut top = 0;
         let mut top_to_mm = f32::NEG_INFINITY;
-        let mut tried = None;
-        for v_m_s in ends {
-            let v = if v_m_s.is_finite() { v_m_s } else { 0.0 };
-            let mut candidate = 0;
+        if viscous_free {
             let mut best = f32::NEG_INFINITY;
             for (k, q) in quartics.iter().enumerate() {
-                let f = q.eval(lo_mm) + coeff(k) * v;
+                let f = q.eval(lo_mm);
                 if f > best {
-                    (best, candidate) = (f, k);
+                    (best, top) = (f, k);
                 }
             }
-            // Without a viscous term both ends pick the same entry.
-            if tried.replace(candidate) == Some(candidate) {
-                continue;
-            }
-            let largest = |a: f32, b: f32| (0..quartics.len()).all(|k| k == candidate || rises(k, candidate, a, b));
-            if let Some(to_mm) = walk(lo_mm, hi_mm, false, largest) {
-                if to_mm > top_to_mm {
-                    (top, top_to_mm) = (candidate, to_mm);
-                }
-            }
+            let largest = |a: f32, b: f32| (0..quartics.len()).all(|k| k == top || rises(k, top, a, b));
+            top_to_mm = walk(lo_mm, hi_mm, false, largest).unwrap_or(f32::NEG_INFINITY);
         }
         OrderFacts {
             ascending_from_mm,
