@@ -39,9 +39,10 @@ fn branch(compression: bool) -> Branch {
 }
 
 /// Entries whose forces rise with current except near x = 0, where each
-/// has its own small offset (as fitted tables do): F_k = base + k·slope·x
-/// + offset_k, plus small higher-order differences; half of them with a
-/// viscous term (arbitrary, or rising with current).
+/// has its own small offset (as fitted tables do):
+/// `F_k = base + k·slope·x + offset_k`, plus small higher-order
+/// differences; half of them with a viscous term (arbitrary, or rising
+/// with current).
 fn nearly_ordered_table() -> impl Strategy<Value = Table> {
     (
         2usize..=MAX_CURRENTS,
