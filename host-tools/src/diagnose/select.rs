@@ -266,7 +266,9 @@ pub fn score_refined(
     // at the first grid value and τ stayed on the √2 grid (a 2.0 ms coil came
     // out at 2.26 ms, the grid point 0.1 ms·2^4.5).
     let ties = |evals: &[Option<VariantEval>], ok: &[usize]| {
-        let first = ok.first().map_or(0.0, |&v| evals[v].as_ref().map_or(0.0, |e| e.full_fit_sse));
+        let first = ok
+            .first()
+            .map_or(0.0, |&v| evals[v].as_ref().map_or(0.0, |e| e.full_fit_sse));
         ok.iter().all(|&v| {
             evals[v]
                 .as_ref()
@@ -275,12 +277,21 @@ pub fn score_refined(
     };
     let grid_ok: Vec<usize> = (0..n_grid).filter(|&v| evals[v].is_some()).collect();
     let validate_only = grid_ok.len() > 1 && validate.len() >= 2 && ties(&evals, &grid_ok);
-    let validate_sse_without =
-        |e: &VariantEval, out: Option<usize>| validate.iter().filter(|&&i| Some(i) != out).map(|&i| e.full_sse[i]).sum::<f64>();
+    let validate_sse_without = |e: &VariantEval, out: Option<usize>| {
+        validate
+            .iter()
+            .filter(|&&i| Some(i) != out)
+            .map(|&i| e.full_sse[i])
+            .sum::<f64>()
+    };
     let centres: Vec<Option<usize>> = if validate_only {
         std::iter::once(grid_best(&|e| validate_sse_without(e, None), &evals))
             .chain((0..prep.n_folds).map(|_| None))
-            .chain(validate.iter().map(|&j| grid_best(&|e| validate_sse_without(e, Some(j)), &evals)))
+            .chain(
+                validate
+                    .iter()
+                    .map(|&j| grid_best(&|e| validate_sse_without(e, Some(j)), &evals)),
+            )
             .collect()
     } else {
         std::iter::once(grid_best(&|e| e.full_fit_sse, &evals))
