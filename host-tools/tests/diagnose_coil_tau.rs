@@ -28,6 +28,7 @@ fn a_2_ms_first_order_coil_is_diagnosed_at_2_ms() {
         .find(|f| f.effect.name() == "coil_lag")
         .expect("coil_lag found");
     let tau_s = lag.parameters["time_constant_s"].value;
+    println!("coil τ diagnosed: {:.4} ms", tau_s * 1e3);
     // The refined grid steps by 2^(1/16): within 2.2 % of any τ, plus noise.
     // The √2 grid alone gives 0.1 ms·2^4.5 = 2.26 ms (13 % high).
     assert!((tau_s - 2.0e-3).abs() < 0.03 * 2.0e-3, "τ = {tau_s} s");
