@@ -500,7 +500,7 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
         |sse: f64, n: usize, k: usize| n_eff(n) * (sse / n.max(1) as f64).max(1e-300).ln() + k as f64 * n_eff(n).ln();
     let k_added = after.n_params.saturating_sub(before.n_params).max(1);
     let delta_bic = bic(after.insample_sse, after.insample_n, k_added) - bic(sse_b, n_b, 0);
-    let accepted = j.route.is_some() && delta_bic < th.max_delta_bic && dissipative(prep, &after, effect);
+    let accepted = accepts(prep, &j, delta_bic, &after, effect, th);
     Comparison {
         effect,
         rmse_before_n,
@@ -522,6 +522,20 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
         scale_test: scale.as_ref().map(|s| s.test(&[])),
         scale,
     }
+}
+
+/// The one acceptance rule, for the round's decision ([`compare`]) and for
+/// each nested re-decision ([`nested_ratio`]): a route passes, the in-sample
+/// ΔBIC stays under its cap, and a viscous term dissipates.
+fn accepts(
+    prep: &Prepared,
+    j: &Judgement,
+    delta_bic: f64,
+    after: &Scored,
+    effect: Option<Effect>,
+    th: &Thresholds,
+) -> bool {
+    j.route.is_some() && delta_bic < th.max_delta_bic && dissipative(prep, after, effect)
 }
 
 /// `viscous_damping` is a dissipative force: `c(I)·φ(v)` with c > 0. A fit
@@ -735,8 +749,7 @@ pub fn nested_ratio(prep: &Prepared, tested: &[Comparison], winner: usize, th: &
                     c.scale.as_ref(),
                     c.effect == Some(Effect::HysteresisMemory),
                 );
-                (j.route.is_some() && c.delta_bic < th.max_delta_bic && dissipative(prep, &c.scored, c.effect))
-                    .then_some((k, j.ratio))
+                accepts(prep, &j, c.delta_bic, &c.scored, c.effect, th).then_some((k, j.ratio))
             })
             .max_by(|x, y| x.1.total_cmp(&y.1))
             .map(|(k, _)| k);
