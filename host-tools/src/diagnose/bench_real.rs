@@ -439,8 +439,8 @@ fn scale_note(c: &super::select::Comparison, validate: &[usize]) -> String {
         (Some(s), Some(t)) => {
             let f = s.test(validate);
             format!(
-                "; scale {:.3} p {:.3} (n {}, Δ {:.3}, n0 {}); fit-only {:.3} p {:.3}",
-                t.ratio, t.p, t.n, t.depth, t.n0, f.ratio, f.p
+                "; scale {:.3} p {:.3} (n {}, Δ {:.3}, n0 {}); fit-only {:.3} p {:.3}; F {:.2}",
+                t.ratio, t.p, t.n, t.depth, t.n0, f.ratio, f.p, t.f
             )
         }
         _ => String::new(),

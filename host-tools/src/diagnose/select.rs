@@ -55,13 +55,10 @@ pub struct Thresholds {
     /// misfit, not noise, is what remains (the real MR damper: ≈ 1500×).
     pub local_min_residual_over_noise: f64,
     /// The scale route (`stress_softening` over a run order, [`scale`]):
-    /// the leave-one-recording-out ratio of the gains' prediction errors at
-    /// least this…
-    pub min_scale_ratio: f64,
-    /// …with a run-order permutation p-value at most this…
+    /// the run-order law's F test on the recordings' gains, p at most this…
     pub max_scale_p: f64,
-    /// …over this many permutations.
-    pub scale_permutations: usize,
+    /// …against this many simulated gain sets without softening.
+    pub scale_simulations: usize,
     pub bootstrap_resamples: usize,
     pub seed: u64,
 }
@@ -86,9 +83,8 @@ impl Default for Thresholds {
             min_local_units: 3,
             min_local_pool_ratio: 1.02,
             local_min_residual_over_noise: 20.0,
-            min_scale_ratio: 1.2,
-            max_scale_p: 0.002,
-            scale_permutations: 999,
+            max_scale_p: 0.005,
+            scale_simulations: 9999,
             bootstrap_resamples: 1000,
             seed: 1,
         }
@@ -587,10 +583,9 @@ fn scale_stats(
     );
     Some(ScaleStats {
         gains,
-        permutations: th.scale_permutations,
+        simulations: th.scale_simulations,
         seed: th.seed,
         max_p: th.max_scale_p,
-        min_ratio: th.min_scale_ratio,
     })
 }
 
@@ -661,12 +656,7 @@ fn judge(
     {
         j.route = Some("local");
     }
-    if j.route.is_none()
-        && scale.is_some_and(|s| {
-            let t = s.test(excluded);
-            t.ratio >= th.min_scale_ratio && t.p <= th.max_scale_p
-        })
-    {
+    if j.route.is_none() && scale.is_some_and(|s| s.test(excluded).p <= th.max_scale_p) {
         j.route = Some("scale");
     }
     j
