@@ -12,18 +12,20 @@
 //! validate ones from the full fit: no recording's own force sets the model
 //! its gain is measured against). The softening law is then fitted to the
 //! gains against the run order, per current a free level (`a_c·(1 − Δ·g)`,
-//! Δ ≥ 0), and compared with the level alone (`a_c`), each recording's gain
-//! predicted leave-one-recording-out. Calibration: the same statistic with
-//! the run order permuted among the recordings (under no softening the order
-//! says nothing about the gains, so every permutation is as likely); the
-//! p-value is the share of permutations that do at least as well.
+//! Δ ≥ 0, n0 on a grid), and compared with the level alone (`a_c`) by an F
+//! test whose scatter is the law fit's own residual: a first test standing
+//! above its level counts by its size, not its rank. Calibration: the same F
+//! on simulated gain sets without softening (each level's mean plus
+//! Student-t scatter at the gains' RMS, the recorded run order); the p-value
+//! is the share that do at least as well. (A permutation of the run order,
+//! used before, cannot go below ≈ 1/15 when one recording carries the signal.)
 use super::prepared::scored;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StudentT};
 use rayon::prelude::*;
 
-/// Onset lengths n0 (tests) searched in each leave-one-out fit.
+/// Onset lengths n0 (tests) searched in each fit of the law.
 const N0_GRID: [f64; 9] = [1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0];
 /// Degrees of freedom of the Student-t scatter the null simulations draw.
 const T_DOF: f64 = 4.0;
