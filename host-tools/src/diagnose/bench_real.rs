@@ -433,14 +433,29 @@ pub fn run_real_bench(
     Ok(summarize(&ds.name, untouched, cases))
 }
 
-/// The scale route's numbers for `stress_softening` (all gains; fit recordings' only).
+/// The scale route's numbers for `stress_softening` (all gains; fit
+/// recordings' only), and each recording's gain as `index:run order:level:gain`
+/// (read by `bench/softening_oracle.py`).
 fn scale_note(c: &super::select::Comparison, validate: &[usize]) -> String {
     match (&c.scale, c.scale_test) {
         (Some(s), Some(t)) => {
             let f = s.test(validate);
+            let gains: Vec<String> = s
+                .gains
+                .iter()
+                .map(|g| format!("{}:{}:{}:{:.5}", g.index, g.sequence, g.level, g.gain))
+                .collect();
             format!(
-                "; scale {:.3} p {:.3} (n {}, Δ {:.3}, n0 {}); fit-only {:.3} p {:.3}",
-                t.ratio, t.p, t.n, t.depth, t.n0, f.ratio, f.p
+                "; scale {:.3} p {:.4} (n {}, Δ {:.3}, n0 {}); fit-only {:.3} p {:.4}; F {:.2}; gains {}",
+                t.ratio,
+                t.p,
+                t.n,
+                t.depth,
+                t.n0,
+                f.ratio,
+                f.p,
+                t.f,
+                gains.join(",")
             )
         }
         _ => String::new(),

@@ -330,12 +330,11 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
             s,
             "`stress_softening` over the run order may also pass on each recording's scale: the gain that maps the \
              current model's held-out prediction onto the recording, fitted as `a(I)·(1 − Δ·(1 − e^(−(n−1)/n0)))` \
-             against a level per current, each gain predicted leave-one-recording-out; accepted when that ratio is \
-             ≥ {:.2} and at most {:.1} % of {} run-order permutations do as well. Every recording with a run order \
-             contributes its gain, validate ones included.\n",
-            d.thresholds.min_scale_ratio,
+             against a level per current (an F test); accepted when at most {:.1} % of {} simulated gain sets \
+             without softening (each level's mean plus Student-t scatter at the gains' own RMS, same run order) \
+             give as large an F. Every recording with a run order contributes its gain, validate ones included.\n",
             100.0 * d.thresholds.max_scale_p,
-            d.thresholds.scale_permutations
+            d.thresholds.scale_simulations
         );
     }
     if let Some(m) = &d.selection.memory {

@@ -12,19 +12,23 @@
 //! validate ones from the full fit: no recording's own force sets the model
 //! its gain is measured against). The softening law is then fitted to the
 //! gains against the run order, per current a free level (`a_c·(1 − Δ·g)`,
-//! Δ ≥ 0), and compared with the level alone (`a_c`), each recording's gain
-//! predicted leave-one-recording-out. Calibration: the same statistic with
-//! the run order permuted among the recordings (under no softening the order
-//! says nothing about the gains, so every permutation is as likely); the
-//! p-value is the share of permutations that do at least as well.
+//! Δ ≥ 0, n0 on a grid), and compared with the level alone (`a_c`) by an F
+//! test whose scatter is the law fit's own residual: a first test standing
+//! above its level counts by its size, not its rank. Calibration: the same F
+//! on simulated gain sets without softening (each level's mean plus
+//! Student-t scatter at the gains' RMS, the recorded run order); the p-value
+//! is the share that do at least as well. (A permutation of the run order,
+//! used before, cannot go below ≈ 1/15 when one recording carries the signal.)
 use super::prepared::scored;
-use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, StudentT};
 use rayon::prelude::*;
 
-/// Onset lengths n0 (tests) searched in each leave-one-out fit.
+/// Onset lengths n0 (tests) searched in each fit of the law.
 const N0_GRID: [f64; 9] = [1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0];
+/// Degrees of freedom of the Student-t scatter the null simulations draw.
+const T_DOF: f64 = 4.0;
 /// Softening depth Δ searched in [0, `MAX_DEPTH`].
 const MAX_DEPTH: f64 = 0.6;
 
@@ -45,22 +49,24 @@ pub struct Gain {
 #[derive(Clone, Debug, Default)]
 pub struct ScaleStats {
     pub gains: Vec<Gain>,
-    pub permutations: usize,
+    /// Simulated gain sets without softening that calibrate the test.
+    pub simulations: usize,
     pub seed: u64,
-    /// The permutations stop once the p-value must exceed this, and are not
-    /// run when the ratio is below `min_ratio` (the decision is then made).
+    /// The simulations stop once the p-value must exceed this (the decision
+    /// is then made).
     pub max_p: f64,
-    pub min_ratio: f64,
 }
 
 /// The scale test's result.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ScaleTest {
-    /// √(Σ e²_level / Σ e²_law) of the leave-one-out gain predictions.
+    /// √(Σ e²_level / Σ e²_law) of the leave-one-out gain predictions
+    /// (reported, not a gate: a signal in one recording cannot predict itself).
     pub ratio: f64,
-    /// Share of run-order permutations with a ratio at least as large
-    /// (over the permutations run: NaN when none was, at least `max_p`
-    /// when they stopped early).
+    /// The law's F statistic against the level alone ([`f_statistic`]).
+    pub f: f64,
+    /// Share of simulated gain sets without softening with an F at least as
+    /// large (NaN when none was run, at least `max_p` when they stopped early).
     pub p: f64,
     /// Recordings whose gain was predicted.
     pub n: usize,
@@ -206,8 +212,46 @@ fn loo_ratio(gains: &[Gain], g: &[Vec<f64>], n_levels: usize) -> (f64, usize) {
     ((e_level / e_law.max(1e-300)).sqrt(), n)
 }
 
+/// The law against the level alone over all the gains in use: the F
+/// statistic `((SSE_level − SSE_law)/2) / (SSE_law/(N − L − 2))` (the law
+/// adds Δ and n0; L levels), the law's Δ and the index of its n0.
+///
+/// The scatter is the law fit's own residual, so a first test that stands
+/// above its level is judged by its size against the other gains' scatter,
+/// not by its rank (a rank test over 15 recordings cannot go below ≈ 1/15
+/// when one recording carries the signal, however large).
+fn f_statistic(gains: &[Gain], g: &[Vec<f64>], n_levels: usize) -> (f64, f64, usize) {
+    let all = vec![true; gains.len()];
+    let (d, k) = fit_law(gains, g, &all, n_levels);
+    let m = moments(gains, &g[k], &all, n_levels);
+    let sum_k2: f64 = gains.iter().map(|x| x.gain * x.gain).sum();
+    let sse_level = sum_k2 - m.iter().filter(|r| r[2] > 0.0).map(|r| r[0] * r[0] / r[2]).sum::<f64>();
+    let sse_law = (sum_k2 - explained(&m, d)).max(0.0);
+    let levels = m.iter().filter(|r| r[2] > 0.0).count();
+    let df = gains.len().saturating_sub(levels + 2).max(1) as f64;
+    let f = ((sse_level - sse_law).max(0.0) / 2.0) / (sse_law / df).max(1e-300);
+    (f, d, k)
+}
+
+/// Each level's mean gain, and the RMS scatter about those means (with the
+/// levels' degrees of freedom taken off).
+fn level_fit(gains: &[Gain], n_levels: usize) -> (Vec<f64>, f64) {
+    let m = moments(gains, &vec![0.0; gains.len()], &vec![true; gains.len()], n_levels);
+    let mean: Vec<f64> = m.iter().map(|r| if r[2] > 0.0 { r[0] / r[2] } else { 0.0 }).collect();
+    let sse: f64 = gains.iter().map(|x| (x.gain - mean[x.level]).powi(2)).sum();
+    let levels = m.iter().filter(|r| r[2] > 0.0).count();
+    (mean, (sse / gains.len().saturating_sub(levels).max(1) as f64).sqrt())
+}
+
 impl ScaleStats {
     /// The test over the gains whose recordings are not in `excluded`.
+    ///
+    /// p is the share of simulated gain sets without softening (each level's
+    /// mean plus Student-t scatter with [`T_DOF`] degrees of freedom, at the
+    /// level fit's RMS) whose F is at least the recorded one, over the same
+    /// run order. Heavy-tailed scatter on purpose: a real set's gains carry
+    /// each recording's own misfit, and a Gaussian null would count one
+    /// deviant recording that happens to be test 1 as softening too readily.
     pub fn test(&self, excluded: &[usize]) -> ScaleTest {
         let gains: Vec<Gain> = self
             .gains
@@ -217,7 +261,11 @@ impl ScaleStats {
             .collect();
         let n_levels = gains.iter().map(|g| g.level + 1).max().unwrap_or(0);
         let seq: Vec<f64> = gains.iter().map(|g| g.sequence).collect();
-        if gains.len() < 4 {
+        let mut levels: Vec<usize> = gains.iter().map(|g| g.level).collect();
+        levels.sort_unstable();
+        levels.dedup();
+        // At least two degrees of freedom left for the law's scatter.
+        if gains.len() < levels.len() + 4 {
             return ScaleTest {
                 ratio: 1.0,
                 p: 1.0,
@@ -226,27 +274,34 @@ impl ScaleStats {
         }
         let g = covariates(&seq);
         let (ratio, n) = loo_ratio(&gains, &g, n_levels);
-        let (depth, k) = fit_law(&gains, &g, &vec![true; gains.len()], n_levels);
-        // In blocks, each permutation seeded by its index (the same result
+        let (f, depth, k) = f_statistic(&gains, &g, n_levels);
+        let (mean, sigma) = level_fit(&gains, n_levels);
+        let t = StudentT::new(T_DOF).expect("T_DOF > 0");
+        let unit = ((T_DOF - 2.0) / T_DOF).sqrt();
+        // In blocks, each simulation seeded by its index (the same result
         // whatever the thread count); stop once p ≤ max_p is out of reach.
         let (mut as_good, mut done) = (0usize, 0usize);
-        let enough = (self.max_p * (1 + self.permutations) as f64).floor() as usize;
-        if ratio >= self.min_ratio {
-            while done < self.permutations && as_good < enough {
-                let block = (done..(done + 64).min(self.permutations)).into_par_iter();
-                as_good += block
-                    .filter(|&k| {
-                        let mut rng = ChaCha8Rng::seed_from_u64(self.seed.wrapping_add(k as u64));
-                        let mut s = seq.clone();
-                        s.shuffle(&mut rng);
-                        loo_ratio(&gains, &covariates(&s), n_levels).0 >= ratio
-                    })
-                    .count();
-                done = (done + 64).min(self.permutations);
-            }
+        let enough = (self.max_p * (1 + self.simulations) as f64).floor() as usize;
+        while done < self.simulations && as_good < enough {
+            let block = (done..(done + 64).min(self.simulations)).into_par_iter();
+            as_good += block
+                .filter(|&j| {
+                    let mut rng = ChaCha8Rng::seed_from_u64(self.seed.wrapping_add(j as u64));
+                    let sim: Vec<Gain> = gains
+                        .iter()
+                        .map(|x| Gain {
+                            gain: mean[x.level] + sigma * unit * t.sample(&mut rng),
+                            ..*x
+                        })
+                        .collect();
+                    f_statistic(&sim, &g, n_levels).0 >= f
+                })
+                .count();
+            done = (done + 64).min(self.simulations);
         }
         ScaleTest {
             ratio,
+            f,
             p: if done == 0 {
                 f64::NAN
             } else {
@@ -309,45 +364,85 @@ mod tests {
             .collect()
     }
 
-    /// Every permutation run (no early stop).
-    fn stats(gains: Vec<Gain>, permutations: usize) -> ScaleStats {
+    /// Every simulation run (no early stop).
+    fn stats(gains: Vec<Gain>, simulations: usize) -> ScaleStats {
         ScaleStats {
             gains,
-            permutations,
+            simulations,
             seed: 1,
             max_p: 1.0,
-            min_ratio: 0.0,
         }
     }
 
     #[test]
     fn softening_over_the_run_order_is_found_and_its_law_recovered() {
-        let t = stats(softened(&NOISE), 199).test(&[]);
+        let t = stats(softened(&NOISE), 1999).test(&[]);
         assert_eq!(t.n, 12);
         // The law explains the first tests' scale; the level alone cannot.
-        assert!(t.ratio > 3.0, "{t:?}");
-        assert!(t.p <= 0.01, "{t:?}");
+        assert!(t.ratio > 3.0 && t.f > 50.0, "{t:?}");
+        // No simulated set without softening comes near: p is its floor.
+        assert!(t.p <= 1.0 / 2000.0 + 1e-12, "{t:?}");
         assert!((t.depth - 0.1).abs() < 0.02 && (1.0..=3.0).contains(&t.n0), "{t:?}");
     }
 
     #[test]
     fn gains_that_ignore_the_run_order_give_no_evidence() {
         // The same noise, no softening: the law cannot predict better.
-        let t = stats(flat(), 199).test(&[]);
+        let t = stats(flat(), 1999).test(&[]);
         assert!(t.ratio < 1.1 && t.p > 0.05, "{t:?}");
     }
 
+    /// Fifteen gains on three levels (1.0, 0.8, 0.9) with a seeded Gaussian
+    /// scatter of `sigma`, in a seeded random run order; the test run first
+    /// stands `first` above its level.
+    fn fifteen(seed: u64, sigma: f64, first: f64) -> Vec<Gain> {
+        use rand::seq::SliceRandom;
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let mut order: Vec<usize> = (1..=15).collect();
+        order.shuffle(&mut rng);
+        let normal = rand_distr::Normal::new(0.0, sigma).unwrap();
+        (0..15)
+            .map(|k| {
+                let level = k / 5;
+                let n = order[k] as f64;
+                let lift = if order[k] == 1 { first } else { 0.0 };
+                gain(k, [1.0, 0.8, 0.9][level] + lift + normal.sample(&mut rng), n, level)
+            })
+            .collect()
+    }
+
     #[test]
-    fn the_permutations_stop_once_the_decision_is_made() {
-        let st = |max_p: f64, min_ratio: f64| ScaleStats {
-            max_p,
-            min_ratio,
-            ..stats(flat(), 999)
+    fn one_deviant_first_test_is_judged_by_its_size_not_its_rank() {
+        // Only test 1 softened-free (n0 → 0): a run-order permutation can
+        // do no better than 1/15 here. Eight scatters above its level is
+        // softening; one and a half is not.
+        let big = stats(fifteen(7, 0.01, 0.08), 1999).test(&[]);
+        assert!(big.p <= 0.002, "{big:?}");
+        let small = stats(fifteen(7, 0.01, 0.015), 1999).test(&[]);
+        assert!(small.p > 0.01, "{small:?}");
+    }
+
+    #[test]
+    fn without_softening_p_is_calibrated() {
+        // Gaussian scatter, no softening, 300 seeds: p ≤ 0.05 in about 5 %
+        // of them or fewer (the Student-t null is heavier-tailed than the
+        // data here, so conservative), and p not stuck near 1.
+        let p: Vec<f64> = (0..300u64)
+            .map(|seed| stats(fifteen(100 + seed, 0.02, 0.0), 199).test(&[]).p)
+            .collect();
+        let share = |x: f64| p.iter().filter(|&&v| v <= x).count() as f64 / p.len() as f64;
+        assert!(share(0.05) <= 0.08, "{}", share(0.05));
+        assert!(share(0.5) >= 0.25, "{}", share(0.5));
+    }
+
+    #[test]
+    fn the_simulations_stop_once_the_decision_is_made() {
+        let st = ScaleStats {
+            max_p: 0.002,
+            ..stats(flat(), 9999)
         };
-        // Below the ratio gate no permutation runs.
-        assert!(st(0.002, 10.0).test(&[]).p.is_nan());
         // Without softening p ≤ 0.002 is soon out of reach: p stays above it.
-        let t = st(0.002, 0.0).test(&[]);
+        let t = st.test(&[]);
         assert!(t.p > 0.002, "{t:?}");
     }
 

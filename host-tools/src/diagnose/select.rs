@@ -55,13 +55,10 @@ pub struct Thresholds {
     /// misfit, not noise, is what remains (the real MR damper: ≈ 1500×).
     pub local_min_residual_over_noise: f64,
     /// The scale route (`stress_softening` over a run order, [`scale`]):
-    /// the leave-one-recording-out ratio of the gains' prediction errors at
-    /// least this…
-    pub min_scale_ratio: f64,
-    /// …with a run-order permutation p-value at most this…
+    /// the run-order law's F test on the recordings' gains, p at most this…
     pub max_scale_p: f64,
-    /// …over this many permutations.
-    pub scale_permutations: usize,
+    /// …against this many simulated gain sets without softening.
+    pub scale_simulations: usize,
     pub bootstrap_resamples: usize,
     pub seed: u64,
 }
@@ -86,9 +83,8 @@ impl Default for Thresholds {
             min_local_units: 3,
             min_local_pool_ratio: 1.02,
             local_min_residual_over_noise: 20.0,
-            min_scale_ratio: 1.2,
-            max_scale_p: 0.002,
-            scale_permutations: 999,
+            max_scale_p: 0.005,
+            scale_simulations: 9999,
             bootstrap_resamples: 1000,
             seed: 1,
         }
@@ -536,7 +532,7 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
         |sse: f64, n: usize, k: usize| n_eff(n) * (sse / n.max(1) as f64).max(1e-300).ln() + k as f64 * n_eff(n).ln();
     let k_added = after.n_params.saturating_sub(before.n_params).max(1);
     let delta_bic = bic(after.insample_sse, after.insample_n, k_added) - bic(sse_b, n_b, 0);
-    let accepted = j.route.is_some() && delta_bic < th.max_delta_bic && dissipative(prep, &after, effect);
+    let accepted = accepts(prep, &j, delta_bic, &after, effect, th);
     Comparison {
         effect,
         rmse_before_n,
@@ -558,6 +554,20 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
         scale_test: scale.as_ref().map(|s| s.test(&[])),
         scale,
     }
+}
+
+/// The one acceptance rule, for the round's decision ([`compare`]) and for
+/// each nested re-decision ([`nested_ratio`]): a route passes, the in-sample
+/// ΔBIC stays under its cap, and a viscous term dissipates.
+fn accepts(
+    prep: &Prepared,
+    j: &Judgement,
+    delta_bic: f64,
+    after: &Scored,
+    effect: Option<Effect>,
+    th: &Thresholds,
+) -> bool {
+    j.route.is_some() && delta_bic < th.max_delta_bic && dissipative(prep, after, effect)
 }
 
 /// `viscous_damping` is a dissipative force: `c(I)·φ(v)` with c > 0. A fit
@@ -609,10 +619,9 @@ fn scale_stats(
     );
     Some(ScaleStats {
         gains,
-        permutations: th.scale_permutations,
+        simulations: th.scale_simulations,
         seed: th.seed,
         max_p: th.max_scale_p,
-        min_ratio: th.min_scale_ratio,
     })
 }
 
@@ -683,12 +692,7 @@ fn judge(
     {
         j.route = Some("local");
     }
-    if j.route.is_none()
-        && scale.is_some_and(|s| {
-            let t = s.test(excluded);
-            t.ratio >= th.min_scale_ratio && t.p <= th.max_scale_p
-        })
-    {
+    if j.route.is_none() && scale.is_some_and(|s| s.test(excluded).p <= th.max_scale_p) {
         j.route = Some("scale");
     }
     j
@@ -771,8 +775,7 @@ pub fn nested_ratio(prep: &Prepared, tested: &[Comparison], winner: usize, th: &
                     c.scale.as_ref(),
                     c.effect == Some(Effect::HysteresisMemory),
                 );
-                (j.route.is_some() && c.delta_bic < th.max_delta_bic && dissipative(prep, &c.scored, c.effect))
-                    .then_some((k, j.ratio))
+                accepts(prep, &j, c.delta_bic, &c.scored, c.effect, th).then_some((k, j.ratio))
             })
             .max_by(|x, y| x.1.total_cmp(&y.1))
             .map(|(k, _)| k);
