@@ -5,7 +5,8 @@
 //! where validate currents sit between the tabulated ones, or nothing) at a
 //! random strength of 3–15 % of the force RMS, diagnoses the result blind,
 //! and scores it against what the untouched recordings already give.
-use super::oracle::{oracle, Oracle};
+use super::design::{SofteningLaw, Terms};
+use super::oracle::{oracle, oracle_per_current, oracle_terms, Oracle};
 use super::{baseline, diagnose, prepared, DiagnoseOptions};
 use crate::dataset::Dataset;
 use crate::vocabulary::{names, Effect};
@@ -51,11 +52,14 @@ pub struct RealCase {
     /// Held-out RMSE ratio of the injected effect's term (absent when not found or `none`).
     pub heldout_improvement: Option<f64>,
     /// Held-out ratio of the oracle (the reference model given the true
-    /// injected force as a column with a free amplitude, [`oracle`]) over
-    /// its decision pool; 1 for `none`.
+    /// injected force as a column with a free amplitude, [`oracle`]; for
+    /// softening the law at the true n0, [`oracle_terms`]) over its
+    /// decision pool; 1 for `none`.
     pub oracle_held_out_ratio: f64,
     /// The oracle in full: its support numbers and the route it passes.
     pub oracle: Oracle,
+    /// The same with the amplitude free per tabulated current (not the headline).
+    pub oracle_per_current: Oracle,
     /// Every candidate tested, per round: `name ratio [ci lo, ci hi] ΔBIC`.
     pub tested: Vec<Vec<String>>,
     pub seconds: f64,
@@ -406,7 +410,21 @@ pub fn run_real_bench(
                     .collect()
             })
             .collect();
-        let oracle = oracle(&d.prep, &d.selection.reference.terms, &added, effect, &opts.thresholds)?;
+        let reference = &d.selection.reference.terms;
+        let (oracle, oracle_per_current) = match (effect, injection.parameters.get("tests_n0")) {
+            (Effect::StressSoftening, Some(&n0)) => {
+                let truth = Terms {
+                    softening: Some(SofteningLaw::Sequence { n0 }),
+                    ..*reference
+                };
+                let o = oracle_terms(&d.prep, reference, &truth, effect, &opts.thresholds)?;
+                (o.clone(), o)
+            }
+            _ => (
+                oracle(&d.prep, reference, &added, effect, &opts.thresholds)?,
+                oracle_per_current(&d.prep, reference, &added, effect, &opts.thresholds)?,
+            ),
+        };
         let found: Vec<Effect> = d.findings.iter().map(|f| f.effect).collect();
         let new_found: Vec<Effect> = found.iter().filter(|e| !untouched.contains(e)).copied().collect();
         let truth = effect;
@@ -453,6 +471,7 @@ pub fn run_real_bench(
             new_found,
             oracle_held_out_ratio: oracle.held_out_ratio,
             oracle,
+            oracle_per_current,
             seconds,
         };
         progress(&c);
