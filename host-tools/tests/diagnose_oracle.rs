@@ -23,7 +23,7 @@ const SAMPLES: usize = 2000;
 /// faster than x, so the branch quartics (smooth in x over half cycles)
 /// absorb next to nothing of either.
 fn column(t: usize) -> f64 {
-    if t % 2 == 0 {
+    if t.is_multiple_of(2) {
         1.0
     } else {
         -1.0
