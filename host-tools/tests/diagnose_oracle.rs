@@ -6,7 +6,7 @@ mod diagnose_support;
 
 use mre_host::dataset::{Dataset, Role, Samples};
 use mre_host::diagnose::design::Terms;
-use mre_host::diagnose::oracle::oracle;
+use mre_host::diagnose::oracle::{oracle, Amplitude};
 use mre_host::diagnose::prepared::{prepare, FoldPlan};
 use mre_host::diagnose::select::Thresholds;
 use mre_host::vocabulary::Effect;
@@ -93,7 +93,15 @@ fn set(added: &dyn Fn(Role, usize) -> f64) -> (Dataset, Vec<Vec<f64>>) {
 fn run(added: &dyn Fn(Role, usize) -> f64, effect: Effect) -> mre_host::diagnose::oracle::Oracle {
     let (ds, injected) = set(added);
     let prep = prepare(&ds, &FoldPlan::Stratified { k: 3 }, &[]).unwrap();
-    oracle(&prep, &Terms::default(), &injected, effect, &Thresholds::default()).unwrap()
+    oracle(
+        &prep,
+        &Terms::default(),
+        &injected,
+        effect,
+        &Thresholds::default(),
+        Amplitude::Shared,
+    )
+    .unwrap()
 }
 
 #[test]

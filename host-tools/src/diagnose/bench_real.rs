@@ -6,7 +6,7 @@
 //! random strength of 3–15 % of the force RMS, diagnoses the result blind,
 //! and scores it against what the untouched recordings already give.
 use super::design::{SofteningLaw, Terms};
-use super::oracle::{oracle, oracle_per_current, oracle_terms, Oracle};
+use super::oracle::{oracle, oracle_terms, Amplitude, Oracle};
 use super::{baseline, diagnose, prepared, DiagnoseOptions};
 use crate::dataset::Dataset;
 use crate::vocabulary::{names, Effect};
@@ -196,6 +196,23 @@ fn saturation_pairs(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Vec<(usize, 
             (hi > cur + 1e-9).then_some((prep.recs[i].index, c[k], hi))
         })
         .collect())
+}
+
+/// The force each recording of `injected` carries beyond `ds`'s (N).
+pub fn added_force_n(ds: &Dataset, injected: &Dataset) -> Vec<Vec<f64>> {
+    injected
+        .recordings
+        .iter()
+        .zip(&ds.recordings)
+        .map(|(a, b)| {
+            a.samples
+                .force_n
+                .iter()
+                .zip(&b.samples.force_n)
+                .map(|(a, b)| a - b)
+                .collect()
+        })
+        .collect()
 }
 
 /// Injects `effect` at `strength` (RMS of the added force over the force RMS).
@@ -396,20 +413,7 @@ pub fn run_real_bench(
         let start = Instant::now();
         let d = diagnose(&injected, opts)?;
         let seconds = start.elapsed().as_secs_f64();
-        // The added force, as the injected recordings carry it.
-        let added: Vec<Vec<f64>> = injected
-            .recordings
-            .iter()
-            .zip(&ds.recordings)
-            .map(|(a, b)| {
-                a.samples
-                    .force_n
-                    .iter()
-                    .zip(&b.samples.force_n)
-                    .map(|(a, b)| a - b)
-                    .collect()
-            })
-            .collect();
+        let added = added_force_n(ds, &injected);
         let reference = &d.selection.reference.terms;
         let (oracle, oracle_per_current) = match (effect, injection.parameters.get("tests_n0")) {
             (Effect::StressSoftening, Some(&n0)) => {
@@ -421,8 +425,15 @@ pub fn run_real_bench(
                 (o.clone(), o)
             }
             _ => (
-                oracle(&d.prep, reference, &added, effect, &opts.thresholds)?,
-                oracle_per_current(&d.prep, reference, &added, effect, &opts.thresholds)?,
+                oracle(&d.prep, reference, &added, effect, &opts.thresholds, Amplitude::Shared)?,
+                oracle(
+                    &d.prep,
+                    reference,
+                    &added,
+                    effect,
+                    &opts.thresholds,
+                    Amplitude::PerCurrent,
+                )?,
             ),
         };
         let found: Vec<Effect> = d.findings.iter().map(|f| f.effect).collect();
