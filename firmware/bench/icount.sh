@@ -15,7 +15,9 @@
 # every format 2 term (coil τ, sensor delay, viscous, saturation: the worst
 # path), then with coil lag and sensor delay only (what `mre pil` flies for
 # controller (c)): the model step on a grid (x 0–12 mm × 5 forces, from below the 0 A
-# force to above the 2 A force), then the control step over one whole drop
+# force to above the 2 A force) and on a grid near contact, where the fitted
+# entries cross (x 0–0.87 mm in 0.0725 mm steps × 5 forces), then the
+# control step over one whole drop
 # (5.5 kg at 2.24 m/s stopped at constant deceleration within 12 mm, sampled
 # every 0.1 ms from contact to the stop plus 10 rebound periods) on a fresh
 # controller with the velocity sensor, then again without it (estimator).
@@ -44,8 +46,10 @@ awk -v b="$BEGIN_PC" -v e="$END_PC" -v all="$ALL" '
     # The same constants as firmware/src/board/pil.rs (mod icount) and the
     # 10 kHz rate of the PIL image: they only label the windows.
     v0 = 2.24; s_mm = 12.0; period_s = 1.0e-4; grid = 13; grid_step_mm = 1.0
+    near = 13; near_step_mm = 0.0725
     split("50 400 1200 2500 90000", forces, " "); nf = 5
-    model = grid * nf
+    split("-10 100 300 600 90000", near_forces, " ")
+    whole = grid * nf; model = whole + near * nf
     split("flown table|flown + all v2 terms|flown + lag, delay", names, "|"); tables = 3
     per_table = k / tables; per_pass = (per_table - model) / 2
     if (k % tables != 0 || per_pass < 1 || per_pass != int(per_pass)) {
@@ -56,7 +60,8 @@ awk -v b="$BEGIN_PC" -v e="$END_PC" -v all="$ALL" '
       table = names[int(i / per_table) + 1]
       if (j < model) {
         kind = "model step"
-        where = sprintf("x=%.0f mm, F=%s N", int(j / nf) * grid_step_mm, forces[j % nf + 1])
+        if (j < whole) where = sprintf("x=%.0f mm, F=%s N", int(j / nf) * grid_step_mm, forces[j % nf + 1])
+        else where = sprintf("x=%.4f mm, F=%s N", int((j - whole) / nf) * near_step_mm, near_forces[(j - whole) % nf + 1])
       } else {
         c = j - model; pass = (c < per_pass) ? "sensor" : "estimator"; c = c % per_pass
         kind = "control step (" pass ")"; t = c * period_s

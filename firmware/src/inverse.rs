@@ -80,14 +80,20 @@ impl Table {
         if self.has_viscous() {
             let v = crate::model::viscous_velocity(v_m_s);
             let c = &self.terms().viscous_n_s_per_m;
-            // The order facts are proven for the quartics alone (a viscous
-            // term can reorder the entries at speed): the full scan.
-            self.solve_at(x_mm, branch, target_force_n, false, |k, f| {
+            // A viscous term can reorder the entries at speed: the order
+            // facts hold for the velocities they were proven for only
+            // (asked only where a fact's x region applies). No "largest
+            // entry" fact: near contact it rarely holds at every velocity,
+            // and its path cost the full scan there 7 instructions.
+            let facts = self.order_facts(branch);
+            let in_range = || v >= facts.v_min_m_s && v <= facts.v_max_m_s;
+            self.solve_at(x_mm, branch, target_force_n, in_range, false, |k, f| {
                 f + c.get(k).copied().unwrap_or(0.0) * v
             })
         } else {
-            // No rate term: nothing per entry beyond the quartic.
-            self.solve_at(x_mm, branch, target_force_n, true, |_, f| f)
+            // No rate term: nothing per entry beyond the quartic, and the
+            // facts hold at any velocity.
+            self.solve_at(x_mm, branch, target_force_n, || true, true, |_, f| f)
         }
     }
 
@@ -99,45 +105,51 @@ impl Table {
         x_mm: f32,
         branch: Branch,
         target_force_n: f32,
-        use_order: bool,
+        in_range: impl Fn() -> bool,
+        use_top: bool,
         with_extra: impl Fn(usize, f32) -> f32,
     ) -> PlanResult {
         let entries = self.entries();
         // Where the forces are proven to rise with current, or one entry's
         // to be the largest (order.rs), the same answer as the scan below
         // comes from fewer quartics.
-        if use_order {
-            let order = self.order_facts(branch);
-            if x_mm >= order.ascending_from_mm {
-                if x_mm <= self.shared_x_max_mm() {
-                    let r = match branch {
-                        Branch::Compression => {
-                            solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.compression.eval(x_mm)))
-                        }
-                        Branch::Extension => {
-                            solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.extension.eval(x_mm)))
-                        }
-                    };
-                    return self.current_of(r);
-                }
-            } else {
-                if x_mm <= order.top_to_mm && x_mm >= self.shared_x_min_mm() {
-                    let r = match branch {
-                        Branch::Compression => solve_below_top(entries, order.top, target_force_n, |k, e| {
-                            with_extra(k, e.compression.eval(x_mm))
-                        }),
-                        Branch::Extension => solve_below_top(entries, order.top, target_force_n, |k, e| {
-                            with_extra(k, e.extension.eval(x_mm))
-                        }),
-                    };
-                    return self.current_of(r);
-                }
+        let order = self.order_facts(branch);
+        if x_mm >= order.ascending_from_mm {
+            if x_mm <= self.shared_x_max_mm() && in_range() {
+                let r = match branch {
+                    Branch::Compression => {
+                        solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.compression.eval(x_mm)))
+                    }
+                    Branch::Extension => {
+                        solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.extension.eval(x_mm)))
+                    }
+                };
+                return self.current_of(r);
             }
+        } else if use_top && x_mm <= order.top_to_mm && x_mm >= self.shared_x_min_mm() && in_range() {
+            // (The velocity range is checked just above.)
+            let bottom = || x_mm >= order.bottom_from_mm;
+            let r = match branch {
+                Branch::Compression => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
+                    with_extra(k, e.compression.eval(x_mm))
+                }),
+                Branch::Extension => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
+                    with_extra(k, e.extension.eval(x_mm))
+                }),
+            };
+            return self.current_of(r);
         }
+        // Entry 0 proven the smallest: asked only when a target lies below
+        // it (the region lies in the shared stroke).
+        let bottom = || x_mm >= order.bottom_from_mm && in_range();
         if self.in_shared_stroke(x_mm) {
             let r = match branch {
-                Branch::Compression => solve(entries, target_force_n, |k, e| with_extra(k, e.compression.eval(x_mm))),
-                Branch::Extension => solve(entries, target_force_n, |k, e| with_extra(k, e.extension.eval(x_mm))),
+                Branch::Compression => solve(entries, target_force_n, bottom, |k, e| {
+                    with_extra(k, e.compression.eval(x_mm))
+                }),
+                Branch::Extension => solve(entries, target_force_n, bottom, |k, e| {
+                    with_extra(k, e.extension.eval(x_mm))
+                }),
             };
             return self.current_of(r);
         }
@@ -149,9 +161,12 @@ impl Table {
             (Flags::NON_FINITE_INPUT, f32::NEG_INFINITY)
         };
         // A clamped entry's force is its precomputed stroke end.
-        let r = solve(entries, target_force_n, |k, e| {
-            with_extra(k, self.clamped_force_n(k, e, branch, x_mm))
-        });
+        let r = solve(
+            entries,
+            target_force_n,
+            || false,
+            |k, e| with_extra(k, self.clamped_force_n(k, e, branch, x_mm)),
+        );
         let mut r = self.current_of(r);
         r.flags |= flag;
         r
@@ -187,18 +202,25 @@ impl Table {
     /// (the segment's constants precomputed in `Table::build`), and on a
     /// segment narrow against I_s u is small, so I = I0 + I_s·atanh(u) by
     /// its series: no logarithm and one divide. A wide segment takes the
-    /// logarithm. Out of line: its registers would otherwise be saved on
-    /// every call.
-    #[inline(never)]
+    /// logarithm. Inlined: out of line, its call and register moves cost the
+    /// every-term control step 15 instructions (BENCHMARKS.md).
+    #[inline(always)]
     fn saturated_current_a(&self, s: Solution, i_s: f32, i0: f32, i1: f32) -> f32 {
         let [dw, den0, lin] = self.saturation_segment(s.lower);
         let u = s.t * dw / (den0 - s.t * lin);
-        let current_a = if u <= math::ATANH_SERIES_MAX {
-            i0 + i_s * math::atanh_small(u)
+        if u <= math::ATANH_SERIES_MAX {
+            // u ≥ 0 (0 < t < 1, Δw > 0, and the denominator is at least
+            // 1 − w0·w1 > 0), so the series is ≥ 0 and the sum ≥ i0: only
+            // the upper end can be passed (by rounding).
+            let current_a = i0 + i_s * math::atanh_small(u);
+            if current_a > i1 {
+                i1
+            } else {
+                current_a
+            }
         } else {
-            i_s * math::atanh(self.knot(s.lower) + s.t * dw)
-        };
-        math::clamp(current_a, i0, i1)
+            math::clamp(i_s * math::atanh(self.knot(s.lower) + s.t * dw), i0, i1)
+        }
     }
 
     /// [`Table::current_for_branch_v`] with the branch from the sign of `v_m_s`.
@@ -233,16 +255,19 @@ struct Solution {
 fn solve(
     entries: &[CurrentEntry],
     target_force_n: f32,
+    bottom: impl Fn() -> bool,
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
     let Some(first) = entries.first() else {
         return saturated(0, 0.0, 0.0, Flags::TABLE_FAULT);
     };
     let f0 = force_at(0, first);
-    solve_from(entries, first, f0, target_force_n, force_at)
+    solve_from(entries, first, f0, target_force_n, bottom, force_at)
 }
 
-/// [`solve`] once entry 0 (`first`)'s force `f0` is known.
+/// [`solve`] once entry 0 (`first`)'s force `f0` is known. `bottom`: entry
+/// 0's force is proven strictly the smallest (`order.rs`), so a target below
+/// it is answered by entry 0 without scanning the rest.
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 #[inline(always)]
 fn solve_from(
@@ -250,6 +275,7 @@ fn solve_from(
     first: &CurrentEntry,
     mut f0: f32,
     target_force_n: f32,
+    bottom: impl Fn() -> bool,
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
     // One loop per side of the target, so each entry costs one comparison
@@ -282,6 +308,10 @@ fn solve_from(
     }
     if f0 == target_force_n {
         return saturated(0, first.current_a, f0, Flags::NONE);
+    }
+    if bottom() {
+        // Entry 0 is proven the smallest force: nothing falls to the target.
+        return saturated(0, first.current_a, f0, Flags::SATURATED_LOW);
     }
     for (k, entry) in entries.iter().enumerate().skip(1) {
         let force = force_at(k, entry);
@@ -342,6 +372,7 @@ fn solve_below_top(
     entries: &[CurrentEntry],
     top: usize,
     target_force_n: f32,
+    bottom: impl Fn() -> bool,
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
     let (Some(first), Some(top_entry)) = (entries.first(), entries.get(top)) else {
@@ -349,7 +380,7 @@ fn solve_below_top(
     };
     let f0 = force_at(0, first);
     if !(f0 < target_force_n) {
-        return solve_from(entries, first, f0, target_force_n, force_at);
+        return solve_from(entries, first, f0, target_force_n, bottom, force_at);
     }
     let f_top = force_at(top, top_entry);
     if f_top < target_force_n {

@@ -10,9 +10,11 @@
 //! answered by entry 0 alone and the scan need not carry the nearest force.
 //! Near contact, where every force is close to 0 and the fitted entries'
 //! order is noise, one entry still stays the largest for a while: there a
-//! target above it is answered by it alone. Each shortcut must give the
-//! scan's answer bit for bit, so the order has to hold for the f32 forces the
-//! core computes, not only for the exact quartics.
+//! target above it is answered by it alone. And entry 0 (the lowest current)
+//! usually gives the smallest force nearly down to contact, even where the
+//! others cross: there a target below it is answered by it alone. Each
+//! shortcut must give the scan's answer bit for bit, so the order has to hold
+//! for the f32 forces the core computes, not only for the exact quartics.
 //!
 //! The proof, per branch and per pair of entries (low, high): walk over the
 //! shared stroke in pieces of 1/[`PROOF_STEPS`] of it, halving a piece that
@@ -27,11 +29,31 @@
 //! evaluations' errors again (for the f32 forces at any x of the piece),
 //! stays above zero.
 //!
-//! A viscous term `c_k·v` can reorder the entries at speed; tables with one
-//! carry no order facts and always take the full scan.
+//! A viscous term adds `c_k·v` to entry k's force (the inverse computes
+//! `fl(fl(Q_k) + fl(c_k·v))`), which can reorder the entries at speed. A
+//! table with one gets its facts proven for a range of velocities only: the
+//! branch's own sign up to [`ORDER_V_MAX_M_S`] (compression `0 ≤ v ≤ V`,
+//! extension `−V ≤ v ≤ 0`), and the inverse uses them only there. The exact
+//! difference `Q_h − Q_l + (c_h − c_l)·v` is linear in v, so on that range it
+//! is least at one of its ends: the proof adds `min(0, Δc·v)` over both ends
+//! to the quartics' bound, less the rounding of the two products and the two
+//! sums (each within f32's unit roundoff of its magnitude; the last
+//! subtraction of the bound keeps its sign exactly). On the compression
+//! branch, where `c` does not fall with current (`Δc ≥ 0`), the viscous term
+//! only widens the gap, so the quartics' facts hold there for every
+//! `0 ≤ v ≤ V`; a falling `c` narrows them, and near contact, where the
+//! quartics are all close to 0, can leave none (`ModelTerms::EVERY_TERM`).
+//! The "largest entry" fact is not proven with a viscous term: near contact
+//! the largest entry changes with the velocity, and the inverse does not use
+//! it then (its path cost the full scan more than it saved, BENCHMARKS.md).
 use crate::math::abs;
 use crate::model::Branch;
 use crate::table::{CurrentEntry, Quartic, MAX_CURRENTS};
+
+/// Fastest speed (m/s) the facts of a table with a viscous term are proven
+/// for: the velocity transducer's full scale (firmware/README.md), twice the
+/// paper's 2.24 m/s drop. A faster sample takes the full scan (exact, slower).
+pub const ORDER_V_MAX_M_S: f32 = 5.0;
 
 /// Pieces of the shared stroke the proof walks (0.03 mm each on a 15 mm
 /// stroke): a few thousand quartics per table build, not per period.
@@ -52,22 +74,34 @@ pub struct OrderFacts {
     /// From here to the top of the shared stroke every entry's force is
     /// above the one below it (+∞: nowhere).
     pub ascending_from_mm: f32,
+    /// From here to the top of the shared stroke entry 0 gives strictly the
+    /// smallest force (+∞: nowhere); at or below `ascending_from_mm`.
+    pub bottom_from_mm: f32,
     /// From the bottom of the shared stroke up to here, entry `top` gives
-    /// strictly the largest force (−∞: nowhere).
+    /// strictly the largest force (−∞: nowhere; not proven with a viscous
+    /// term, which the inverse would not use it for).
     pub top_to_mm: f32,
     pub top: usize,
+    /// The viscous term's velocities (m/s, after its clamp) the facts hold
+    /// for; every velocity (±∞) without a viscous term.
+    pub v_min_m_s: f32,
+    pub v_max_m_s: f32,
 }
 
 impl OrderFacts {
     pub const NONE: OrderFacts = OrderFacts {
         ascending_from_mm: f32::INFINITY,
+        bottom_from_mm: f32::INFINITY,
         top_to_mm: f32::NEG_INFINITY,
         top: 0,
+        v_min_m_s: f32::INFINITY,
+        v_max_m_s: f32::NEG_INFINITY,
     };
 
-    /// The facts for `branch` of `entries` on the shared stroke
+    /// The facts for `branch` of `entries` with viscous coefficients
+    /// `viscous` (same index; all 0: none) on the shared stroke
     /// `[lo_mm, hi_mm]` (every entry fitted on it; none if it is empty).
-    pub fn prove(entries: &[CurrentEntry], branch: Branch, lo_mm: f32, hi_mm: f32) -> OrderFacts {
+    pub fn prove(entries: &[CurrentEntry], viscous: &[f32], branch: Branch, lo_mm: f32, hi_mm: f32) -> OrderFacts {
         // An empty (or non-finite) shared stroke proves nothing.
         if !lo_mm.is_finite() || !hi_mm.is_finite() || lo_mm >= hi_mm {
             return OrderFacts::NONE;
@@ -80,36 +114,89 @@ impl OrderFacts {
             };
         }
         let quartics = quartics.get(..entries.len()).unwrap_or(&[]);
-        // Neighbours rise, walking down from the top of the stroke.
-        let rising = |a: f32, b: f32| {
-            quartics
-                .windows(2)
-                .all(|w| matches!(w, [low, high] if rise_lower_bound(low, high, a, b) > 0.0))
-        };
-        let ascending_from_mm = walk(lo_mm, hi_mm, true, rising).unwrap_or(f32::INFINITY);
-        // The largest entry at the bottom, and how far up it stays so.
-        let mut top = 0;
-        let mut best = f32::NEG_INFINITY;
-        for (k, q) in quartics.iter().enumerate() {
-            let f = q.eval(lo_mm);
-            if f > best {
-                (best, top) = (f, k);
-            }
+        let mut c = [0.0f32; MAX_CURRENTS];
+        for (c, v) in c.iter_mut().zip(viscous) {
+            *c = *v;
         }
-        let largest = |a: f32, b: f32| match quartics.get(top) {
-            Some(high) => quartics
-                .iter()
-                .enumerate()
-                .all(|(k, low)| k == top || rise_lower_bound(low, high, a, b) > 0.0),
-            None => false,
+        let c = c.get(..entries.len()).unwrap_or(&[]);
+        // The velocity range: every one without a viscous term (it adds
+        // exactly 0), else the branch's sign up to ORDER_V_MAX_M_S.
+        let viscous_free = c.iter().all(|c| *c == 0.0);
+        let (v_min_m_s, v_max_m_s) = if viscous_free {
+            (f32::NEG_INFINITY, f32::INFINITY)
+        } else {
+            match branch {
+                Branch::Compression => (0.0, ORDER_V_MAX_M_S),
+                Branch::Extension => (-ORDER_V_MAX_M_S, 0.0),
+            }
         };
-        let top_to_mm = walk(lo_mm, hi_mm, false, largest).unwrap_or(f32::NEG_INFINITY);
+        let ends = [v_min_m_s, v_max_m_s];
+        let coeff = |k: usize| c.get(k).copied().unwrap_or(0.0);
+        let rises = |low: usize, high: usize, a: f32, b: f32| match (quartics.get(low), quartics.get(high)) {
+            (Some(ql), Some(qh)) => rise_with_viscous(ql, qh, (coeff(low), coeff(high)), ends, a, b) > 0.0,
+            _ => false,
+        };
+        // Neighbours rise, walking down from the top of the stroke.
+        let rising = |a: f32, b: f32| (1..quartics.len()).all(|k| rises(k - 1, k, a, b));
+        let ascending_from_mm = walk(lo_mm, hi_mm, true, rising).unwrap_or(f32::INFINITY);
+        // Entry 0 below every other entry (implied where they all rise).
+        let lowest = |a: f32, b: f32| (1..quartics.len()).all(|k| rises(0, k, a, b));
+        let bottom_from_mm = walk(lo_mm, hi_mm, true, lowest)
+            .unwrap_or(f32::INFINITY)
+            .min(ascending_from_mm);
+        // The largest entry at the bottom, and how far up it stays so. Not
+        // with a viscous term: near contact, where every quartic is close
+        // to 0, the largest entry changes with the velocity, and the inverse
+        // does not use this fact then (see `plan_current_v`).
+        let mut top = 0;
+        let mut top_to_mm = f32::NEG_INFINITY;
+        if viscous_free {
+            let mut best = f32::NEG_INFINITY;
+            for (k, q) in quartics.iter().enumerate() {
+                let f = q.eval(lo_mm);
+                if f > best {
+                    (best, top) = (f, k);
+                }
+            }
+            let largest = |a: f32, b: f32| (0..quartics.len()).all(|k| k == top || rises(k, top, a, b));
+            top_to_mm = walk(lo_mm, hi_mm, false, largest).unwrap_or(f32::NEG_INFINITY);
+        }
         OrderFacts {
             ascending_from_mm,
+            bottom_from_mm,
             top_to_mm,
             top,
+            v_min_m_s,
+            v_max_m_s,
         }
     }
+}
+
+/// [`rise_lower_bound`] for the forces with their viscous terms `c = (c_low,
+/// c_high)` at any velocity between `ends` (±∞: no viscous term, both 0).
+fn rise_with_viscous(low: &Quartic, high: &Quartic, c: (f32, f32), ends: [f32; 2], a: f32, b: f32) -> f32 {
+    let r = rise_lower_bound(low, high, a, b);
+    let (c_low, c_high) = c;
+    if c_low == 0.0 && c_high == 0.0 {
+        // Both add exactly 0 (f + 0·v = f for a finite v).
+        return r;
+    }
+    let [v_lo, v_hi] = ends;
+    if !v_lo.is_finite() || !v_hi.is_finite() {
+        return f32::NAN;
+    }
+    // The exact viscous difference is linear in v: least at an end.
+    let dc = c_high - c_low;
+    let worst = (dc * v_lo).min(dc * v_hi).min(0.0);
+    // Rounding: the two products and the two sums (each within f32's unit
+    // roundoff of its magnitude, bounded by the quartics' magnitude bound
+    // and |c|·|v|), the difference dc and its products; ROUND is twice the
+    // unit roundoff and every term is counted twice over.
+    let v_abs = abs(v_lo).max(abs(v_hi));
+    let x_abs = abs(a).max(abs(b));
+    let visc_abs = (abs(c_low) + abs(c_high)) * v_abs;
+    let magnitude = low.magnitude_bound(x_abs) + high.magnitude_bound(x_abs) + visc_abs;
+    r + worst - 4.0 * ROUND * (magnitude + visc_abs + abs(worst))
 }
 
 /// Walks pieces of `[lo_mm, hi_mm]` from its top (`down`) or bottom while

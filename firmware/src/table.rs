@@ -286,7 +286,8 @@ pub struct Table {
     /// Per branch `[compression, extension]`: where in the shared stroke
     /// the forces are proven to rise strictly with current, and where one
     /// entry's is the largest (`order.rs`), which lets the inverse answer
-    /// with fewer quartics there. None with a viscous term.
+    /// with fewer quartics there (with a viscous term: for the velocities
+    /// they carry).
     order: [OrderFacts; 2],
 }
 
@@ -368,11 +369,9 @@ impl Table {
                 term: "saturation_current_a",
             });
         }
-        if !table.has_viscous {
-            let (lo_mm, hi_mm) = (table.shared_x_min_mm, table.shared_x_max_mm);
-            for (facts, branch) in table.order.iter_mut().zip([Branch::Compression, Branch::Extension]) {
-                *facts = OrderFacts::prove(entries, branch, lo_mm, hi_mm);
-            }
+        let (lo_mm, hi_mm) = (table.shared_x_min_mm, table.shared_x_max_mm);
+        for (facts, branch) in table.order.iter_mut().zip([Branch::Compression, Branch::Extension]) {
+            *facts = OrderFacts::prove(entries, &terms.viscous_n_s_per_m, branch, lo_mm, hi_mm);
         }
         let knots = table.knots.get(..table.len).unwrap_or(&[]);
         for (segment, pair) in table.saturation_segments.iter_mut().zip(knots.windows(2)) {
@@ -405,7 +404,10 @@ impl Table {
 
     #[inline]
     pub fn entries(&self) -> &[CurrentEntry] {
-        self.entries.get(..self.len).unwrap_or(&[])
+        // `len` ≤ MAX_CURRENTS by construction; the min (a conditional
+        // move) lets the compiler drop the slice's bounds check.
+        let (head, _) = self.entries.split_at(self.len.min(MAX_CURRENTS));
+        head
     }
 
     pub fn version(&self) -> u16 {
@@ -435,10 +437,13 @@ impl Table {
         self.delay_factors
     }
 
-    /// Segment `index`'s saturation constants `[Δw, 1 − w0², Δw·w0]`.
-    #[inline]
+    /// Segment `index`'s saturation constants `[Δw, 1 − w0², Δw·w0]`
+    /// (`index` < [`MAX_CURRENTS`]: the mask only spares the bounds check).
+    #[inline(always)]
     pub(crate) fn saturation_segment(&self, index: usize) -> [f32; 3] {
-        self.saturation_segments.get(index).copied().unwrap_or([0.0, 1.0, 0.0])
+        const _: () = assert!(MAX_CURRENTS.is_power_of_two());
+        #[allow(clippy::indexing_slicing)] // masked below the array's length
+        self.saturation_segments[index & (MAX_CURRENTS - 1)]
     }
 
     /// True when some entry has a viscous term (else the model skips it).

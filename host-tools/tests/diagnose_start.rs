@@ -70,7 +70,7 @@ fn dahl_from_rest(seed: u64) -> (Dataset, HystereticLaw) {
 fn a_start_from_rest_is_anchored_and_a_running_start_is_not() {
     let (t, x, v) = from_rest(2.0, 2.0);
     assert!(v[0] <= START_FROM_REST * 2.0 * std::f64::consts::PI * 2.0 * 2.0e-3);
-    let (feature, compressing) = memory_feature_on_branches(&t, &x, &v);
+    let (feature, compressing) = memory_feature_on_branches(&t, &x, &v, 0.0);
     // Before the first reversal (at +A, half a cycle later) the
     // anchor is the first sample, flagged as the start from rest.
     let a = feature[10].expect("anchored from the first sample");
@@ -85,7 +85,7 @@ fn a_start_from_rest_is_anchored_and_a_running_start_is_not() {
     let w = 2.0 * std::f64::consts::PI * 2.0;
     let xs: Vec<f64> = t.iter().map(|t| 2.0 * (w * t).sin()).collect();
     let vs: Vec<f64> = t.iter().map(|t| 2e-3 * w * (w * t).cos()).collect();
-    let (feature, _) = memory_feature_on_branches(&t, &xs, &vs);
+    let (feature, _) = memory_feature_on_branches(&t, &xs, &vs, 0.0);
     assert!(feature[10].is_none(), "no anchor before the first reversal");
 }
 

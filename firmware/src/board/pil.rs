@@ -394,12 +394,19 @@ pub mod icount {
     const DROP_V0_M_S: f32 = 2.24;
     const DROP_STROKE_MM: f32 = 12.0;
     const REBOUND_PERIODS: u32 = 10;
-    /// Model step grid: x = 0, 1, …, 12 mm, each at the drop's velocity
-    /// there (`v² = v0²·(1 − x/s)`), and each of these forces: from below
-    /// the 0 A force to above the 2 A force (saturated: every entry scanned).
+    /// Model step grid over the whole stroke: x = 0, 1, …, 12 mm, each at the
+    /// drop's velocity there, and each of these forces: from below the 0 A
+    /// force to above the 2 A force (saturated: every entry scanned).
     const GRID_STEP_MM: f32 = 1.0;
     const GRID_POINTS: u32 = 13;
     const GRID_FORCES_N: [f32; 5] = [50.0, 400.0, 1200.0, 2500.0, 90_000.0];
+    /// Then the same near contact, where every force is close to 0 and the
+    /// fitted entries cross (the flown table's 1.5 A and 2 A compression
+    /// quartics at 0.435 mm): x = 0, 0.0725, …, 0.87 mm × forces from below
+    /// the 0 A force (−10 N) to above the 2 A force.
+    const NEAR_STEP_MM: f32 = 0.0725;
+    const NEAR_POINTS: u32 = 13;
+    const NEAR_FORCES_N: [f32; 5] = [-10.0, 100.0, 300.0, 600.0, 90_000.0];
 
     /// The drop's deceleration (m/s²).
     fn drop_decel_m_s2() -> f32 {
@@ -424,11 +431,19 @@ pub mod icount {
         n + REBOUND_PERIODS
     }
 
-    /// The model step (the inverse at the law's target) over the grid.
+    /// The model step (the inverse at the law's target) over the whole
+    /// stroke's grid, then over the near-contact grid.
     fn model_steps(table: &Table) {
+        model_grid(table, GRID_STEP_MM, GRID_POINTS, &GRID_FORCES_N);
+        model_grid(table, NEAR_STEP_MM, NEAR_POINTS, &NEAR_FORCES_N);
+    }
+
+    /// The model step at x = 0, `step_mm`, … (`points` of them), each at the
+    /// drop's velocity there (`v² = v0²·(1 − x/s)`), × `forces_n`.
+    fn model_grid(table: &Table, step_mm: f32, points: u32, forces_n: &[f32]) {
         let a = drop_decel_m_s2();
-        for i in 0..GRID_POINTS {
-            let x_mm = i as f32 * GRID_STEP_MM;
+        for i in 0..points {
+            let x_mm = i as f32 * step_mm;
             // At the stop v² rounds to ±0: no square root of a negative.
             let v2 = DROP_V0_M_S * DROP_V0_M_S - 2.0 * a * x_mm * 1.0e-3;
             let v_m_s = if v2 > 0.0 {
@@ -436,7 +451,7 @@ pub mod icount {
             } else {
                 0.0
             };
-            for &force_n in &GRID_FORCES_N {
+            for &force_n in forces_n {
                 let (x_mm, v_m_s, force_n) = (black_box(x_mm), black_box(v_m_s), black_box(force_n));
                 mre_mark_begin();
                 let r = table.current_for_branch_v(x_mm, v_m_s, Branch::Compression, force_n);

@@ -249,7 +249,7 @@ fn stepped_validate_count(prep: &Prepared) -> usize {
 /// coarse for the effect: a filter's group delay is rarely a whole number of
 /// samples, and the residual of a half-sample error follows stiffness ×
 /// velocity, which a rate term would then pick up as spurious damping; the
-/// coil time constant's √2 grid is refined to 2^(1/8) steps.
+/// coil time constant's √2 grid is refined to 2^(1/16) steps.
 pub fn refinements(prep: &Prepared, best: &Terms, effect: Effect) -> Vec<Terms> {
     match effect {
         Effect::SensorDelay => match best.delay_s {
@@ -275,8 +275,9 @@ pub fn refinements(prep: &Prepared, best: &Terms, effect: Effect) -> Vec<Terms> 
                 .collect(),
             _ => Vec::new(),
         },
+        // 2^(1/16) steps: within 2.2 % of any τ between the grid's points.
         Effect::CoilLag => match best.coil_lag_s {
-            Some(tau) => [-0.25, -0.125, 0.125, 0.25]
+            Some(tau) => [-0.25, -0.1875, -0.125, -0.0625, 0.0625, 0.125, 0.1875, 0.25]
                 .iter()
                 .map(|e| Terms {
                     coil_lag_s: Some(tau * 2f64.powf(*e)),

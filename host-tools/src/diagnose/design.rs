@@ -62,9 +62,19 @@ pub struct Anchor {
 /// based direction and the sign of v disagree (a few samples at each
 /// turn-around when v leads or lags x, or under a sensor delay), the memory
 /// term of one branch would be added to the quartic of the other, and the
-/// model would spike. Noise flips of the sign near a turn-around only move
-/// the anchor within the noise of the extreme, and those samples are not
-/// scored (their branch is chance).
+/// model would spike.
+///
+/// Noise near a slow turn-around: the direction switches only when v
+/// passes `band_m_s` on the other side (the branch-ambiguity band, the same
+/// one that leaves |v| < band unscored, so every scored sample's direction
+/// is still the sign of its v), and the reversal is anchored at the last
+/// sign change of v before that. Switching on every sign change let the
+/// noise flip v back and forth around a slow extreme (a 25 mm, 0.1 Hz test
+/// stays within 2σ_v for ±12 samples): each flip pair re-anchored the memory
+/// as if the material had just turned around from the other branch, the
+/// next scored samples were predicted off by the whole loop width (up to
+/// 670 N on a Bouc–Wen law), and a half-sample "sensor delay", which
+/// averages v over two samples and flips less, won by that.
 ///
 /// A recording that starts from rest ([`START_FROM_REST`]) is anchored at
 /// its first sample until the first reversal, flagged `true`: the material
@@ -73,18 +83,36 @@ pub struct Anchor {
 /// opposite branch, so that stretch gets its own coefficients. Without it
 /// the first quarter cycle of every real MTS test was predicted on the
 /// steady branch (≈ 13 % of the final residual energy on the bundled set).
-pub fn memory_feature_on_branches(time_s: &[f64], x: &[f64], v: &[f64]) -> (Vec<Option<Anchor>>, Vec<bool>) {
-    let compressing: Vec<bool> = v.iter().map(|v| *v > 0.0).collect();
+pub fn memory_feature_on_branches(
+    time_s: &[f64],
+    x: &[f64],
+    v: &[f64],
+    band_m_s: f64,
+) -> (Vec<Option<Anchor>>, Vec<bool>) {
     let peak = v.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let mut anchor: Option<(f64, bool)> = match (x.first(), v.first()) {
         (Some(&x0), Some(&v0)) if peak > 0.0 && v0.abs() <= START_FROM_REST * peak => Some((x0, true)),
         _ => None,
     };
+    // The direction of travel; none yet while a start stays inside the band.
+    let mut direction: Option<bool> = None;
+    let mut last_sign_change = 0;
+    let mut compressing = Vec::with_capacity(v.len());
     let feature = (0..x.len())
         .map(|t| {
-            if t > 0 && compressing[t] != compressing[t - 1] {
-                anchor = Some((turning_point_mm(time_s, x, v, t), false));
+            if t > 0 && (v[t] > 0.0) != (v[t - 1] > 0.0) {
+                last_sign_change = t;
             }
+            let outside = v[t].abs() > band_m_s;
+            match direction {
+                None if outside => direction = Some(v[t] > 0.0),
+                Some(c) if outside && c != (v[t] > 0.0) => {
+                    direction = Some(!c);
+                    anchor = Some((turning_point_mm(time_s, x, v, last_sign_change.max(1)), false));
+                }
+                _ => {}
+            }
+            compressing.push(direction.unwrap_or(v[t] > 0.0));
             anchor.map(|(x_r_mm, from_rest)| Anchor {
                 distance_mm: (x[t] - x_r_mm).abs(),
                 x_r_mm,
@@ -525,7 +553,7 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
     };
     let memory = terms
         .memory_mm
-        .map(|_| memory_feature_on_branches(&rec.time_s, &xs, &vs));
+        .map(|_| memory_feature_on_branches(&rec.time_s, &xs, &vs, rec.branch_band_m_s()));
     for t in 0..n {
         let (x, v, acc) = (xs[t], vs[t], accs[t]);
         let comp = v > 0.0;

@@ -87,7 +87,7 @@ impl Rec {
     /// RMSE. Those samples, |v| < 2σ_v (typically one per turn-around in a
     /// drop test), are neither fitted nor scored; the report counts them.
     pub fn scored_mask(&self, delay_s: Option<f64>) -> Vec<bool> {
-        let limit = BRANCH_AMBIGUITY_SIGMAS * self.velocity_noise_m_s;
+        let limit = self.branch_band_m_s();
         let mut hint = 0;
         (0..self.len())
             .map(|t| {
@@ -98,6 +98,11 @@ impl Rec {
                 self.in_range[t] && v.abs() >= limit
             })
             .collect()
+    }
+
+    /// |v| below this (m/s) leaves the branch to chance ([`Self::scored_mask`]).
+    pub fn branch_band_m_s(&self) -> f64 {
+        BRANCH_AMBIGUITY_SIGMAS * self.velocity_noise_m_s
     }
 
     /// The held current, or `first→last` when it changes during the test.

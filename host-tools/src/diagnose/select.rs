@@ -289,10 +289,48 @@ pub fn score_refined(
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(v, _)| v)
     };
-    let centres: Vec<Option<usize>> = std::iter::once(grid_best(&|e| e.full_fit_sse, &evals))
-        .chain((0..prep.n_folds).map(|f| grid_best(&|e| e.fold_train_sse[f], &evals)))
-        .collect();
-    // For the full fit (index 0) and each fold (1 + f): the variants it may choose.
+    let validate = prep.validate_indices();
+    // A term that changes only the validate predictions (coil lag,
+    // saturation) ties on every fit: its search is centred on the validate
+    // errors instead, leave-one-validate-recording-out (index 1 + n_folds + j
+    // for validate recording j). Centred on the fits' tie, the refinement sat
+    // at the first grid value and τ stayed on the √2 grid (a 2.0 ms coil came
+    // out at 2.26 ms, the grid point 0.1 ms·2^4.5).
+    let ties = |evals: &[Option<VariantEval>], ok: &[usize]| {
+        let first = ok
+            .first()
+            .map_or(0.0, |&v| evals[v].as_ref().map_or(0.0, |e| e.full_fit_sse));
+        ok.iter().all(|&v| {
+            evals[v]
+                .as_ref()
+                .is_some_and(|e| (e.full_fit_sse - first).abs() <= 1e-9 * first.max(1e-300))
+        })
+    };
+    let grid_ok: Vec<usize> = (0..n_grid).filter(|&v| evals[v].is_some()).collect();
+    let validate_only = grid_ok.len() > 1 && validate.len() >= 2 && ties(&evals, &grid_ok);
+    let validate_sse_without = |e: &VariantEval, out: Option<usize>| {
+        validate
+            .iter()
+            .filter(|&&i| Some(i) != out)
+            .map(|&i| e.full_sse[i])
+            .sum::<f64>()
+    };
+    let centres: Vec<Option<usize>> = if validate_only {
+        std::iter::once(grid_best(&|e| validate_sse_without(e, None), &evals))
+            .chain((0..prep.n_folds).map(|_| None))
+            .chain(
+                validate
+                    .iter()
+                    .map(|&j| grid_best(&|e| validate_sse_without(e, Some(j)), &evals)),
+            )
+            .collect()
+    } else {
+        std::iter::once(grid_best(&|e| e.full_fit_sse, &evals))
+            .chain((0..prep.n_folds).map(|f| grid_best(&|e| e.fold_train_sse[f], &evals)))
+            .collect()
+    };
+    // For the full fit (index 0), each fold (1 + f) and, for a validate-only
+    // term, each validate recording: the variants it may choose.
     let mut allowed: Vec<Vec<usize>> = vec![(0..n_grid).collect(); centres.len()];
     for (who, centre) in centres.iter().enumerate() {
         let Some(c) = centre else { continue };
@@ -334,17 +372,15 @@ pub fn score_refined(
             source[i] = best;
         }
     }
-    let validate = prep.validate_indices();
-    let fit_ties = ok
-        .iter()
-        .all(|&v| (ev(v).full_fit_sse - ev(ok[0]).full_fit_sse).abs() <= 1e-9 * ev(ok[0]).full_fit_sse.max(1e-300));
+    let fit_ties = ties(&evals, &ok);
     let chosen;
     let (insample_sse, insample_n, insample_on_validate);
     let count = |m: &[bool]| m.iter().filter(|b| **b).count();
     if fit_ties && ok.len() > 1 && validate.len() >= 2 {
         // Only validate predictions differ: choose leave-one-validate-recording-out.
-        for &j in &validate {
-            let best = *ok
+        for (jn, &j) in validate.iter().enumerate() {
+            let choices = allowed.get(1 + prep.n_folds + jn).unwrap_or(&ok);
+            let best = *choices
                 .iter()
                 .min_by(|&&a, &&b| {
                     let s = |v: usize| {
@@ -361,7 +397,7 @@ pub fn score_refined(
             source[j] = best;
         }
         let val_sse = |v: usize| validate.iter().map(|&i| ev(v).full_sse[i]).sum::<f64>();
-        chosen = *ok
+        chosen = *allowed[0]
             .iter()
             .min_by(|&&a, &&b| val_sse(a).total_cmp(&val_sse(b)))
             .expect("non-empty");

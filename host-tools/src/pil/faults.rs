@@ -41,6 +41,9 @@ use std::time::Duration;
 /// A lost frame is noticed after this much wall time without an answer
 /// (QEMU answers within a millisecond).
 const RETRY_TIMEOUT: Duration = Duration::from_millis(300);
+/// A duplicate's repeat is always answered, so its answer is awaited this long
+/// (a loaded machine can delay QEMU well past `RETRY_TIMEOUT`).
+const EXPECTED_ANSWER_TIMEOUT: Duration = Duration::from_secs(10);
 const MAX_RETRIES: usize = 5;
 /// Sensor faults, by control period (sequence number) into the impact.
 const NAN_AT: u32 = 20;
@@ -288,7 +291,10 @@ fn exchange(link: &mut PilLink, frame: &SampleFrame, faults: &[FrameFault], tall
     if faults.contains(&FrameFault::Duplicate) {
         tally.duplicate.injected += 1;
         link.send_raw(&bytes)?;
-        if let Some(again) = answer_for(link, frame.seq)? {
+        link.set_answer_timeout(EXPECTED_ANSWER_TIMEOUT)?;
+        let again = answer_for(link, frame.seq);
+        link.set_answer_timeout(RETRY_TIMEOUT)?;
+        if let Some(again) = again? {
             if again.encode() == cmd.encode() {
                 tally.duplicate.detected += 1;
                 tally.duplicate.survived += 1;
