@@ -90,17 +90,7 @@ pub fn oracle(
     th: &Thresholds,
     amplitude: Amplitude,
 ) -> Result<Oracle> {
-    judged(prep, reference, added, effect, th, amplitude == Amplitude::PerCurrent)
-}
-
-fn judged(
-    prep: &Prepared,
-    reference: &Terms,
-    added: &[Vec<f64>],
-    effect: Effect,
-    th: &Thresholds,
-    per_current: bool,
-) -> Result<Oracle> {
+    let per_current = amplitude == Amplitude::PerCurrent;
     let scale = rms(added);
     let column: Vec<Vec<f64>> = added
         .iter()
