@@ -592,13 +592,14 @@ fn run(cli: Cli) -> Result<()> {
             let ds = mre_host::dataset::Dataset::load(&real)?;
             let summary = mre_host::diagnose::bench_real::run_real_bench(&ds, cases, seed, &only, &opts, |c| {
                 eprintln!(
-                    "case {:>3}: {} at {:.1} % {:?}: found {:?} ({:.2} s); tested {:?}",
+                    "case {:>3}: {} at {:.1} % {:?}: found {:?} ({:.2} s); oracle {:?}; tested {:?}",
                     c.case + 1,
                     c.injection.effect,
                     100.0 * c.injection.achieved_strength,
                     c.injection.parameters,
                     mre_host::vocabulary::names(&c.found),
                     c.seconds,
+                    c.oracle,
                     c.tested
                 )
             })?;

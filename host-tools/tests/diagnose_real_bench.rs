@@ -4,7 +4,7 @@
 mod diagnose_support;
 
 use mre_host::dataset::{Dataset, Samples};
-use mre_host::diagnose::bench_real::{acceleration_from_x, force_rms_n, inject};
+use mre_host::diagnose::bench_real::{acceleration_from_x, added_force_n, force_rms_n, inject};
 use mre_host::diagnose::DiagnoseOptions;
 use mre_host::vocabulary::Effect;
 use rand::SeedableRng;
@@ -43,22 +43,6 @@ fn sinusoid_set() -> Dataset {
         root: Default::default(),
         recordings,
     }
-}
-
-fn added(before: &Dataset, after: &Dataset) -> Vec<Vec<f64>> {
-    before
-        .recordings
-        .iter()
-        .zip(&after.recordings)
-        .map(|(a, b)| {
-            b.samples
-                .force_n
-                .iter()
-                .zip(&a.samples.force_n)
-                .map(|(x, y)| x - y)
-                .collect()
-        })
-        .collect()
 }
 
 #[test]
@@ -129,7 +113,7 @@ fn end_stops_act_at_either_end_with_the_requested_strength() {
             (0.6 * AMP_MM * 0.99..=0.85 * AMP_MM).contains(&x_e.abs()),
             "x_e = {x_e}"
         );
-        let add = added(&ds, &out);
+        let add = added_force_n(&ds, &out);
         let (mut s2, mut n) = (0.0, 0);
         for (r, a) in ds.recordings.iter().zip(&add) {
             for (x, d) in r.samples.x_mm.iter().zip(a) {
@@ -155,7 +139,7 @@ fn every_case_records_a_random_run_order_and_none_changes_no_force() {
     let mut rng = ChaCha8Rng::seed_from_u64(3);
     let (out, inj) = inject(&ds, Effect::None, 0.1, &mut rng, &DiagnoseOptions::default()).unwrap();
     assert_eq!(inj.achieved_strength, 0.0);
-    assert!(added(&ds, &out).iter().flatten().all(|d| *d == 0.0));
+    assert!(added_force_n(&ds, &out).iter().flatten().all(|d| *d == 0.0));
     let mut order: Vec<u32> = out.recordings.iter().map(|r| r.sequence.unwrap()).collect();
     order.sort_unstable();
     assert_eq!(order, vec![1, 2, 3, 4]);
@@ -175,7 +159,7 @@ fn every_case_records_a_random_run_order_and_none_changes_no_force() {
     order.sort_unstable();
     assert_eq!(order, vec![1, 2, 3, 4]);
     assert!((2.0..8.0).contains(&n0) && depth > 0.0 && depth <= 0.6, "{depth} {n0}");
-    let (s2, n) = added(&ds, &out)
+    let (s2, n) = added_force_n(&ds, &out)
         .iter()
         .flatten()
         .fold((0.0, 0usize), |(s, n), d| (s + d * d, n + 1));

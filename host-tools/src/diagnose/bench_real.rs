@@ -5,6 +5,8 @@
 //! where validate currents sit between the tabulated ones, or nothing) at a
 //! random strength of 3–15 % of the force RMS, diagnoses the result blind,
 //! and scores it against what the untouched recordings already give.
+use super::design::{SofteningLaw, Terms};
+use super::oracle::{oracle, oracle_terms, Amplitude, Oracle};
 use super::{baseline, diagnose, prepared, DiagnoseOptions};
 use crate::dataset::Dataset;
 use crate::vocabulary::{names, Effect};
@@ -49,6 +51,15 @@ pub struct RealCase {
     pub false_positives: Vec<Effect>,
     /// Held-out RMSE ratio of the injected effect's term (absent when not found or `none`).
     pub heldout_improvement: Option<f64>,
+    /// Held-out ratio of the oracle (the reference model given the true
+    /// injected force as a column with a free amplitude, [`oracle`]; for
+    /// softening the law at the true n0, [`oracle_terms`]) over its
+    /// decision pool; 1 for `none`.
+    pub oracle_held_out_ratio: f64,
+    /// The oracle in full: its support numbers and the route it passes.
+    pub oracle: Oracle,
+    /// The same with the amplitude free per tabulated current (not the headline).
+    pub oracle_per_current: Oracle,
     /// Every candidate tested, per round: `name ratio [ci lo, ci hi] ΔBIC`.
     pub tested: Vec<Vec<String>>,
     pub seconds: f64,
@@ -63,6 +74,10 @@ pub struct RealSummary {
     /// Over injected (non-`none`) cases at strength ≥ [`TARGET_STRENGTH`].
     pub found_rate_at_target: f64,
     pub top1_rate_at_target: f64,
+    /// Share of those the oracle can get accepted ([`Oracle::identifiable`]),
+    /// and the share found among those it can.
+    pub identifiable_rate_at_target: f64,
+    pub found_rate_identifiable_at_target: f64,
     /// Over every injected case.
     pub found_rate: f64,
     pub top1_rate: f64,
@@ -181,6 +196,23 @@ fn saturation_pairs(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Vec<(usize, 
             (hi > cur + 1e-9).then_some((prep.recs[i].index, c[k], hi))
         })
         .collect())
+}
+
+/// The force each recording of `injected` carries beyond `ds`'s (N).
+pub fn added_force_n(ds: &Dataset, injected: &Dataset) -> Vec<Vec<f64>> {
+    injected
+        .recordings
+        .iter()
+        .zip(&ds.recordings)
+        .map(|(a, b)| {
+            a.samples
+                .force_n
+                .iter()
+                .zip(&b.samples.force_n)
+                .map(|(a, b)| a - b)
+                .collect()
+        })
+        .collect()
 }
 
 /// Injects `effect` at `strength` (RMS of the added force over the force RMS).
@@ -381,6 +413,29 @@ pub fn run_real_bench(
         let start = Instant::now();
         let d = diagnose(&injected, opts)?;
         let seconds = start.elapsed().as_secs_f64();
+        let added = added_force_n(ds, &injected);
+        let reference = &d.selection.reference.terms;
+        let (oracle, oracle_per_current) = match (effect, injection.parameters.get("tests_n0")) {
+            (Effect::StressSoftening, Some(&n0)) => {
+                let truth = Terms {
+                    softening: Some(SofteningLaw::Sequence { n0 }),
+                    ..*reference
+                };
+                let o = oracle_terms(&d.prep, reference, &truth, effect, &opts.thresholds)?;
+                (o.clone(), o)
+            }
+            _ => (
+                oracle(&d.prep, reference, &added, effect, &opts.thresholds, Amplitude::Shared)?,
+                oracle(
+                    &d.prep,
+                    reference,
+                    &added,
+                    effect,
+                    &opts.thresholds,
+                    Amplitude::PerCurrent,
+                )?,
+            ),
+        };
         let found: Vec<Effect> = d.findings.iter().map(|f| f.effect).collect();
         let new_found: Vec<Effect> = found.iter().filter(|e| !untouched.contains(e)).copied().collect();
         let truth = effect;
@@ -425,6 +480,9 @@ pub fn run_real_bench(
             injection,
             found,
             new_found,
+            oracle_held_out_ratio: oracle.held_out_ratio,
+            oracle,
+            oracle_per_current,
             seconds,
         };
         progress(&c);
@@ -495,6 +553,15 @@ pub fn summarize(dataset: &str, untouched: Vec<Effect>, cases: Vec<RealCase>) ->
         dataset: dataset.to_string(),
         found_rate_at_target: rate(&at_target, |c| c.found_at_all),
         top1_rate_at_target: rate(&at_target, |c| c.top1 == c.injection.effect),
+        identifiable_rate_at_target: rate(&at_target, |c| c.oracle.identifiable()),
+        found_rate_identifiable_at_target: rate(
+            &at_target
+                .iter()
+                .copied()
+                .filter(|c| c.oracle.identifiable())
+                .collect::<Vec<_>>(),
+            |c| c.found_at_all,
+        ),
         found_rate: rate(&injected, |c| c.found_at_all),
         top1_rate: rate(&injected, |c| c.top1 == c.injection.effect),
         false_positive_rate_none: rate(&none, |c| !c.false_positives.is_empty()),
@@ -517,8 +584,15 @@ pub fn format_real_summary(s: &RealSummary) -> String {
     );
     let _ = writeln!(
         out,
-        "{:<20} {:>5} {:>14} {:>14} {:>10} {:>16}",
-        "injected", "cases", "found (≥5 %)", "top-1 (≥5 %)", "found all", "median held-out"
+        "{:<20} {:>5} {:>14} {:>14} {:>10} {:>16} {:>16} {:>14}",
+        "injected",
+        "cases",
+        "found (≥5 %)",
+        "top-1 (≥5 %)",
+        "found all",
+        "median held-out",
+        "oracle (≥5 %)",
+        "found|oracle"
     );
     // Rows in the order of the names, as the JSON's maps are.
     let mut injected: Vec<Effect> = s.cases.iter().map(|c| c.injection.effect).collect();
@@ -543,15 +617,19 @@ pub fn format_real_summary(s: &RealSummary) -> String {
         let count = |v: &[&RealCase], ok: &dyn Fn(&RealCase) -> bool| {
             format!("{}/{}", v.iter().filter(|c| ok(c)).count(), v.len())
         };
+        // Cases the oracle can get accepted, and how many of those were found.
+        let identifiable: Vec<&RealCase> = strong.iter().copied().filter(|c| c.oracle.identifiable()).collect();
         let _ = writeln!(
             out,
-            "{:<20} {:>5} {:>14} {:>14} {:>10} {:>15.2}×",
+            "{:<20} {:>5} {:>14} {:>14} {:>10} {:>15.2}× {:>16} {:>14}",
             name,
             all.len(),
             count(&strong, &ok),
             count(&strong, &|c| c.top1 == effect),
             count(&all, &ok),
-            s.median_improvement.get(name).copied().unwrap_or(1.0)
+            s.median_improvement.get(name).copied().unwrap_or(1.0),
+            count(&strong, &|c| c.oracle.identifiable()),
+            count(&identifiable, &ok)
         );
     }
     let _ = writeln!(
@@ -561,6 +639,12 @@ pub fn format_real_summary(s: &RealSummary) -> String {
         percent(s.top1_rate_at_target),
         percent(s.found_rate),
         percent(s.top1_rate)
+    );
+    let _ = writeln!(
+        out,
+        "identifiable (the oracle passes a route) at strength ≥ 5 %: {}; found among those: {}",
+        percent(s.identifiable_rate_at_target),
+        percent(s.found_rate_identifiable_at_target)
     );
     let _ = writeln!(
         out,

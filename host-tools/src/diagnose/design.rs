@@ -444,6 +444,27 @@ impl Designs {
         Ok(if fa.sse < fb.sse { fa } else { fb })
     }
 
+    /// The same model with one more column, `column[i][t]` at sample t of
+    /// recording i, and a free coefficient (the last): the real-data
+    /// benchmark's oracle gives the true injected force this way. A
+    /// recording whose column is all zero keeps its design.
+    pub fn with_column(&self, prep: &Prepared, column: &[Vec<f64>]) -> Designs {
+        let mut out = self.clone();
+        let at = out.layout.n_cols;
+        out.layout.n_cols += 1;
+        for ((d, rec), col) in out.recs.iter_mut().zip(&prep.recs).zip(column) {
+            if col.iter().all(|v| *v == 0.0) || col.len() != d.a.nrows() {
+                continue;
+            }
+            let n = d.cols.len();
+            d.a = std::mem::replace(&mut d.a, DMatrix::zeros(0, 0)).insert_column(n, 0.0);
+            d.a.set_column(n, &DVector::from_column_slice(col));
+            d.cols.push(at);
+            (d.r_a, d.r_y) = compress(rec, &d.a, &d.mask);
+        }
+        out
+    }
+
     /// Predicted force of recording `i`.
     pub fn predict(&self, prep: &Prepared, i: usize, sol: &Solution) -> Vec<f64> {
         let s = match self.terms.softening {
@@ -608,22 +629,7 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
         (cols, a)
     };
     let mask = rec.scored_mask(terms.delay_s);
-    let (r_a, r_y) = if rec.is_fit() {
-        // Only the samples where the model is defined are fitted.
-        let rows: Vec<usize> = (0..n).filter(|&t| mask[t]).collect();
-        let mut ay = DMatrix::<f64>::zeros(rows.len(), cols.len() + 1);
-        ay.view_mut((0, 0), (rows.len(), cols.len()))
-            .copy_from(&a.select_rows(&rows));
-        ay.set_column(
-            cols.len(),
-            &DVector::from_iterator(rows.len(), rows.iter().map(|&t| rec.force_n[t])),
-        );
-        let r = ay.qr().r();
-        let c = cols.len();
-        (Some(r.columns(0, c).into_owned()), Some(r.column(c).into_owned()))
-    } else {
-        (None, None)
-    };
+    let (r_a, r_y) = compress(rec, &a, &mask);
     RecDesign {
         cols,
         a,
@@ -631,4 +637,23 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
         r_y,
         mask,
     }
+}
+
+/// The R factor of the QR of `[A | y]` over the masked samples of a fit
+/// recording (validate recordings are never fitted: `None`).
+fn compress(rec: &Rec, a: &DMatrix<f64>, mask: &[bool]) -> (Option<DMatrix<f64>>, Option<DVector<f64>>) {
+    if !rec.is_fit() {
+        return (None, None);
+    }
+    // Only the samples where the model is defined are fitted.
+    let rows: Vec<usize> = (0..a.nrows()).filter(|&t| mask[t]).collect();
+    let c = a.ncols();
+    let mut ay = DMatrix::<f64>::zeros(rows.len(), c + 1);
+    ay.view_mut((0, 0), (rows.len(), c)).copy_from(&a.select_rows(&rows));
+    ay.set_column(
+        c,
+        &DVector::from_iterator(rows.len(), rows.iter().map(|&t| rec.force_n[t])),
+    );
+    let r = ay.qr().r();
+    (Some(r.columns(0, c).into_owned()), Some(r.column(c).into_owned()))
 }

@@ -16,6 +16,7 @@ pub mod candidates;
 pub mod design;
 pub mod locate;
 pub mod model_out;
+pub mod oracle;
 pub mod parameters;
 pub mod plots;
 pub mod prepared;

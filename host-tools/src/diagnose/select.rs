@@ -161,7 +161,10 @@ fn masked_sum(se: &[f64], mask: &[bool]) -> f64 {
 }
 
 fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
-    let d = Designs::build(prep, terms);
+    eval_designs(prep, &Designs::build(prep, terms))
+}
+
+fn eval_designs(prep: &Prepared, d: &Designs) -> Result<VariantEval> {
     let fit = prep.fit_indices();
     let full = d.solve(prep, &fit)?;
     let mask: Vec<Vec<bool>> = d.recs.iter().map(|r| r.mask.clone()).collect();
@@ -218,6 +221,34 @@ fn eval_variant(prep: &Prepared, terms: &Terms) -> Result<VariantEval> {
         heldout_pred,
         mask,
         residual_lag1,
+    })
+}
+
+/// Scores one model given by its designs (no search), the way [`score`]
+/// scores a single variant: fit recordings held out by their fold, validate
+/// recordings from the full fit. For a model with a column [`Terms`] cannot
+/// name (the real-data benchmark's oracle, [`Designs::with_column`]).
+pub fn score_designs(prep: &Prepared, d: &Designs) -> Result<Scored> {
+    let ev = eval_designs(prep, d)?;
+    let fit = prep.fit_indices();
+    let count = |m: &[bool]| m.iter().filter(|b| **b).count();
+    let fit_n = fit.iter().map(|&i| count(&ev.mask[i])).sum();
+    Ok(Scored {
+        terms: d.terms,
+        solution: ev.full,
+        n: ev.mask.iter().map(|m| count(m)).collect(),
+        heldout_sse: ev.heldout_sse,
+        insample_sse: ev.full_fit_sse,
+        insample_n: fit_n,
+        insample_on_validate: false,
+        fit_sse: ev.full_fit_sse,
+        fit_n,
+        heldout_se: ev.heldout_se,
+        heldout_pred: ev.heldout_pred,
+        mask: ev.mask,
+        n_params: d.layout.n_cols,
+        variant_sse: vec![(d.terms, ev.full_sse)],
+        residual_lag1: ev.residual_lag1,
     })
 }
 
