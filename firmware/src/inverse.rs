@@ -173,7 +173,8 @@ impl Table {
     }
 
     /// The current at fraction `t` of segment `lower` (t = 0 and t = 1:
-    /// exactly the entries' currents): linear in I, or through atanh under saturation.
+    /// exactly the entries' currents): linear in I, or under saturation
+    /// through the segment's map (`saturation.rs`).
     #[inline]
     fn current_of(&self, s: Solution) -> PlanResult {
         let (i0, i1) = (s.i0, s.i1);
@@ -181,13 +182,10 @@ impl Table {
             i0
         } else if s.t >= 1.0 {
             i1
+        } else if self.saturated() {
+            self.saturated_current_a(s, i0, i1)
         } else {
-            let i_s = self.terms().saturation_current_a;
-            if i_s > 0.0 {
-                self.saturated_current_a(s, i_s, i0, i1)
-            } else {
-                i0 + s.t * (i1 - i0)
-            }
+            i0 + s.t * (i1 - i0)
         };
         PlanResult {
             current_a,
@@ -196,30 +194,26 @@ impl Table {
         }
     }
 
-    /// The current at fraction `t` of segment `lower` under saturation:
-    /// w = w0 + t·(w1 − w0), I = I_s·atanh(w). By the addition theorem
-    /// `atanh(w) − atanh(w0) = atanh(u)`, `u = t·Δw / (1 − w0² − t·Δw·w0)`
-    /// (the segment's constants precomputed in `Table::build`), and on a
-    /// segment narrow against I_s u is small, so I = I0 + I_s·atanh(u) by
-    /// its series: no logarithm and one divide. A wide segment takes the
-    /// logarithm. Inlined: out of line, its call and register moves cost the
-    /// every-term control step 15 instructions (BENCHMARKS.md).
+    /// The current at fraction `0 < t < 1` of segment `lower` under
+    /// saturation: `I_s·atanh(w0 + t·Δw)`, by the polynomial fitted for the
+    /// segment when the table was built (within its bound, `saturation.rs`;
+    /// never below i0, so only the upper end is clamped), else through the
+    /// logarithm. Inlined: out of line, its call and register moves cost
+    /// the every-term control step 15 instructions (BENCHMARKS.md).
     #[inline(always)]
-    fn saturated_current_a(&self, s: Solution, i_s: f32, i0: f32, i1: f32) -> f32 {
-        let [dw, den0, lin] = self.saturation_segment(s.lower);
-        let u = s.t * dw / (den0 - s.t * lin);
-        if u <= math::ATANH_SERIES_MAX {
-            // u ≥ 0 (0 < t < 1, Δw > 0, and the denominator is at least
-            // 1 − w0·w1 > 0), so the series is ≥ 0 and the sum ≥ i0: only
-            // the upper end can be passed (by rounding).
-            let current_a = i0 + i_s * math::atanh_small(u);
+    fn saturated_current_a(&self, s: Solution, i0: f32, i1: f32) -> f32 {
+        let map = self.segment_map(s.lower);
+        if map.fitted {
+            let current_a = map.eval(i0, s.t);
             if current_a > i1 {
                 i1
             } else {
                 current_a
             }
         } else {
-            math::clamp(i_s * math::atanh(self.knot(s.lower) + s.t * dw), i0, i1)
+            let w0 = self.knot(s.lower);
+            let w = w0 + s.t * (self.knot(s.lower + 1) - w0);
+            math::clamp(self.terms().saturation_current_a * math::atanh(w), i0, i1)
         }
     }
 

@@ -9,6 +9,7 @@
 //! corrupt or inconsistent table is never evaluated.
 use crate::model::Branch;
 use crate::order::OrderFacts;
+use crate::saturation::SegmentMap;
 use crc::{Crc, CRC_32_ISO_HDLC};
 
 /// Most currents one table can hold (fixed size: no heap on the board).
@@ -264,10 +265,12 @@ pub struct Table {
     /// Each entry's interpolation knot: its current, or `tanh(I/I_s)` under
     /// saturation (computed once here, not per period).
     knots: [f32; MAX_CURRENTS],
-    /// Per segment `[w1 − w0, 1 − w0², (w1 − w0)·w0]` under saturation:
-    /// the constants of the inverse's atanh addition theorem (see
-    /// `inverse.rs`), computed once here, not per period.
-    saturation_segments: [[f32; 3]; MAX_CURRENTS],
+    /// True under a saturation term (interpolation in tanh(I/I_s)).
+    saturated: bool,
+    /// Per segment under saturation: the inverse's map from the segment
+    /// fraction back to current, a polynomial fitted here (`saturation.rs`)
+    /// or the exact atanh where no fit is within its tolerance.
+    segment_maps: [SegmentMap; MAX_CURRENTS],
     /// The sensor delay d as the factors of a prediction across it:
     /// `[d·10³, ½·d²·10³]` (mm per m/s, mm per m/s²).
     delay_factors: [f32; 2],
@@ -318,7 +321,8 @@ impl Table {
             crc32: content_crc(version, entries, &terms),
             terms,
             knots: [0.0; MAX_CURRENTS],
-            saturation_segments: [[0.0; 3]; MAX_CURRENTS],
+            saturated: terms.saturation_current_a > 0.0,
+            segment_maps: [SegmentMap::EXACT; MAX_CURRENTS],
             delay_factors: [
                 terms.sensor_delay_s * 1.0e3,
                 0.5 * terms.sensor_delay_s * terms.sensor_delay_s * 1.0e3,
@@ -373,10 +377,18 @@ impl Table {
         for (facts, branch) in table.order.iter_mut().zip([Branch::Compression, Branch::Extension]) {
             *facts = OrderFacts::prove(entries, &terms.viscous_n_s_per_m, branch, lo_mm, hi_mm);
         }
-        let knots = table.knots.get(..table.len).unwrap_or(&[]);
-        for (segment, pair) in table.saturation_segments.iter_mut().zip(knots.windows(2)) {
-            if let [w0, w1] = *pair {
-                *segment = [w1 - w0, 1.0 - w0 * w0, (w1 - w0) * w0];
+        if table.saturated {
+            let knots = table.knots.get(..table.len).unwrap_or(&[]);
+            for ((map, pair), currents) in table
+                .segment_maps
+                .iter_mut()
+                .zip(knots.windows(2))
+                .zip(entries.windows(2))
+            {
+                if let (&[w0, w1], [e0, e1]) = (pair, currents) {
+                    let fit = SegmentMap::fit(w0, w1, terms.saturation_current_a, e0.current_a, e1.current_a);
+                    *map = fit.map_or(SegmentMap::EXACT, |f| f.map);
+                }
             }
         }
         Ok(table)
@@ -437,13 +449,19 @@ impl Table {
         self.delay_factors
     }
 
-    /// Segment `index`'s saturation constants `[Δw, 1 − w0², Δw·w0]`
-    /// (`index` < [`MAX_CURRENTS`]: the mask only spares the bounds check).
+    /// True under a saturation term.
     #[inline(always)]
-    pub(crate) fn saturation_segment(&self, index: usize) -> [f32; 3] {
+    pub(crate) fn saturated(&self) -> bool {
+        self.saturated
+    }
+
+    /// Segment `index`'s map back to current under saturation (`index` <
+    /// [`MAX_CURRENTS`]: the mask only spares the bounds check).
+    #[inline(always)]
+    pub fn segment_map(&self, index: usize) -> &SegmentMap {
         const _: () = assert!(MAX_CURRENTS.is_power_of_two());
         #[allow(clippy::indexing_slicing)] // masked below the array's length
-        self.saturation_segments[index & (MAX_CURRENTS - 1)]
+        &self.segment_maps[index & (MAX_CURRENTS - 1)]
     }
 
     /// True when some entry has a viscous term (else the model skips it).
