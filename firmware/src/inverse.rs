@@ -51,50 +51,74 @@ impl Table {
     /// [`Table::current_for_branch`] at velocity `v_m_s`, which a version 2
     /// table's viscous term depends on (see [`crate::model::viscous_velocity`]).
     pub fn current_for_branch_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32) -> CurrentResult {
-        let r = self.plan_current_v(x_mm, v_m_s, branch, target_force_n);
+        let r = self.checked_current_v(x_mm, v_m_s, branch, target_force_n);
         CurrentResult {
             current_a: r.current_a,
             flags: r.flags,
         }
     }
 
-    /// [`Table::current_for_branch_v`], with the force at the result and its
-    /// segment, for the law (inlined there, so the scan is the same code).
+    /// [`Table::current_for_branch_v`] with the force at the result, for the
+    /// law (inlined there, so the scan is the same code). The law's inputs
+    /// spare it three checks the public inverse makes: `target_force_n` is
+    /// finite, `|v_m_s|` is within [`crate::model::VISCOUS_V_LIMIT_M_S`],
+    /// and v ≥ 0 on `branch` = compression (the law plans only while
+    /// compressing). Outside them the answer is finite but unspecified.
     #[inline(always)]
-    pub fn plan_current_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32) -> PlanResult {
-        let entries = self.entries();
-        let Some(first) = entries.first() else {
-            return PlanResult {
-                current_a: 0.0,
-                flags: Flags::TABLE_FAULT,
-                force_n: 0.0,
-            };
-        };
+    pub(crate) fn plan_current_v(&self, x_mm: f32, v_m_s: f32, target_force_n: f32) -> PlanResult {
+        let branch = Branch::Compression;
+        if self.has_viscous() {
+            let facts = self.order_facts(branch);
+            // v ≥ 0 ≥ the compression facts' lowest velocity.
+            let in_range = || v_m_s <= facts.v_max_m_s;
+            self.solve_viscous(x_mm, v_m_s, branch, target_force_n, in_range)
+        } else {
+            self.solve_at(x_mm, branch, target_force_n, || true, true, |_, f| f)
+        }
+    }
+
+    /// The inverse at any inputs: a non-finite target is answered with the
+    /// lowest current, flagged; the viscous term's velocity is clamped.
+    #[inline(always)]
+    fn checked_current_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32) -> PlanResult {
         if !target_force_n.is_finite() {
             return PlanResult {
-                current_a: first.current_a,
+                current_a: self.first_entry().current_a,
                 flags: Flags::NON_FINITE_INPUT,
                 force_n: 0.0,
             };
         }
         if self.has_viscous() {
             let v = crate::model::viscous_velocity(v_m_s);
-            let c = &self.terms().viscous_n_s_per_m;
-            // A viscous term can reorder the entries at speed: the order
-            // facts hold for the velocities they were proven for only
-            // (asked only where a fact's x region applies). No "largest
-            // entry" fact: near contact it rarely holds at every velocity,
-            // and its path cost the full scan there 7 instructions.
             let facts = self.order_facts(branch);
             let in_range = || v >= facts.v_min_m_s && v <= facts.v_max_m_s;
-            self.solve_at(x_mm, branch, target_force_n, in_range, false, |k, f| {
-                f + c.get(k).copied().unwrap_or(0.0) * v
-            })
+            self.solve_viscous(x_mm, v, branch, target_force_n, in_range)
         } else {
             // No rate term: nothing per entry beyond the quartic, and the
             // facts hold at any velocity.
             self.solve_at(x_mm, branch, target_force_n, || true, true, |_, f| f)
         }
+    }
+
+    /// The inverse with each entry's viscous term at velocity `v` (within
+    /// the clamp). A viscous term can reorder the entries at speed: the
+    /// order facts hold for the velocities they were proven for only
+    /// (`in_range`, asked only where a fact's x region applies). No
+    /// "largest entry" fact: near contact it rarely holds at every
+    /// velocity, and its path cost the full scan there 7 instructions.
+    #[inline(always)]
+    fn solve_viscous(
+        &self,
+        x_mm: f32,
+        v: f32,
+        branch: Branch,
+        target_force_n: f32,
+        in_range: impl Fn() -> bool,
+    ) -> PlanResult {
+        let c = &self.terms().viscous_n_s_per_m;
+        self.solve_at(x_mm, branch, target_force_n, in_range, false, |k, f| {
+            f + c.get(k).copied().unwrap_or(0.0) * v
+        })
     }
 
     /// The inverse with entry k's quartic force `f` replaced by `with_extra(k, f)`
@@ -180,10 +204,10 @@ impl Table {
         let (i0, i1) = (s.i0, s.i1);
         let current_a = if s.t <= 0.0 {
             i0
-        } else if s.t >= 1.0 {
-            i1
         } else if self.saturated() {
             self.saturated_current_a(s, i0, i1)
+        } else if s.t >= 1.0 {
+            i1
         } else {
             i0 + s.t * (i1 - i0)
         };
@@ -194,12 +218,13 @@ impl Table {
         }
     }
 
-    /// The current at fraction `0 < t < 1` of segment `lower` under
+    /// The current at fraction `0 < t ≤ 1` of segment `lower` under
     /// saturation: `I_s·atanh(w0 + t·Δw)`, by the polynomial fitted for the
     /// segment when the table was built (within its bound, `saturation.rs`;
-    /// never below i0, so only the upper end is clamped), else through the
-    /// logarithm. Inlined: out of line, its call and register moves cost
-    /// the every-term control step 15 instructions (BENCHMARKS.md).
+    /// never below i0, and at least i1 at t = 1, so only the clamp to i1
+    /// is needed), else through the logarithm. Inlined: out of line, its
+    /// call and register moves cost the every-term control step 15
+    /// instructions (BENCHMARKS.md).
     #[inline(always)]
     fn saturated_current_a(&self, s: Solution, i0: f32, i1: f32) -> f32 {
         let map = self.segment_map(s.lower);
@@ -210,6 +235,8 @@ impl Table {
             } else {
                 current_a
             }
+        } else if s.t >= 1.0 {
+            i1
         } else {
             let w0 = self.knot(s.lower);
             let w = w0 + s.t * (self.knot(s.lower + 1) - w0);

@@ -434,7 +434,9 @@ impl ImpactLaw {
                 let force_n = stopping_force_within_n(cfg.mass_kg, self.weight_n, v_m_s, planned_mm);
                 target_force_n = force_n;
                 let ask_n = force_n + self.force_error_n;
-                let r = table.plan_current_v(x_mm, v_m_s, Branch::Compression, ask_n);
+                // Finite, |v| ≤ v_valid_max (checked above, far below the viscous
+                // clamp) and v > 0 here: the plan's preconditions.
+                let r = table.plan_current_v(x_mm, v_m_s, ask_n);
                 flags |= r.flags;
                 self.model_force_n = r.force_n;
                 let wanted_a = if self.coil_alpha < 1.0 {

@@ -187,6 +187,24 @@ impl SegmentMap {
         // term rounded up by the 1 + 64·EPS below): the coefficients'
         // roundings and the last addition's, relative to its result.
         bound += 0.5 * EPS * (horner + math::abs(i0) + magnitude);
+        // At t = 1 the inverse must give i1 exactly (a tabulated force maps
+        // back to its current): raise c1 until the f32 polynomial (the
+        // same evaluation as the period's) reaches i1, so the clamp to i1
+        // settles it; each raise moves P by at most its size.
+        let mut raises = 0;
+        loop {
+            let fitted = SegmentMap { coeffs, fitted: true };
+            let deficit = i1 - fitted.eval(i0, 1.0);
+            if !(deficit > 0.0) || raises == 8 {
+                break;
+            }
+            let [c1, ..] = &mut coeffs;
+            // At least one ulp of c1 (an ulp of i1 may be below it).
+            *c1 += deficit.max(math::abs(*c1) * EPS);
+            bound += deficit.max(math::abs(*c1) * EPS) * (1.0 + 4.0 * EPS);
+            raises += 1;
+        }
+        let reaches_i1 = SegmentMap { coeffs, fitted: true }.eval(i0, 1.0) >= i1;
         let [c1, rest @ ..] = coeffs;
         let rest_sum: f32 = rest.iter().map(|c| math::abs(*c)).sum();
         // For 0 < t ≤ 1 the sum after i0 is t·(c1 + t·(…)) with
@@ -194,7 +212,7 @@ impl SegmentMap {
         // never falls below i0 and only the upper end needs the clamp.
         let rises = c1 > rest_sum * (1.0 + 64.0 * EPS) + 16.0 * EPS * magnitude;
         let tolerance = TOLERANCE_PER_A * math::abs(i1).max(1.0);
-        if !(bound <= tolerance && rises) {
+        if !(bound <= tolerance && rises && reaches_i1) {
             return None;
         }
         Some(Fitted {
@@ -203,8 +221,10 @@ impl SegmentMap {
         })
     }
 
-    /// The fitted map at `0 < t < 1` (the period's Horner, the same on host
-    /// and board), before the caller's clamp to the upper current.
+    /// The fitted map at `0 < t ≤ 1` (the period's Horner, the same on host
+    /// and board), before the caller's clamp to the upper current: at
+    /// t = 1 it is at least i1 (so the clamp gives exactly i1), and above
+    /// 0 never below i0.
     #[inline(always)]
     pub fn eval(&self, i0: f32, t: f32) -> f32 {
         let [c1, c2, c3, c4, c5, c6, c7] = self.coeffs;
