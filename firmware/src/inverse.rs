@@ -198,18 +198,38 @@ impl Table {
 
     /// The current at fraction `t` of segment `lower` (t = 0 and t = 1:
     /// exactly the entries' currents): linear in I, or under saturation
-    /// through the segment's map (`saturation.rs`).
+    /// through the segment's map (`saturation.rs`): the polynomial fitted
+    /// when the table was built, inlined (out of line, a call and its
+    /// register moves cost the control step ~15 instructions), else the
+    /// exact atanh.
     #[inline]
     fn current_of(&self, s: Solution) -> PlanResult {
         let (i0, i1) = (s.i0, s.i1);
-        let current_a = if s.t <= 0.0 {
+        // A knot's result is its current. A bracket's t is above 0 (the
+        // target differs from the force at its lower end; an underflow to
+        // 0 maps to i0 anyway): every site sets `on_knot` as a constant,
+        // so the compiler drops this test where it is known.
+        let current_a = if s.on_knot {
             i0
-        } else if self.saturated() {
-            self.saturated_current_a(s, i0, i1)
-        } else if s.t >= 1.0 {
-            i1
         } else {
-            i0 + s.t * (i1 - i0)
+            // A fitted segment first (one test for the saturated tables'
+            // usual case); a linear table's segments are never fitted.
+            let map = self.segment_map(s.lower);
+            if map.fitted {
+                let current_a = map.eval(i0, s.t);
+                // At least i1 at t = 1, never below i0 (`saturation.rs`).
+                if current_a > i1 {
+                    i1
+                } else {
+                    current_a
+                }
+            } else if s.t >= 1.0 {
+                i1
+            } else if self.saturated() {
+                self.exact_saturated_current_a(s, i0, i1)
+            } else {
+                i0 + s.t * (i1 - i0)
+            }
         };
         PlanResult {
             current_a,
@@ -218,30 +238,14 @@ impl Table {
         }
     }
 
-    /// The current at fraction `0 < t ≤ 1` of segment `lower` under
-    /// saturation: `I_s·atanh(w0 + t·Δw)`, by the polynomial fitted for the
-    /// segment when the table was built (within its bound, `saturation.rs`;
-    /// never below i0, and at least i1 at t = 1, so only the clamp to i1
-    /// is needed), else through the logarithm. Inlined: out of line, its
-    /// call and register moves cost the every-term control step 15
-    /// instructions (BENCHMARKS.md).
-    #[inline(always)]
-    fn saturated_current_a(&self, s: Solution, i0: f32, i1: f32) -> f32 {
-        let map = self.segment_map(s.lower);
-        if map.fitted {
-            let current_a = map.eval(i0, s.t);
-            if current_a > i1 {
-                i1
-            } else {
-                current_a
-            }
-        } else if s.t >= 1.0 {
-            i1
-        } else {
-            let w0 = self.knot(s.lower);
-            let w = w0 + s.t * (self.knot(s.lower + 1) - w0);
-            math::clamp(self.terms().saturation_current_a * math::atanh(w), i0, i1)
-        }
+    /// The current at fraction `0 < t < 1` of segment `lower` under
+    /// saturation where no polynomial was fitted (`saturation.rs`):
+    /// `I_s·atanh(w0 + t·Δw)` through the logarithm.
+    #[inline(never)]
+    fn exact_saturated_current_a(&self, s: Solution, i0: f32, i1: f32) -> f32 {
+        let w0 = self.knot(s.lower);
+        let w = w0 + s.t * (self.knot(s.lower + 1) - w0);
+        math::clamp(self.terms().saturation_current_a * math::atanh(w), i0, i1)
     }
 
     /// [`Table::current_for_branch_v`] with the branch from the sign of `v_m_s`.
@@ -259,6 +263,8 @@ impl Table {
 /// The scan carries the currents so the result needs no second lookup.
 #[derive(Clone, Copy, Debug)]
 struct Solution {
+    /// On entry `lower` itself (t = 0): no segment to map through.
+    on_knot: bool,
     lower: usize,
     i0: f32,
     i1: f32,
@@ -428,6 +434,7 @@ fn solve_below_top(
 #[inline(always)]
 fn bracket(k: usize, currents: (f32, f32), f0: f32, f1: f32, target_force_n: f32) -> Solution {
     Solution {
+        on_knot: false,
         lower: k - 1,
         i0: currents.0,
         i1: currents.1,
@@ -443,6 +450,7 @@ fn bracket(k: usize, currents: (f32, f32), f0: f32, f1: f32, target_force_n: f32
 #[inline(always)]
 fn saturated(lower: usize, current_a: f32, force_n: f32, side: Flags) -> Solution {
     Solution {
+        on_knot: true,
         lower,
         i0: current_a,
         i1: current_a,
