@@ -138,8 +138,29 @@ impl Table {
         // to be the largest (order.rs), the same answer as the scan below
         // comes from fewer quartics.
         let order = self.order_facts(branch);
-        if x_mm >= order.ascending_from_mm {
-            if x_mm <= self.shared_x_max_mm() && in_range() {
+        // Below `scan_below_mm` (the ascending region's start, at most just
+        // above the shared stroke) an x in the shared stroke needs only its
+        // lower end tested; NaN fails every comparison: clamped path.
+        let in_stroke = if x_mm < self.scan_below_mm(branch) {
+            if x_mm >= self.shared_x_min_mm() {
+                if use_top && x_mm <= order.top_to_mm && in_range() {
+                    let bottom = || x_mm >= order.bottom_from_mm;
+                    let r = match branch {
+                        Branch::Compression => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
+                            with_extra(k, e.compression.eval(x_mm))
+                        }),
+                        Branch::Extension => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
+                            with_extra(k, e.extension.eval(x_mm))
+                        }),
+                    };
+                    return self.current_of(r);
+                }
+                true
+            } else {
+                false
+            }
+        } else if x_mm <= self.shared_x_max_mm() {
+            if in_range() {
                 let r = match branch {
                     Branch::Compression => {
                         solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.compression.eval(x_mm)))
@@ -150,23 +171,14 @@ impl Table {
                 };
                 return self.current_of(r);
             }
-        } else if use_top && x_mm <= order.top_to_mm && x_mm >= self.shared_x_min_mm() && in_range() {
-            // (The velocity range is checked just above.)
-            let bottom = || x_mm >= order.bottom_from_mm;
-            let r = match branch {
-                Branch::Compression => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
-                    with_extra(k, e.compression.eval(x_mm))
-                }),
-                Branch::Extension => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
-                    with_extra(k, e.extension.eval(x_mm))
-                }),
-            };
-            return self.current_of(r);
-        }
-        // Entry 0 proven the smallest: asked only when a target lies below
-        // it (the region lies in the shared stroke).
-        let bottom = || x_mm >= order.bottom_from_mm && in_range();
-        if self.in_shared_stroke(x_mm) {
+            true
+        } else {
+            false
+        };
+        if in_stroke {
+            // Entry 0 proven the smallest: asked only when a target lies
+            // below it (the region lies in the shared stroke).
+            let bottom = || x_mm >= order.bottom_from_mm && in_range();
             let r = match branch {
                 Branch::Compression => solve(entries, target_force_n, bottom, |k, e| {
                     with_extra(k, e.compression.eval(x_mm))

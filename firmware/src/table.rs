@@ -292,6 +292,10 @@ pub struct Table {
     /// with fewer quartics there (with a viscous term: for the velocities
     /// they carry).
     order: [OrderFacts; 2],
+    /// Per branch: where the inverse's ascending region starts, but at most
+    /// just above the shared stroke (the next f32 after its top), so that
+    /// an x below it lies at or below the shared stroke's top.
+    scan_below_mm: [f32; 2],
 }
 
 impl Table {
@@ -333,6 +337,7 @@ impl Table {
             end_low_n: [[0.0; 2]; MAX_CURRENTS],
             end_high_n: [[0.0; 2]; MAX_CURRENTS],
             order: [OrderFacts::NONE; 2],
+            scan_below_mm: [f32::INFINITY; 2],
         };
         let ends = table.end_low_n.iter_mut().zip(table.end_high_n.iter_mut());
         for (((slot, knot), entry), (low, high)) in table
@@ -377,6 +382,7 @@ impl Table {
         for (facts, branch) in table.order.iter_mut().zip([Branch::Compression, Branch::Extension]) {
             *facts = OrderFacts::prove(entries, &terms.viscous_n_s_per_m, branch, lo_mm, hi_mm);
         }
+        table.set_scan_below();
         if table.saturated {
             let knots = table.knots.get(..table.len).unwrap_or(&[]);
             for ((map, pair), currents) in table
@@ -511,15 +517,38 @@ impl Table {
         }
     }
 
+    fn set_scan_below(&mut self) {
+        let above_stroke = next_up(self.shared_x_max_mm);
+        for (below, facts) in self.scan_below_mm.iter_mut().zip(self.order) {
+            *below = if facts.ascending_from_mm < above_stroke {
+                facts.ascending_from_mm
+            } else {
+                above_stroke
+            };
+        }
+    }
+
+    /// Where `branch`'s ascending region starts, at most just above the
+    /// shared stroke (see the field).
+    #[inline(always)]
+    pub(crate) fn scan_below_mm(&self, branch: Branch) -> f32 {
+        match branch {
+            Branch::Compression => self.scan_below_mm[0],
+            Branch::Extension => self.scan_below_mm[1],
+        }
+    }
+
     /// The same table without the proven order facts: the inverse then
     /// always scans every entry it needs, keeping the nearest force. The
     /// reference the shortcut is tested against.
     #[doc(hidden)]
     pub fn without_order_facts(&self) -> Table {
-        Table {
+        let mut table = Table {
             order: [OrderFacts::NONE; 2],
             ..*self
-        }
+        };
+        table.set_scan_below();
+        table
     }
 
     /// Entry `index` (= `e`)'s force on `branch` at `x_mm` clamped to its
@@ -555,6 +584,19 @@ impl Table {
             _ => (0.0, 0.0),
         }
     }
+}
+
+/// The next f32 above a finite or infinite `x` (`f32::next_up`, which the
+/// workspace's minimum Rust version lacks); NaN stays NaN.
+fn next_up(x: f32) -> f32 {
+    if x.is_nan() || x == f32::INFINITY {
+        return x;
+    }
+    if x == 0.0 {
+        return f32::from_bits(1);
+    }
+    let bits = x.to_bits();
+    f32::from_bits(if x > 0.0 { bits + 1 } else { bits - 1 })
 }
 
 fn validate_entries(entries: &[CurrentEntry]) -> Result<(), TableError> {
