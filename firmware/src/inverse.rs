@@ -15,7 +15,7 @@
 use crate::flags::Flags;
 use crate::math;
 use crate::model::Branch;
-use crate::table::{CurrentEntry, Table};
+use crate::table::{CurrentEntry, Table, MAX_CURRENTS};
 
 /// A current with the flags that qualify it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -133,7 +133,7 @@ impl Table {
         use_top: bool,
         with_extra: impl Fn(usize, f32) -> f32,
     ) -> PlanResult {
-        let entries = self.entries();
+        let entries = self.entry_array();
         // Where the forces are proven to rise with current, or one entry's
         // to be the largest (order.rs), the same answer as the scan below
         // comes from fewer quartics.
@@ -270,6 +270,34 @@ impl Table {
     }
 }
 
+/// A table's entries as the scans walk them: the whole fixed array and how
+/// many are in use (at least one), so that a scan tests its end once per
+/// entry and needs no slice of checked length.
+#[derive(Clone, Copy)]
+pub(crate) struct Entries<'a> {
+    pub(crate) all: &'a [CurrentEntry; MAX_CURRENTS],
+    pub(crate) len: usize,
+}
+
+impl<'a> Entries<'a> {
+    #[inline(always)]
+    fn first(&self) -> &'a CurrentEntry {
+        let [first, ..] = self.all;
+        first
+    }
+
+    /// Entries 1, 2, … of the array with their indices (the caller stops at `len`).
+    #[inline(always)]
+    fn rest(&self) -> impl Iterator<Item = (usize, &'a CurrentEntry)> {
+        self.all.iter().enumerate().skip(1)
+    }
+
+    #[inline(always)]
+    fn last_index(&self) -> usize {
+        self.len.saturating_sub(1)
+    }
+}
+
 /// Where the inverse landed: fraction `t` of the segment from entry `lower`
 /// (current `i0`) to `lower + 1` (`i1`); t = 0: on entry `lower` itself.
 /// The scan carries the currents so the result needs no second lookup.
@@ -292,14 +320,12 @@ struct Solution {
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 #[inline(always)]
 fn solve(
-    entries: &[CurrentEntry],
+    entries: Entries<'_>,
     target_force_n: f32,
     bottom: impl Fn() -> bool,
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
-    let Some(first) = entries.first() else {
-        return saturated(0, 0.0, 0.0, Flags::TABLE_FAULT);
-    };
+    let first = entries.first();
     let f0 = force_at(0, first);
     solve_from(entries, first, f0, target_force_n, bottom, force_at)
 }
@@ -310,7 +336,7 @@ fn solve(
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 #[inline(always)]
 fn solve_from(
-    entries: &[CurrentEntry],
+    entries: Entries<'_>,
     first: &CurrentEntry,
     mut f0: f32,
     target_force_n: f32,
@@ -326,7 +352,10 @@ fn solve_from(
     let mut nearest = (f0, first.current_a);
     let mut i_prev = first.current_a;
     if f0 < target_force_n {
-        for (k, entry) in entries.iter().enumerate().skip(1) {
+        for (k, entry) in entries.rest() {
+            if k >= entries.len {
+                break;
+            }
             let force = force_at(k, entry);
             // Reaching the target (or a NaN force, which brackets nothing
             // sensible but must not pass for "below").
@@ -339,7 +368,7 @@ fn solve_from(
             (f0, i_prev) = (force, entry.current_a);
         }
         return saturated(
-            entries.len().saturating_sub(1),
+            entries.last_index(),
             nearest.1,
             nearest.0,
             Flags::SATURATED_HIGH,
@@ -352,7 +381,10 @@ fn solve_from(
         // Entry 0 is proven the smallest force: nothing falls to the target.
         return saturated(0, first.current_a, f0, Flags::SATURATED_LOW);
     }
-    for (k, entry) in entries.iter().enumerate().skip(1) {
+    for (k, entry) in entries.rest() {
+        if k >= entries.len {
+            break;
+        }
         let force = force_at(k, entry);
         // Falling to or through the target from above.
         if force <= target_force_n {
@@ -373,13 +405,11 @@ fn solve_from(
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 #[inline(always)]
 fn solve_ascending(
-    entries: &[CurrentEntry],
+    entries: Entries<'_>,
     target_force_n: f32,
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
-    let Some(first) = entries.first() else {
-        return saturated(0, 0.0, 0.0, Flags::TABLE_FAULT);
-    };
+    let first = entries.first();
     let f0 = force_at(0, first);
     if !(f0 < target_force_n) {
         let side = if f0 == target_force_n {
@@ -390,14 +420,17 @@ fn solve_ascending(
         return saturated(0, first.current_a, f0, side);
     }
     let (mut f_prev, mut i_prev) = (f0, first.current_a);
-    for (k, entry) in entries.iter().enumerate().skip(1) {
+    for (k, entry) in entries.rest() {
+        if k >= entries.len {
+            break;
+        }
         let force = force_at(k, entry);
         if !(force < target_force_n) {
             return bracket(k, (i_prev, entry.current_a), f_prev, force, target_force_n);
         }
         (f_prev, i_prev) = (force, entry.current_a);
     }
-    saturated(entries.len().saturating_sub(1), i_prev, f_prev, Flags::SATURATED_HIGH)
+    saturated(entries.last_index(), i_prev, f_prev, Flags::SATURATED_HIGH)
 }
 
 /// [`solve`] where entry `top` is proven to give strictly the largest force
@@ -408,13 +441,14 @@ fn solve_ascending(
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 #[inline(always)]
 fn solve_below_top(
-    entries: &[CurrentEntry],
+    entries: Entries<'_>,
     top: usize,
     target_force_n: f32,
     bottom: impl Fn() -> bool,
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
-    let (Some(first), Some(top_entry)) = (entries.first(), entries.get(top)) else {
+    let first = entries.first();
+    let Some(top_entry) = entries.all.get(top) else {
         return saturated(0, 0.0, 0.0, Flags::TABLE_FAULT);
     };
     let f0 = force_at(0, first);
@@ -424,14 +458,17 @@ fn solve_below_top(
     let f_top = force_at(top, top_entry);
     if f_top < target_force_n {
         return saturated(
-            entries.len().saturating_sub(1),
+            entries.last_index(),
             top_entry.current_a,
             f_top,
             Flags::SATURATED_HIGH,
         );
     }
     let (mut f_prev, mut i_prev) = (f0, first.current_a);
-    for (k, entry) in (1..).zip(entries.get(1..top).unwrap_or(&[])) {
+    for (k, entry) in entries.rest() {
+        if k >= top {
+            break;
+        }
         let force = force_at(k, entry);
         if !(force < target_force_n) {
             return bracket(k, (i_prev, entry.current_a), f_prev, force, target_force_n);

@@ -428,6 +428,15 @@ impl Table {
         head
     }
 
+    /// The entries as the inverse's scans walk them.
+    #[inline(always)]
+    pub(crate) fn entry_array(&self) -> crate::inverse::Entries<'_> {
+        crate::inverse::Entries {
+            all: &self.entries,
+            len: self.len,
+        }
+    }
+
     /// Entry 0: every table has one (`build` refuses an empty one), so
     /// the inverse needs no check for it.
     #[inline(always)]
