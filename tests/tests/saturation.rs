@@ -17,7 +17,7 @@ fn worst_error(map: &SegmentMap, w0: f32, w1: f32, i_s: f32, i0: f32) -> f64 {
         f64::from(i0) + f64::from(i_s) * ((f64::from(w0) + f64::from(t) * dw).atanh() - f64::from(w0).atanh())
     };
     let mut ts: Vec<f32> = (1..4096).map(|k| k as f32 / 4096.0).collect();
-    ts.extend([f32::MIN_POSITIVE, 1.0e-6, 1.0 - f32::EPSILON / 2.0]);
+    ts.extend([f32::MIN_POSITIVE, 1.0e-6, 1.0 - f32::EPSILON / 2.0, 1.0]);
     ts.iter()
         .map(|&t| (f64::from(map.eval(i0, t)) - exact(t)).abs())
         .fold(0.0, f64::max)
@@ -41,6 +41,7 @@ fn the_flown_currents_at_one_and_a_half_amperes_are_fitted_within_their_bound() 
         // A few f32 ulps of 2 A (2.4e-7 each).
         assert!(err <= 3.0e-7, "segment {k}: error {err:e}");
         assert!(fit.bound_a <= TOLERANCE_PER_A * 2.0, "segment {k}: bound {:e}", fit.bound_a);
+        assert!(fit.map.eval(currents[k], 1.0) >= currents[k + 1], "segment {k} short of its upper current");
     }
     // The table builds the same maps.
     let table = Table::with_terms(&mre_core::generated_table::GENERATED_ENTRIES, ModelTerms::EVERY_TERM).unwrap();
@@ -81,6 +82,8 @@ proptest! {
                 let t = k as f32 / 64.0;
                 prop_assert!(fit.map.eval(i0, t) >= i0, "below i0 at t = {t}");
             }
+            // The inverse clamps to i1: a tabulated force's t = 1 gives i1.
+            prop_assert!(fit.map.eval(i0, 1.0) >= i1);
         }
     }
 }
