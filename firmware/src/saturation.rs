@@ -104,6 +104,10 @@ impl SegmentMap {
             return None;
         }
         const N: usize = TAYLOR_TERMS;
+        // The loops below run once per segment when a table is built; with
+        // their bounds opaque to the optimizer they stay loops (fully
+        // unrolled they were 4 KB of the 64 KiB flash).
+        let (n_max, degree, max_raises) = core::hint::black_box((N, DEGREE, 8));
         // Taylor coefficients in y, and a running bound on each one's
         // rounding error (absolute).
         let mut a = [0.0f32; N + 1];
@@ -111,7 +115,7 @@ impl SegmentMap {
         // a_0 stays 0: the polynomial's constant is i0 (see below).
         let (mut pm, mut pp) = (1.0f32, 1.0f32);
         let mut n = 1;
-        while n <= N {
+        while n <= n_max {
             pm *= r;
             pp *= r_plus;
             let s = if n % 2 == 1 { pm + pp } else { pm - pp };
@@ -124,7 +128,7 @@ impl SegmentMap {
         // The series' tail on |y| ≤ y_max: |a_n|·y_maxⁿ ≤ I_s/(2n)·(ρⁿ + ρ₊ⁿ).
         let tail = |q: f32| {
             let mut p = q;
-            for _ in 0..N {
+            for _ in 0..n_max {
                 p *= q;
             }
             p / (1.0 - q)
@@ -134,22 +138,26 @@ impl SegmentMap {
         // (its Taylor constant, left out above) on the range.
         let mut truncation = i_s / (2 * (N + 1)) as f32 * (tail(rho) + tail(rho_plus)) * (1.0 + 64.0 * EPS);
         // Economize: remove a_n·yⁿ for n = N … DEGREE + 1.
-        let mut cheb = ChebyshevRows::new();
-        let mut n = N;
-        while n > DEGREE {
-            let t_n = cheb.row(n);
+        let mut n = n_max;
+        while n > degree {
             let c = get(&a, n) * pow2(1 - n as i32);
             // Dropped: c·T_n(y), at most |c|·T_n(y_max) on the range, and
             // a_n's own error times |y|ⁿ.
             truncation += (math::abs(c) + get(&err, n)) * chebyshev_at(n, y_max) * (1.0 + 64.0 * EPS);
-            let mut k = n % 2;
-            while k < n {
-                let tk = get(&t_n, k);
+            // T_n's coefficient of y^(n−2j), from 2^(n−1) for j = 0 by
+            // t_{j+1} = −t_j·(n−2j)(n−2j−1)/(4(j+1)(n−j−1)): integers, exact
+            // in u32 (and in f32: below 2²⁴ up to n = 14).
+            let mut t_j: u32 = 1 << (n - 1);
+            let mut j = 0;
+            while 2 * (j + 1) <= n {
+                t_j = t_j * ((n - 2 * j) * (n - 2 * j - 1)) as u32 / (4 * (j + 1) * (n - j - 1).max(1)) as u32;
+                j += 1;
+                let tk = if j % 2 == 1 { -(t_j as f32) } else { t_j as f32 };
+                let k = n - 2 * j;
                 let v = get(&a, k) - c * tk;
                 let e = get(&err, k) + math::abs(c * tk) * 2.0 * EPS + math::abs(v) * EPS;
                 set(&mut a, k, v);
                 set(&mut err, k, e);
-                k += 2;
             }
             set(&mut a, n, 0.0);
             n -= 1;
@@ -159,8 +167,8 @@ impl SegmentMap {
         // powers of two). The rounding of s moves w by about ε·h.
         let shift = 1.0 + delta / h;
         let mut i = 0;
-        while i < DEGREE {
-            let mut j = DEGREE - 1;
+        while i < degree {
+            let mut j = degree - 1;
             loop {
                 let v = get(&a, j) - shift * get(&a, j + 1);
                 let e = get(&err, j) + shift * get(&err, j + 1) + 2.0 * math::abs(v) * EPS
@@ -182,13 +190,16 @@ impl SegmentMap {
         let mut magnitude = 0.0f32;
         let mut horner = 0.0f32;
         let mut scale = 1.0f32;
-        for (k, c) in coeffs.iter_mut().enumerate() {
+        let mut k = 0;
+        while k < degree {
             scale *= 2.0;
-            *c = get(&a, k + 1) * scale;
+            let c = get(&a, k + 1) * scale;
+            set(&mut coeffs, k, c);
             bound += get(&err, k + 1) * scale;
-            magnitude += math::abs(*c);
+            magnitude += math::abs(c);
             // Horner rounds c_k·tᵏ 2k + 1 times (k multiplies, k + 1 adds).
-            horner += (2 * k + 3) as f32 * math::abs(*c);
+            horner += (2 * k + 3) as f32 * math::abs(c);
+            k += 1;
         }
         // The period's Horner, t ≤ 1 (unit roundoff 2⁻²⁴ = EPS/2, each
         // term rounded up by the 1 + 64·EPS below): the coefficients'
@@ -200,25 +211,28 @@ impl SegmentMap {
         // settles it; each raise moves P by at most its size.
         let mut raises = 0;
         loop {
-            let fitted = SegmentMap { coeffs, fitted: true };
-            let deficit = i1 - fitted.eval(i0, 1.0);
-            if !(deficit > 0.0) || raises == 8 {
+            let deficit = i1 - value_at_one(&coeffs, i0);
+            if !(deficit > 0.0) || raises >= max_raises {
                 break;
             }
-            let [c1, ..] = &mut coeffs;
+            let Some(c1) = coeffs.first_mut() else {
+                break;
+            };
             // At least one ulp of c1 (an ulp of i1 may be below it).
-            *c1 += deficit.max(math::abs(*c1) * EPS);
-            bound += deficit.max(math::abs(*c1) * EPS) * (1.0 + 4.0 * EPS);
+            let ulp = math::abs(*c1) * EPS;
+            let raise = if deficit > ulp { deficit } else { ulp };
+            *c1 += raise;
+            bound += raise * (1.0 + 4.0 * EPS);
             raises += 1;
         }
-        let reaches_i1 = SegmentMap { coeffs, fitted: true }.eval(i0, 1.0) >= i1;
-        let [c1, rest @ ..] = coeffs;
-        let rest_sum: f32 = rest.iter().map(|c| math::abs(*c)).sum();
+        let reaches_i1 = value_at_one(&coeffs, i0) >= i1;
+        let c1 = get(&coeffs, 0);
+        let rest_sum = magnitude - math::abs(c1);
         // For 0 < t ≤ 1 the sum after i0 is t·(c1 + t·(…)) with
         // |t·(…)| ≤ Σ|c_k|, k ≥ 2: positive with margin, so the f32 value
         // never falls below i0 and only the upper end needs the clamp.
         let rises = c1 > rest_sum * (1.0 + 64.0 * EPS) + 16.0 * EPS * magnitude;
-        let tolerance = TOLERANCE_PER_A * math::abs(i1).max(1.0);
+        let tolerance = TOLERANCE_PER_A * if math::abs(i1) > 1.0 { math::abs(i1) } else { 1.0 };
         if !(bound <= tolerance && rises && reaches_i1) {
             return None;
         }
@@ -265,50 +279,23 @@ fn pow2(e: i32) -> f32 {
     f32::from_bits(((e + 127) as u32) << 23)
 }
 
+// `get` and `set` stay calls: the fit's loops (table build only) then stay
+// small instead of being unrolled around checked loads and stores.
+#[inline(never)]
 fn get(a: &[f32], k: usize) -> f32 {
     a.get(k).copied().unwrap_or(0.0)
 }
 
+#[inline(never)]
 fn set(a: &mut [f32], k: usize, v: f32) {
     if let Some(slot) = a.get_mut(k) {
         *slot = v;
     }
 }
 
-/// Chebyshev polynomials' monomial coefficients (lowest power first),
-/// `T_{n+1} = 2y·T_n − T_{n−1}`: integers below 2²⁴ up to n = 14, exact
-/// in f32.
-struct ChebyshevRows {
-    rows: [[f32; TAYLOR_TERMS + 1]; TAYLOR_TERMS + 1],
-}
-
-impl ChebyshevRows {
-    fn new() -> Self {
-        let mut rows = [[0.0f32; TAYLOR_TERMS + 1]; TAYLOR_TERMS + 1];
-        let (mut prev, mut cur) = ([0.0f32; TAYLOR_TERMS + 1], [0.0f32; TAYLOR_TERMS + 1]);
-        set(&mut prev, 0, 1.0);
-        set(&mut cur, 1, 1.0);
-        if let Some(r) = rows.get_mut(0) {
-            *r = prev;
-        }
-        if let Some(r) = rows.get_mut(1) {
-            *r = cur;
-        }
-        for n in 2..=TAYLOR_TERMS {
-            let mut next = [0.0f32; TAYLOR_TERMS + 1];
-            for k in 0..=TAYLOR_TERMS {
-                let up = if k == 0 { 0.0 } else { 2.0 * get(&cur, k - 1) };
-                set(&mut next, k, up - get(&prev, k));
-            }
-            if let Some(r) = rows.get_mut(n) {
-                *r = next;
-            }
-            (prev, cur) = (cur, next);
-        }
-        Self { rows }
-    }
-
-    fn row(&mut self, n: usize) -> [f32; TAYLOR_TERMS + 1] {
-        self.rows.get(n).copied().unwrap_or([0.0; TAYLOR_TERMS + 1])
-    }
+/// The fitted polynomial at t = 1, as the period evaluates it (out of
+/// line: called a few times per segment at table build).
+#[inline(never)]
+fn value_at_one(coeffs: &[f32; DEGREE], i0: f32) -> f32 {
+    SegmentMap { coeffs: *coeffs, fitted: true }.eval(i0, 1.0)
 }
