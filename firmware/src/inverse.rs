@@ -4,7 +4,9 @@
 //! (in `tanh(I/I_s)` under a version 2 saturation term), with a knot at every
 //! tabulated current. The answer is the lowest current at which that polyline
 //! equals the target, solved exactly on its segment (under saturation the
-//! current is then mapped back through atanh). The
+//! current is then mapped back through atanh: by a polynomial fitted per
+//! segment when the table is built, within a bound proven there,
+//! `saturation.rs`). The
 //! force need not grow with current (the paper's 2 A loop lies below its 1.5 A
 //! loop in places), so segments are scanned from the lowest current up rather
 //! than bisected. If no current gives the target, the knot with the nearest

@@ -212,7 +212,8 @@ impl SegmentMap {
         let mut raises = 0;
         loop {
             let deficit = i1 - value_at_one(&coeffs, i0);
-            if !(deficit > 0.0) || raises >= max_raises {
+            // (A NaN deficit ends it too: the checks below then refuse the fit.)
+            if deficit.is_nan() || deficit <= 0.0 || raises >= max_raises {
                 break;
             }
             let Some(c1) = coeffs.first_mut() else {
