@@ -65,7 +65,8 @@ impl Table {
     /// spare it three checks the public inverse makes: `target_force_n` is
     /// finite, `|v_m_s|` is within [`crate::model::VISCOUS_V_LIMIT_M_S`],
     /// and v ≥ 0 on `branch` = compression (the law plans only while
-    /// compressing). Outside them the answer is finite but unspecified.
+    /// compressing). Outside them the answer is unspecified (at worst a
+    /// NaN current, on which the law fails safe with `TABLE_FAULT`).
     #[inline(always)]
     pub(crate) fn plan_current_v(&self, x_mm: f32, v_m_s: f32, target_force_n: f32) -> PlanResult {
         let branch = Branch::Compression;
