@@ -370,12 +370,7 @@ fn solve_from(
             }
             (f0, i_prev) = (force, entry.current_a);
         }
-        return saturated(
-            entries.last_index(),
-            nearest.1,
-            nearest.0,
-            Flags::SATURATED_HIGH,
-        );
+        return saturated(entries.last_index(), nearest.1, nearest.0, Flags::SATURATED_HIGH);
     }
     if f0 == target_force_n {
         return saturated(0, first.current_a, f0, Flags::NONE);
@@ -460,12 +455,7 @@ fn solve_below_top(
     }
     let f_top = force_at(top, top_entry);
     if f_top < target_force_n {
-        return saturated(
-            entries.last_index(),
-            top_entry.current_a,
-            f_top,
-            Flags::SATURATED_HIGH,
-        );
+        return saturated(entries.last_index(), top_entry.current_a, f_top, Flags::SATURATED_HIGH);
     }
     let (mut f_prev, mut i_prev) = (f0, first.current_a);
     for (k, entry) in entries.rest() {

@@ -171,7 +171,9 @@ impl SegmentMap {
             let mut j = degree - 1;
             loop {
                 let v = get(&a, j) - shift * get(&a, j + 1);
-                let e = get(&err, j) + shift * get(&err, j + 1) + 2.0 * math::abs(v) * EPS
+                let e = get(&err, j)
+                    + shift * get(&err, j + 1)
+                    + 2.0 * math::abs(v) * EPS
                     + 2.0 * EPS * math::abs(shift * get(&a, j + 1));
                 set(&mut a, j, v);
                 set(&mut err, j, e);
@@ -298,5 +300,9 @@ fn set(a: &mut [f32], k: usize, v: f32) {
 /// line: called a few times per segment at table build).
 #[inline(never)]
 fn value_at_one(coeffs: &[f32; DEGREE], i0: f32) -> f32 {
-    SegmentMap { coeffs: *coeffs, fitted: true }.eval(i0, 1.0)
+    SegmentMap {
+        coeffs: *coeffs,
+        fitted: true,
+    }
+    .eval(i0, 1.0)
 }

@@ -13,9 +13,8 @@ use proptest::prelude::*;
 /// ends' neighbours, for the segment from current `i0` to `i1`.
 fn worst_error(map: &SegmentMap, w0: f32, w1: f32, i_s: f32, i0: f32) -> f64 {
     let dw = f64::from(w1 - w0);
-    let exact = |t: f32| {
-        f64::from(i0) + f64::from(i_s) * ((f64::from(w0) + f64::from(t) * dw).atanh() - f64::from(w0).atanh())
-    };
+    let exact =
+        |t: f32| f64::from(i0) + f64::from(i_s) * ((f64::from(w0) + f64::from(t) * dw).atanh() - f64::from(w0).atanh());
     let mut ts: Vec<f32> = (1..4096).map(|k| k as f32 / 4096.0).collect();
     ts.extend([f32::MIN_POSITIVE, 1.0e-6, 1.0 - f32::EPSILON / 2.0, 1.0]);
     ts.iter()
@@ -37,11 +36,22 @@ fn the_flown_currents_at_one_and_a_half_amperes_are_fitted_within_their_bound() 
         let fit = SegmentMap::fit(w[k], w[k + 1], i_s, currents[k], currents[k + 1])
             .unwrap_or_else(|| panic!("segment {k} not fitted"));
         let err = worst_error(&fit.map, w[k], w[k + 1], i_s, currents[k]);
-        assert!(err <= f64::from(fit.bound_a), "segment {k}: error {err:e} > bound {:e}", fit.bound_a);
+        assert!(
+            err <= f64::from(fit.bound_a),
+            "segment {k}: error {err:e} > bound {:e}",
+            fit.bound_a
+        );
         // A few f32 ulps of 2 A (2.4e-7 each).
         assert!(err <= 3.0e-7, "segment {k}: error {err:e}");
-        assert!(fit.bound_a <= TOLERANCE_PER_A * 2.0, "segment {k}: bound {:e}", fit.bound_a);
-        assert!(fit.map.eval(currents[k], 1.0) >= currents[k + 1], "segment {k} short of its upper current");
+        assert!(
+            fit.bound_a <= TOLERANCE_PER_A * 2.0,
+            "segment {k}: bound {:e}",
+            fit.bound_a
+        );
+        assert!(
+            fit.map.eval(currents[k], 1.0) >= currents[k + 1],
+            "segment {k} short of its upper current"
+        );
     }
     // The table builds the same maps.
     let table = Table::with_terms(&mre_core::generated_table::GENERATED_ENTRIES, ModelTerms::EVERY_TERM).unwrap();
