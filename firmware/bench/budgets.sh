@@ -3,11 +3,10 @@
 #   model step ≤ 150 and control step ≤ 400 executed instructions, each the
 #   most any measured window took (firmware/bench/icount.sh: a model grid over
 #   x 0–12 mm and one near contact, x 0–0.87 mm, where the fitted entries
-#   cross, and a whole drop, QEMU), with the flown table and with coil
-#   lag + sensor delay (what `mre pil` flies for controller (c)); with every
-#   format 2 term at once (the synthetic worst path) the model and control
-#   steps are held to their measured worst (2026-11-23, BENCHMARKS.md,
-#   "Instructions per step", which says where those cycles go), over budget;
+#   cross, and a whole drop, QEMU), on every table measured: the flown one,
+#   the same entries with every format 2 term at once (the synthetic worst
+#   path), with coil lag + sensor delay (what `mre pil` flies for controller
+#   (c)), and with the terms diagnosis finds on real data;
 #   flash ≤ 64 KiB and RAM ≤ 16 KiB (static: .data + .bss + .uninit) for
 #   both hardware images (`cargo fw`, `cargo fw-nucleo`).
 # Usage: bash firmware/bench/budgets.sh   (from the repository root; builds
@@ -15,11 +14,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 MODEL_MAX=150 CONTROL_MAX=400 FLASH_MAX=$((64 * 1024)) RAM_MAX=$((16 * 1024))
-# Every format 2 term (coil τ, sensor delay, a viscous term, saturation):
-# not within the budgets; measured 2026-11-23 on branch `budget` (main
-# before, on the same grid: 189 and 464).
-TERMS_MODEL_CEILING=181
-TERMS_CONTROL_CEILING=443
 
 COUNTS=$(bash firmware/bench/icount.sh)
 echo "$COUNTS"
@@ -27,29 +21,24 @@ echo "$COUNTS"
 cargo fw -q
 cargo fw-nucleo -q
 
-echo "$COUNTS" | awk -F' [|] ' -v m="$MODEL_MAX" -v c="$CONTROL_MAX" \
-  -v tmc="$TERMS_MODEL_CEILING" -v tcc="$TERMS_CONTROL_CEILING" '
+echo "$COUNTS" | awk -F' [|] ' -v m="$MODEL_MAX" -v c="$CONTROL_MAX" '
   # Each row: table | step | max N | mean … | at window …
-  $3 ~ /^max / { n = $3; sub(/^max +/, "", n); n += 0 }
-  $1 ~ /^flown table/ && $2 ~ /^model/   { if (n > mm) mm = n }
-  $1 ~ /^flown table/ && $2 ~ /^control/ { if (n > cm) cm = n }
-  $1 ~ /all v2 terms/ && $2 ~ /^model/   { if (n > tm) tm = n }
-  $1 ~ /all v2 terms/ && $2 ~ /^control/ { if (n > tc) tc = n }
-  $1 ~ /lag, delay/ && $2 ~ /^model/     { if (n > lm) lm = n }
-  $1 ~ /lag, delay/ && $2 ~ /^control/   { if (n > lc) lc = n }
-  function row(name, n, budget, ceiling) {
-    if (n <= budget) { printf "%s: worst %d / %d instructions: met\n", name, n, budget; return 0 }
-    printf "%s: worst %d / %d instructions: budget NOT MET (held to its measured %d)\n", name, n, budget, ceiling
-    return n > ceiling
-  }
+  $3 ~ /^max / { n = $3; sub(/^max +/, "", n); n += 0
+    table = $1; sub(/ +$/, "", table); step = ($2 ~ /^model/) ? "model step" : "control step"
+    key = table ", " step
+    if (!(key in worst)) order[rows++] = key
+    if (n > worst[key]) worst[key] = n
+    budget[key] = (step == "model step") ? m : c }
   END {
-    if (mm == 0 || cm == 0 || tm == 0 || tc == 0 || lm == 0 || lc == 0) { print "no instruction counts" > "/dev/stderr"; exit 1 }
-    bad = row("flown table, model step", mm, m, m)
-    bad += row("flown table, control step", cm, c, c)
-    bad += row("coil lag + sensor delay, model step", lm, m, m)
-    bad += row("coil lag + sensor delay, control step", lc, c, c)
-    bad += row("every format 2 term, model step", tm, m, tmc)
-    bad += row("every format 2 term, control step", tc, c, tcc)
+    # Four tables, each with a model and a control step.
+    if (rows != 8) { print "expected 8 budget rows, got " rows > "/dev/stderr"; exit 1 }
+    bad = 0
+    for (i = 0; i < rows; i++) {
+      key = order[i]; n = worst[key]; b = budget[key]
+      if (n <= 0) { print "no instruction count for " key > "/dev/stderr"; exit 1 }
+      printf "%s: worst %d / %d instructions: %s\n", key, n, b, (n <= b) ? "met" : "BUDGET NOT MET"
+      if (n > b) bad = 1
+    }
     if (bad) { print "BUDGET EXCEEDED: instructions per step" > "/dev/stderr"; exit 1 }
   }'
 for image in "cargo fw:target/thumbv7em-none-eabihf/release/mre-firmware" \

@@ -14,7 +14,8 @@
 # the flown one (firmware/src/generated_table.rs), then the same entries with
 # every format 2 term (coil τ, sensor delay, viscous, saturation: the worst
 # path), then with coil lag and sensor delay only (what `mre pil` flies for
-# controller (c)): the model step on a grid (x 0–12 mm × 5 forces, from below the 0 A
+# controller (c)), then with what diagnosis finds on real data (a viscous
+# term rising with current, saturation, coil τ, sensor delay): the model step on a grid (x 0–12 mm × 5 forces, from below the 0 A
 # force to above the 2 A force) and on a grid near contact, where the fitted
 # entries cross (x 0–0.87 mm in 0.0725 mm steps × 5 forces), then the
 # control step over one whole drop
@@ -50,7 +51,7 @@ awk -v b="$BEGIN_PC" -v e="$END_PC" -v all="$ALL" '
     split("50 400 1200 2500 90000", forces, " "); nf = 5
     split("-10 100 300 600 90000", near_forces, " ")
     whole = grid * nf; model = whole + near * nf
-    split("flown table|flown + all v2 terms|flown + lag, delay", names, "|"); tables = 3
+    split("flown table|flown + all v2 terms|flown + lag, delay|flown + diagnosed", names, "|"); tables = 4
     per_table = k / tables; per_pass = (per_table - model) / 2
     if (k % tables != 0 || per_pass < 1 || per_pass != int(per_pass)) {
       print "unexpected number of measurements: " k > "/dev/stderr"; exit 1 }

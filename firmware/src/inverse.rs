@@ -4,7 +4,9 @@
 //! (in `tanh(I/I_s)` under a version 2 saturation term), with a knot at every
 //! tabulated current. The answer is the lowest current at which that polyline
 //! equals the target, solved exactly on its segment (under saturation the
-//! current is then mapped back through atanh). The
+//! current is then mapped back through atanh: by a polynomial fitted per
+//! segment when the table is built, within a bound proven there,
+//! `saturation.rs`). The
 //! force need not grow with current (the paper's 2 A loop lies below its 1.5 A
 //! loop in places), so segments are scanned from the lowest current up rather
 //! than bisected. If no current gives the target, the knot with the nearest
@@ -15,7 +17,7 @@
 use crate::flags::Flags;
 use crate::math;
 use crate::model::Branch;
-use crate::table::{CurrentEntry, Table};
+use crate::table::{CurrentEntry, Table, MAX_CURRENTS};
 
 /// A current with the flags that qualify it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -51,50 +53,75 @@ impl Table {
     /// [`Table::current_for_branch`] at velocity `v_m_s`, which a version 2
     /// table's viscous term depends on (see [`crate::model::viscous_velocity`]).
     pub fn current_for_branch_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32) -> CurrentResult {
-        let r = self.plan_current_v(x_mm, v_m_s, branch, target_force_n);
+        let r = self.checked_current_v(x_mm, v_m_s, branch, target_force_n);
         CurrentResult {
             current_a: r.current_a,
             flags: r.flags,
         }
     }
 
-    /// [`Table::current_for_branch_v`], with the force at the result and its
-    /// segment, for the law (inlined there, so the scan is the same code).
+    /// [`Table::current_for_branch_v`] with the force at the result, for the
+    /// law (inlined there, so the scan is the same code). The law's inputs
+    /// spare it three checks the public inverse makes: `target_force_n` is
+    /// finite, `|v_m_s|` is within [`crate::model::VISCOUS_V_LIMIT_M_S`],
+    /// and v ≥ 0 on `branch` = compression (the law plans only while
+    /// compressing). Outside them the answer is unspecified (at worst a
+    /// NaN current, on which the law fails safe with `TABLE_FAULT`).
     #[inline(always)]
-    pub fn plan_current_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32) -> PlanResult {
-        let entries = self.entries();
-        let Some(first) = entries.first() else {
-            return PlanResult {
-                current_a: 0.0,
-                flags: Flags::TABLE_FAULT,
-                force_n: 0.0,
-            };
-        };
+    pub(crate) fn plan_current_v(&self, x_mm: f32, v_m_s: f32, target_force_n: f32) -> PlanResult {
+        let branch = Branch::Compression;
+        if self.has_viscous() {
+            let facts = self.order_facts(branch);
+            // v ≥ 0 ≥ the compression facts' lowest velocity.
+            let in_range = || v_m_s <= facts.v_max_m_s;
+            self.solve_viscous(x_mm, v_m_s, branch, target_force_n, in_range)
+        } else {
+            self.solve_at(x_mm, branch, target_force_n, || true, true, |_, f| f)
+        }
+    }
+
+    /// The inverse at any inputs: a non-finite target is answered with the
+    /// lowest current, flagged; the viscous term's velocity is clamped.
+    #[inline(always)]
+    fn checked_current_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32) -> PlanResult {
         if !target_force_n.is_finite() {
             return PlanResult {
-                current_a: first.current_a,
+                current_a: self.first_entry().current_a,
                 flags: Flags::NON_FINITE_INPUT,
                 force_n: 0.0,
             };
         }
         if self.has_viscous() {
             let v = crate::model::viscous_velocity(v_m_s);
-            let c = &self.terms().viscous_n_s_per_m;
-            // A viscous term can reorder the entries at speed: the order
-            // facts hold for the velocities they were proven for only
-            // (asked only where a fact's x region applies). No "largest
-            // entry" fact: near contact it rarely holds at every velocity,
-            // and its path cost the full scan there 7 instructions.
             let facts = self.order_facts(branch);
             let in_range = || v >= facts.v_min_m_s && v <= facts.v_max_m_s;
-            self.solve_at(x_mm, branch, target_force_n, in_range, false, |k, f| {
-                f + c.get(k).copied().unwrap_or(0.0) * v
-            })
+            self.solve_viscous(x_mm, v, branch, target_force_n, in_range)
         } else {
             // No rate term: nothing per entry beyond the quartic, and the
             // facts hold at any velocity.
             self.solve_at(x_mm, branch, target_force_n, || true, true, |_, f| f)
         }
+    }
+
+    /// The inverse with each entry's viscous term at velocity `v` (within
+    /// the clamp). A viscous term can reorder the entries at speed: the
+    /// order facts hold for the velocities they were proven for only
+    /// (`in_range`, asked only where a fact's x region applies). No
+    /// "largest entry" fact: near contact it rarely holds at every
+    /// velocity, and its path cost the full scan there 7 instructions.
+    #[inline(always)]
+    fn solve_viscous(
+        &self,
+        x_mm: f32,
+        v: f32,
+        branch: Branch,
+        target_force_n: f32,
+        in_range: impl Fn() -> bool,
+    ) -> PlanResult {
+        let c = &self.terms().viscous_n_s_per_m;
+        self.solve_at(x_mm, branch, target_force_n, in_range, false, |k, f| {
+            f + c.get(k).copied().unwrap_or(0.0) * v
+        })
     }
 
     /// The inverse with entry k's quartic force `f` replaced by `with_extra(k, f)`
@@ -109,13 +136,34 @@ impl Table {
         use_top: bool,
         with_extra: impl Fn(usize, f32) -> f32,
     ) -> PlanResult {
-        let entries = self.entries();
+        let entries = self.entry_array();
         // Where the forces are proven to rise with current, or one entry's
         // to be the largest (order.rs), the same answer as the scan below
         // comes from fewer quartics.
         let order = self.order_facts(branch);
-        if x_mm >= order.ascending_from_mm {
-            if x_mm <= self.shared_x_max_mm() && in_range() {
+        // Below `scan_below_mm` (the ascending region's start, at most just
+        // above the shared stroke) an x in the shared stroke needs only its
+        // lower end tested; NaN fails every comparison: clamped path.
+        let in_stroke = if x_mm < self.scan_below_mm(branch) {
+            if x_mm >= self.shared_x_min_mm() {
+                if use_top && x_mm <= order.top_to_mm && in_range() {
+                    let bottom = || x_mm >= order.bottom_from_mm;
+                    let r = match branch {
+                        Branch::Compression => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
+                            with_extra(k, e.compression.eval(x_mm))
+                        }),
+                        Branch::Extension => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
+                            with_extra(k, e.extension.eval(x_mm))
+                        }),
+                    };
+                    return self.current_of(r);
+                }
+                true
+            } else {
+                false
+            }
+        } else if x_mm <= self.shared_x_max_mm() {
+            if in_range() {
                 let r = match branch {
                     Branch::Compression => {
                         solve_ascending(entries, target_force_n, |k, e| with_extra(k, e.compression.eval(x_mm)))
@@ -126,23 +174,14 @@ impl Table {
                 };
                 return self.current_of(r);
             }
-        } else if use_top && x_mm <= order.top_to_mm && x_mm >= self.shared_x_min_mm() && in_range() {
-            // (The velocity range is checked just above.)
-            let bottom = || x_mm >= order.bottom_from_mm;
-            let r = match branch {
-                Branch::Compression => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
-                    with_extra(k, e.compression.eval(x_mm))
-                }),
-                Branch::Extension => solve_below_top(entries, order.top, target_force_n, bottom, |k, e| {
-                    with_extra(k, e.extension.eval(x_mm))
-                }),
-            };
-            return self.current_of(r);
-        }
-        // Entry 0 proven the smallest: asked only when a target lies below
-        // it (the region lies in the shared stroke).
-        let bottom = || x_mm >= order.bottom_from_mm && in_range();
-        if self.in_shared_stroke(x_mm) {
+            true
+        } else {
+            false
+        };
+        if in_stroke {
+            // Entry 0 proven the smallest: asked only when a target lies
+            // below it (the region lies in the shared stroke).
+            let bottom = || x_mm >= order.bottom_from_mm && in_range();
             let r = match branch {
                 Branch::Compression => solve(entries, target_force_n, bottom, |k, e| {
                     with_extra(k, e.compression.eval(x_mm))
@@ -173,18 +212,36 @@ impl Table {
     }
 
     /// The current at fraction `t` of segment `lower` (t = 0 and t = 1:
-    /// exactly the entries' currents): linear in I, or through atanh under saturation.
+    /// exactly the entries' currents): linear in I, or under saturation
+    /// through the segment's map (`saturation.rs`): the polynomial fitted
+    /// when the table was built, inlined (out of line, a call and its
+    /// register moves cost the control step ~15 instructions), else the
+    /// exact atanh.
     #[inline]
     fn current_of(&self, s: Solution) -> PlanResult {
         let (i0, i1) = (s.i0, s.i1);
-        let current_a = if s.t <= 0.0 {
+        // A knot's result is its current. A bracket's t is above 0 (the
+        // target differs from the force at its lower end; an underflow to
+        // 0 maps to i0 anyway): every site sets `on_knot` as a constant,
+        // so the compiler drops this test where it is known.
+        let current_a = if s.on_knot {
             i0
-        } else if s.t >= 1.0 {
-            i1
         } else {
-            let i_s = self.terms().saturation_current_a;
-            if i_s > 0.0 {
-                self.saturated_current_a(s, i_s, i0, i1)
+            // A fitted segment first (one test for the saturated tables'
+            // usual case); a linear table's segments are never fitted.
+            let map = self.segment_map(s.lower);
+            if map.fitted {
+                let current_a = map.eval(i0, s.t);
+                // At least i1 at t = 1, never below i0 (`saturation.rs`).
+                if current_a > i1 {
+                    i1
+                } else {
+                    current_a
+                }
+            } else if s.t >= 1.0 {
+                i1
+            } else if self.saturated() {
+                self.exact_saturated_current_a(s, i0, i1)
             } else {
                 i0 + s.t * (i1 - i0)
             }
@@ -196,31 +253,14 @@ impl Table {
         }
     }
 
-    /// The current at fraction `t` of segment `lower` under saturation:
-    /// w = w0 + t·(w1 − w0), I = I_s·atanh(w). By the addition theorem
-    /// `atanh(w) − atanh(w0) = atanh(u)`, `u = t·Δw / (1 − w0² − t·Δw·w0)`
-    /// (the segment's constants precomputed in `Table::build`), and on a
-    /// segment narrow against I_s u is small, so I = I0 + I_s·atanh(u) by
-    /// its series: no logarithm and one divide. A wide segment takes the
-    /// logarithm. Inlined: out of line, its call and register moves cost the
-    /// every-term control step 15 instructions (BENCHMARKS.md).
-    #[inline(always)]
-    fn saturated_current_a(&self, s: Solution, i_s: f32, i0: f32, i1: f32) -> f32 {
-        let [dw, den0, lin] = self.saturation_segment(s.lower);
-        let u = s.t * dw / (den0 - s.t * lin);
-        if u <= math::ATANH_SERIES_MAX {
-            // u ≥ 0 (0 < t < 1, Δw > 0, and the denominator is at least
-            // 1 − w0·w1 > 0), so the series is ≥ 0 and the sum ≥ i0: only
-            // the upper end can be passed (by rounding).
-            let current_a = i0 + i_s * math::atanh_small(u);
-            if current_a > i1 {
-                i1
-            } else {
-                current_a
-            }
-        } else {
-            math::clamp(i_s * math::atanh(self.knot(s.lower) + s.t * dw), i0, i1)
-        }
+    /// The current at fraction `0 < t < 1` of segment `lower` under
+    /// saturation where no polynomial was fitted (`saturation.rs`):
+    /// `I_s·atanh(w0 + t·Δw)` through the logarithm.
+    #[inline(never)]
+    fn exact_saturated_current_a(&self, s: Solution, i0: f32, i1: f32) -> f32 {
+        let w0 = self.knot(s.lower);
+        let w = w0 + s.t * (self.knot(s.lower + 1) - w0);
+        math::clamp(self.terms().saturation_current_a * math::atanh(w), i0, i1)
     }
 
     /// [`Table::current_for_branch_v`] with the branch from the sign of `v_m_s`.
@@ -233,11 +273,41 @@ impl Table {
     }
 }
 
+/// A table's entries as the scans walk them: the whole fixed array and how
+/// many are in use (at least one), so that a scan tests its end once per
+/// entry and needs no slice of checked length.
+#[derive(Clone, Copy)]
+pub(crate) struct Entries<'a> {
+    pub(crate) all: &'a [CurrentEntry; MAX_CURRENTS],
+    pub(crate) len: usize,
+}
+
+impl<'a> Entries<'a> {
+    #[inline(always)]
+    fn first(&self) -> &'a CurrentEntry {
+        let [first, ..] = self.all;
+        first
+    }
+
+    /// Entries 1, 2, … of the array with their indices (the caller stops at `len`).
+    #[inline(always)]
+    fn rest(&self) -> impl Iterator<Item = (usize, &'a CurrentEntry)> {
+        self.all.iter().enumerate().skip(1)
+    }
+
+    #[inline(always)]
+    fn last_index(&self) -> usize {
+        self.len.saturating_sub(1)
+    }
+}
+
 /// Where the inverse landed: fraction `t` of the segment from entry `lower`
 /// (current `i0`) to `lower + 1` (`i1`); t = 0: on entry `lower` itself.
 /// The scan carries the currents so the result needs no second lookup.
 #[derive(Clone, Copy, Debug)]
 struct Solution {
+    /// On entry `lower` itself (t = 0): no segment to map through.
+    on_knot: bool,
     lower: usize,
     i0: f32,
     i1: f32,
@@ -253,14 +323,12 @@ struct Solution {
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 #[inline(always)]
 fn solve(
-    entries: &[CurrentEntry],
+    entries: Entries<'_>,
     target_force_n: f32,
     bottom: impl Fn() -> bool,
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
-    let Some(first) = entries.first() else {
-        return saturated(0, 0.0, 0.0, Flags::TABLE_FAULT);
-    };
+    let first = entries.first();
     let f0 = force_at(0, first);
     solve_from(entries, first, f0, target_force_n, bottom, force_at)
 }
@@ -271,7 +339,7 @@ fn solve(
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 #[inline(always)]
 fn solve_from(
-    entries: &[CurrentEntry],
+    entries: Entries<'_>,
     first: &CurrentEntry,
     mut f0: f32,
     target_force_n: f32,
@@ -287,7 +355,10 @@ fn solve_from(
     let mut nearest = (f0, first.current_a);
     let mut i_prev = first.current_a;
     if f0 < target_force_n {
-        for (k, entry) in entries.iter().enumerate().skip(1) {
+        for (k, entry) in entries.rest() {
+            if k >= entries.len {
+                break;
+            }
             let force = force_at(k, entry);
             // Reaching the target (or a NaN force, which brackets nothing
             // sensible but must not pass for "below").
@@ -299,12 +370,7 @@ fn solve_from(
             }
             (f0, i_prev) = (force, entry.current_a);
         }
-        return saturated(
-            entries.len().saturating_sub(1),
-            nearest.1,
-            nearest.0,
-            Flags::SATURATED_HIGH,
-        );
+        return saturated(entries.last_index(), nearest.1, nearest.0, Flags::SATURATED_HIGH);
     }
     if f0 == target_force_n {
         return saturated(0, first.current_a, f0, Flags::NONE);
@@ -313,7 +379,10 @@ fn solve_from(
         // Entry 0 is proven the smallest force: nothing falls to the target.
         return saturated(0, first.current_a, f0, Flags::SATURATED_LOW);
     }
-    for (k, entry) in entries.iter().enumerate().skip(1) {
+    for (k, entry) in entries.rest() {
+        if k >= entries.len {
+            break;
+        }
         let force = force_at(k, entry);
         // Falling to or through the target from above.
         if force <= target_force_n {
@@ -334,13 +403,11 @@ fn solve_from(
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 #[inline(always)]
 fn solve_ascending(
-    entries: &[CurrentEntry],
+    entries: Entries<'_>,
     target_force_n: f32,
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
-    let Some(first) = entries.first() else {
-        return saturated(0, 0.0, 0.0, Flags::TABLE_FAULT);
-    };
+    let first = entries.first();
     let f0 = force_at(0, first);
     if !(f0 < target_force_n) {
         let side = if f0 == target_force_n {
@@ -351,14 +418,17 @@ fn solve_ascending(
         return saturated(0, first.current_a, f0, side);
     }
     let (mut f_prev, mut i_prev) = (f0, first.current_a);
-    for (k, entry) in entries.iter().enumerate().skip(1) {
+    for (k, entry) in entries.rest() {
+        if k >= entries.len {
+            break;
+        }
         let force = force_at(k, entry);
         if !(force < target_force_n) {
             return bracket(k, (i_prev, entry.current_a), f_prev, force, target_force_n);
         }
         (f_prev, i_prev) = (force, entry.current_a);
     }
-    saturated(entries.len().saturating_sub(1), i_prev, f_prev, Flags::SATURATED_HIGH)
+    saturated(entries.last_index(), i_prev, f_prev, Flags::SATURATED_HIGH)
 }
 
 /// [`solve`] where entry `top` is proven to give strictly the largest force
@@ -369,13 +439,14 @@ fn solve_ascending(
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 #[inline(always)]
 fn solve_below_top(
-    entries: &[CurrentEntry],
+    entries: Entries<'_>,
     top: usize,
     target_force_n: f32,
     bottom: impl Fn() -> bool,
     mut force_at: impl FnMut(usize, &CurrentEntry) -> f32,
 ) -> Solution {
-    let (Some(first), Some(top_entry)) = (entries.first(), entries.get(top)) else {
+    let first = entries.first();
+    let Some(top_entry) = entries.all.get(top) else {
         return saturated(0, 0.0, 0.0, Flags::TABLE_FAULT);
     };
     let f0 = force_at(0, first);
@@ -384,15 +455,13 @@ fn solve_below_top(
     }
     let f_top = force_at(top, top_entry);
     if f_top < target_force_n {
-        return saturated(
-            entries.len().saturating_sub(1),
-            top_entry.current_a,
-            f_top,
-            Flags::SATURATED_HIGH,
-        );
+        return saturated(entries.last_index(), top_entry.current_a, f_top, Flags::SATURATED_HIGH);
     }
     let (mut f_prev, mut i_prev) = (f0, first.current_a);
-    for (k, entry) in (1..).zip(entries.get(1..top).unwrap_or(&[])) {
+    for (k, entry) in entries.rest() {
+        if k >= top {
+            break;
+        }
         let force = force_at(k, entry);
         if !(force < target_force_n) {
             return bracket(k, (i_prev, entry.current_a), f_prev, force, target_force_n);
@@ -407,6 +476,7 @@ fn solve_below_top(
 #[inline(always)]
 fn bracket(k: usize, currents: (f32, f32), f0: f32, f1: f32, target_force_n: f32) -> Solution {
     Solution {
+        on_knot: false,
         lower: k - 1,
         i0: currents.0,
         i1: currents.1,
@@ -422,6 +492,7 @@ fn bracket(k: usize, currents: (f32, f32), f0: f32, f1: f32, target_force_n: f32
 #[inline(always)]
 fn saturated(lower: usize, current_a: f32, force_n: f32, side: Flags) -> Solution {
     Solution {
+        on_knot: true,
         lower,
         i0: current_a,
         i1: current_a,

@@ -434,7 +434,9 @@ impl ImpactLaw {
                 let force_n = stopping_force_within_n(cfg.mass_kg, self.weight_n, v_m_s, planned_mm);
                 target_force_n = force_n;
                 let ask_n = force_n + self.force_error_n;
-                let r = table.plan_current_v(x_mm, v_m_s, Branch::Compression, ask_n);
+                // Finite, |v| ≤ v_valid_max (checked above, far below the viscous
+                // clamp) and v > 0 here: the plan's preconditions.
+                let r = table.plan_current_v(x_mm, v_m_s, ask_n);
                 flags |= r.flags;
                 self.model_force_n = r.force_n;
                 let wanted_a = if self.coil_alpha < 1.0 {
@@ -461,15 +463,17 @@ impl ImpactLaw {
             }
         };
 
-        // A NaN would clamp to the softest current: fail safe instead, and
-        // flag the table (validation bounds its values, so this is a bug).
-        if !wanted_a.is_finite() {
-            return self.fail_safe(flags | Flags::TABLE_FAULT);
-        }
         let clamped_a = math::clamp(wanted_a, cfg.current_min_a, cfg.current_max_a);
         // The model's force is delivered only if the coil gets the command:
-        // not where the output clamp or the slew limit changes it.
+        // not where the output clamp or the slew limit changes it. A NaN
+        // (or infinite) wanted current differs from its clamp too: it
+        // would clamp to the softest current, so fail safe instead and
+        // flag the table (validation bounds its values, so this is a bug).
+        // Tested only here, where the clamp changed something.
         if clamped_a != wanted_a {
+            if !wanted_a.is_finite() {
+                return self.fail_safe(flags | Flags::TABLE_FAULT);
+            }
             flags |= Flags::OUTPUT_CLAMPED;
             expected_n = 0.0;
         }
@@ -477,9 +481,9 @@ impl ImpactLaw {
         // limit (in `drive_for`); the configured one stands in for it otherwise.
         // The result stays in the output range: it lies between `clamped_a`
         // and the last command, and every command (fail-safe included) is
-        // in that range.
-        let current_a = if self.coil_alpha < 1.0 {
-            clamped_a
+        // in that range. One test of the coil model for both.
+        let (current_a, drive_a) = if self.coil_alpha < 1.0 {
+            (clamped_a, self.drive_for(clamped_a))
         } else {
             let max_step_a = cfg.slew_a_per_s * cfg.period_s;
             let slewed_a = math::clamp(
@@ -491,7 +495,9 @@ impl ImpactLaw {
                 flags |= Flags::SLEW_LIMITED;
                 expected_n = 0.0;
             }
-            slewed_a
+            // No lag: the coil current is the command.
+            self.coil_a = slewed_a;
+            (slewed_a, slewed_a)
         };
 
         self.last_current_a = current_a;
@@ -501,7 +507,6 @@ impl ImpactLaw {
             // No plan this period: the look-ahead's trend starts afresh.
             self.planned_last = false;
         }
-        let drive_a = self.drive_for(current_a);
         // Every other exit goes through `fail_safe`, which clears it.
         self.expected_n = expected_n;
         Command {
@@ -567,13 +572,10 @@ impl ImpactLaw {
     }
 
     /// The drive that takes the modelled coil current to `wanted_a` in one
-    /// period (the inverse of the first-order lag), clamped to the driver.
+    /// period (the inverse of the first-order lag, `coil_alpha` < 1),
+    /// clamped to the driver.
     #[inline]
     fn drive_for(&mut self, wanted_a: f32) -> f32 {
-        if self.coil_alpha >= 1.0 {
-            self.coil_a = wanted_a;
-            return wanted_a;
-        }
         let drive = self.coil_a + (wanted_a - self.coil_a) / self.coil_alpha;
         let drive = math::clamp(drive, self.cfg.drive_min_a, self.cfg.drive_max_a);
         self.coil_a += self.coil_alpha * (drive - self.coil_a);

@@ -24,6 +24,7 @@ pub mod model;
 pub mod order;
 pub mod overcurrent;
 pub mod pacing;
+pub mod saturation;
 pub mod status;
 pub mod table;
 pub mod upload;

@@ -49,20 +49,6 @@ pub fn atanh(w: f32) -> f32 {
     0.5 * ln((1.0 + w) / (1.0 - w))
 }
 
-/// Largest argument [`atanh_small`] takes: there its series' remainder,
-/// below `u^15/(15·(1 − u²))`, is 2e-7 of the result.
-pub const ATANH_SERIES_MAX: f32 = 0.4;
-
-/// `atanh(u)` for `0 ≤ u ≤` [`ATANH_SERIES_MAX`] by its series
-/// `u + u³/3 + … + u¹³/13` (Horner in u²): no divide, no logarithm.
-#[inline]
-pub fn atanh_small(u: f32) -> f32 {
-    let s = u * u;
-    let series =
-        (((((s * (1.0 / 13.0) + 1.0 / 11.0) * s + 1.0 / 9.0) * s + 1.0 / 7.0) * s + 1.0 / 5.0) * s + 1.0 / 3.0) * s;
-    u + u * series
-}
-
 /// `e^x` to about 2e-7 relative (Cephes' `exp2f`: `2^n · 2^f`, n the nearest
 /// integer to x·log2 e, a degree 6 polynomial for 2^f on |f| ≤ ½), in ~20
 /// instructions without a table: cheap enough for the control period, and

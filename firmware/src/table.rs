@@ -9,6 +9,7 @@
 //! corrupt or inconsistent table is never evaluated.
 use crate::model::Branch;
 use crate::order::OrderFacts;
+use crate::saturation::SegmentMap;
 use crc::{Crc, CRC_32_ISO_HDLC};
 
 /// Most currents one table can hold (fixed size: no heap on the board).
@@ -264,10 +265,12 @@ pub struct Table {
     /// Each entry's interpolation knot: its current, or `tanh(I/I_s)` under
     /// saturation (computed once here, not per period).
     knots: [f32; MAX_CURRENTS],
-    /// Per segment `[w1 − w0, 1 − w0², (w1 − w0)·w0]` under saturation:
-    /// the constants of the inverse's atanh addition theorem (see
-    /// `inverse.rs`), computed once here, not per period.
-    saturation_segments: [[f32; 3]; MAX_CURRENTS],
+    /// True under a saturation term (interpolation in tanh(I/I_s)).
+    saturated: bool,
+    /// Per segment under saturation: the inverse's map from the segment
+    /// fraction back to current, a polynomial fitted here (`saturation.rs`)
+    /// or the exact atanh where no fit is within its tolerance.
+    segment_maps: [SegmentMap; MAX_CURRENTS],
     /// The sensor delay d as the factors of a prediction across it:
     /// `[d·10³, ½·d²·10³]` (mm per m/s, mm per m/s²).
     delay_factors: [f32; 2],
@@ -289,6 +292,10 @@ pub struct Table {
     /// with fewer quartics there (with a viscous term: for the velocities
     /// they carry).
     order: [OrderFacts; 2],
+    /// Per branch: where the inverse's ascending region starts, but at most
+    /// just above the shared stroke (the next f32 after its top), so that
+    /// an x below it lies at or below the shared stroke's top.
+    scan_below_mm: [f32; 2],
 }
 
 impl Table {
@@ -318,7 +325,8 @@ impl Table {
             crc32: content_crc(version, entries, &terms),
             terms,
             knots: [0.0; MAX_CURRENTS],
-            saturation_segments: [[0.0; 3]; MAX_CURRENTS],
+            saturated: terms.saturation_current_a > 0.0,
+            segment_maps: [SegmentMap::EXACT; MAX_CURRENTS],
             delay_factors: [
                 terms.sensor_delay_s * 1.0e3,
                 0.5 * terms.sensor_delay_s * terms.sensor_delay_s * 1.0e3,
@@ -329,6 +337,7 @@ impl Table {
             end_low_n: [[0.0; 2]; MAX_CURRENTS],
             end_high_n: [[0.0; 2]; MAX_CURRENTS],
             order: [OrderFacts::NONE; 2],
+            scan_below_mm: [f32::INFINITY; 2],
         };
         let ends = table.end_low_n.iter_mut().zip(table.end_high_n.iter_mut());
         for (((slot, knot), entry), (low, high)) in table
@@ -373,10 +382,19 @@ impl Table {
         for (facts, branch) in table.order.iter_mut().zip([Branch::Compression, Branch::Extension]) {
             *facts = OrderFacts::prove(entries, &terms.viscous_n_s_per_m, branch, lo_mm, hi_mm);
         }
-        let knots = table.knots.get(..table.len).unwrap_or(&[]);
-        for (segment, pair) in table.saturation_segments.iter_mut().zip(knots.windows(2)) {
-            if let [w0, w1] = *pair {
-                *segment = [w1 - w0, 1.0 - w0 * w0, (w1 - w0) * w0];
+        table.set_scan_below();
+        if table.saturated {
+            let knots = table.knots.get(..table.len).unwrap_or(&[]);
+            for ((map, pair), currents) in table
+                .segment_maps
+                .iter_mut()
+                .zip(knots.windows(2))
+                .zip(entries.windows(2))
+            {
+                if let (&[w0, w1], [e0, e1]) = (pair, currents) {
+                    let fit = SegmentMap::fit(w0, w1, terms.saturation_current_a, e0.current_a, e1.current_a);
+                    *map = fit.map_or(SegmentMap::EXACT, |f| f.map);
+                }
             }
         }
         Ok(table)
@@ -410,6 +428,23 @@ impl Table {
         head
     }
 
+    /// The entries as the inverse's scans walk them.
+    #[inline(always)]
+    pub(crate) fn entry_array(&self) -> crate::inverse::Entries<'_> {
+        crate::inverse::Entries {
+            all: &self.entries,
+            len: self.len,
+        }
+    }
+
+    /// Entry 0: every table has one (`build` refuses an empty one), so
+    /// the inverse needs no check for it.
+    #[inline(always)]
+    pub(crate) fn first_entry(&self) -> &CurrentEntry {
+        let [first, ..] = &self.entries;
+        first
+    }
+
     pub fn version(&self) -> u16 {
         self.version
     }
@@ -437,13 +472,19 @@ impl Table {
         self.delay_factors
     }
 
-    /// Segment `index`'s saturation constants `[Δw, 1 − w0², Δw·w0]`
-    /// (`index` < [`MAX_CURRENTS`]: the mask only spares the bounds check).
+    /// True under a saturation term.
     #[inline(always)]
-    pub(crate) fn saturation_segment(&self, index: usize) -> [f32; 3] {
+    pub(crate) fn saturated(&self) -> bool {
+        self.saturated
+    }
+
+    /// Segment `index`'s map back to current under saturation (`index` <
+    /// [`MAX_CURRENTS`]: the mask only spares the bounds check).
+    #[inline(always)]
+    pub fn segment_map(&self, index: usize) -> &SegmentMap {
         const _: () = assert!(MAX_CURRENTS.is_power_of_two());
         #[allow(clippy::indexing_slicing)] // masked below the array's length
-        self.saturation_segments[index & (MAX_CURRENTS - 1)]
+        &self.segment_maps[index & (MAX_CURRENTS - 1)]
     }
 
     /// True when some entry has a viscous term (else the model skips it).
@@ -485,15 +526,38 @@ impl Table {
         }
     }
 
+    fn set_scan_below(&mut self) {
+        let above_stroke = next_up(self.shared_x_max_mm);
+        for (below, facts) in self.scan_below_mm.iter_mut().zip(self.order) {
+            *below = if facts.ascending_from_mm < above_stroke {
+                facts.ascending_from_mm
+            } else {
+                above_stroke
+            };
+        }
+    }
+
+    /// Where `branch`'s ascending region starts, at most just above the
+    /// shared stroke (see the field).
+    #[inline(always)]
+    pub(crate) fn scan_below_mm(&self, branch: Branch) -> f32 {
+        match branch {
+            Branch::Compression => self.scan_below_mm[0],
+            Branch::Extension => self.scan_below_mm[1],
+        }
+    }
+
     /// The same table without the proven order facts: the inverse then
     /// always scans every entry it needs, keeping the nearest force. The
     /// reference the shortcut is tested against.
     #[doc(hidden)]
     pub fn without_order_facts(&self) -> Table {
-        Table {
+        let mut table = Table {
             order: [OrderFacts::NONE; 2],
             ..*self
-        }
+        };
+        table.set_scan_below();
+        table
     }
 
     /// Entry `index` (= `e`)'s force on `branch` at `x_mm` clamped to its
@@ -529,6 +593,19 @@ impl Table {
             _ => (0.0, 0.0),
         }
     }
+}
+
+/// The next f32 above a finite or infinite `x` (`f32::next_up`, which the
+/// workspace's minimum Rust version lacks); NaN stays NaN.
+fn next_up(x: f32) -> f32 {
+    if x.is_nan() || x == f32::INFINITY {
+        return x;
+    }
+    if x == 0.0 {
+        return f32::from_bits(1);
+    }
+    let bits = x.to_bits();
+    f32::from_bits(if x > 0.0 { bits + 1 } else { bits - 1 })
 }
 
 fn validate_entries(entries: &[CurrentEntry]) -> Result<(), TableError> {

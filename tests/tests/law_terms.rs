@@ -207,3 +207,26 @@ fn the_look_ahead_caps_the_wanted_current_from_the_plans_trend() {
     let coil = law.coil_estimate_a() as f64;
     assert!((coil - expected).abs() < 1e-4, "{coil} vs {expected}");
 }
+
+/// The law's non-finite test now sits behind the output clamp's (a NaN
+/// wanted current differs from its clamp): it must still fail safe. A
+/// configuration that lets a velocity of 1e38 m/s through (finite, so
+/// valid) makes the stopping force infinite; the plan, outside its
+/// preconditions, gives a NaN current, and the law commands the fail-safe
+/// current with `TABLE_FAULT` instead of the softest one.
+#[test]
+fn a_nan_plan_fails_safe_behind_the_output_clamp() {
+    let cfg = LawConfig {
+        v_valid_max_m_s: f32::MAX,
+        ..LawConfig::default()
+    };
+    let mut law = ImpactLaw::new(cfg).unwrap();
+    let table = Table::with_terms(&mre_core::generated_table::GENERATED_ENTRIES, ModelTerms::EVERY_TERM).unwrap();
+    let cmd = law.step(&table, 1.0, 1.0e38);
+    assert!(
+        cmd.flags
+            .contains(mre_core::Flags::FAIL_SAFE | mre_core::Flags::TABLE_FAULT),
+        "{cmd:?}"
+    );
+    assert_eq!(cmd.current_a, cfg.failsafe_current_a);
+}

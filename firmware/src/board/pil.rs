@@ -362,7 +362,8 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
 ///
 /// The windows come in a fixed order, which `icount.sh` labels (it repeats
 /// the constants below): per table (the flown one, then the same entries
-/// with every format 2 term), the model grid, then the control step over
+/// with every format 2 term, with coil lag and sensor delay, and with the
+/// terms diagnosis finds on real data), the model grid, then the control step over
 /// one whole drop with the velocity sensor, then the same drop without it.
 #[cfg(feature = "bench")]
 pub mod icount {
@@ -490,6 +491,16 @@ pub mod icount {
         ..ModelTerms::NONE
     };
 
+    /// What `mre diagnose` finds on real drop data: a viscous term that
+    /// rises with current (10, 15, …, 30 N·s/m on the five entries), a
+    /// saturation current, the coil's τ and a sensor delay.
+    const DIAGNOSED: ModelTerms = ModelTerms {
+        viscous_n_s_per_m: [10.0, 15.0, 20.0, 25.0, 30.0, 0.0, 0.0, 0.0],
+        saturation_current_a: 1.5,
+        sensor_delay_s: 1.0e-4,
+        coil_tau_s: 2.0e-3,
+    };
+
     /// The flown table and its control step over the drop, then the same
     /// on the flown entries with other terms.
     fn measure(flown: &Table, ctl: &Controller, terms: ModelTerms) {
@@ -505,7 +516,8 @@ pub mod icount {
 
     /// The flown table, then the same entries with every version 2 term
     /// (coil τ, sensor delay, viscous, saturation: the worst path), then
-    /// with coil lag and sensor delay only (what `mre pil` flies).
+    /// with coil lag and sensor delay only (what `mre pil` flies), then
+    /// with the terms diagnosis finds on real data.
     pub fn run(ctl: &mut Controller) {
         // No SysTick interrupts inside the measured windows.
         // SAFETY: only SYST is touched; the executor has not started yet.
@@ -520,6 +532,7 @@ pub mod icount {
         control_steps(ctl);
         measure(&flown, ctl, ModelTerms::EVERY_TERM);
         measure(&flown, ctl, LAG_AND_DELAY);
+        measure(&flown, ctl, DIAGNOSED);
         defmt::info!("icount bench done");
         semihosting::process::exit(0)
     }
