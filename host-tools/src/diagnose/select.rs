@@ -528,6 +528,11 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
     let pool = decision_pool(prep, after.insample_on_validate, all_recordings);
     let local_stats = support::local(before, &after, &pool, noise_n);
     let scale = scale_stats(prep, before, &after, effect, th);
+    // The scale test (9999 simulated gain sets) runs at most once: `judge`
+    // asks for it only when no other route passes, and the comparison
+    // reports it either way.
+    let scale_test = std::cell::OnceCell::new();
+    let scale_lazy = scale.as_ref().map(|s| move || *scale_test.get_or_init(|| s.test(&[])));
     let j = judge(
         prep,
         &sse_before,
@@ -537,7 +542,7 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
         th,
         min_units,
         local_open.then_some(&local_stats),
-        scale.as_ref(),
+        scale_lazy.as_ref().map(|f| f as &dyn Fn() -> ScaleTest),
         all_recordings,
     );
     // BIC on the in-sample fit: n·ln(SSE/n) + k·ln(n). For saturation the
@@ -582,7 +587,7 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
         ratio_pool: j.ratio,
         route: j.route.filter(|_| accepted),
         local_open,
-        scale_test: scale.as_ref().map(|s| s.test(&[])),
+        scale_test: scale_lazy.map(|f| f()),
         scale,
     }
 }
@@ -694,7 +699,11 @@ struct Judgement {
 ///   `local_min_residual_over_noise` × noise): judged where the term acts
 ///   ([`support`]): ratio on the support ≥ `min_local_ratio`, a paired
 ///   z ≥ `min_local_z` with autocorrelation-corrected sample counts, most
-///   support recordings improving, and the pool's ratio ≥ `min_local_pool_ratio`.
+///   support recordings improving, and the pool's ratio ≥ `min_local_pool_ratio`;
+/// - *scale* (`scale` given: `stress_softening` over a run order): the
+///   gains' test with `excluded` left out, p ≤ `max_scale_p`. Its 9999
+///   simulations are costly, so `scale` is called only when no other route
+///   passes.
 #[allow(clippy::too_many_arguments)]
 fn judge(
     prep: &Prepared,
@@ -705,7 +714,7 @@ fn judge(
     th: &Thresholds,
     min_units: usize,
     local: Option<&LocalStats>,
-    scale: Option<&ScaleStats>,
+    scale: Option<&dyn Fn() -> ScaleTest>,
     all_recordings: bool,
 ) -> Judgement {
     let pool: Vec<usize> = decision_pool(prep, on_validate, all_recordings)
@@ -723,7 +732,7 @@ fn judge(
     {
         j.route = Some("local");
     }
-    if j.route.is_none() && scale.is_some_and(|s| s.test(excluded).p <= th.max_scale_p) {
+    if j.route.is_none() && scale.is_some_and(|test| test().p <= th.max_scale_p) {
         j.route = Some("scale");
     }
     j
@@ -794,6 +803,9 @@ pub fn nested_ratio(prep: &Prepared, tested: &[Comparison], winner: usize, th: &
                 let on_validate = c.scored.insample_on_validate;
                 let own = scoring_units(prep, on_validate).contains(u);
                 let min_units = th.min_consistent_units.saturating_sub(usize::from(own));
+                // The scale test without this unit's gains, run only if
+                // no other route passes.
+                let scale_test = c.scale.as_ref().map(|s| move || s.test(u));
                 let j = judge(
                     prep,
                     &c.sse_before,
@@ -803,7 +815,7 @@ pub fn nested_ratio(prep: &Prepared, tested: &[Comparison], winner: usize, th: &
                     th,
                     min_units,
                     c.local_open.then_some(&c.local_stats),
-                    c.scale.as_ref(),
+                    scale_test.as_ref().map(|f| f as &dyn Fn() -> ScaleTest),
                     c.effect == Some(Effect::HysteresisMemory),
                 );
                 accepts(prep, &j, c.delta_bic, &c.scored, c.effect, th).then_some((k, j.ratio))
