@@ -472,7 +472,7 @@ pub struct Comparison {
     /// Held-out RMSE ratio over the decision pool only: what the decision
     /// and the ranking between accepted candidates read.
     pub ratio_pool: f64,
-    /// Which route accepted it: `large`, `consistent` or `local`.
+    /// Which route accepted it: `large`, `consistent`, `all_but_one`, `local` or `scale`.
     pub route: Option<&'static str>,
     /// Whether the local route was open to it.
     pub local_open: bool,
