@@ -300,8 +300,8 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
         "Accept only if the held-out RMSE ratio is ≥ {:.2} and its 95 % bootstrap lower bound (resampling \
          recordings) ≥ {:.2}, or every held-out scoring unit improves — whole cross-validation folds of fit \
          recordings, or each validate recording for a term that only changes how validate currents are \
-         predicted; at least {} units, a sign test at p ≤ 2^−{} — and the ratio is ≥ {:.2}; this second route \
-         only for vocabulary terms and while the model's held-out RMSE is ≥ {}× the force noise; or, for \
+         predicted; at least {} units, a sign test at p ≤ 2^−{} — and the ratio is ≥ {:.2}, or every unit but \
+         one at a ratio ≥ {:.2}; this second route only for vocabulary terms and while the model's held-out RMSE is ≥ {}× the force noise; or, for \
          vocabulary terms while that RMSE is ≥ {}× the noise, judged on the term's support (the samples where \
          its held-out prediction changes by more than 2× the noise and the change's RMS): ratio there ≥ {:.2}, \
          a paired z ≥ {:.1} with autocorrelation-corrected sample counts, ≥ {:.0} % of at least {} support \
@@ -312,6 +312,7 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
         d.thresholds.min_consistent_units,
         d.thresholds.min_consistent_units,
         d.thresholds.min_ratio_consistent,
+        d.thresholds.min_ratio_all_but_one,
         d.thresholds.consistent_min_residual_over_noise,
         d.thresholds.local_min_residual_over_noise,
         d.thresholds.min_local_ratio,
