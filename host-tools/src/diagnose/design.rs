@@ -316,9 +316,6 @@ pub struct Solution {
     pub beta: Vec<f64>,
     /// Softening Δ (0 when the model has no softening).
     pub delta: f64,
-    /// The softening covariates g the training recordings span: a
-    /// prediction reads g clamped to it ([`Designs::predict`]).
-    pub g_span: (f64, f64),
     pub sse: f64,
 }
 
@@ -391,7 +388,6 @@ impl Designs {
                 return Ok(Solution {
                     beta,
                     delta: 0.0,
-                    g_span: (f64::NEG_INFINITY, f64::INFINITY),
                     sse: ls.sse,
                 });
             }
@@ -420,13 +416,9 @@ impl Designs {
             return self.solve_scaled(prep, train, &|_| 1.0);
         };
         let g: Vec<f64> = prep.recs.iter().map(|r| law.covariate(r)).collect();
-        let g_span = train.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &i| {
-            (l.min(g[i]), h.max(g[i]))
-        });
         let at = |delta: f64| {
             self.solve_scaled(prep, train, &|i| 1.0 - delta * g[i]).map(|mut s| {
                 s.delta = delta;
-                s.g_span = g_span;
                 s
             })
         };
@@ -473,21 +465,10 @@ impl Designs {
         out
     }
 
-    /// Predicted force of recording `i`. Its softening covariate is clamped
-    /// to the span the training recordings cover: outside it the level
-    /// `(1 − Δ·g)·Q` is an extrapolation of Δ and Q's trade-off, which the
-    /// training data do not pin (held out, the first test of a run order
-    /// has g = 0 while every training test is past the onset, and a
-    /// depth that fits them equally well at any level predicted it 0.36×
-    /// as well as the model without softening). Inside the span the level
-    /// is pinned by the training tests nearest in g.
+    /// Predicted force of recording `i`.
     pub fn predict(&self, prep: &Prepared, i: usize, sol: &Solution) -> Vec<f64> {
         let s = match self.terms.softening {
-            Some(law) => {
-                let (lo, hi) = sol.g_span;
-                let g = law.covariate(&prep.recs[i]);
-                1.0 - sol.delta * if lo <= hi { g.clamp(lo, hi) } else { g }
-            }
+            Some(law) => 1.0 - sol.delta * law.covariate(&prep.recs[i]),
             None => 1.0,
         };
         let mut p = self.recs[i].predict(&sol.beta);
