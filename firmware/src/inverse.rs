@@ -86,7 +86,7 @@ impl Table {
     fn checked_current_v(&self, x_mm: f32, v_m_s: f32, branch: Branch, target_force_n: f32) -> PlanResult {
         if !target_force_n.is_finite() {
             return PlanResult {
-                current_a: self.first_entry().current_a,
+                current_a: self.entry_array().first().current_a,
                 flags: Flags::NON_FINITE_INPUT,
                 force_n: 0.0,
             };
@@ -283,6 +283,8 @@ pub(crate) struct Entries<'a> {
 }
 
 impl<'a> Entries<'a> {
+    /// Entry 0: every table has one (`Table::build` refuses an empty one),
+    /// so no check is needed.
     #[inline(always)]
     fn first(&self) -> &'a CurrentEntry {
         let [first, ..] = self.all;

@@ -437,14 +437,6 @@ impl Table {
         }
     }
 
-    /// Entry 0: every table has one (`build` refuses an empty one), so
-    /// the inverse needs no check for it.
-    #[inline(always)]
-    pub(crate) fn first_entry(&self) -> &CurrentEntry {
-        let [first, ..] = &self.entries;
-        first
-    }
-
     pub fn version(&self) -> u16 {
         self.version
     }
