@@ -17,11 +17,15 @@ compile_error!("enable one board: use `--no-default-features` with `board-nucleo
 compile_error!("enable a board feature (board-b-l475e-iot01a, board-nucleo-l476rg or pil)");
 
 #[cfg(feature = "hw")]
+mod flash_upload;
+#[cfg(feature = "hw")]
+pub use flash_upload::{boot_table, spawn_uplink};
+#[cfg(feature = "hw")]
 mod stm32l4;
 #[cfg(all(feature = "hw", feature = "bench"))]
 pub use stm32l4::bench_model_step;
 #[cfg(feature = "hw")]
-pub use stm32l4::{boot_table, core_clock_hz, cycles, halt_fail_safe, init, spawn_uplink, Board, Status, NAME};
+pub use stm32l4::{core_clock_hz, cycles, halt_fail_safe, init, Board, Status, NAME};
 
 #[cfg(feature = "pil")]
 mod pil;
