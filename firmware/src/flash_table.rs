@@ -25,6 +25,13 @@ pub const PAGE_FORMAT: u32 = 1;
 const HEADER_BYTES: usize = 16;
 /// STM32L4 flash pages are 2 KiB, written in 8-byte double words.
 pub const PAGE_BYTES: usize = 2048;
+/// The STM32L4's 1 MiB flash: two 512 KiB banks from 0x0800_0000.
+pub const FLASH_BASE_ADDRESS: u32 = 0x0800_0000;
+pub const FLASH_BANK_BYTES: u32 = 512 * 1024;
+/// The table page: the last page of bank 2 (`memory.x` region `TABLE_PAGE`;
+/// the image's FLASH region ends at the bank boundary, so nothing is linked
+/// in bank 2 and read-while-write keeps the control loop running from bank 1).
+pub const TABLE_PAGE_ADDRESS: u32 = FLASH_BASE_ADDRESS + 2 * FLASH_BANK_BYTES - PAGE_BYTES as u32;
 pub const WRITE_ALIGN: usize = 8;
 const MAX_IMAGE_BYTES: usize = HEADER_BYTES + 4 * CONFIG_MAX_WORDS + WRITE_ALIGN;
 const CRC32: Crc<u32> = Crc::<u32>::new(&CRC_32_ISO_HDLC);

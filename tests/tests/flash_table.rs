@@ -102,3 +102,33 @@ fn a_torn_or_corrupt_page_is_refused() {
     page.bytes[4..8].copy_from_slice(&9u32.to_le_bytes());
     assert_eq!(load(&mut page).unwrap_err(), PageError::UnsupportedFormat(9));
 }
+
+/// `memory.x` as the linker reads it: the image's FLASH region must end at
+/// the bank boundary (bank 2 is erased and written while bank 1 runs), and the
+/// `TABLE_PAGE` region must be the page the firmware writes.
+#[test]
+fn the_linker_keeps_the_image_in_bank_1_and_names_the_table_page() {
+    use mre_core::flash_table::{FLASH_BANK_BYTES, FLASH_BASE_ADDRESS, PAGE_BYTES, TABLE_PAGE_ADDRESS};
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../memory.x")).unwrap();
+    let region = |name: &str| -> (u32, u32) {
+        let line = text
+            .lines()
+            .find(|l| l.trim_start().starts_with(name) && l.contains("ORIGIN"))
+            .unwrap_or_else(|| panic!("memory.x has no {name} region"));
+        let origin = line.split("ORIGIN = 0x").nth(1).unwrap().split(',').next().unwrap();
+        let length = line.split("LENGTH = ").nth(1).unwrap().trim().trim_end_matches('K');
+        (
+            u32::from_str_radix(origin.trim(), 16).unwrap(),
+            length.parse::<u32>().unwrap() * 1024,
+        )
+    };
+    let (flash, flash_len) = region("FLASH ");
+    assert_eq!(flash, FLASH_BASE_ADDRESS);
+    // RM0351: bank 2 of a 1 MiB STM32L47x starts at 0x0808_0000.
+    assert_eq!(flash + flash_len, 0x0808_0000, "FLASH must end at the bank boundary");
+    assert_eq!(FLASH_BASE_ADDRESS + FLASH_BANK_BYTES, 0x0808_0000);
+    let (page, page_len) = region("TABLE_PAGE");
+    assert_eq!(page, TABLE_PAGE_ADDRESS);
+    assert_eq!(page, 0x080F_F800, "the last 2 KiB page of the 1 MiB flash");
+    assert_eq!(page_len as usize, PAGE_BYTES);
+}

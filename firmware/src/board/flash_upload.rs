@@ -7,11 +7,11 @@ use mre_core::upload::{choose_boot_table, BootTable};
 
 use super::stm32l4::Board;
 
-/// The flash page reserved for an uploaded table: the last 2 KiB of the
-/// 1 MiB flash (memory.x ends FLASH before it). It lies in bank 2 and the
-/// image (≤ 64 KiB) in bank 1: the L4's read-while-write lets the control
-/// loop keep running from bank 1 while the page is erased and written.
-const TABLE_PAGE_OFFSET: u32 = 1024 * 1024 - mre_core::flash_table::PAGE_BYTES as u32;
+/// The flash page reserved for an uploaded table (`memory.x`'s `TABLE_PAGE`),
+/// as an offset into the flash. It lies in bank 2 and the image in bank 1
+/// (memory.x ends FLASH at the bank boundary): the L4's read-while-write lets
+/// the control loop keep running from bank 1 while the page is erased and written.
+const TABLE_PAGE_OFFSET: u32 = mre_core::flash_table::TABLE_PAGE_ADDRESS - mre_core::flash_table::FLASH_BASE_ADDRESS;
 
 /// embassy-stm32's async flash driver: on the L4 its erase and write wait
 /// for the FLASH interrupt instead of holding a critical section (the
