@@ -672,12 +672,47 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
     Ok((table, cfg))
 }
 
+/// Which words of a blob have arrived: one bit per word, sized from
+/// [`CONFIG_MAX_WORDS`] (the largest table with every term).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ReceivedWords([u32; RECEIVED_WORDS_LEN]);
+
+const RECEIVED_WORDS_LEN: usize = CONFIG_MAX_WORDS.div_ceil(32);
+
+impl ReceivedWords {
+    pub const fn none() -> Self {
+        Self([0; RECEIVED_WORDS_LEN])
+    }
+
+    /// Marks word `at`; false (nothing marked) when it is past the largest blob.
+    pub fn mark(&mut self, at: usize) -> bool {
+        if at >= CONFIG_MAX_WORDS {
+            return false;
+        }
+        match self.0.get_mut(at / 32) {
+            Some(bits) => {
+                *bits |= 1 << (at % 32);
+                true
+            }
+            None => false,
+        }
+    }
+
+    pub fn has(&self, at: usize) -> bool {
+        at < CONFIG_MAX_WORDS && self.0.get(at / 32).is_some_and(|bits| bits & (1 << (at % 32)) != 0)
+    }
+
+    /// Every word `0..n` has arrived (false when `n` exceeds the largest blob).
+    pub fn all_below(&self, n: usize) -> bool {
+        n <= CONFIG_MAX_WORDS && (0..n).all(|at| self.has(at))
+    }
+}
+
 /// Collects config chunks into a blob (firmware side).
 #[derive(Clone, Copy, Debug)]
 pub struct ConfigCollector {
     words: [u32; CONFIG_MAX_WORDS],
-    /// Bit k set: word k received.
-    received: u128,
+    received: ReceivedWords,
 }
 
 impl Default for ConfigCollector {
@@ -690,7 +725,7 @@ impl ConfigCollector {
     pub const fn new() -> Self {
         Self {
             words: [0; CONFIG_MAX_WORDS],
-            received: 0,
+            received: ReceivedWords::none(),
         }
     }
 
@@ -703,16 +738,15 @@ impl ConfigCollector {
                     let at = (index as usize).saturating_add(k);
                     if let Some(slot) = self.words.get_mut(at) {
                         *slot = *w;
-                        self.received |= 1u128 << at;
+                        self.received.mark(at);
                     }
                 }
                 None
             }
             ConfigChunk::Commit { total_words } => {
                 let n = total_words as usize;
-                let all = if n >= 128 { u128::MAX } else { (1u128 << n) - 1 };
                 let result = match self.words.get(..n) {
-                    Some(words) if n <= CONFIG_MAX_WORDS && self.received & all == all => decode_config(words),
+                    Some(words) if self.received.all_below(n) => decode_config(words),
                     _ => Err(ConfigBlobError::Incomplete),
                 };
                 *self = Self::new();

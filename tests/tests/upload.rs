@@ -218,3 +218,66 @@ fn a_ping_is_answered_with_a_hello_and_never_stored() {
     assert!(answers.iter().all(|a| a.seq == 0 && a.flags == Flags::NONE));
     assert!(page.bytes.iter().all(|&b| b == 0xFF));
 }
+
+/// The largest table the format holds: `MAX_CURRENTS` entries, format 2 with
+/// every term (a viscous coefficient on each entry), so the blob is
+/// `CONFIG_MAX_WORDS` long and its last words lie past bit 127.
+fn largest_table() -> Table {
+    use mre_core::table::{CurrentEntry, ModelTerms, Quartic, FORMAT_VERSION, MAX_CURRENTS};
+    let entries: Vec<CurrentEntry> = (0..MAX_CURRENTS)
+        .map(|k| CurrentEntry {
+            current_a: 0.25 * k as f32,
+            compression: Quartic::new([0.0, 0.0, 0.5, 100.0 + 200.0 * k as f32, 0.0]),
+            extension: Quartic::new([0.0, 0.0, 0.1, 30.0 + 60.0 * k as f32, 0.0]),
+            x_min_mm: -0.01,
+            x_max_mm: 12.0,
+        })
+        .collect();
+    let mut terms = ModelTerms::EVERY_TERM;
+    for (k, c) in terms.viscous_n_s_per_m.iter_mut().enumerate() {
+        *c = 5.0 * (k + 1) as f32;
+    }
+    let table = Table::with_terms(&entries, terms).unwrap();
+    assert_eq!(table.version(), FORMAT_VERSION);
+    table
+}
+
+#[test]
+fn the_largest_table_with_every_term_uploads_and_flies_at_boot() {
+    let table = largest_table();
+    let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+    let words = blob(&table, &cfg);
+    // 2 header + 13 per entry + 3 terms + 1 viscous per entry + 13 law + 7 control.
+    assert_eq!(words.len(), 2 + 8 * 13 + 3 + 8 + 13 + 7);
+    assert_eq!(words.len(), CONFIG_MAX_WORDS);
+    let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
+    let answers = send(&mut port, &mut page, &frames(&words));
+    assert_eq!(answers.len(), 1);
+    assert_eq!(answers[0].flags, Flags::NONE);
+    let boot = choose_boot_table(&mut page, &GENERATED_TABLE, DEFAULT_RATE_HZ);
+    assert_eq!(boot.source, TableSource::Uploaded);
+    let flown = boot.table.unwrap();
+    assert_eq!(flown.entries(), table.entries());
+    assert_eq!(flown.terms(), table.terms());
+    assert_eq!(boot.config.unwrap(), cfg);
+}
+
+#[test]
+fn a_word_missing_past_bit_127_is_noticed() {
+    let words = blob(&largest_table(), &ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap());
+    // The frame that carries words 129..132 is lost: the commit must see the gap.
+    let mut fr = frames(&words);
+    fr.remove(129 / 3);
+    let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
+    let mut results = Vec::new();
+    for b in fr.iter().flatten() {
+        if let Some(PortEvent::Commit(r)) = port.push(*b, &mut page) {
+            results.push(r);
+        }
+    }
+    assert_eq!(
+        results.as_slice(),
+        &[Err(UploadError::Refused(ConfigBlobError::Incomplete))]
+    );
+    assert!(page.bytes.iter().all(|&b| b == 0xFF));
+}
