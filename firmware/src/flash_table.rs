@@ -43,6 +43,15 @@ pub trait TablePage {
     fn erase(&mut self) -> Result<(), FlashError>;
     /// `offset` and `data.len()` are multiples of [`WRITE_ALIGN`].
     fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), FlashError>;
+    /// Before the first erase or program of an update. The STM32L4 boards
+    /// disable the flash data cache here: ST's errata (STM32L47x/L48x, "Data
+    /// cache might be corrupted during Flash memory read-while-write
+    /// operation") prescribe it while one bank is erased or programmed as the
+    /// other is read.
+    fn begin_update(&mut self) {}
+    /// After the last erase or program of an update, failed or not, and
+    /// before the page is read back: reset the data cache, then re-enable it.
+    fn end_update(&mut self) {}
 }
 
 /// A page in RAM that behaves like STM32L4 flash (erase to 0xFF, aligned
@@ -182,7 +191,11 @@ pub fn store<P: TablePage + ?Sized>(page: &mut P, table: &Table, cfg: &ControlCo
         }
     }
     let len = (HEADER_BYTES + 4 * n).div_ceil(WRITE_ALIGN) * WRITE_ALIGN;
-    page.erase()?;
-    page.write(0, image.get(..len).unwrap_or(&[]))?;
+    page.begin_update();
+    let written = page
+        .erase()
+        .and_then(|()| page.write(0, image.get(..len).unwrap_or(&[])));
+    page.end_update();
+    written?;
     load(page).map(|_| ())
 }

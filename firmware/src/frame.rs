@@ -497,6 +497,8 @@ pub enum ConfigBlobError {
     Table(crate::table::TableError),
     Control(crate::control::ControlConfigError),
     BadRebound,
+    /// Consistent, but outside what the board's hardware takes (`limits`).
+    OutOfLimits(crate::limits::Limit),
 }
 
 /// Appends the blob for `table` and `cfg` to `out` (returns the word count):
@@ -573,8 +575,9 @@ pub fn encode_config(table: &Table, cfg: &ControlConfig, out: &mut [u32; CONFIG_
 }
 
 /// Inverse of [`encode_config`], with full validation: the table goes
-/// through `Table::from_image` (version, invariants, CRC) and the control
-/// configuration through `ControlConfig::validate`.
+/// through `Table::from_image` (version, invariants, CRC), the control
+/// configuration through `ControlConfig::validate` and the board's hard
+/// limits (`limits::BOARD`).
 pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlobError> {
     let mut it = words.iter().copied();
     let mut next = || it.next().ok_or(ConfigBlobError::Incomplete);
@@ -669,6 +672,7 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
         disagree_samples: crate::control::DISAGREE_SAMPLES,
     };
     cfg.validate().map_err(ConfigBlobError::Control)?;
+    crate::limits::check(&cfg, &crate::limits::BOARD).map_err(ConfigBlobError::OutOfLimits)?;
     Ok((table, cfg))
 }
 

@@ -19,6 +19,7 @@ pub mod frame;
 pub mod generated_table;
 pub mod inverse;
 pub mod law;
+pub mod limits;
 pub mod math;
 pub mod model;
 pub mod order;

@@ -34,6 +34,7 @@ impl UploadError {
     pub fn as_str(&self) -> &'static str {
         match self {
             UploadError::Refused(ConfigBlobError::Incomplete) => "incomplete (a frame was lost or corrupt)",
+            UploadError::Refused(ConfigBlobError::OutOfLimits(_)) => "a value is outside the board's hard limits",
             UploadError::Refused(_) => "table or configuration refused",
             UploadError::Page(e) => e.as_str(),
         }

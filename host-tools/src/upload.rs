@@ -38,9 +38,29 @@ pub fn upload_payload(model: &Path, rate_hz: u32) -> Result<(Table, ControlConfi
     Ok((table, cfg))
 }
 
+/// The board's hard limits (`mre_core::limits::BOARD`), checked before
+/// sending: the board would refuse the same values.
+pub fn check_board_limits(cfg: &ControlConfig) -> Result<()> {
+    use mre_core::limits::{check, BOARD};
+    if let Err(limit) = check(cfg, &BOARD) {
+        let range = limit.range(&BOARD);
+        bail!(
+            "{} = {} is outside the board's limits {} to {} ({}); nothing was sent",
+            limit.name(),
+            limit.value(cfg),
+            range.min,
+            range.max,
+            limit.why()
+        );
+    }
+    Ok(())
+}
+
 /// Sends `table` and `cfg` over an open link and waits for the answer.
-/// Fails when the board refuses or could not store them.
+/// Fails, before sending, when a value is outside the board's hard limits,
+/// and when the board refuses or could not store them.
 pub fn upload_over(link: &mut PilLink, table: &Table, cfg: &ControlConfig) -> Result<Uploaded> {
+    check_board_limits(cfg)?;
     let mut words = [0u32; CONFIG_MAX_WORDS];
     let n = encode_config(table, cfg, &mut words);
     let answer = link.send_config_words(&words[..n])?;
@@ -61,4 +81,22 @@ pub fn run_upload(port: &Path, model: &Path, rate_hz: Option<u32>) -> Result<Upl
     let mut link = PilLink::serial(port, HELLO_TIMEOUT)
         .context("is the board powered and running the firmware, and is PORT its ST-LINK VCP?")?;
     upload_over(&mut link, &table, &cfg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_out_of_limit_value_is_named_in_a_sentence() {
+        let mut cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+        check_board_limits(&cfg).unwrap();
+        cfg.law.failsafe_current_a = 0.0;
+        let msg = check_board_limits(&cfg).unwrap_err().to_string();
+        assert!(
+            msg.starts_with("failsafe_current_a = 0 is outside the board's limits 1 to 2 ("),
+            "{msg}"
+        );
+        assert!(msg.ends_with("; nothing was sent"), "{msg}");
+    }
 }

@@ -238,7 +238,7 @@ mod config_upload {
         let mut cfg = ControlConfig::at_rate(20_000).unwrap();
         cfg.law.stroke_max_mm = 12.0;
         cfg.law.rebound = ReboundPolicy::Fixed { current_a: 0.5 };
-        cfg.stuck_samples = 0;
+        cfg.stuck_samples = 20;
         (table, cfg)
     }
 

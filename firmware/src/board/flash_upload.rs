@@ -18,23 +18,55 @@ const TABLE_PAGE_OFFSET: u32 = mre_core::flash_table::TABLE_PAGE_ADDRESS - mre_c
 /// blocking driver masks interrupts for the whole ~22 ms page erase, which
 /// would stall the control loop and trip the 5 ms watchdog). The upload task
 /// polls each operation to completion in thread mode.
-struct FlashPage(embassy_stm32::flash::Flash<'static, embassy_stm32::flash::Async>);
+///
+/// embassy-stm32 0.6.0 does not handle the data cache on the L4 (its
+/// `flash/l.rs` leaves FLASH_ACR alone; embassy's later sources save, disable
+/// and reset it, commit 1b9e61437 "fix STM32L4 corrupted data cache after
+/// erase/write"), so this page does, in `begin_update` / `end_update`.
+struct FlashPage {
+    flash: embassy_stm32::flash::Flash<'static, embassy_stm32::flash::Async>,
+    /// FLASH_ACR.DCEN before the update began.
+    data_cache_was_on: bool,
+}
 
 impl mre_core::flash_table::TablePage for FlashPage {
     fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), mre_core::flash_table::FlashError> {
-        self.0
+        self.flash
             .blocking_read(TABLE_PAGE_OFFSET + offset as u32, buf)
             .map_err(|_| mre_core::flash_table::FlashError)
     }
 
     fn erase(&mut self) -> Result<(), mre_core::flash_table::FlashError> {
         let end = TABLE_PAGE_OFFSET + mre_core::flash_table::PAGE_BYTES as u32;
-        embassy_futures::block_on(self.0.erase(TABLE_PAGE_OFFSET, end)).map_err(|_| mre_core::flash_table::FlashError)
+        embassy_futures::block_on(self.flash.erase(TABLE_PAGE_OFFSET, end))
+            .map_err(|_| mre_core::flash_table::FlashError)
     }
 
     fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), mre_core::flash_table::FlashError> {
-        embassy_futures::block_on(self.0.write(TABLE_PAGE_OFFSET + offset as u32, data))
+        embassy_futures::block_on(self.flash.write(TABLE_PAGE_OFFSET + offset as u32, data))
             .map_err(|_| mre_core::flash_table::FlashError)
+    }
+
+    /// ST errata sheet ES0250 (STM32L471/475/476/486; §2.2.2 as embassy's
+    /// fix cites it), "Data cache might be corrupted during Flash memory
+    /// read-while-write operation": the data cache is disabled while bank 2
+    /// is erased or programmed. The control loop keeps running from bank 1,
+    /// its literals uncached meanwhile.
+    fn begin_update(&mut self) {
+        let acr = embassy_stm32::pac::FLASH.acr();
+        self.data_cache_was_on = acr.read().dcen();
+        acr.modify(|w| w.set_dcen(false));
+    }
+
+    /// The erratum's second half: reset the data cache (DCRST works only
+    /// with DCEN clear), then re-enable it, before anything reads the page.
+    fn end_update(&mut self) {
+        let acr = embassy_stm32::pac::FLASH.acr();
+        acr.modify(|w| w.set_dcrst(true));
+        acr.modify(|w| w.set_dcrst(false));
+        if self.data_cache_was_on {
+            acr.modify(|w| w.set_dcen(true));
+        }
     }
 }
 
@@ -52,7 +84,10 @@ impl Uplink {
     ) -> Self {
         Self {
             uart,
-            page: FlashPage(flash),
+            page: FlashPage {
+                flash,
+                data_cache_was_on: false,
+            },
         }
     }
 }
@@ -72,6 +107,11 @@ pub fn spawn_uplink(spawner: &embassy_executor::Spawner, board: &mut Board) {
     let Some(Uplink { uart: Some(uart), page }) = board.uplink.take() else {
         return;
     };
+    if cfg!(feature = "uploads-disabled") {
+        // Deployment build: the VCP is unauthenticated (firmware/README.md).
+        defmt::info!("table upload: disabled in this build (feature uploads-disabled)");
+        return;
+    }
     match upload_task(uart, page) {
         Ok(token) => spawner.spawn(token),
         Err(_) => defmt::error!("upload task already running"),
@@ -108,6 +148,15 @@ async fn upload_task(mut uart: BufferedUart<'static>, mut page: FlashPage) {
                     t.crc32(),
                     t.entries().len(),
                     c.rate_hz
+                ),
+                PortEvent::Commit(Err(mre_core::upload::UploadError::Refused(
+                    mre_core::frame::ConfigBlobError::OutOfLimits(limit),
+                ))) => defmt::warn!(
+                    "table upload not stored: {=str} is outside the board's limits {=f32}..{=f32} ({=str})",
+                    limit.name(),
+                    limit.range(&mre_core::limits::BOARD).min,
+                    limit.range(&mre_core::limits::BOARD).max,
+                    limit.why()
                 ),
                 PortEvent::Commit(Err(e)) => defmt::warn!(
                     "table upload not stored: {=str} ({=u16} frames rejected so far)",
