@@ -398,7 +398,9 @@ impl SampleReceiver {
 // On commit the firmware decodes the blob, validates the table (its own
 // CRC-32 and invariants, `Table::from_image`) and the configuration, and
 // answers with a hello frame (sequence 0) whose flags are `NONE` when it
-// switched, or `TABLE_FAULT` when it refused and kept its built-in table.
+// switched, or `TABLE_FAULT` when it refused and kept its built-in table; its
+// `rejected` field then says why (`upload::CommitAnswer`: incomplete,
+// invalid, a named value out of the board's limits, not at rest, page failed).
 
 pub const KIND_CONFIG: u8 = 3;
 /// Header (2) + 13 per table entry + law (13) + control (7).

@@ -67,7 +67,7 @@ fuzz_target!(|data: &[u8]| {
                     result = Some(r);
                 }
             }
-            if let Some(PortEvent::Commit(r)) = port.push(b, &mut page) {
+            if let Some(PortEvent::Commit(r)) = port.push(b, &mut page, true) {
                 stored = Some(r);
             }
         }

@@ -56,6 +56,31 @@ pub fn check_board_limits(cfg: &ControlConfig) -> Result<()> {
     Ok(())
 }
 
+/// What a board's answer to a commit says, as a sentence.
+pub fn refusal(code: u16) -> String {
+    use mre_core::limits::BOARD;
+    use mre_core::upload::{CommitAnswer, REST_BEFORE_UPLOAD_S};
+    match CommitAnswer::from_code(code) {
+        Some(CommitAnswer::NotAtRest) => format!(
+            "the board did not store the upload because the damper was not at rest (armed, idle and still for {REST_BEFORE_UPLOAD_S} s); retry when it is still"
+        ),
+        Some(CommitAnswer::OutOfLimits(limit)) => {
+            let range = limit.range(&BOARD);
+            format!(
+                "the board refused the upload: {} is outside its limits {} to {} ({})",
+                limit.name(),
+                range.min,
+                range.max,
+                limit.why()
+            )
+        }
+        Some(CommitAnswer::Incomplete) => "the board received the upload incomplete (a frame was lost or corrupt)".into(),
+        Some(CommitAnswer::Invalid) => "the board refused the table or configuration as invalid (its log says why)".into(),
+        Some(CommitAnswer::PageFailed) => "the board could not write or read back its flash page".into(),
+        Some(CommitAnswer::Stored) | None => "the board refused the upload or could not store it (its log says why)".into(),
+    }
+}
+
 /// Sends `table` and `cfg` over an open link and waits for the answer.
 /// Fails, before sending, when a value is outside the board's hard limits,
 /// and when the board refuses or could not store them.
@@ -65,7 +90,7 @@ pub fn upload_over(link: &mut PilLink, table: &Table, cfg: &ControlConfig) -> Re
     let n = encode_config(table, cfg, &mut words);
     let answer = link.send_config_words(&words[..n])?;
     if answer.flags.contains(Flags::TABLE_FAULT) {
-        bail!("the board refused the upload or could not store it (its log says why); it keeps the table it had");
+        bail!("{}; it keeps the table it had", refusal(answer.rejected));
     }
     Ok(Uploaded {
         table_crc32: table.crc32(),
@@ -98,5 +123,16 @@ mod tests {
             "{msg}"
         );
         assert!(msg.ends_with("; nothing was sent"), "{msg}");
+    }
+
+    #[test]
+    fn the_board_s_reasons_read_as_sentences() {
+        use mre_core::upload::{answer, CommitAnswer, UploadError};
+        let code = |r| mre_core::frame::CommandFrame::decode(&answer(&r)).unwrap().rejected;
+        assert!(refusal(code(Err(UploadError::NotAtRest))).contains("not at rest"));
+        let limit = mre_core::limits::Limit::XValidMax;
+        let r = Err(UploadError::Refused(mre_core::frame::ConfigBlobError::OutOfLimits(limit)));
+        assert_eq!(CommitAnswer::from_code(code(r)), Some(CommitAnswer::OutOfLimits(limit)));
+        assert!(refusal(code(r)).starts_with("the board refused the upload: x_valid_max_mm is outside its limits 1 to 27.5"));
     }
 }

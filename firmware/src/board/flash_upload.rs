@@ -138,7 +138,7 @@ async fn upload_task(mut uart: BufferedUart<'static>, mut page: FlashPage) {
             }
         };
         for &byte in buf.get(..n).unwrap_or_default() {
-            let Some(event) = port.push(byte, &mut page) else {
+            let Some(event) = port.push(byte, &mut page, super::UPLOAD_GATE.at_rest()) else {
                 continue;
             };
             match &event {

@@ -35,6 +35,10 @@ pub use pil::icount;
 pub use pil::{boot_table, core_clock_hz, cycles, halt_fail_safe, init, spawn_uplink, Board, Status, NAME};
 
 use mre_core::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
+
+/// Whether the damper is at rest, for the table upload: written by the
+/// control task after each step, read on an upload's commit.
+pub static UPLOAD_GATE: mre_core::upload::SharedUploadGate = mre_core::upload::SharedUploadGate::new();
 use mre_core::frame::LinkStats;
 use mre_core::law::Command;
 

@@ -413,7 +413,7 @@ fn largest_table() -> Table {
 }
 
 #[test]
-fn the_largest_table_round_trips_and_an_out_of_limit_upload_is_refused_over_qemu_serial() {
+fn the_largest_table_round_trips_and_out_of_limit_or_moving_uploads_are_refused_over_qemu_serial() {
     use crate::upload::{run_upload, upload_over};
     use mre_core::frame::{encode_config, CONFIG_MAX_WORDS};
     let Some((qemu, pty)) = start_on_pty() else { return };
@@ -453,6 +453,16 @@ fn the_largest_table_round_trips_and_an_out_of_limit_upload_is_refused_over_qemu
     )
     .unwrap();
     assert_eq!(first_mismatch(&pil, &in_process, 1.0e-6), None);
+
+    // Mid-drop (the stand-in has been falling for 200 periods): a valid
+    // upload is refused, and the answer says the damper was not at rest.
+    let n = encode_config(&table, &default_cfg, &mut words);
+    let answer = link.send_config_words(&words[..n]).unwrap();
+    assert!(answer.flags.contains(Flags::TABLE_FAULT), "{answer:?}");
+    assert_eq!(
+        mre_core::upload::CommitAnswer::from_code(answer.rejected),
+        Some(mre_core::upload::CommitAnswer::NotAtRest)
+    );
     finish(qemu, link);
 }
 
