@@ -17,6 +17,7 @@ pub mod flags;
 pub mod flash_table;
 pub mod frame;
 pub mod generated_table;
+pub mod installation;
 pub mod inverse;
 pub mod law;
 pub mod limits;

@@ -50,7 +50,7 @@ pub struct BoardLimits {
 pub const COIL_RATING_A: f32 = crate::overcurrent::COIL_RATING_A;
 /// The displacement sensor: 0.3 V = 0 mm … 3.0 V = 25 mm; the ADC's rails
 /// (0 V, 3.3 V: a broken or shorted wire) read these.
-pub const X_SENSOR_MAX_MM: f32 = 25.0;
+pub const X_SENSOR_MAX_MM: f32 = crate::installation::DEFAULT_INSTALLATION.x_sensor_range_mm;
 pub const X_RAIL_LOW_MM: f32 = -2.8;
 pub const X_RAIL_HIGH_MM: f32 = 27.8;
 /// Margin kept inside each rail reading (about 40 ADC codes), so a rail is

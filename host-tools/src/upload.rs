@@ -9,7 +9,8 @@
 //! the firmware's receiver (`mre_core::upload`) is the code the host tests
 //! and the fuzz target (`fuzz/fuzz_targets/upload.rs`) exercise.
 use crate::pil::link::PilLink;
-use crate::table_file::read_table_file;
+use crate::table_file::{read_installation, read_table_file};
+use mre_core::installation::Installation;
 use anyhow::{anyhow, bail, Context, Result};
 use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
 use mre_core::frame::{encode_config, CONFIG_MAX_WORDS};
@@ -25,17 +26,34 @@ pub const HELLO_TIMEOUT: Duration = Duration::from_secs(10);
 #[derive(Clone, Copy, Debug)]
 pub struct Uploaded {
     pub table_crc32: u32,
+    pub mass_kg: f32,
+    pub stroke_mm: f32,
     pub currents: usize,
     pub rate_hz: u32,
     pub words: usize,
 }
 
 /// The table of a model (or table) file with the board's default
-/// configuration at `rate_hz`: what `mre upload` sends.
+/// configuration at `rate_hz`, and the file's `[installation]` if it has one
+/// (mass, usable stroke, coil rating): what `mre upload` sends.
 pub fn upload_payload(model: &Path, rate_hz: u32) -> Result<(Table, ControlConfig)> {
     let table = read_table_file(model)?;
-    let cfg = ControlConfig::at_rate(rate_hz).map_err(|e| anyhow!("control rate {rate_hz} Hz: {e:?}"))?;
+    let mut cfg = ControlConfig::at_rate(rate_hz).map_err(|e| anyhow!("control rate {rate_hz} Hz: {e:?}"))?;
+    if let Some(installation) = read_installation(model)? {
+        apply_installation(&mut cfg, &installation);
+    }
     Ok((table, cfg))
+}
+
+/// The law's installation values: mass, usable stroke, and the output
+/// clamp and fail-safe within the coil's rating. The drive range, the
+/// sensors' scaling and the velocity check are the board's wiring, compiled
+/// into its image, and are not uploaded.
+pub fn apply_installation(cfg: &mut ControlConfig, installation: &Installation) {
+    cfg.law.mass_kg = installation.mass_kg;
+    cfg.law.stroke_max_mm = installation.usable_stroke_mm;
+    cfg.law.current_max_a = installation.coil_rating_a;
+    cfg.law.failsafe_current_a = cfg.law.failsafe_current_a.min(installation.coil_rating_a);
 }
 
 /// The board's hard limits (`mre_core::limits::BOARD`), checked before
@@ -94,6 +112,8 @@ pub fn upload_over(link: &mut PilLink, table: &Table, cfg: &ControlConfig) -> Re
     }
     Ok(Uploaded {
         table_crc32: table.crc32(),
+        mass_kg: cfg.law.mass_kg,
+        stroke_mm: cfg.law.stroke_max_mm,
         currents: table.entries().len(),
         rate_hz: cfg.rate_hz,
         words: n,
@@ -123,6 +143,26 @@ mod tests {
             "{msg}"
         );
         assert!(msg.ends_with("; nothing was sent"), "{msg}");
+    }
+
+    #[test]
+    fn a_model_file_s_installation_is_what_is_sent() {
+        let dir = tempfile::tempdir().unwrap();
+        let base = std::fs::read_to_string(crate::pil::qemu::workspace_root().join("models/drop-none.toml")).unwrap();
+        let with = dir.path().join("lab.toml");
+        std::fs::write(&with, format!("{base}\n[installation]\nmass_kg = 3.0\nusable_stroke_mm = 9.0\n")).unwrap();
+        let (_, cfg) = upload_payload(&with, DEFAULT_RATE_HZ).unwrap();
+        assert_eq!((cfg.law.mass_kg, cfg.law.stroke_max_mm), (3.0, 9.0));
+        check_board_limits(&cfg).unwrap();
+        // Without the section: the image's defaults, the installation's.
+        let (_, cfg) = upload_payload(&crate::pil::qemu::workspace_root().join("models/drop-none.toml"), DEFAULT_RATE_HZ).unwrap();
+        assert_eq!(cfg, ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap());
+        // A stroke past the displacement sensor is named before anything is sent.
+        let bad = dir.path().join("bad.toml");
+        std::fs::write(&bad, format!("{base}\n[installation]\nusable_stroke_mm = 30.0\n")).unwrap();
+        let (_, cfg) = upload_payload(&bad, DEFAULT_RATE_HZ).unwrap();
+        let msg = check_board_limits(&cfg).unwrap_err().to_string();
+        assert!(msg.starts_with("stroke_max_mm = 30 is outside the board's limits 1 to 25"), "{msg}");
     }
 
     #[test]
