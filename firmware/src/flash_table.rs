@@ -139,13 +139,13 @@ impl From<FlashError> for PageError {
 pub fn load<P: TablePage + ?Sized>(page: &mut P) -> Result<(Table, ControlConfig), PageError> {
     let mut header = [0u8; HEADER_BYTES];
     page.read(0, &mut header)?;
-    let word = |k: usize| {
-        let mut w = [0u8; 4];
-        if let Some(src) = header.get(4 * k..4 * k + 4) {
-            w.copy_from_slice(src);
+    let mut header_words = [0u32; HEADER_BYTES / 4];
+    for (w, b) in header_words.iter_mut().zip(header.chunks_exact(4)) {
+        if let Ok(b) = <[u8; 4]>::try_from(b) {
+            *w = u32::from_le_bytes(b);
         }
-        u32::from_le_bytes(w)
-    };
+    }
+    let word = |k: usize| header_words.get(k).copied().unwrap_or(0);
     if word(0) != MAGIC {
         return Err(PageError::Empty);
     }
@@ -157,7 +157,7 @@ pub fn load<P: TablePage + ?Sized>(page: &mut P) -> Result<(Table, ControlConfig
         return Err(PageError::Corrupt);
     }
     let mut bytes = [0u8; 4 * CONFIG_MAX_WORDS];
-    let blob = bytes.get_mut(..4 * n).ok_or(PageError::Corrupt)?;
+    let blob = bytes.get_mut(..n.saturating_mul(4)).ok_or(PageError::Corrupt)?;
     page.read(HEADER_BYTES, blob)?;
     if CRC32.checksum(blob) != word(3) {
         return Err(PageError::Corrupt);
@@ -177,20 +177,20 @@ pub fn store<P: TablePage + ?Sized>(page: &mut P, table: &Table, cfg: &ControlCo
     let n = encode_config(table, cfg, &mut words);
     let mut image = [0xFFu8; MAX_IMAGE_BYTES];
     let mut blob_crc = CRC32.digest();
-    for (k, w) in words.iter().take(n).enumerate() {
+    let (image_header, image_blob) = image.split_at_mut(HEADER_BYTES);
+    for (dst, w) in image_blob.chunks_exact_mut(4).zip(words.iter().take(n)) {
         let b = w.to_le_bytes();
         blob_crc.update(&b);
-        if let Some(dst) = image.get_mut(HEADER_BYTES + 4 * k..HEADER_BYTES + 4 * k + 4) {
-            dst.copy_from_slice(&b);
-        }
+        dst.copy_from_slice(&b);
     }
     let header = [MAGIC, PAGE_FORMAT, n as u32, blob_crc.finalize()];
-    for (k, w) in header.iter().enumerate() {
-        if let Some(dst) = image.get_mut(4 * k..4 * k + 4) {
-            dst.copy_from_slice(&w.to_le_bytes());
-        }
+    for (dst, w) in image_header.chunks_exact_mut(4).zip(header) {
+        dst.copy_from_slice(&w.to_le_bytes());
     }
-    let len = (HEADER_BYTES + 4 * n).div_ceil(WRITE_ALIGN) * WRITE_ALIGN;
+    let len = HEADER_BYTES
+        .saturating_add(n.saturating_mul(4))
+        .div_ceil(WRITE_ALIGN)
+        .saturating_mul(WRITE_ALIGN);
     page.begin_update();
     let written = page
         .erase()

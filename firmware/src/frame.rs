@@ -357,7 +357,7 @@ impl SampleReceiver {
         }
         if let Some(slot) = self.buf.get_mut(self.len) {
             *slot = byte;
-            self.len += 1;
+            self.len = self.len.saturating_add(1);
         }
     }
 
@@ -371,7 +371,7 @@ impl SampleReceiver {
                 self.stats.out_of_order = self.stats.out_of_order.saturating_add(1);
                 return Err(FrameError::OutOfOrder { seq: sample.seq, last });
             }
-            self.stats.lost = self.stats.lost.saturating_add(sample.seq - last - 1);
+            self.stats.lost = self.stats.lost.saturating_add(sample.seq.saturating_sub(last).saturating_sub(1));
         }
         self.last_seq = Some(sample.seq);
         self.stats.accepted = self.stats.accepted.saturating_add(1);
@@ -411,12 +411,20 @@ const TERMS_MAX_WORDS: usize = 3 + MAX_CURRENTS;
 
 fn terms_words(version: u16, count: usize) -> usize {
     if version >= crate::table::FORMAT_VERSION {
-        3 + count
+        count.saturating_add(3)
     } else {
         0
     }
 }
 const LAW_WORDS: usize = 13;
+
+/// The blob's length for `count` entries of format `version`.
+fn blob_words(version: u16, count: usize) -> Option<usize> {
+    count
+        .checked_mul(13)?
+        .checked_add(terms_words(version, count))?
+        .checked_add(2 + LAW_WORDS + CONTROL_WORDS)
+}
 const CONTROL_WORDS: usize = 7;
 
 use crate::control::ControlConfig;
@@ -438,8 +446,8 @@ impl ConfigChunk {
             ConfigChunk::Words { index, count, words } => {
                 put(&mut buf, 0, [s0, s1, KIND_CONFIG, count]);
                 put(&mut buf, 4, index.to_le_bytes());
-                for (k, w) in words.iter().enumerate() {
-                    put(&mut buf, 8 + 4 * k, w.to_le_bytes());
+                for (at, w) in [8, 12, 16].into_iter().zip(words) {
+                    put(&mut buf, at, w.to_le_bytes());
                 }
             }
             ConfigChunk::Commit { total_words } => {
@@ -461,11 +469,11 @@ impl ConfigChunk {
         if count > 3 {
             return Err(FrameError::BadKind { kind: KIND_CONFIG });
         }
-        let w = |k: usize| u32::from_le_bytes(get4(buf, 8 + 4 * k));
+        let w = |at: usize| u32::from_le_bytes(get4(buf, at));
         Ok(ConfigChunk::Words {
             index,
             count,
-            words: [w(0), w(1), w(2)],
+            words: [w(8), w(12), w(16)],
         })
     }
 }
@@ -479,7 +487,7 @@ pub fn config_frames(words: &[u32]) -> impl Iterator<Item = [u8; FRAME_LEN]> + '
             *d = *s;
         }
         ConfigChunk::Words {
-            index: 3 * k as u32,
+            index: (k as u32).saturating_mul(3),
             count: chunk.len() as u8,
             words: three,
         }
@@ -517,7 +525,7 @@ pub fn encode_config(table: &Table, cfg: &ControlConfig, out: &mut [u32; CONFIG_
     let mut push = |w: u32| {
         if let Some(slot) = words.next() {
             *slot = w;
-            n += 1;
+            n = n.saturating_add(1);
         }
     };
     push(u32::from(table.version()) | ((entries.len() as u32) << 16));
@@ -586,7 +594,7 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
     let head = next()?;
     let version = (head & 0xFFFF) as u16;
     let count = (head >> 16) as usize;
-    if count > MAX_CURRENTS || words.len() != 2 + 13 * count + terms_words(version, count) + LAW_WORDS + CONTROL_WORDS {
+    if count > MAX_CURRENTS || Some(words.len()) != blob_words(version, count) {
         return Err(ConfigBlobError::Incomplete);
     }
     let crc32 = next()?;
