@@ -198,7 +198,9 @@ impl Stats {
         if self.step_cycles_count == 0 {
             0
         } else {
-            self.step_cycles_sum.checked_div(u64::from(self.step_cycles_count)).unwrap_or(0) as u32
+            self.step_cycles_sum
+                .checked_div(u64::from(self.step_cycles_count))
+                .unwrap_or(0) as u32
         }
     }
 }

@@ -139,13 +139,14 @@ impl From<FlashError> for PageError {
 pub fn load<P: TablePage + ?Sized>(page: &mut P) -> Result<(Table, ControlConfig), PageError> {
     let mut header = [0u8; HEADER_BYTES];
     page.read(0, &mut header)?;
-    let mut header_words = [0u32; HEADER_BYTES / 4];
-    for (w, b) in header_words.iter_mut().zip(header.chunks_exact(4)) {
-        if let Ok(b) = <[u8; 4]>::try_from(b) {
-            *w = u32::from_le_bytes(b);
+    let word = |k: usize| {
+        let mut w = [0u8; 4];
+        let at = k.wrapping_mul(4);
+        if let Some(src) = header.get(at..at.wrapping_add(4)) {
+            w.copy_from_slice(src);
         }
-    }
-    let word = |k: usize| header_words.get(k).copied().unwrap_or(0);
+        u32::from_le_bytes(w)
+    };
     if word(0) != MAGIC {
         return Err(PageError::Empty);
     }
@@ -177,15 +178,20 @@ pub fn store<P: TablePage + ?Sized>(page: &mut P, table: &Table, cfg: &ControlCo
     let n = encode_config(table, cfg, &mut words);
     let mut image = [0xFFu8; MAX_IMAGE_BYTES];
     let mut blob_crc = CRC32.digest();
-    let (image_header, image_blob) = image.split_at_mut(HEADER_BYTES);
-    for (dst, w) in image_blob.chunks_exact_mut(4).zip(words.iter().take(n)) {
+    for (k, w) in words.iter().take(n).enumerate() {
         let b = w.to_le_bytes();
         blob_crc.update(&b);
-        dst.copy_from_slice(&b);
+        let at = k.wrapping_mul(4).wrapping_add(HEADER_BYTES);
+        if let Some(dst) = image.get_mut(at..at.wrapping_add(4)) {
+            dst.copy_from_slice(&b);
+        }
     }
     let header = [MAGIC, PAGE_FORMAT, n as u32, blob_crc.finalize()];
-    for (dst, w) in image_header.chunks_exact_mut(4).zip(header) {
-        dst.copy_from_slice(&w.to_le_bytes());
+    for (k, w) in header.iter().enumerate() {
+        let at = k.wrapping_mul(4);
+        if let Some(dst) = image.get_mut(at..at.wrapping_add(4)) {
+            dst.copy_from_slice(&w.to_le_bytes());
+        }
     }
     let len = HEADER_BYTES
         .saturating_add(n.saturating_mul(4))

@@ -371,7 +371,10 @@ impl SampleReceiver {
                 self.stats.out_of_order = self.stats.out_of_order.saturating_add(1);
                 return Err(FrameError::OutOfOrder { seq: sample.seq, last });
             }
-            self.stats.lost = self.stats.lost.saturating_add(sample.seq.saturating_sub(last).saturating_sub(1));
+            self.stats.lost = self
+                .stats
+                .lost
+                .saturating_add(sample.seq.saturating_sub(last).saturating_sub(1));
         }
         self.last_seq = Some(sample.seq);
         self.stats.accepted = self.stats.accepted.saturating_add(1);
@@ -446,8 +449,8 @@ impl ConfigChunk {
             ConfigChunk::Words { index, count, words } => {
                 put(&mut buf, 0, [s0, s1, KIND_CONFIG, count]);
                 put(&mut buf, 4, index.to_le_bytes());
-                for (at, w) in [8, 12, 16].into_iter().zip(words) {
-                    put(&mut buf, at, w.to_le_bytes());
+                for (k, w) in words.iter().enumerate() {
+                    put(&mut buf, k.wrapping_mul(4).wrapping_add(8), w.to_le_bytes());
                 }
             }
             ConfigChunk::Commit { total_words } => {
@@ -469,11 +472,11 @@ impl ConfigChunk {
         if count > 3 {
             return Err(FrameError::BadKind { kind: KIND_CONFIG });
         }
-        let w = |at: usize| u32::from_le_bytes(get4(buf, at));
+        let w = |k: usize| u32::from_le_bytes(get4(buf, k.wrapping_mul(4).wrapping_add(8)));
         Ok(ConfigChunk::Words {
             index,
             count,
-            words: [w(8), w(12), w(16)],
+            words: [w(0), w(1), w(2)],
         })
     }
 }
@@ -682,7 +685,7 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
         disagree_samples: crate::control::DISAGREE_SAMPLES,
     };
     cfg.validate().map_err(ConfigBlobError::Control)?;
-    crate::limits::check(&cfg, &crate::limits::BOARD).map_err(ConfigBlobError::OutOfLimits)?;
+    crate::limits::check_board(&cfg).map_err(ConfigBlobError::OutOfLimits)?;
     Ok((table, cfg))
 }
 

@@ -94,7 +94,9 @@ pub const STM32L4_BOARD: BoardLimits = BoardLimits {
 /// The limits this build enforces.
 pub const BOARD: BoardLimits = STM32L4_BOARD;
 
-/// One limited value of a configuration.
+/// One limited value of a configuration. The discriminant is the index in
+/// [`Limit::ALL`], [`BoardLimits::ranges`] and the answer code
+/// (`upload::CommitAnswer`): keep the three in this order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Limit {
     CurrentMin,
@@ -177,51 +179,84 @@ impl Limit {
     }
 
     pub fn range(&self, limits: &BoardLimits) -> Range {
-        match self {
-            Limit::CurrentMin | Limit::CurrentMax | Limit::ReboundCurrent => limits.current_a,
-            Limit::FailsafeCurrent => limits.failsafe_current_a,
-            Limit::Stroke => limits.stroke_mm,
-            Limit::XValidMin => limits.x_valid_min_mm,
-            Limit::XValidMax => limits.x_valid_max_mm,
-            Limit::VValidMax => limits.v_valid_max_m_s,
-            Limit::Mass => limits.mass_kg,
-            Limit::Gravity => limits.gravity_m_s2,
-            Limit::RangeFaultSamples => limits.range_fault_samples,
-            Limit::StuckSamples => limits.stuck_samples,
-            Limit::OverrunLimit => limits.overrun_limit,
-            Limit::OverrunWindow => limits.overrun_window,
-        }
+        let nothing = Range {
+            min: f32::NAN,
+            max: f32::NAN,
+        };
+        limits.ranges().get(*self as usize).copied().unwrap_or(nothing)
     }
 
     /// The configuration's value (counts as f32: exact below 2^24).
     pub fn value(&self, cfg: &ControlConfig) -> f32 {
-        let law = &cfg.law;
-        match self {
-            Limit::CurrentMin => law.current_min_a,
-            Limit::CurrentMax => law.current_max_a,
-            Limit::ReboundCurrent => match law.rebound {
-                ReboundPolicy::Fixed { current_a } => current_a,
-                // No current of its own: the output clamp's.
-                ReboundPolicy::Minimum | ReboundPolicy::Hold => law.current_min_a,
-            },
-            Limit::FailsafeCurrent => law.failsafe_current_a,
-            Limit::Stroke => law.stroke_max_mm,
-            Limit::XValidMin => law.x_valid_min_mm,
-            Limit::XValidMax => law.x_valid_max_mm,
-            Limit::VValidMax => law.v_valid_max_m_s,
-            Limit::Mass => law.mass_kg,
-            Limit::Gravity => law.gravity_m_s2,
-            Limit::RangeFaultSamples => f32::from(cfg.range_fault_samples),
-            Limit::StuckSamples => f32::from(cfg.stuck_samples),
-            Limit::OverrunLimit => f32::from(cfg.overrun_limit),
-            Limit::OverrunWindow => f32::from(cfg.overrun_window),
-        }
+        values(cfg).get(*self as usize).copied().unwrap_or(f32::NAN)
     }
 }
 
+impl BoardLimits {
+    /// The ranges in [`Limit::ALL`]'s order.
+    pub const fn ranges(&self) -> [Range; 14] {
+        [
+            self.current_a,
+            self.current_a,
+            self.current_a,
+            self.failsafe_current_a,
+            self.stroke_mm,
+            self.x_valid_min_mm,
+            self.x_valid_max_mm,
+            self.v_valid_max_m_s,
+            self.mass_kg,
+            self.gravity_m_s2,
+            self.range_fault_samples,
+            self.stuck_samples,
+            self.overrun_limit,
+            self.overrun_window,
+        ]
+    }
+}
+
+/// The limited values of `cfg` in [`Limit::ALL`]'s order (one straight
+/// pass: the board checks every upload with it).
+fn values(cfg: &ControlConfig) -> [f32; 14] {
+    let law = &cfg.law;
+    let rebound_a = match law.rebound {
+        ReboundPolicy::Fixed { current_a } => current_a,
+        // No current of its own: the output clamp's.
+        ReboundPolicy::Minimum | ReboundPolicy::Hold => law.current_min_a,
+    };
+    [
+        law.current_min_a,
+        law.current_max_a,
+        rebound_a,
+        law.failsafe_current_a,
+        law.stroke_max_mm,
+        law.x_valid_min_mm,
+        law.x_valid_max_mm,
+        law.v_valid_max_m_s,
+        law.mass_kg,
+        law.gravity_m_s2,
+        f32::from(cfg.range_fault_samples),
+        f32::from(cfg.stuck_samples),
+        f32::from(cfg.overrun_limit),
+        f32::from(cfg.overrun_window),
+    ]
+}
+
+/// [`BOARD`]'s ranges, laid out once in flash.
+static BOARD_RANGES: [Range; 14] = BOARD.ranges();
+
 /// The first value of `cfg` outside `limits`, if any.
 pub fn check(cfg: &ControlConfig, limits: &BoardLimits) -> Result<(), Limit> {
-    match Limit::ALL.iter().find(|l| !l.range(limits).contains(l.value(cfg))) {
+    check_ranges(cfg, &limits.ranges())
+}
+
+/// [`check`] against this build's [`BOARD`] (what the decoder runs).
+pub fn check_board(cfg: &ControlConfig) -> Result<(), Limit> {
+    check_ranges(cfg, &BOARD_RANGES)
+}
+
+fn check_ranges(cfg: &ControlConfig, ranges: &[Range; 14]) -> Result<(), Limit> {
+    let outside = values(cfg).iter().zip(ranges).position(|(v, r)| !r.contains(*v));
+    match outside.and_then(|k| Limit::ALL.get(k)) {
         Some(l) => Err(*l),
         None => Ok(()),
     }

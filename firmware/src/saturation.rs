@@ -122,7 +122,11 @@ impl SegmentMap {
             let v = i_s * s / n.wrapping_mul(2) as f32;
             // 2n + 4 roundings, each relative to at most |pm| + |pp|.
             set(&mut a, n, v);
-            set(&mut err, n, n.wrapping_mul(2).wrapping_add(4) as f32 * EPS * i_s * (pm + pp) / n.wrapping_mul(2) as f32);
+            set(
+                &mut err,
+                n,
+                n.wrapping_mul(2).wrapping_add(4) as f32 * EPS * i_s * (pm + pp) / n.wrapping_mul(2) as f32,
+            );
             n = n.wrapping_add(1);
         }
         // The series' tail on |y| ≤ y_max: |a_n|·y_maxⁿ ≤ I_s/(2n)·(ρⁿ + ρ₊ⁿ).
@@ -154,7 +158,9 @@ impl SegmentMap {
             while j.wrapping_add(1).wrapping_mul(2) <= n {
                 let m = n.wrapping_sub(j.wrapping_mul(2));
                 let numerator = m.wrapping_mul(m.wrapping_sub(1)) as u32;
-                let denominator = 4usize.wrapping_mul(j.wrapping_add(1)).wrapping_mul(n.wrapping_sub(j).wrapping_sub(1).max(1)) as u32;
+                let denominator = 4usize
+                    .wrapping_mul(j.wrapping_add(1))
+                    .wrapping_mul(n.wrapping_sub(j).wrapping_sub(1).max(1)) as u32;
                 t_j = t_j.wrapping_mul(numerator).checked_div(denominator).unwrap_or(0);
                 j = j.wrapping_add(1);
                 let tk = if j % 2 == 1 { -(t_j as f32) } else { t_j as f32 };

@@ -597,7 +597,11 @@ fn next_up(x: f32) -> f32 {
         return f32::from_bits(1);
     }
     let bits = x.to_bits();
-    f32::from_bits(if x > 0.0 { bits.wrapping_add(1) } else { bits.wrapping_sub(1) })
+    f32::from_bits(if x > 0.0 {
+        bits.wrapping_add(1)
+    } else {
+        bits.wrapping_sub(1)
+    })
 }
 
 fn validate_entries(entries: &[CurrentEntry]) -> Result<(), TableError> {

@@ -18,14 +18,14 @@
 //! Boot then picks the table with [`choose_boot_table`]: a valid page first,
 //! else the built-in image.
 use crate::control::{ControlConfig, ControlConfigError, Controller};
-use crate::law::Command;
-use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use crate::flash_table::{load, store, PageError, TablePage};
 use crate::frame::{
     CommandFrame, ConfigBlobError, ConfigChunk, ConfigCollector, Incoming, SampleReceiver, FRAME_LEN, PING_SEQ,
 };
+use crate::law::Command;
 use crate::table::{Table, TableError, TableImage};
 use crate::Flags;
+use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 
 /// Why an upload was not stored.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,6 +47,17 @@ impl UploadError {
             UploadError::Refused(_) => "table or configuration refused",
             UploadError::NotAtRest => "the damper is not at rest (not stored; retry when it is still)",
             UploadError::Page(e) => e.as_str(),
+        }
+    }
+}
+
+impl UploadError {
+    /// The index in `limits::Limit::ALL` of the value out of the board's
+    /// limits (`mre upload` names it from the answer), if that is why.
+    pub fn limit_index(&self) -> Option<u8> {
+        match self {
+            UploadError::Refused(ConfigBlobError::OutOfLimits(l)) => Some(*l as u8),
+            _ => None,
         }
     }
 }
@@ -84,11 +95,7 @@ impl UploadGate {
             && cmd.target_force_n == 0.0
             && cmd.branch == crate::Branch::Extension
             && ctl.is_at_rest();
-        self.still_periods = if still {
-            self.still_periods.saturating_add(1)
-        } else {
-            0
-        };
+        self.still_periods = if still { self.still_periods.saturating_add(1) } else { 0 };
     }
 
     pub fn still_periods(&self) -> u32 {
@@ -121,7 +128,8 @@ impl SharedUploadGate {
         let mut gate = UploadGate::with_still_periods(self.still_periods.load(Ordering::Relaxed));
         gate.observe(ctl, cmd);
         self.still_periods.store(gate.still_periods(), Ordering::Relaxed);
-        self.at_rest.store(gate.at_rest(ctl.config().rate_hz), Ordering::Relaxed);
+        self.at_rest
+            .store(gate.at_rest(ctl.config().rate_hz), Ordering::Relaxed);
     }
 
     pub fn at_rest(&self) -> bool {
@@ -275,10 +283,8 @@ impl CommitAnswer {
             CommitAnswer::Invalid => CODE_INVALID,
             CommitAnswer::NotAtRest => CODE_NOT_AT_REST,
             CommitAnswer::PageFailed => CODE_PAGE_FAILED,
-            CommitAnswer::OutOfLimits(l) => {
-                let index = crate::limits::Limit::ALL.iter().position(|x| x == l).unwrap_or(0);
-                CODE_OUT_OF_LIMITS.saturating_add(u16::try_from(index).unwrap_or(0))
-            }
+            // `Limit` is fieldless: its discriminant is its index in `Limit::ALL`.
+            CommitAnswer::OutOfLimits(l) => CODE_OUT_OF_LIMITS.saturating_add(*l as u16),
         }
     }
 

@@ -10,10 +10,10 @@
 //! and the fuzz target (`fuzz/fuzz_targets/upload.rs`) exercise.
 use crate::pil::link::PilLink;
 use crate::table_file::{read_installation, read_table_file};
-use mre_core::installation::Installation;
 use anyhow::{anyhow, bail, Context, Result};
 use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
 use mre_core::frame::{encode_config, CONFIG_MAX_WORDS};
+use mre_core::installation::Installation;
 use mre_core::table::Table;
 use mre_core::Flags;
 use std::path::Path;
@@ -150,19 +150,30 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let base = std::fs::read_to_string(crate::pil::qemu::workspace_root().join("models/drop-none.toml")).unwrap();
         let with = dir.path().join("lab.toml");
-        std::fs::write(&with, format!("{base}\n[installation]\nmass_kg = 3.0\nusable_stroke_mm = 9.0\n")).unwrap();
+        std::fs::write(
+            &with,
+            format!("{base}\n[installation]\nmass_kg = 3.0\nusable_stroke_mm = 9.0\n"),
+        )
+        .unwrap();
         let (_, cfg) = upload_payload(&with, DEFAULT_RATE_HZ).unwrap();
         assert_eq!((cfg.law.mass_kg, cfg.law.stroke_max_mm), (3.0, 9.0));
         check_board_limits(&cfg).unwrap();
         // Without the section: the image's defaults, the installation's.
-        let (_, cfg) = upload_payload(&crate::pil::qemu::workspace_root().join("models/drop-none.toml"), DEFAULT_RATE_HZ).unwrap();
+        let (_, cfg) = upload_payload(
+            &crate::pil::qemu::workspace_root().join("models/drop-none.toml"),
+            DEFAULT_RATE_HZ,
+        )
+        .unwrap();
         assert_eq!(cfg, ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap());
         // A stroke past the displacement sensor is named before anything is sent.
         let bad = dir.path().join("bad.toml");
         std::fs::write(&bad, format!("{base}\n[installation]\nusable_stroke_mm = 30.0\n")).unwrap();
         let (_, cfg) = upload_payload(&bad, DEFAULT_RATE_HZ).unwrap();
         let msg = check_board_limits(&cfg).unwrap_err().to_string();
-        assert!(msg.starts_with("stroke_max_mm = 30 is outside the board's limits 1 to 25"), "{msg}");
+        assert!(
+            msg.starts_with("stroke_max_mm = 30 is outside the board's limits 1 to 25"),
+            "{msg}"
+        );
     }
 
     #[test]
@@ -171,8 +182,11 @@ mod tests {
         let code = |r| mre_core::frame::CommandFrame::decode(&answer(&r)).unwrap().rejected;
         assert!(refusal(code(Err(UploadError::NotAtRest))).contains("not at rest"));
         let limit = mre_core::limits::Limit::XValidMax;
-        let r = Err(UploadError::Refused(mre_core::frame::ConfigBlobError::OutOfLimits(limit)));
+        let r = Err(UploadError::Refused(mre_core::frame::ConfigBlobError::OutOfLimits(
+            limit,
+        )));
         assert_eq!(CommitAnswer::from_code(code(r)), Some(CommitAnswer::OutOfLimits(limit)));
-        assert!(refusal(code(r)).starts_with("the board refused the upload: x_valid_max_mm is outside its limits 1 to 27.5"));
+        assert!(refusal(code(r))
+            .starts_with("the board refused the upload: x_valid_max_mm is outside its limits 1 to 27.5"));
     }
 }

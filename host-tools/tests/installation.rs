@@ -17,16 +17,32 @@ fn the_default_image_and_the_default_simulation_share_one_installation() {
 
     // Mass and usable stroke: what the law plans with, on both sides.
     assert_eq!(image.law.mass_kg, sim_law.mass_kg, "mass: image vs simulation");
-    assert_eq!(f64::from(image.law.mass_kg), sim.impact.mass_kg, "mass: image vs the simulated drop");
-    assert_eq!(image.law.stroke_max_mm, sim_law.stroke_max_mm, "stroke: image vs simulation");
+    assert_eq!(
+        f64::from(image.law.mass_kg),
+        sim.impact.mass_kg,
+        "mass: image vs the simulated drop"
+    );
+    assert_eq!(
+        image.law.stroke_max_mm, sim_law.stroke_max_mm,
+        "stroke: image vs simulation"
+    );
     assert_eq!(f64::from(image.law.stroke_max_mm), sim.usable_stroke_mm);
     assert_eq!(SimSetup::default().usable_stroke_mm, sim.usable_stroke_mm);
-    assert_eq!((image.law.mass_kg, image.law.stroke_max_mm), (I.mass_kg, I.usable_stroke_mm));
+    assert_eq!(
+        (image.law.mass_kg, image.law.stroke_max_mm),
+        (I.mass_kg, I.usable_stroke_mm)
+    );
 
     // The coil drive: the image's drive range is the simulated driver's V/R.
     let driver = sim.impact.driver;
-    assert_eq!(f64::from(image.law.drive_max_a), driver.supply_v / driver.resistance_ohm);
-    assert_eq!((driver.supply_v, driver.resistance_ohm), (f64::from(I.supply_v), f64::from(I.coil_resistance_ohm)));
+    assert_eq!(
+        f64::from(image.law.drive_max_a),
+        driver.supply_v / driver.resistance_ohm
+    );
+    assert_eq!(
+        (driver.supply_v, driver.resistance_ohm),
+        (f64::from(I.supply_v), f64::from(I.coil_resistance_ohm))
+    );
     assert_eq!(image.law.drive_max_a, I.drive_max_a());
 
     // The coil rating: the image's output clamp and limit, the simulation's
@@ -44,6 +60,11 @@ fn the_default_image_and_the_default_simulation_share_one_installation() {
     // The flown table covers the usable stroke in every entry.
     let table = Table::from_image(&GENERATED_TABLE).unwrap();
     for e in table.entries() {
-        assert!(e.x_max_mm >= I.usable_stroke_mm, "{} A entry ends at {} mm", e.current_a, e.x_max_mm);
+        assert!(
+            e.x_max_mm >= I.usable_stroke_mm,
+            "{} A entry ends at {} mm",
+            e.current_a,
+            e.x_max_mm
+        );
     }
 }

@@ -57,7 +57,8 @@ fn the_defaults_lie_within_the_limits_at_every_supported_rate() {
 /// (`ControlConfig::validate` takes them) but refused by the board, by name.
 #[test]
 fn each_out_of_limit_value_is_refused_by_name() {
-    let cases: [(&str, fn(&mut ControlConfig), Limit); 8] = [
+    type Case = (&'static str, fn(&mut ControlConfig), Limit);
+    let cases: [Case; 8] = [
         (
             "fail-safe 0 A",
             |c| c.law.failsafe_current_a = 0.0,

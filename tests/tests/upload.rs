@@ -298,7 +298,10 @@ fn an_upload_in_motion_is_refused_untouched_and_accepted_at_rest() {
     let answer = CommandFrame::decode(&events[0].answer()).unwrap();
     assert_eq!(answer.flags, Flags::TABLE_FAULT);
     assert_eq!(CommitAnswer::from_code(answer.rejected), Some(CommitAnswer::NotAtRest));
-    assert!(page.bytes.iter().all(|&b| b == 0xFF), "an upload in motion never touches the page");
+    assert!(
+        page.bytes.iter().all(|&b| b == 0xFF),
+        "an upload in motion never touches the page"
+    );
 
     // The same bytes once the damper is at rest: stored.
     let answers: Vec<_> = fr

@@ -149,18 +149,12 @@ async fn upload_task(mut uart: BufferedUart<'static>, mut page: FlashPage) {
                     t.entries().len(),
                     c.rate_hz
                 ),
-                PortEvent::Commit(Err(mre_core::upload::UploadError::Refused(
-                    mre_core::frame::ConfigBlobError::OutOfLimits(limit),
-                ))) => defmt::warn!(
-                    "table upload not stored: {=str} is outside the board's limits {=f32}..{=f32} ({=str})",
-                    limit.name(),
-                    limit.range(&mre_core::limits::BOARD).min,
-                    limit.range(&mre_core::limits::BOARD).max,
-                    limit.why()
-                ),
+                // The value out of limits by its index in `Limit::ALL`: the
+                // names stay out of the image (`mre upload` prints them).
                 PortEvent::Commit(Err(e)) => defmt::warn!(
-                    "table upload not stored: {=str} ({=u16} frames rejected so far)",
+                    "table upload not stored: {=str} {=?} ({=u16} frames rejected so far)",
                     e.as_str(),
+                    e.limit_index(),
                     port.rejected_frames()
                 ),
             }
