@@ -43,21 +43,10 @@ impl UploadError {
     pub fn as_str(&self) -> &'static str {
         match self {
             UploadError::Refused(ConfigBlobError::Incomplete) => "incomplete (a frame was lost or corrupt)",
-            UploadError::Refused(ConfigBlobError::OutOfLimits(_)) => "a value is outside the board's hard limits",
+            UploadError::Refused(ConfigBlobError::OutOfLimits(_)) => "a value out of the board's limits",
             UploadError::Refused(_) => "table or configuration refused",
-            UploadError::NotAtRest => "the damper is not at rest (not stored; retry when it is still)",
+            UploadError::NotAtRest => "not at rest (retry when still)",
             UploadError::Page(e) => e.as_str(),
-        }
-    }
-}
-
-impl UploadError {
-    /// The index in `limits::Limit::ALL` of the value out of the board's
-    /// limits (`mre upload` names it from the answer), if that is why.
-    pub fn limit_index(&self) -> Option<u8> {
-        match self {
-            UploadError::Refused(ConfigBlobError::OutOfLimits(l)) => Some(*l as u8),
-            _ => None,
         }
     }
 }

@@ -149,12 +149,11 @@ async fn upload_task(mut uart: BufferedUart<'static>, mut page: FlashPage) {
                     t.entries().len(),
                     c.rate_hz
                 ),
-                // The value out of limits by its index in `Limit::ALL`: the
-                // names stay out of the image (`mre upload` prints them).
+                // Which value was out of limits: `mre upload` names it from the
+                // answer, so the names stay out of the image.
                 PortEvent::Commit(Err(e)) => defmt::warn!(
-                    "table upload not stored: {=str} {=?} ({=u16} frames rejected so far)",
+                    "table upload not stored: {=str} ({=u16} frames rejected so far)",
                     e.as_str(),
-                    e.limit_index(),
                     port.rejected_frames()
                 ),
             }
