@@ -198,7 +198,9 @@ impl Stats {
         if self.step_cycles_count == 0 {
             0
         } else {
-            (self.step_cycles_sum / u64::from(self.step_cycles_count)) as u32
+            self.step_cycles_sum
+                .checked_div(u64::from(self.step_cycles_count))
+                .unwrap_or(0) as u32
         }
     }
 }
@@ -293,12 +295,18 @@ impl Controller {
     /// `stuck_min_speed_m_s`), never mid-impact. True if it cleared. A fault
     /// whose cause persists latches again.
     pub fn clear_faults_if_at_rest(&mut self) -> bool {
-        let at_rest = math::abs(self.sample_x_mm) <= REST_X_MM
-            && math::abs(self.estimator.velocity_m_s()) < self.cfg.stuck_min_speed_m_s;
+        let at_rest = self.is_at_rest();
         if at_rest {
             self.clear_faults();
         }
         at_rest
+    }
+
+    /// The latest displacement within `REST_X_MM` of 0 and the estimated
+    /// speed below `stuck_min_speed_m_s` (a fault clear, a table upload).
+    pub fn is_at_rest(&self) -> bool {
+        math::abs(self.sample_x_mm) <= REST_X_MM
+            && math::abs(self.estimator.velocity_m_s()) < self.cfg.stuck_min_speed_m_s
     }
 
     /// Latches a fault detected outside the step (the board's over-current monitor).

@@ -25,6 +25,13 @@ pub const PAGE_FORMAT: u32 = 1;
 const HEADER_BYTES: usize = 16;
 /// STM32L4 flash pages are 2 KiB, written in 8-byte double words.
 pub const PAGE_BYTES: usize = 2048;
+/// The STM32L4's 1 MiB flash: two 512 KiB banks from 0x0800_0000.
+pub const FLASH_BASE_ADDRESS: u32 = 0x0800_0000;
+pub const FLASH_BANK_BYTES: u32 = 512 * 1024;
+/// The table page: the last page of bank 2 (`memory.x` region `TABLE_PAGE`;
+/// the image's FLASH region ends at the bank boundary, so nothing is linked
+/// in bank 2 and read-while-write keeps the control loop running from bank 1).
+pub const TABLE_PAGE_ADDRESS: u32 = FLASH_BASE_ADDRESS + 2 * FLASH_BANK_BYTES - PAGE_BYTES as u32;
 pub const WRITE_ALIGN: usize = 8;
 const MAX_IMAGE_BYTES: usize = HEADER_BYTES + 4 * CONFIG_MAX_WORDS + WRITE_ALIGN;
 const CRC32: Crc<u32> = Crc::<u32>::new(&CRC_32_ISO_HDLC);
@@ -36,6 +43,15 @@ pub trait TablePage {
     fn erase(&mut self) -> Result<(), FlashError>;
     /// `offset` and `data.len()` are multiples of [`WRITE_ALIGN`].
     fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), FlashError>;
+    /// Before the first erase or program of an update. The STM32L4 boards
+    /// disable the flash data cache here: ST's errata (STM32L47x/L48x, "Data
+    /// cache might be corrupted during Flash memory read-while-write
+    /// operation") prescribe it while one bank is erased or programmed as the
+    /// other is read.
+    fn begin_update(&mut self) {}
+    /// After the last erase or program of an update, failed or not, and
+    /// before the page is read back: reset the data cache, then re-enable it.
+    fn end_update(&mut self) {}
 }
 
 /// A page in RAM that behaves like STM32L4 flash (erase to 0xFF, aligned
@@ -125,7 +141,8 @@ pub fn load<P: TablePage + ?Sized>(page: &mut P) -> Result<(Table, ControlConfig
     page.read(0, &mut header)?;
     let word = |k: usize| {
         let mut w = [0u8; 4];
-        if let Some(src) = header.get(4 * k..4 * k + 4) {
+        let at = k.wrapping_mul(4);
+        if let Some(src) = header.get(at..at.wrapping_add(4)) {
             w.copy_from_slice(src);
         }
         u32::from_le_bytes(w)
@@ -141,7 +158,7 @@ pub fn load<P: TablePage + ?Sized>(page: &mut P) -> Result<(Table, ControlConfig
         return Err(PageError::Corrupt);
     }
     let mut bytes = [0u8; 4 * CONFIG_MAX_WORDS];
-    let blob = bytes.get_mut(..4 * n).ok_or(PageError::Corrupt)?;
+    let blob = bytes.get_mut(..n.saturating_mul(4)).ok_or(PageError::Corrupt)?;
     page.read(HEADER_BYTES, blob)?;
     if CRC32.checksum(blob) != word(3) {
         return Err(PageError::Corrupt);
@@ -164,18 +181,27 @@ pub fn store<P: TablePage + ?Sized>(page: &mut P, table: &Table, cfg: &ControlCo
     for (k, w) in words.iter().take(n).enumerate() {
         let b = w.to_le_bytes();
         blob_crc.update(&b);
-        if let Some(dst) = image.get_mut(HEADER_BYTES + 4 * k..HEADER_BYTES + 4 * k + 4) {
+        let at = k.wrapping_mul(4).wrapping_add(HEADER_BYTES);
+        if let Some(dst) = image.get_mut(at..at.wrapping_add(4)) {
             dst.copy_from_slice(&b);
         }
     }
     let header = [MAGIC, PAGE_FORMAT, n as u32, blob_crc.finalize()];
     for (k, w) in header.iter().enumerate() {
-        if let Some(dst) = image.get_mut(4 * k..4 * k + 4) {
+        let at = k.wrapping_mul(4);
+        if let Some(dst) = image.get_mut(at..at.wrapping_add(4)) {
             dst.copy_from_slice(&w.to_le_bytes());
         }
     }
-    let len = (HEADER_BYTES + 4 * n).div_ceil(WRITE_ALIGN) * WRITE_ALIGN;
-    page.erase()?;
-    page.write(0, image.get(..len).unwrap_or(&[]))?;
+    let len = HEADER_BYTES
+        .saturating_add(n.saturating_mul(4))
+        .div_ceil(WRITE_ALIGN)
+        .saturating_mul(WRITE_ALIGN);
+    page.begin_update();
+    let written = page
+        .erase()
+        .and_then(|()| page.write(0, image.get(..len).unwrap_or(&[])));
+    page.end_update();
+    written?;
     load(page).map(|_| ())
 }

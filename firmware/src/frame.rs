@@ -357,7 +357,7 @@ impl SampleReceiver {
         }
         if let Some(slot) = self.buf.get_mut(self.len) {
             *slot = byte;
-            self.len += 1;
+            self.len = self.len.saturating_add(1);
         }
     }
 
@@ -371,7 +371,10 @@ impl SampleReceiver {
                 self.stats.out_of_order = self.stats.out_of_order.saturating_add(1);
                 return Err(FrameError::OutOfOrder { seq: sample.seq, last });
             }
-            self.stats.lost = self.stats.lost.saturating_add(sample.seq - last - 1);
+            self.stats.lost = self
+                .stats
+                .lost
+                .saturating_add(sample.seq.saturating_sub(last).saturating_sub(1));
         }
         self.last_seq = Some(sample.seq);
         self.stats.accepted = self.stats.accepted.saturating_add(1);
@@ -398,7 +401,9 @@ impl SampleReceiver {
 // On commit the firmware decodes the blob, validates the table (its own
 // CRC-32 and invariants, `Table::from_image`) and the configuration, and
 // answers with a hello frame (sequence 0) whose flags are `NONE` when it
-// switched, or `TABLE_FAULT` when it refused and kept its built-in table.
+// switched, or `TABLE_FAULT` when it refused and kept its built-in table; its
+// `rejected` field then says why (`upload::CommitAnswer`: incomplete,
+// invalid, a named value out of the board's limits, not at rest, page failed).
 
 pub const KIND_CONFIG: u8 = 3;
 /// Header (2) + 13 per table entry + law (13) + control (7).
@@ -409,12 +414,20 @@ const TERMS_MAX_WORDS: usize = 3 + MAX_CURRENTS;
 
 fn terms_words(version: u16, count: usize) -> usize {
     if version >= crate::table::FORMAT_VERSION {
-        3 + count
+        count.saturating_add(3)
     } else {
         0
     }
 }
 const LAW_WORDS: usize = 13;
+
+/// The blob's length for `count` entries of format `version`.
+fn blob_words(version: u16, count: usize) -> Option<usize> {
+    count
+        .checked_mul(13)?
+        .checked_add(terms_words(version, count))?
+        .checked_add(2 + LAW_WORDS + CONTROL_WORDS)
+}
 const CONTROL_WORDS: usize = 7;
 
 use crate::control::ControlConfig;
@@ -437,7 +450,7 @@ impl ConfigChunk {
                 put(&mut buf, 0, [s0, s1, KIND_CONFIG, count]);
                 put(&mut buf, 4, index.to_le_bytes());
                 for (k, w) in words.iter().enumerate() {
-                    put(&mut buf, 8 + 4 * k, w.to_le_bytes());
+                    put(&mut buf, k.wrapping_mul(4).wrapping_add(8), w.to_le_bytes());
                 }
             }
             ConfigChunk::Commit { total_words } => {
@@ -459,7 +472,7 @@ impl ConfigChunk {
         if count > 3 {
             return Err(FrameError::BadKind { kind: KIND_CONFIG });
         }
-        let w = |k: usize| u32::from_le_bytes(get4(buf, 8 + 4 * k));
+        let w = |k: usize| u32::from_le_bytes(get4(buf, k.wrapping_mul(4).wrapping_add(8)));
         Ok(ConfigChunk::Words {
             index,
             count,
@@ -477,7 +490,7 @@ pub fn config_frames(words: &[u32]) -> impl Iterator<Item = [u8; FRAME_LEN]> + '
             *d = *s;
         }
         ConfigChunk::Words {
-            index: 3 * k as u32,
+            index: (k as u32).saturating_mul(3),
             count: chunk.len() as u8,
             words: three,
         }
@@ -497,6 +510,8 @@ pub enum ConfigBlobError {
     Table(crate::table::TableError),
     Control(crate::control::ControlConfigError),
     BadRebound,
+    /// Consistent, but outside what the board's hardware takes (`limits`).
+    OutOfLimits(crate::limits::Limit),
 }
 
 /// Appends the blob for `table` and `cfg` to `out` (returns the word count):
@@ -513,7 +528,7 @@ pub fn encode_config(table: &Table, cfg: &ControlConfig, out: &mut [u32; CONFIG_
     let mut push = |w: u32| {
         if let Some(slot) = words.next() {
             *slot = w;
-            n += 1;
+            n = n.saturating_add(1);
         }
     };
     push(u32::from(table.version()) | ((entries.len() as u32) << 16));
@@ -573,15 +588,16 @@ pub fn encode_config(table: &Table, cfg: &ControlConfig, out: &mut [u32; CONFIG_
 }
 
 /// Inverse of [`encode_config`], with full validation: the table goes
-/// through `Table::from_image` (version, invariants, CRC) and the control
-/// configuration through `ControlConfig::validate`.
+/// through `Table::from_image` (version, invariants, CRC), the control
+/// configuration through `ControlConfig::validate` and the board's hard
+/// limits (`limits::BOARD`).
 pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlobError> {
     let mut it = words.iter().copied();
     let mut next = || it.next().ok_or(ConfigBlobError::Incomplete);
     let head = next()?;
     let version = (head & 0xFFFF) as u16;
     let count = (head >> 16) as usize;
-    if count > MAX_CURRENTS || words.len() != 2 + 13 * count + terms_words(version, count) + LAW_WORDS + CONTROL_WORDS {
+    if count > MAX_CURRENTS || Some(words.len()) != blob_words(version, count) {
         return Err(ConfigBlobError::Incomplete);
     }
     let crc32 = next()?;
@@ -669,15 +685,51 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
         disagree_samples: crate::control::DISAGREE_SAMPLES,
     };
     cfg.validate().map_err(ConfigBlobError::Control)?;
+    crate::limits::check_board(&cfg).map_err(ConfigBlobError::OutOfLimits)?;
     Ok((table, cfg))
+}
+
+/// Which words of a blob have arrived: one bit per word, sized from
+/// [`CONFIG_MAX_WORDS`] (the largest table with every term).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ReceivedWords([u32; RECEIVED_WORDS_LEN]);
+
+const RECEIVED_WORDS_LEN: usize = CONFIG_MAX_WORDS.div_ceil(32);
+
+impl ReceivedWords {
+    pub const fn none() -> Self {
+        Self([0; RECEIVED_WORDS_LEN])
+    }
+
+    /// Marks word `at`; false (nothing marked) when it is past the largest blob.
+    pub fn mark(&mut self, at: usize) -> bool {
+        if at >= CONFIG_MAX_WORDS {
+            return false;
+        }
+        match self.0.get_mut(at / 32) {
+            Some(bits) => {
+                *bits |= 1 << (at % 32);
+                true
+            }
+            None => false,
+        }
+    }
+
+    pub fn has(&self, at: usize) -> bool {
+        at < CONFIG_MAX_WORDS && self.0.get(at / 32).is_some_and(|bits| bits & (1 << (at % 32)) != 0)
+    }
+
+    /// Every word `0..n` has arrived (false when `n` exceeds the largest blob).
+    pub fn all_below(&self, n: usize) -> bool {
+        n <= CONFIG_MAX_WORDS && (0..n).all(|at| self.has(at))
+    }
 }
 
 /// Collects config chunks into a blob (firmware side).
 #[derive(Clone, Copy, Debug)]
 pub struct ConfigCollector {
     words: [u32; CONFIG_MAX_WORDS],
-    /// Bit k set: word k received.
-    received: u128,
+    received: ReceivedWords,
 }
 
 impl Default for ConfigCollector {
@@ -690,7 +742,7 @@ impl ConfigCollector {
     pub const fn new() -> Self {
         Self {
             words: [0; CONFIG_MAX_WORDS],
-            received: 0,
+            received: ReceivedWords::none(),
         }
     }
 
@@ -703,16 +755,15 @@ impl ConfigCollector {
                     let at = (index as usize).saturating_add(k);
                     if let Some(slot) = self.words.get_mut(at) {
                         *slot = *w;
-                        self.received |= 1u128 << at;
+                        self.received.mark(at);
                     }
                 }
                 None
             }
             ConfigChunk::Commit { total_words } => {
                 let n = total_words as usize;
-                let all = if n >= 128 { u128::MAX } else { (1u128 << n) - 1 };
                 let result = match self.words.get(..n) {
-                    Some(words) if n <= CONFIG_MAX_WORDS && self.received & all == all => decode_config(words),
+                    Some(words) if self.received.all_below(n) => decode_config(words),
                     _ => Err(ConfigBlobError::Incomplete),
                 };
                 *self = Self::new();

@@ -259,7 +259,7 @@ impl Table {
     #[inline(never)]
     fn exact_saturated_current_a(&self, s: Solution, i0: f32, i1: f32) -> f32 {
         let w0 = self.knot(s.lower);
-        let w = w0 + s.t * (self.knot(s.lower + 1) - w0);
+        let w = w0 + s.t * (self.knot(s.lower.wrapping_add(1)) - w0);
         math::clamp(self.terms().saturation_current_a * math::atanh(w), i0, i1)
     }
 
@@ -479,7 +479,7 @@ fn solve_below_top(
 fn bracket(k: usize, currents: (f32, f32), f0: f32, f1: f32, target_force_n: f32) -> Solution {
     Solution {
         on_knot: false,
-        lower: k - 1,
+        lower: k.wrapping_sub(1),
         i0: currents.0,
         i1: currents.1,
         t: (target_force_n - f0) / (f1 - f0),

@@ -114,8 +114,9 @@ impl Default for LawConfig {
     /// peaks with 13.8 J imply them; see README "Units and the paper").
     fn default() -> Self {
         Self {
-            mass_kg: 5.5,
-            stroke_max_mm: 15.0,
+            // The installation: one value for the image and the simulation.
+            mass_kg: crate::installation::DEFAULT_INSTALLATION.mass_kg,
+            stroke_max_mm: crate::installation::DEFAULT_INSTALLATION.usable_stroke_mm,
             gravity_m_s2: 9.81,
             current_min_a: 0.0,
             current_max_a: 2.0,

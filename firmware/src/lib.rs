@@ -8,6 +8,10 @@
 //! → `inverse` (current that gives that force, via `model` and `table`) → coil.
 #![cfg_attr(not(test), no_std)]
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::indexing_slicing)]
+// Integer arithmetic says what happens at its edge (checked, saturating or
+// wrapping): no overflow panic in a debug build, no silent wrap in release.
+// Float arithmetic is not linted (IEEE: no panics).
+#![deny(clippy::arithmetic_side_effects)]
 
 pub mod boot;
 pub mod calibration;
@@ -17,8 +21,10 @@ pub mod flags;
 pub mod flash_table;
 pub mod frame;
 pub mod generated_table;
+pub mod installation;
 pub mod inverse;
 pub mod law;
+pub mod limits;
 pub mod math;
 pub mod model;
 pub mod order;

@@ -332,6 +332,7 @@ mod fw {
             let t0 = board::cycles();
             let cmd = ctl.step_io(&mut board.io);
             ctl.record_step_cycles(board::cycles().wrapping_sub(t0));
+            board::UPLOAD_GATE.observe(&ctl, &cmd);
             let overran = board.io.finish_period(&cmd, &ctl);
             ctl.end_period(overran);
             // Fed here only: a stalled control loop must reset the chip.

@@ -72,7 +72,7 @@ pub fn exp(x: f32) -> f32 {
     let [p0, p1, p2, p3, p4, p5] = P;
     let two_f = 1.0 + f * (((((p0 * f + p1) * f + p2) * f + p3) * f + p4) * f + p5);
     // 2^n from its exponent bits: n + 127 is in 1..=253, a normal number.
-    two_f * f32::from_bits(((n + 127) as u32) << 23)
+    two_f * f32::from_bits((n.wrapping_add(127) as u32) << 23)
 }
 
 /// Natural logarithm of a positive normal `y` to about 1e-7: `y = 2^e·m`
@@ -82,11 +82,11 @@ pub fn exp(x: f32) -> f32 {
 #[inline]
 pub fn ln(y: f32) -> f32 {
     let bits = y.to_bits();
-    let mut e = ((bits >> 23) & 0xff) as i32 - 127;
+    let mut e = (((bits >> 23) & 0xff) as i32).wrapping_sub(127);
     let mut m = f32::from_bits((bits & 0x007f_ffff) | 0x3f80_0000);
     if m > core::f32::consts::SQRT_2 {
         m *= 0.5;
-        e += 1;
+        e = e.wrapping_add(1);
     }
     let s = (m - 1.0) / (m + 1.0);
     let s2 = s * s;
@@ -122,7 +122,7 @@ pub fn exp_precise(x: f32) -> f32 {
     let mut i = 0;
     while i < n.unsigned_abs() {
         sum *= base;
-        i += 1;
+        i = i.wrapping_add(1);
     }
     sum
 }

@@ -192,7 +192,7 @@ impl Table {
         for (k, pair) in entries.windows(2).enumerate() {
             if let [_, b] = pair {
                 if current_a < b.current_a {
-                    let (w0, w1) = (self.knot(k), self.knot(k + 1));
+                    let (w0, w1) = (self.knot(k), self.knot(k.wrapping_add(1)));
                     // In [0, 1) even if the approximate tanh strays by an ulp.
                     let t = math::clamp((w - w0) / (w1 - w0), 0.0, 1.0);
                     return CurrentSegment {
@@ -254,11 +254,11 @@ impl Table {
             }
         };
         let mut flags = seg.flags | lower.flags;
-        let force_n = match entries.get(seg.lower + 1) {
+        let force_n = match entries.get(seg.lower.wrapping_add(1)) {
             Some(upper_entry) if seg.t > 0.0 => {
                 let upper = at(upper_entry);
                 flags |= upper.flags;
-                let upper_n = upper.force_n + self.viscous(seg.lower + 1) * v;
+                let upper_n = upper.force_n + self.viscous(seg.lower.wrapping_add(1)) * v;
                 lower.force_n + seg.t * (upper_n - lower.force_n)
             }
             _ => lower.force_n,

@@ -137,7 +137,7 @@ impl OrderFacts {
             _ => false,
         };
         // Neighbours rise, walking down from the top of the stroke.
-        let rising = |a: f32, b: f32| (1..quartics.len()).all(|k| rises(k - 1, k, a, b));
+        let rising = |a: f32, b: f32| (1..quartics.len()).all(|k| rises(k.wrapping_sub(1), k, a, b));
         let ascending_from_mm = walk(lo_mm, hi_mm, true, rising).unwrap_or(f32::INFINITY);
         // Entry 0 below every other entry (implied where they all rise).
         let lowest = |a: f32, b: f32| (1..quartics.len()).all(|k| rises(0, k, a, b));

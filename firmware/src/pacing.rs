@@ -38,7 +38,7 @@ impl Pacer {
             return 0;
         }
         self.due_ticks = now_ticks.saturating_add(self.period_ticks);
-        u32::try_from(late / self.period_ticks).unwrap_or(u32::MAX)
+        u32::try_from(late.checked_div(self.period_ticks).unwrap_or(u64::MAX)).unwrap_or(u32::MAX)
     }
 
     /// True when the period's work ended at `now`, after its deadline.

@@ -119,11 +119,15 @@ impl SegmentMap {
             pm *= r;
             pp *= r_plus;
             let s = if n % 2 == 1 { pm + pp } else { pm - pp };
-            let v = i_s * s / (2 * n) as f32;
+            let v = i_s * s / n.wrapping_mul(2) as f32;
             // 2n + 4 roundings, each relative to at most |pm| + |pp|.
             set(&mut a, n, v);
-            set(&mut err, n, (2 * n + 4) as f32 * EPS * i_s * (pm + pp) / (2 * n) as f32);
-            n += 1;
+            set(
+                &mut err,
+                n,
+                n.wrapping_mul(2).wrapping_add(4) as f32 * EPS * i_s * (pm + pp) / n.wrapping_mul(2) as f32,
+            );
+            n = n.wrapping_add(1);
         }
         // The series' tail on |y| ≤ y_max: |a_n|·y_maxⁿ ≤ I_s/(2n)·(ρⁿ + ρ₊ⁿ).
         let tail = |q: f32| {
@@ -140,27 +144,34 @@ impl SegmentMap {
         // Economize: remove a_n·yⁿ for n = N … DEGREE + 1.
         let mut n = n_max;
         while n > degree {
-            let c = get(&a, n) * pow2(1 - n as i32);
+            let c = get(&a, n) * pow2(1i32.wrapping_sub(n as i32));
             // Dropped: c·T_n(y), at most |c|·T_n(y_max) on the range, and
             // a_n's own error times |y|ⁿ.
             truncation += (math::abs(c) + get(&err, n)) * chebyshev_at(n, y_max) * (1.0 + 64.0 * EPS);
             // T_n's coefficient of y^(n−2j), from 2^(n−1) for j = 0 by
             // t_{j+1} = −t_j·(n−2j)(n−2j−1)/(4(j+1)(n−j−1)): integers, exact
             // in u32 (and in f32: below 2²⁴ up to n = 14).
-            let mut t_j: u32 = 1 << (n - 1);
-            let mut j = 0;
-            while 2 * (j + 1) <= n {
-                t_j = t_j * ((n - 2 * j) * (n - 2 * j - 1)) as u32 / (4 * (j + 1) * (n - j - 1).max(1)) as u32;
-                j += 1;
+            // n ≤ DEGREE + 1 (a few tens): no step below wraps or overflows;
+            // the wrapping forms only say so to the overflow lint.
+            let mut t_j: u32 = 1u32.wrapping_shl(n.wrapping_sub(1) as u32);
+            let mut j: usize = 0;
+            while j.wrapping_add(1).wrapping_mul(2) <= n {
+                let m = n.wrapping_sub(j.wrapping_mul(2));
+                let numerator = m.wrapping_mul(m.wrapping_sub(1)) as u32;
+                let denominator = 4usize
+                    .wrapping_mul(j.wrapping_add(1))
+                    .wrapping_mul(n.wrapping_sub(j).wrapping_sub(1).max(1)) as u32;
+                t_j = t_j.wrapping_mul(numerator).checked_div(denominator).unwrap_or(0);
+                j = j.wrapping_add(1);
                 let tk = if j % 2 == 1 { -(t_j as f32) } else { t_j as f32 };
-                let k = n - 2 * j;
+                let k = n.wrapping_sub(j.wrapping_mul(2));
                 let v = get(&a, k) - c * tk;
                 let e = get(&err, k) + math::abs(c * tk) * 2.0 * EPS + math::abs(v) * EPS;
                 set(&mut a, k, v);
                 set(&mut err, k, e);
             }
             set(&mut a, n, 0.0);
-            n -= 1;
+            n = n.wrapping_sub(1);
         }
         // w = w0 + t·Δw is y = 2t − s with s = 1 + δ/h: substitute
         // y = z − s (repeated synthetic division), then z = 2t (exact
@@ -168,21 +179,21 @@ impl SegmentMap {
         let shift = 1.0 + delta / h;
         let mut i = 0;
         while i < degree {
-            let mut j = degree - 1;
+            let mut j = degree.wrapping_sub(1);
             loop {
-                let v = get(&a, j) - shift * get(&a, j + 1);
+                let v = get(&a, j) - shift * get(&a, j.wrapping_add(1));
                 let e = get(&err, j)
-                    + shift * get(&err, j + 1)
+                    + shift * get(&err, j.wrapping_add(1))
                     + 2.0 * math::abs(v) * EPS
-                    + 2.0 * EPS * math::abs(shift * get(&a, j + 1));
+                    + 2.0 * EPS * math::abs(shift * get(&a, j.wrapping_add(1)));
                 set(&mut a, j, v);
                 set(&mut err, j, e);
                 if j == i {
                     break;
                 }
-                j -= 1;
+                j = j.wrapping_sub(1);
             }
-            i += 1;
+            i = i.wrapping_add(1);
         }
         // In t the polynomial is P(t) = i0 + Σ_{k≥1} c_k·tᵏ: its constant
         // is dropped, so P − i0 = F(t) − F(t = 0) and the exact map is
@@ -195,13 +206,13 @@ impl SegmentMap {
         let mut k = 0;
         while k < degree {
             scale *= 2.0;
-            let c = get(&a, k + 1) * scale;
+            let c = get(&a, k.wrapping_add(1)) * scale;
             set(&mut coeffs, k, c);
-            bound += get(&err, k + 1) * scale;
+            bound += get(&err, k.wrapping_add(1)) * scale;
             magnitude += math::abs(c);
             // Horner rounds c_k·tᵏ 2k + 1 times (k multiplies, k + 1 adds).
-            horner += (2 * k + 3) as f32 * math::abs(c);
-            k += 1;
+            horner += k.wrapping_mul(2).wrapping_add(3) as f32 * math::abs(c);
+            k = k.wrapping_add(1);
         }
         // The period's Horner, t ≤ 1 (unit roundoff 2⁻²⁴ = EPS/2, each
         // term rounded up by the 1 + 64·EPS below): the coefficients'
@@ -211,7 +222,7 @@ impl SegmentMap {
         // back to its current): raise c1 until the f32 polynomial (the
         // same evaluation as the period's) reaches i1, so the clamp to i1
         // settles it; each raise moves P by at most its size.
-        let mut raises = 0;
+        let mut raises: u32 = 0;
         loop {
             let deficit = i1 - value_at_one(&coeffs, i0);
             // (A NaN deficit ends it too: the checks below then refuse the fit.)
@@ -226,7 +237,7 @@ impl SegmentMap {
             let raise = if deficit > ulp { deficit } else { ulp };
             *c1 += raise;
             bound += raise * (1.0 + 4.0 * EPS);
-            raises += 1;
+            raises = raises.wrapping_add(1);
         }
         let reaches_i1 = value_at_one(&coeffs, i0) >= i1;
         let c1 = get(&coeffs, 0);
@@ -279,7 +290,7 @@ fn two_sum_error(a: f32, b: f32) -> f32 {
 
 fn pow2(e: i32) -> f32 {
     // Exponents here are within ±TAYLOR_TERMS: normal numbers.
-    f32::from_bits(((e + 127) as u32) << 23)
+    f32::from_bits((e.wrapping_add(127) as u32) << 23)
 }
 
 // `get` and `set` stay calls: the fit's loops (table build only) then stay

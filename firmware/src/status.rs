@@ -38,7 +38,7 @@ pub fn led_on(latched: Flags, slot: u32) -> bool {
         0 => slot.is_multiple_of(HEARTBEAT_SLOTS),
         code => {
             let k = slot % CYCLE_SLOTS;
-            k < 4 * code && k % 4 < 2
+            k < code.saturating_mul(4) && k % 4 < 2
         }
     }
 }

@@ -597,7 +597,11 @@ fn next_up(x: f32) -> f32 {
         return f32::from_bits(1);
     }
     let bits = x.to_bits();
-    f32::from_bits(if x > 0.0 { bits + 1 } else { bits - 1 })
+    f32::from_bits(if x > 0.0 {
+        bits.wrapping_add(1)
+    } else {
+        bits.wrapping_sub(1)
+    })
 }
 
 fn validate_entries(entries: &[CurrentEntry]) -> Result<(), TableError> {
@@ -667,14 +671,14 @@ pub const fn content_crc(version: u16, entries: &[CurrentEntry], terms: &ModelTe
         fields[0] = e.current_a;
         fields[1] = e.x_min_mm;
         fields[2] = e.x_max_mm;
-        let mut k = 0;
+        let mut k: usize = 0;
         while k < 5 {
-            fields[3 + k] = e.compression.coeffs[k];
-            fields[8 + k] = e.extension.coeffs[k];
-            k += 1;
+            fields[k.wrapping_add(3)] = e.compression.coeffs[k];
+            fields[k.wrapping_add(8)] = e.extension.coeffs[k];
+            k = k.wrapping_add(1);
         }
         at = push_le(&mut buf, at, &fields, 13);
-        i += 1;
+        i = i.wrapping_add(1);
     }
     if version >= FORMAT_VERSION {
         let mut fields = [0f32; 3 + MAX_CURRENTS];
@@ -683,10 +687,10 @@ pub const fn content_crc(version: u16, entries: &[CurrentEntry], terms: &ModelTe
         fields[2] = terms.coil_tau_s;
         let mut k = 0;
         while k < count {
-            fields[3 + k] = terms.viscous_n_s_per_m[k];
-            k += 1;
+            fields[k.wrapping_add(3)] = terms.viscous_n_s_per_m[k];
+            k = k.wrapping_add(1);
         }
-        at = push_le(&mut buf, at, &fields, 3 + count);
+        at = push_le(&mut buf, at, &fields, count.wrapping_add(3));
     }
     let (used, _) = buf.split_at(at);
     CRC32.checksum(used)
@@ -700,11 +704,11 @@ const fn push_le(buf: &mut [u8; IMAGE_BYTES], mut at: usize, fields: &[f32], n: 
     while f < n {
         let b = fields[f].to_bits().to_le_bytes();
         buf[at] = b[0];
-        buf[at + 1] = b[1];
-        buf[at + 2] = b[2];
-        buf[at + 3] = b[3];
-        at += 4;
-        f += 1;
+        buf[at.wrapping_add(1)] = b[1];
+        buf[at.wrapping_add(2)] = b[2];
+        buf[at.wrapping_add(3)] = b[3];
+        at = at.wrapping_add(4);
+        f = f.wrapping_add(1);
     }
     at
 }

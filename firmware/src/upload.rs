@@ -10,21 +10,30 @@
 //! earlier upload, or the built-in one) stays. Every commit is answered with
 //! a hello frame, flagged `TABLE_FAULT` unless the page now holds the upload.
 //!
+//! A valid upload is stored only while the damper is at rest
+//! ([`UploadGate`]: the law armed and idle, no motion, for
+//! [`REST_BEFORE_UPLOAD_S`]); otherwise it is refused with
+//! [`UploadError::NotAtRest`] and the page is not touched: the host retries.
+//!
 //! Boot then picks the table with [`choose_boot_table`]: a valid page first,
 //! else the built-in image.
-use crate::control::{ControlConfig, ControlConfigError};
+use crate::control::{ControlConfig, ControlConfigError, Controller};
 use crate::flash_table::{load, store, PageError, TablePage};
 use crate::frame::{
     CommandFrame, ConfigBlobError, ConfigChunk, ConfigCollector, Incoming, SampleReceiver, FRAME_LEN, PING_SEQ,
 };
+use crate::law::Command;
 use crate::table::{Table, TableError, TableImage};
 use crate::Flags;
+use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 
 /// Why an upload was not stored.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum UploadError {
     /// The blob was incomplete (a frame lost or corrupt) or refused by validation.
     Refused(ConfigBlobError),
+    /// Valid, but the damper was not at rest: not stored (retry when still).
+    NotAtRest,
     /// Writing or reading back the page failed.
     Page(PageError),
 }
@@ -34,7 +43,9 @@ impl UploadError {
     pub fn as_str(&self) -> &'static str {
         match self {
             UploadError::Refused(ConfigBlobError::Incomplete) => "incomplete (a frame was lost or corrupt)",
+            UploadError::Refused(ConfigBlobError::OutOfLimits(_)) => "a value out of the board's limits",
             UploadError::Refused(_) => "table or configuration refused",
+            UploadError::NotAtRest => "not at rest (retry when still)",
             UploadError::Page(e) => e.as_str(),
         }
     }
@@ -42,6 +53,78 @@ impl UploadError {
 
 /// What a commit did: the table and configuration the page now holds.
 pub type UploadResult = Result<(Table, ControlConfig), UploadError>;
+
+/// How long the damper must have been still before an upload is stored: an
+/// impact (tens of ms) and its rebounds are long over.
+pub const REST_BEFORE_UPLOAD_S: f32 = 0.5;
+
+/// The upload's side of the control loop: counts the periods the damper has
+/// been at rest, the law armed (no fault latched) and idle (no force asked,
+/// not compressing), no motion (`Controller::is_at_rest`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct UploadGate {
+    still_periods: u32,
+}
+
+impl UploadGate {
+    pub const fn new() -> Self {
+        Self { still_periods: 0 }
+    }
+
+    /// A gate that has seen this many still periods (the boards keep the
+    /// count in an atomic between the control and upload tasks).
+    pub const fn with_still_periods(still_periods: u32) -> Self {
+        Self { still_periods }
+    }
+
+    /// After each control step.
+    pub fn observe(&mut self, ctl: &Controller, cmd: &Command) {
+        let still = !ctl.latched().is_fault()
+            && !cmd.flags.is_fault()
+            && cmd.target_force_n == 0.0
+            && cmd.branch == crate::Branch::Extension
+            && ctl.is_at_rest();
+        self.still_periods = if still { self.still_periods.saturating_add(1) } else { 0 };
+    }
+
+    pub fn still_periods(&self) -> u32 {
+        self.still_periods
+    }
+
+    /// Still for [`REST_BEFORE_UPLOAD_S`] at `rate_hz`.
+    pub fn at_rest(&self, rate_hz: u32) -> bool {
+        self.still_periods as f32 >= REST_BEFORE_UPLOAD_S * rate_hz as f32
+    }
+}
+
+/// An [`UploadGate`] shared between the control loop (the only writer,
+/// [`SharedUploadGate::observe`] after each step) and the upload receiver.
+#[derive(Debug, Default)]
+pub struct SharedUploadGate {
+    still_periods: AtomicU32,
+    at_rest: AtomicBool,
+}
+
+impl SharedUploadGate {
+    pub const fn new() -> Self {
+        Self {
+            still_periods: AtomicU32::new(0),
+            at_rest: AtomicBool::new(false),
+        }
+    }
+
+    pub fn observe(&self, ctl: &Controller, cmd: &Command) {
+        let mut gate = UploadGate::with_still_periods(self.still_periods.load(Ordering::Relaxed));
+        gate.observe(ctl, cmd);
+        self.still_periods.store(gate.still_periods(), Ordering::Relaxed);
+        self.at_rest
+            .store(gate.at_rest(ctl.config().rate_hz), Ordering::Relaxed);
+    }
+
+    pub fn at_rest(&self) -> bool {
+        self.at_rest.load(Ordering::Relaxed)
+    }
+}
 
 /// Collects config chunks and stores each committed blob on the page.
 #[derive(Clone, Copy, Debug, Default)]
@@ -56,12 +139,21 @@ impl UploadReceiver {
         }
     }
 
-    /// One config chunk; on a commit, validates, stores and reads back.
-    pub fn on_chunk<P: TablePage + ?Sized>(&mut self, chunk: ConfigChunk, page: &mut P) -> Option<UploadResult> {
+    /// One config chunk; on a commit, validates, then (only `at_rest`)
+    /// stores and reads back.
+    pub fn on_chunk<P: TablePage + ?Sized>(
+        &mut self,
+        chunk: ConfigChunk,
+        page: &mut P,
+        at_rest: bool,
+    ) -> Option<UploadResult> {
         let (table, cfg) = match self.collector.push(chunk)? {
             Ok(blob) => blob,
             Err(e) => return Some(Err(UploadError::Refused(e))),
         };
+        if !at_rest {
+            return Some(Err(UploadError::NotAtRest));
+        }
         Some(
             store(page, &table, &cfg)
                 .and_then(|()| load(page))
@@ -108,10 +200,11 @@ impl UploadPort {
     }
 
     /// One received byte; `Some` when a frame needs an answer: a commit
-    /// (send [`answer`] back) or a ping (send a hello).
-    pub fn push<P: TablePage + ?Sized>(&mut self, byte: u8, page: &mut P) -> Option<PortEvent> {
+    /// (send [`answer`] back) or a ping (send a hello). `at_rest`: the
+    /// damper's [`UploadGate`] now.
+    pub fn push<P: TablePage + ?Sized>(&mut self, byte: u8, page: &mut P, at_rest: bool) -> Option<PortEvent> {
         match self.rx.push_any(byte)? {
-            Ok(Incoming::Config(chunk)) => self.upload.on_chunk(chunk, page).map(PortEvent::Commit),
+            Ok(Incoming::Config(chunk)) => self.upload.on_chunk(chunk, page, at_rest).map(PortEvent::Commit),
             Ok(Incoming::Sample(s)) if s.seq == PING_SEQ => Some(PortEvent::Ping),
             Ok(Incoming::Sample(_)) | Err(_) => None,
         }
@@ -123,14 +216,81 @@ impl UploadPort {
     }
 }
 
-/// The answer to a commit: a hello frame, `TABLE_FAULT` unless stored.
+/// The answer to a commit: a hello frame, `TABLE_FAULT` unless stored, with
+/// why in its `rejected` field ([`CommitAnswer::code`]).
 pub fn answer(result: &UploadResult) -> [u8; FRAME_LEN] {
     let flags = if result.is_ok() {
         Flags::NONE
     } else {
         Flags::TABLE_FAULT
     };
-    CommandFrame::hello(flags).encode()
+    let mut hello = CommandFrame::hello(flags);
+    hello.rejected = CommitAnswer::of(result).code();
+    hello.encode()
+}
+
+/// Why a commit was answered as it was, as the answer frame carries it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CommitAnswer {
+    Stored,
+    /// A frame was lost or corrupt.
+    Incomplete,
+    /// The table or configuration is invalid.
+    Invalid,
+    /// A value is outside the board's hard limits.
+    OutOfLimits(crate::limits::Limit),
+    /// Valid, but the damper was not at rest: retry when it is still.
+    NotAtRest,
+    /// The flash page could not be written or read back.
+    PageFailed,
+}
+
+const CODE_STORED: u16 = 0;
+const CODE_INCOMPLETE: u16 = 1;
+const CODE_INVALID: u16 = 2;
+const CODE_NOT_AT_REST: u16 = 3;
+const CODE_PAGE_FAILED: u16 = 4;
+/// Out of limits: this plus the limit's index in `Limit::ALL`.
+const CODE_OUT_OF_LIMITS: u16 = 0x100;
+
+impl CommitAnswer {
+    pub fn of(result: &UploadResult) -> Self {
+        match result {
+            Ok(_) => CommitAnswer::Stored,
+            Err(UploadError::Refused(ConfigBlobError::Incomplete)) => CommitAnswer::Incomplete,
+            Err(UploadError::Refused(ConfigBlobError::OutOfLimits(l))) => CommitAnswer::OutOfLimits(*l),
+            Err(UploadError::Refused(_)) => CommitAnswer::Invalid,
+            Err(UploadError::NotAtRest) => CommitAnswer::NotAtRest,
+            Err(UploadError::Page(_)) => CommitAnswer::PageFailed,
+        }
+    }
+
+    pub fn code(&self) -> u16 {
+        match self {
+            CommitAnswer::Stored => CODE_STORED,
+            CommitAnswer::Incomplete => CODE_INCOMPLETE,
+            CommitAnswer::Invalid => CODE_INVALID,
+            CommitAnswer::NotAtRest => CODE_NOT_AT_REST,
+            CommitAnswer::PageFailed => CODE_PAGE_FAILED,
+            // `Limit` is fieldless: its discriminant is its index in `Limit::ALL`.
+            CommitAnswer::OutOfLimits(l) => CODE_OUT_OF_LIMITS.saturating_add(*l as u16),
+        }
+    }
+
+    /// The host's reading of an answer frame's `rejected` field (`None`:
+    /// a code this host does not know).
+    pub fn from_code(code: u16) -> Option<Self> {
+        match code {
+            CODE_STORED => Some(CommitAnswer::Stored),
+            CODE_INCOMPLETE => Some(CommitAnswer::Incomplete),
+            CODE_INVALID => Some(CommitAnswer::Invalid),
+            CODE_NOT_AT_REST => Some(CommitAnswer::NotAtRest),
+            CODE_PAGE_FAILED => Some(CommitAnswer::PageFailed),
+            _ => crate::limits::Limit::ALL
+                .get(usize::from(code.checked_sub(CODE_OUT_OF_LIMITS)?))
+                .map(|l| CommitAnswer::OutOfLimits(*l)),
+        }
+    }
 }
 
 /// Where the table flown after boot came from.

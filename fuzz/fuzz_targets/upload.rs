@@ -3,7 +3,9 @@
 //! firmware's receiver and collector). Never a panic; an accepted upload
 //! re-encodes to itself, and both paths agree. The board's receiver
 //! (`UploadPort` onto a flash-like RAM page) stores exactly what it accepts
-//! and leaves the page untouched when it refuses.
+//! and leaves the page untouched when it refuses. Nothing accepted lies
+//! outside the board's hard limits (`mre_core::limits`), checked here field
+//! by field against the wiring's numbers (firmware/README.md, "Hard limits").
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 use mre_core::flash_table::{load, RamPage};
@@ -18,6 +20,20 @@ fuzz_target!(|data: &[u8]| {
         .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
         .collect();
     let direct = decode_config(&words);
+    if let Ok((_, cfg)) = &direct {
+        let law = &cfg.law;
+        assert!((0.0..=2.0).contains(&law.current_min_a) && (0.0..=2.0).contains(&law.current_max_a));
+        assert!((1.0..=2.0).contains(&law.failsafe_current_a));
+        if let mre_core::law::ReboundPolicy::Fixed { current_a } = law.rebound {
+            assert!((0.0..=2.0).contains(&current_a));
+        }
+        assert!((1.0..=25.0).contains(&law.stroke_max_mm));
+        assert!((-2.5..=0.0).contains(&law.x_valid_min_mm) && (1.0..=27.5).contains(&law.x_valid_max_mm));
+        assert!((0.1..=20.0).contains(&law.v_valid_max_m_s));
+        assert!((1..=100).contains(&cfg.range_fault_samples) && (1..=500).contains(&cfg.stuck_samples));
+        assert!((1..=100).contains(&cfg.overrun_limit) && (1..=10_000).contains(&cfg.overrun_window));
+        assert_eq!(mre_core::limits::check(cfg, &mre_core::limits::BOARD), Ok(()));
+    }
     if let Ok((table, cfg)) = &direct {
         let mut out = [0u32; CONFIG_MAX_WORDS];
         let n = encode_config(table, cfg, &mut out);
@@ -51,7 +67,7 @@ fuzz_target!(|data: &[u8]| {
                     result = Some(r);
                 }
             }
-            if let Some(PortEvent::Commit(r)) = port.push(b, &mut page) {
+            if let Some(PortEvent::Commit(r)) = port.push(b, &mut page, true) {
                 stored = Some(r);
             }
         }

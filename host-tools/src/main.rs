@@ -778,10 +778,12 @@ fn run(cli: Cli) -> Result<()> {
         Command::Upload { port, model, rate_hz } => {
             let u = mre_host::upload::run_upload(&port, &model, rate_hz)?;
             println!(
-                "uploaded {} currents (table CRC-32 {:#010x}, {} Hz, {} words) to {}: stored, flown after the board's next reset",
+                "uploaded {} currents (table CRC-32 {:#010x}, {} Hz, {} kg, {} mm stroke, {} words) to {}: stored, flown after the board's next reset",
                 u.currents,
                 u.table_crc32,
                 u.rate_hz,
+                u.mass_kg,
+                u.stroke_mm,
                 u.words,
                 port.display()
             );

@@ -96,6 +96,48 @@ pub fn read_dataset_sha256(path: &Path) -> Result<Option<String>> {
     Ok(sha)
 }
 
+/// A model file's `[installation]` (every key optional; absent keys keep
+/// `mre_core::installation::DEFAULT_INSTALLATION`'s value):
+///
+/// ```toml
+/// [installation]
+/// mass_kg = 3.0             # the drop or striker mass
+/// usable_stroke_mm = 9.0    # stroke the damper may use from first contact
+/// coil_rating_a = 2.0       # the coil's continuous rating
+/// ```
+///
+/// `None` when the file has no such section.
+pub fn read_installation(path: &Path) -> Result<Option<mre_core::installation::Installation>> {
+    #[derive(Deserialize)]
+    struct Doc {
+        installation: Option<InstallationToml>,
+    }
+    #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct InstallationToml {
+        mass_kg: Option<f32>,
+        usable_stroke_mm: Option<f32>,
+        coil_rating_a: Option<f32>,
+        coil_resistance_ohm: Option<f32>,
+        supply_v: Option<f32>,
+        x_sensor_range_mm: Option<f32>,
+        v_sensor_full_scale_m_s: Option<f32>,
+    }
+    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read table file {}", path.display()))?;
+    let doc: Doc = toml::from_str(&text).with_context(|| format!("in table file {}", path.display()))?;
+    let Some(t) = doc.installation else { return Ok(None) };
+    let d = mre_core::installation::DEFAULT_INSTALLATION;
+    Ok(Some(mre_core::installation::Installation {
+        mass_kg: t.mass_kg.unwrap_or(d.mass_kg),
+        usable_stroke_mm: t.usable_stroke_mm.unwrap_or(d.usable_stroke_mm),
+        coil_rating_a: t.coil_rating_a.unwrap_or(d.coil_rating_a),
+        coil_resistance_ohm: t.coil_resistance_ohm.unwrap_or(d.coil_resistance_ohm),
+        supply_v: t.supply_v.unwrap_or(d.supply_v),
+        x_sensor_range_mm: t.x_sensor_range_mm.unwrap_or(d.x_sensor_range_mm),
+        v_sensor_full_scale_m_s: t.v_sensor_full_scale_m_s.unwrap_or(d.v_sensor_full_scale_m_s),
+    }))
+}
+
 pub fn parse_table_toml(text: &str) -> Result<Table> {
     use mre_core::table::{ModelTerms, FORMAT_VERSION, FORMAT_VERSION_1, MAX_CURRENTS};
     let doc: TableToml = toml::from_str(text)?;

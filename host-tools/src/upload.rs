@@ -9,10 +9,11 @@
 //! the firmware's receiver (`mre_core::upload`) is the code the host tests
 //! and the fuzz target (`fuzz/fuzz_targets/upload.rs`) exercise.
 use crate::pil::link::PilLink;
-use crate::table_file::read_table_file;
+use crate::table_file::{read_installation, read_table_file};
 use anyhow::{anyhow, bail, Context, Result};
 use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
 use mre_core::frame::{encode_config, CONFIG_MAX_WORDS};
+use mre_core::installation::Installation;
 use mre_core::table::Table;
 use mre_core::Flags;
 use std::path::Path;
@@ -25,30 +26,94 @@ pub const HELLO_TIMEOUT: Duration = Duration::from_secs(10);
 #[derive(Clone, Copy, Debug)]
 pub struct Uploaded {
     pub table_crc32: u32,
+    pub mass_kg: f32,
+    pub stroke_mm: f32,
     pub currents: usize,
     pub rate_hz: u32,
     pub words: usize,
 }
 
 /// The table of a model (or table) file with the board's default
-/// configuration at `rate_hz`: what `mre upload` sends.
+/// configuration at `rate_hz`, and the file's `[installation]` if it has one
+/// (mass, usable stroke, coil rating): what `mre upload` sends.
 pub fn upload_payload(model: &Path, rate_hz: u32) -> Result<(Table, ControlConfig)> {
     let table = read_table_file(model)?;
-    let cfg = ControlConfig::at_rate(rate_hz).map_err(|e| anyhow!("control rate {rate_hz} Hz: {e:?}"))?;
+    let mut cfg = ControlConfig::at_rate(rate_hz).map_err(|e| anyhow!("control rate {rate_hz} Hz: {e:?}"))?;
+    if let Some(installation) = read_installation(model)? {
+        apply_installation(&mut cfg, &installation);
+    }
     Ok((table, cfg))
 }
 
+/// The law's installation values: mass, usable stroke, and the output
+/// clamp and fail-safe within the coil's rating. The drive range, the
+/// sensors' scaling and the velocity check are the board's wiring, compiled
+/// into its image, and are not uploaded.
+pub fn apply_installation(cfg: &mut ControlConfig, installation: &Installation) {
+    cfg.law.mass_kg = installation.mass_kg;
+    cfg.law.stroke_max_mm = installation.usable_stroke_mm;
+    cfg.law.current_max_a = installation.coil_rating_a;
+    cfg.law.failsafe_current_a = cfg.law.failsafe_current_a.min(installation.coil_rating_a);
+}
+
+/// The board's hard limits (`mre_core::limits::BOARD`), checked before
+/// sending: the board would refuse the same values.
+pub fn check_board_limits(cfg: &ControlConfig) -> Result<()> {
+    use mre_core::limits::{check, BOARD};
+    if let Err(limit) = check(cfg, &BOARD) {
+        let range = limit.range(&BOARD);
+        bail!(
+            "{} = {} is outside the board's limits {} to {} ({}); nothing was sent",
+            limit.name(),
+            limit.value(cfg),
+            range.min,
+            range.max,
+            limit.why()
+        );
+    }
+    Ok(())
+}
+
+/// What a board's answer to a commit says, as a sentence.
+pub fn refusal(code: u16) -> String {
+    use mre_core::limits::BOARD;
+    use mre_core::upload::{CommitAnswer, REST_BEFORE_UPLOAD_S};
+    match CommitAnswer::from_code(code) {
+        Some(CommitAnswer::NotAtRest) => format!(
+            "the board did not store the upload because the damper was not at rest (armed, idle and still for {REST_BEFORE_UPLOAD_S} s); retry when it is still"
+        ),
+        Some(CommitAnswer::OutOfLimits(limit)) => {
+            let range = limit.range(&BOARD);
+            format!(
+                "the board refused the upload: {} is outside its limits {} to {} ({})",
+                limit.name(),
+                range.min,
+                range.max,
+                limit.why()
+            )
+        }
+        Some(CommitAnswer::Incomplete) => "the board received the upload incomplete (a frame was lost or corrupt)".into(),
+        Some(CommitAnswer::Invalid) => "the board refused the table or configuration as invalid (its log says why)".into(),
+        Some(CommitAnswer::PageFailed) => "the board could not write or read back its flash page".into(),
+        Some(CommitAnswer::Stored) | None => "the board refused the upload or could not store it (its log says why)".into(),
+    }
+}
+
 /// Sends `table` and `cfg` over an open link and waits for the answer.
-/// Fails when the board refuses or could not store them.
+/// Fails, before sending, when a value is outside the board's hard limits,
+/// and when the board refuses or could not store them.
 pub fn upload_over(link: &mut PilLink, table: &Table, cfg: &ControlConfig) -> Result<Uploaded> {
+    check_board_limits(cfg)?;
     let mut words = [0u32; CONFIG_MAX_WORDS];
     let n = encode_config(table, cfg, &mut words);
     let answer = link.send_config_words(&words[..n])?;
     if answer.flags.contains(Flags::TABLE_FAULT) {
-        bail!("the board refused the upload or could not store it (its log says why); it keeps the table it had");
+        bail!("{}; it keeps the table it had", refusal(answer.rejected));
     }
     Ok(Uploaded {
         table_crc32: table.crc32(),
+        mass_kg: cfg.law.mass_kg,
+        stroke_mm: cfg.law.stroke_max_mm,
         currents: table.entries().len(),
         rate_hz: cfg.rate_hz,
         words: n,
@@ -61,4 +126,67 @@ pub fn run_upload(port: &Path, model: &Path, rate_hz: Option<u32>) -> Result<Upl
     let mut link = PilLink::serial(port, HELLO_TIMEOUT)
         .context("is the board powered and running the firmware, and is PORT its ST-LINK VCP?")?;
     upload_over(&mut link, &table, &cfg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_out_of_limit_value_is_named_in_a_sentence() {
+        let mut cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+        check_board_limits(&cfg).unwrap();
+        cfg.law.failsafe_current_a = 0.0;
+        let msg = check_board_limits(&cfg).unwrap_err().to_string();
+        assert!(
+            msg.starts_with("failsafe_current_a = 0 is outside the board's limits 1 to 2 ("),
+            "{msg}"
+        );
+        assert!(msg.ends_with("; nothing was sent"), "{msg}");
+    }
+
+    #[test]
+    fn a_model_file_s_installation_is_what_is_sent() {
+        let dir = tempfile::tempdir().unwrap();
+        let base = std::fs::read_to_string(crate::pil::qemu::workspace_root().join("models/drop-none.toml")).unwrap();
+        let with = dir.path().join("lab.toml");
+        std::fs::write(
+            &with,
+            format!("{base}\n[installation]\nmass_kg = 3.0\nusable_stroke_mm = 9.0\n"),
+        )
+        .unwrap();
+        let (_, cfg) = upload_payload(&with, DEFAULT_RATE_HZ).unwrap();
+        assert_eq!((cfg.law.mass_kg, cfg.law.stroke_max_mm), (3.0, 9.0));
+        check_board_limits(&cfg).unwrap();
+        // Without the section: the image's defaults, the installation's.
+        let (_, cfg) = upload_payload(
+            &crate::pil::qemu::workspace_root().join("models/drop-none.toml"),
+            DEFAULT_RATE_HZ,
+        )
+        .unwrap();
+        assert_eq!(cfg, ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap());
+        // A stroke past the displacement sensor is named before anything is sent.
+        let bad = dir.path().join("bad.toml");
+        std::fs::write(&bad, format!("{base}\n[installation]\nusable_stroke_mm = 30.0\n")).unwrap();
+        let (_, cfg) = upload_payload(&bad, DEFAULT_RATE_HZ).unwrap();
+        let msg = check_board_limits(&cfg).unwrap_err().to_string();
+        assert!(
+            msg.starts_with("stroke_max_mm = 30 is outside the board's limits 1 to 25"),
+            "{msg}"
+        );
+    }
+
+    #[test]
+    fn the_board_s_reasons_read_as_sentences() {
+        use mre_core::upload::{answer, CommitAnswer, UploadError};
+        let code = |r| mre_core::frame::CommandFrame::decode(&answer(&r)).unwrap().rejected;
+        assert!(refusal(code(Err(UploadError::NotAtRest))).contains("not at rest"));
+        let limit = mre_core::limits::Limit::XValidMax;
+        let r = Err(UploadError::Refused(mre_core::frame::ConfigBlobError::OutOfLimits(
+            limit,
+        )));
+        assert_eq!(CommitAnswer::from_code(code(r)), Some(CommitAnswer::OutOfLimits(limit)));
+        assert!(refusal(code(r))
+            .starts_with("the board refused the upload: x_valid_max_mm is outside its limits 1 to 27.5"));
+    }
 }

@@ -66,11 +66,11 @@ fn rate_config_sets_period_and_refuses_out_of_range_rates() {
 #[test]
 fn slew_limit_per_period_follows_the_rate() {
     // The law plans for where the period ends: at 3 m/s, 0.3 mm on at
-    // 10 kHz and 0.15 mm at 20 kHz. From x = 0.2 mm that leaves 14.5 and
-    // 14.65 mm: 5.5·9/(2·0.0145) + 5.5·9.81 = 1760.852 N and
-    // 5.5·9/(2·0.01465) + 53.955 = 1743.372 N. Table 4 needs more than the
+    // 10 kHz and 0.15 mm at 20 kHz. From x = 0.2 mm that leaves 11.5 and
+    // 11.65 mm of the 12 mm stroke: 5.5·9/(2·0.0115) + 5.5·9.81 = 2206.129 N
+    // and 5.5·9/(2·0.01165) + 53.955 = 2178.419 N. Table 4 needs more than the
     // first slew step for either, so the command ramps at 2000 A/s from 0 A.
-    for (rate_hz, first_step_a, target_n) in [(10_000, 0.2f32, 1760.852f32), (20_000, 0.1, 1743.372)] {
+    for (rate_hz, first_step_a, target_n) in [(10_000, 0.2f32, 2206.129f32), (20_000, 0.1, 2178.419)] {
         let mut c = controller(rate_hz);
         let cmd = c.step_sample(0.2, Some(3.0));
         assert_eq!(cmd.branch, Branch::Compression);

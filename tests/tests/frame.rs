@@ -236,9 +236,9 @@ mod config_upload {
         }
         let table = Table::new(&entries).unwrap();
         let mut cfg = ControlConfig::at_rate(20_000).unwrap();
-        cfg.law.stroke_max_mm = 12.0;
+        cfg.law.stroke_max_mm = 10.0;
         cfg.law.rebound = ReboundPolicy::Fixed { current_a: 0.5 };
-        cfg.stuck_samples = 0;
+        cfg.stuck_samples = 20;
         (table, cfg)
     }
 

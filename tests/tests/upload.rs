@@ -35,7 +35,7 @@ fn frames(words: &[u32]) -> Vec<[u8; FRAME_LEN]> {
 fn send(port: &mut UploadPort, page: &mut RamPage, frames: &[[u8; FRAME_LEN]]) -> Vec<CommandFrame> {
     let mut answers = Vec::new();
     for b in frames.iter().flatten() {
-        if let Some(event) = port.push(*b, page) {
+        if let Some(event) = port.push(*b, page, true) {
             answers.push(CommandFrame::decode(&event.answer()).unwrap());
         }
     }
@@ -132,7 +132,7 @@ fn the_receiver_reports_why_a_commit_failed() {
     let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
     let mut results = Vec::new();
     for b in fr.iter().flatten() {
-        if let Some(PortEvent::Commit(r)) = port.push(*b, &mut page) {
+        if let Some(PortEvent::Commit(r)) = port.push(*b, &mut page, true) {
             results.push(r);
         }
     }
@@ -163,7 +163,7 @@ fn a_flash_write_failure_is_not_acknowledged_and_boot_falls_back() {
     let mut port = UploadPort::new();
     let mut results = Vec::new();
     for b in frames(&blob(&other_table(), &cfg)).iter().flatten() {
-        if let Some(PortEvent::Commit(r)) = port.push(*b, &mut page) {
+        if let Some(PortEvent::Commit(r)) = port.push(*b, &mut page, true) {
             results.push(r);
         }
     }
@@ -217,4 +217,168 @@ fn a_ping_is_answered_with_a_hello_and_never_stored() {
     assert_eq!(answers.len(), 2);
     assert!(answers.iter().all(|a| a.seq == 0 && a.flags == Flags::NONE));
     assert!(page.bytes.iter().all(|&b| b == 0xFF));
+}
+
+/// The largest table the format holds: `MAX_CURRENTS` entries, format 2 with
+/// every term (a viscous coefficient on each entry), so the blob is
+/// `CONFIG_MAX_WORDS` long and its last words lie past bit 127.
+fn largest_table() -> Table {
+    use mre_core::table::{CurrentEntry, ModelTerms, Quartic, FORMAT_VERSION, MAX_CURRENTS};
+    let entries: Vec<CurrentEntry> = (0..MAX_CURRENTS)
+        .map(|k| CurrentEntry {
+            current_a: 0.25 * k as f32,
+            compression: Quartic::new([0.0, 0.0, 0.5, 100.0 + 200.0 * k as f32, 0.0]),
+            extension: Quartic::new([0.0, 0.0, 0.1, 30.0 + 60.0 * k as f32, 0.0]),
+            x_min_mm: -0.01,
+            x_max_mm: 12.0,
+        })
+        .collect();
+    let mut terms = ModelTerms::EVERY_TERM;
+    for (k, c) in terms.viscous_n_s_per_m.iter_mut().enumerate() {
+        *c = 5.0 * (k + 1) as f32;
+    }
+    let table = Table::with_terms(&entries, terms).unwrap();
+    assert_eq!(table.version(), FORMAT_VERSION);
+    table
+}
+
+#[test]
+fn the_largest_table_with_every_term_uploads_and_flies_at_boot() {
+    let table = largest_table();
+    let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+    let words = blob(&table, &cfg);
+    // 2 header + 13 per entry + 3 terms + 1 viscous per entry + 13 law + 7 control.
+    assert_eq!(words.len(), 2 + 8 * 13 + 3 + 8 + 13 + 7);
+    assert_eq!(words.len(), CONFIG_MAX_WORDS);
+    let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
+    let answers = send(&mut port, &mut page, &frames(&words));
+    assert_eq!(answers.len(), 1);
+    assert_eq!(answers[0].flags, Flags::NONE);
+    let boot = choose_boot_table(&mut page, &GENERATED_TABLE, DEFAULT_RATE_HZ);
+    assert_eq!(boot.source, TableSource::Uploaded);
+    let flown = boot.table.unwrap();
+    assert_eq!(flown.entries(), table.entries());
+    assert_eq!(flown.terms(), table.terms());
+    assert_eq!(boot.config.unwrap(), cfg);
+}
+
+#[test]
+fn a_word_missing_past_bit_127_is_noticed() {
+    let words = blob(&largest_table(), &ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap());
+    // The frame that carries words 129..132 is lost: the commit must see the gap.
+    let mut fr = frames(&words);
+    fr.remove(129 / 3);
+    let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
+    let mut results = Vec::new();
+    for b in fr.iter().flatten() {
+        if let Some(PortEvent::Commit(r)) = port.push(*b, &mut page, true) {
+            results.push(r);
+        }
+    }
+    assert_eq!(
+        results.as_slice(),
+        &[Err(UploadError::Refused(ConfigBlobError::Incomplete))]
+    );
+    assert!(page.bytes.iter().all(|&b| b == 0xFF));
+}
+
+/// What the board answers to a commit it did not store while the damper moves.
+#[test]
+fn an_upload_in_motion_is_refused_untouched_and_accepted_at_rest() {
+    use mre_core::upload::CommitAnswer;
+    let table = other_table();
+    let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+    let fr = frames(&blob(&table, &cfg));
+    let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
+    let mut events = Vec::new();
+    for b in fr.iter().flatten() {
+        events.extend(port.push(*b, &mut page, false));
+    }
+    assert_eq!(events, [PortEvent::Commit(Err(UploadError::NotAtRest))]);
+    let answer = CommandFrame::decode(&events[0].answer()).unwrap();
+    assert_eq!(answer.flags, Flags::TABLE_FAULT);
+    assert_eq!(CommitAnswer::from_code(answer.rejected), Some(CommitAnswer::NotAtRest));
+    assert!(
+        page.bytes.iter().all(|&b| b == 0xFF),
+        "an upload in motion never touches the page"
+    );
+
+    // The same bytes once the damper is at rest: stored.
+    let answers: Vec<_> = fr
+        .iter()
+        .flatten()
+        .filter_map(|b| port.push(*b, &mut page, true))
+        .map(|e| CommandFrame::decode(&e.answer()).unwrap())
+        .collect();
+    assert_eq!(answers.len(), 1);
+    assert_eq!(answers[0].flags, Flags::NONE);
+    assert_eq!(CommitAnswer::from_code(answers[0].rejected), Some(CommitAnswer::Stored));
+    assert_eq!(
+        choose_boot_table(&mut page, &GENERATED_TABLE, DEFAULT_RATE_HZ).source,
+        TableSource::Uploaded
+    );
+}
+
+#[test]
+fn every_commit_answer_reads_back_as_itself() {
+    use mre_core::limits::Limit;
+    use mre_core::upload::CommitAnswer;
+    let mut all = vec![
+        CommitAnswer::Stored,
+        CommitAnswer::Incomplete,
+        CommitAnswer::Invalid,
+        CommitAnswer::NotAtRest,
+        CommitAnswer::PageFailed,
+    ];
+    all.extend(Limit::ALL.iter().map(|l| CommitAnswer::OutOfLimits(*l)));
+    let mut codes: Vec<u16> = all.iter().map(|a| a.code()).collect();
+    for (a, code) in all.iter().zip(&codes) {
+        assert_eq!(CommitAnswer::from_code(*code), Some(*a));
+    }
+    codes.sort_unstable();
+    codes.dedup();
+    assert_eq!(codes.len(), all.len(), "codes are distinct");
+    assert_eq!(CommitAnswer::from_code(0xFFFF), None);
+}
+
+/// The gate the control loop keeps: an impact, then rest. Stored only after
+/// 0.5 s (5000 periods at 10 kHz) armed, idle and still.
+#[test]
+fn the_upload_gate_opens_only_after_half_a_second_at_rest() {
+    use mre_core::control::Controller;
+    use mre_core::upload::UploadGate;
+    let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+    let mut ctl = Controller::new(cfg, Table::from_image(&GENERATED_TABLE)).unwrap();
+    let mut gate = UploadGate::new();
+    let step = |ctl: &mut Controller, gate: &mut UploadGate, x_mm: f32, v_m_s: f32| {
+        let cmd = ctl.step_sample(x_mm, Some(v_m_s));
+        gate.observe(ctl, &cmd);
+    };
+    // At rest for a while: the gate opens at 5000 periods, not before.
+    for k in 1..=5000 {
+        step(&mut ctl, &mut gate, 0.0, 0.0);
+        assert_eq!(gate.at_rest(DEFAULT_RATE_HZ), k >= 5000, "period {k}");
+    }
+    // An impact: 2 m/s into the damper, 5 mm deep. The gate shuts at once.
+    step(&mut ctl, &mut gate, 0.2, 2.0);
+    assert!(!gate.at_rest(DEFAULT_RATE_HZ));
+    assert_eq!(gate.still_periods(), 0);
+    for k in 0..40 {
+        step(&mut ctl, &mut gate, 0.2 + 0.12 * k as f32, 2.0 - 0.05 * k as f32);
+        assert!(!gate.at_rest(DEFAULT_RATE_HZ));
+    }
+    // Back at 0 mm but still moving (a rebound): not still.
+    step(&mut ctl, &mut gate, 0.0, -0.5);
+    assert_eq!(gate.still_periods(), 0);
+    // Still again: closed until another 0.5 s has passed.
+    for _ in 0..4000 {
+        step(&mut ctl, &mut gate, 0.0, 0.0);
+    }
+    assert!(!gate.at_rest(DEFAULT_RATE_HZ));
+    // A latched fault keeps it closed however still the damper is.
+    ctl.latch_fault(Flags::OVER_CURRENT);
+    for _ in 0..6000 {
+        step(&mut ctl, &mut gate, 0.0, 0.0);
+    }
+    assert!(!gate.at_rest(DEFAULT_RATE_HZ));
 }

@@ -17,11 +17,15 @@ compile_error!("enable one board: use `--no-default-features` with `board-nucleo
 compile_error!("enable a board feature (board-b-l475e-iot01a, board-nucleo-l476rg or pil)");
 
 #[cfg(feature = "hw")]
+mod flash_upload;
+#[cfg(feature = "hw")]
+pub use flash_upload::{boot_table, spawn_uplink};
+#[cfg(feature = "hw")]
 mod stm32l4;
 #[cfg(all(feature = "hw", feature = "bench"))]
 pub use stm32l4::bench_model_step;
 #[cfg(feature = "hw")]
-pub use stm32l4::{boot_table, core_clock_hz, cycles, halt_fail_safe, init, spawn_uplink, Board, Status, NAME};
+pub use stm32l4::{core_clock_hz, cycles, halt_fail_safe, init, Board, Status, NAME};
 
 #[cfg(feature = "pil")]
 mod pil;
@@ -31,6 +35,10 @@ pub use pil::icount;
 pub use pil::{boot_table, core_clock_hz, cycles, halt_fail_safe, init, spawn_uplink, Board, Status, NAME};
 
 use mre_core::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
+
+/// Whether the damper is at rest, for the table upload: written by the
+/// control task after each step, read on an upload's commit.
+pub static UPLOAD_GATE: mre_core::upload::SharedUploadGate = mre_core::upload::SharedUploadGate::new();
 use mre_core::frame::LinkStats;
 use mre_core::law::Command;
 

@@ -242,9 +242,13 @@ impl super::BoardIo for Io {
                 idle_polls = 0;
                 match self.rx.push_any(byte) {
                     Some(Ok(Incoming::Config(chunk))) => {
-                        let Some(result) = self.upload.on_chunk(chunk, &mut self.page) else {
+                        // At rest: before the first sample, or still (`UPLOAD_GATE`).
+                        let at_rest = ctl.stats().periods == 0 || super::UPLOAD_GATE.at_rest();
+                        let Some(result) = self.upload.on_chunk(chunk, &mut self.page, at_rest) else {
                             continue;
                         };
+                        // The answer says why (mre_core::upload::CommitAnswer).
+                        let (stored, reply) = (result.is_ok(), mre_core::upload::answer(&result));
                         let flown = match result {
                             Ok((table, cfg)) => match Controller::new(cfg, Ok(table)) {
                                 Ok(new_ctl) => {
@@ -269,7 +273,11 @@ impl super::BoardIo for Io {
                                 false
                             }
                         };
-                        send_hello(if flown { Flags::NONE } else { Flags::TABLE_FAULT });
+                        if flown || !stored {
+                            usart_write(&reply);
+                        } else {
+                            send_hello(Flags::TABLE_FAULT);
+                        }
                     }
                     Some(Ok(Incoming::Sample(sample))) if sample.seq == END_OF_RUN_SEQ => end_of_run(self.rx.stats()),
                     // The host connected after the boot hello (a serial port).

@@ -12,14 +12,14 @@ use embassy_stm32::time::khz;
 use embassy_stm32::timer::low_level::CountingMode;
 use embassy_stm32::timer::simple_pwm::{PwmPin, SimplePwm, SimplePwmChannel};
 use embassy_stm32::usart::BufferedUart;
+
+use super::flash_upload::Uplink;
 use embassy_stm32::wdg::IndependentWatchdog;
 use embassy_time::{Duration, Instant, Ticker};
 use mre_core::boot::ResetCause;
 use mre_core::control::{open_loop_duty, Coil, Controller, DisplacementSensor, VelocitySensor};
 use mre_core::law::{Command, LawConfig};
 use mre_core::pacing::Pacer;
-use mre_core::table::TableImage;
-use mre_core::upload::{choose_boot_table, BootTable};
 
 #[cfg(feature = "board-b-l475e-iot01a")]
 pub const NAME: &str = "B-L475E-IOT01A";
@@ -163,111 +163,8 @@ pub struct Io {
 pub struct Board {
     pub io: Io,
     pub watchdog: IndependentWatchdog<'static, IWDG>,
-    /// Taken by [`spawn_uplink`].
-    uplink: Option<Uplink>,
-}
-
-/// The flash page reserved for an uploaded table: the last 2 KiB of the
-/// 1 MiB flash (memory.x ends FLASH before it). It lies in bank 2 and the
-/// image (≤ 64 KiB) in bank 1: the L4's read-while-write lets the control
-/// loop keep running from bank 1 while the page is erased and written.
-const TABLE_PAGE_OFFSET: u32 = 1024 * 1024 - mre_core::flash_table::PAGE_BYTES as u32;
-
-/// embassy-stm32's async flash driver: on the L4 its erase and write wait
-/// for the FLASH interrupt instead of holding a critical section (the
-/// blocking driver masks interrupts for the whole ~22 ms page erase, which
-/// would stall the control loop and trip the 5 ms watchdog). The upload task
-/// polls each operation to completion in thread mode.
-struct FlashPage(embassy_stm32::flash::Flash<'static, embassy_stm32::flash::Async>);
-
-impl mre_core::flash_table::TablePage for FlashPage {
-    fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), mre_core::flash_table::FlashError> {
-        self.0
-            .blocking_read(TABLE_PAGE_OFFSET + offset as u32, buf)
-            .map_err(|_| mre_core::flash_table::FlashError)
-    }
-
-    fn erase(&mut self) -> Result<(), mre_core::flash_table::FlashError> {
-        let end = TABLE_PAGE_OFFSET + mre_core::flash_table::PAGE_BYTES as u32;
-        embassy_futures::block_on(self.0.erase(TABLE_PAGE_OFFSET, end)).map_err(|_| mre_core::flash_table::FlashError)
-    }
-
-    fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), mre_core::flash_table::FlashError> {
-        embassy_futures::block_on(self.0.write(TABLE_PAGE_OFFSET + offset as u32, data))
-            .map_err(|_| mre_core::flash_table::FlashError)
-    }
-}
-
-/// The table upload receiver: the VCP UART (`None` if it could not be
-/// configured: boot still reads the page) and the flash page.
-pub struct Uplink {
-    uart: Option<BufferedUart<'static>>,
-    page: FlashPage,
-}
-
-/// The table boot flies: the flash page if it holds a valid upload, else
-/// the image's own (`mre_core::upload::choose_boot_table`).
-pub fn boot_table(board: &mut Board, built_in: &TableImage<'_>, rate_hz: u32) -> BootTable {
-    match board.uplink.as_mut() {
-        Some(up) => choose_boot_table(&mut up.page, built_in, rate_hz),
-        // Only after `spawn_uplink`, which `main` calls later.
-        None => choose_boot_table(&mut mre_core::flash_table::RamPage::erased(), built_in, rate_hz),
-    }
-}
-
-/// Starts the upload receiver (thread mode, below the control task).
-pub fn spawn_uplink(spawner: &embassy_executor::Spawner, board: &mut Board) {
-    let Some(Uplink { uart: Some(uart), page }) = board.uplink.take() else {
-        return;
-    };
-    match upload_task(uart, page) {
-        Ok(token) => spawner.spawn(token),
-        Err(_) => defmt::error!("upload task already running"),
-    }
-}
-
-/// `mre upload --port PORT model.toml` lands here: config frames on the
-/// VCP, validated, written to the flash page and read back, answered with a
-/// hello frame (`TABLE_FAULT` if refused). The table flies after the next
-/// reset; the running controller is never swapped mid-operation.
-#[embassy_executor::task]
-async fn upload_task(mut uart: BufferedUart<'static>, mut page: FlashPage) {
-    use embedded_io_async::{Read, Write};
-    use mre_core::upload::{PortEvent, UploadPort};
-    defmt::info!("table upload: listening on the ST-LINK VCP (115200 8N1)");
-    let mut port = UploadPort::new();
-    let mut buf = [0u8; 32];
-    loop {
-        let n = match uart.read(&mut buf).await {
-            Ok(n) => n,
-            Err(e) => {
-                defmt::warn!("table upload: VCP read error {}", e);
-                continue;
-            }
-        };
-        for &byte in buf.get(..n).unwrap_or_default() {
-            let Some(event) = port.push(byte, &mut page) else {
-                continue;
-            };
-            match &event {
-                PortEvent::Ping => {}
-                PortEvent::Commit(Ok((t, c))) => defmt::info!(
-                    "table upload: stored in the flash page, CRC {=u32:#010x}, {=usize} currents, {=u32} Hz; flown after the next reset",
-                    t.crc32(),
-                    t.entries().len(),
-                    c.rate_hz
-                ),
-                PortEvent::Commit(Err(e)) => defmt::warn!(
-                    "table upload not stored: {=str} ({=u16} frames rejected so far)",
-                    e.as_str(),
-                    port.rejected_frames()
-                ),
-            }
-            if uart.write_all(&event.answer()).await.is_err() {
-                defmt::warn!("table upload: VCP write error");
-            }
-        }
-    }
+    /// Taken by [`super::flash_upload::spawn_uplink`].
+    pub(super) uplink: Option<Uplink>,
 }
 
 /// The status LED and the user button B1 (active low on both boards).
@@ -349,7 +246,7 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
     io.set_duty(fail_safe_duty());
     io.calibrate_at_rest();
     let watchdog = IndependentWatchdog::new(p.IWDG, WATCHDOG_TIMEOUT_US);
-    let page = FlashPage(embassy_stm32::flash::Flash::new(p.FLASH, Irqs));
+    let flash = embassy_stm32::flash::Flash::new(p.FLASH, Irqs);
     let (vcp, vcp_rx, vcp_tx) = vcp_pins!(p);
     let uart = match (
         cortex_m::singleton!(: [u8; 64] = [0; 64]),
@@ -380,7 +277,7 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
         VCP_IRQ.set_priority(Priority::P3);
         embassy_stm32::interrupt::FLASH.set_priority(Priority::P3);
     }
-    let uplink = Some(Uplink { uart, page });
+    let uplink = Some(Uplink::new(uart, flash));
     (Board { io, watchdog, uplink }, status)
 }
 

@@ -392,6 +392,80 @@ fn upload_over_qemu_serial_is_flown_and_a_corrupt_upload_is_refused() {
     finish(qemu, link);
 }
 
+/// `MAX_CURRENTS` entries, format 2, every term: the largest blob
+/// (`CONFIG_MAX_WORDS` words, past the receiver's old 128-word tracking).
+fn largest_table() -> Table {
+    use mre_core::table::{CurrentEntry, ModelTerms, Quartic, MAX_CURRENTS};
+    let entries: Vec<CurrentEntry> = (0..MAX_CURRENTS)
+        .map(|k| CurrentEntry {
+            current_a: 0.25 * k as f32,
+            compression: Quartic::new([0.0, 0.0, 0.5, 100.0 + 200.0 * k as f32, 0.0]),
+            extension: Quartic::new([0.0, 0.0, 0.1, 30.0 + 60.0 * k as f32, 0.0]),
+            x_min_mm: -0.01,
+            x_max_mm: 12.0,
+        })
+        .collect();
+    let mut terms = ModelTerms::EVERY_TERM;
+    for (k, c) in terms.viscous_n_s_per_m.iter_mut().enumerate() {
+        *c = 5.0 * (k + 1) as f32;
+    }
+    Table::with_terms(&entries, terms).unwrap()
+}
+
+#[test]
+fn the_largest_table_round_trips_and_out_of_limit_or_moving_uploads_are_refused_over_qemu_serial() {
+    use crate::upload::{run_upload, upload_over};
+    use mre_core::frame::{encode_config, CONFIG_MAX_WORDS};
+    let Some((qemu, pty)) = start_on_pty() else { return };
+    // `mre upload --port PTY largest.toml`: the 8-entry every-term table.
+    let table = largest_table();
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("largest.toml");
+    std::fs::write(&file, crate::table_file::table_to_toml(&table)).unwrap();
+    let sent = run_upload(&pty, &file, None).unwrap();
+    assert_eq!((sent.currents, sent.words), (8, CONFIG_MAX_WORDS));
+    assert_eq!(sent.table_crc32, table.crc32());
+
+    // A fail-safe of 0 A: `mre upload` refuses it before sending, naming it ...
+    let mut link = PilLink::serial(&pty, Duration::from_secs(30)).unwrap();
+    let mut cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+    cfg.law.failsafe_current_a = 0.0;
+    let err = upload_over(&mut link, &table, &cfg).unwrap_err().to_string();
+    assert!(
+        err.starts_with("failsafe_current_a = 0 is outside the board's limits"),
+        "{err}"
+    );
+    // ... and the firmware refuses the same blob sent around the host's check.
+    let mut words = [0u32; CONFIG_MAX_WORDS];
+    let n = encode_config(&table, &cfg, &mut words);
+    let answer = link.send_config_words(&words[..n]).unwrap();
+    assert!(answer.flags.contains(Flags::TABLE_FAULT), "{answer:?}");
+
+    // The firmware flies the largest table: sample for sample what the
+    // same Controller does in process.
+    let default_cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+    let pil = run_lockstep(&mut StandInDrop::new(true), &mut link, 200, PERIOD_S).unwrap();
+    let in_process = run_lockstep(
+        &mut StandInDrop::new(true),
+        &mut InProcess::new(default_cfg, table).unwrap(),
+        200,
+        PERIOD_S,
+    )
+    .unwrap();
+    assert_eq!(first_mismatch(&pil, &in_process, 1.0e-6), None);
+
+    // Mid-drop (the stand-in has been falling for 200 periods): a valid
+    // upload is refused, and the answer says the damper was not at rest.
+    let n = encode_config(&table, &default_cfg, &mut words);
+    let answer = link.send_config_words(&words[..n]).unwrap();
+    assert!(answer.flags.contains(Flags::TABLE_FAULT), "{answer:?}");
+    assert_eq!(
+        mre_core::upload::CommitAnswer::from_code(answer.rejected),
+        Some(mre_core::upload::CommitAnswer::NotAtRest)
+    );
+    finish(qemu, link);
+}
+
 #[test]
 fn mre_pil_serial_closes_the_drop_test_over_qemu_serial() {
     use super::sim::{run_pil_on, FirmwareLink};

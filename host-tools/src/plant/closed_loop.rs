@@ -11,10 +11,12 @@ use mre_core::law::{ImpactLaw, LawConfig};
 use mre_core::Table;
 use serde::Serialize;
 
-/// Stroke the damper may use (mm): the elastomer's rated compression. The
-/// passive 0 A drop at 2.24 m/s needs about 16 mm, more than this, which is
-/// why a soft passive setting is not an option.
-pub const USABLE_STROKE_MM: f64 = 12.0;
+/// Stroke the damper may use (mm): the installation's (the board's default,
+/// `mre_core::installation`). The passive 0 A drop at 2.24 m/s needs about
+/// 16 mm, more than this, which is why a soft passive setting is not an option.
+pub const USABLE_STROKE_MM: f64 = mre_core::installation::DEFAULT_INSTALLATION.usable_stroke_mm as f64;
+/// The drop's mass (kg): the installation's.
+pub const MASS_KG: f64 = mre_core::installation::DEFAULT_INSTALLATION.mass_kg as f64;
 
 /// Which current a run uses.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -219,7 +221,7 @@ impl Default for SimRequest {
             effect: "none".to_owned(),
             seed: 0,
             impact_velocity_m_s: 2.24,
-            mass_kg: 5.5,
+            mass_kg: MASS_KG,
             coil_lag_s: None,
         }
     }

@@ -92,7 +92,7 @@ impl Default for ImpactConfig {
     /// The paper's drop test (Table 2): 5.5 kg at 2.24 m/s; 10 kHz control.
     fn default() -> Self {
         Self {
-            mass_kg: 5.5,
+            mass_kg: super::closed_loop::MASS_KG,
             impact_velocity_m_s: 2.24,
             gravity_m_s2: 9.81,
             step_s: 1.0e-6,
@@ -119,11 +119,13 @@ pub struct CoilDriver {
 }
 
 impl Default for CoilDriver {
-    /// The board's coil drive (firmware/README.md): 12 V half bridge, 4 Ω coil.
+    /// The board's coil drive (firmware/README.md): 12 V half bridge, 4 Ω
+    /// coil, the installation's (`mre_core::installation`).
     fn default() -> Self {
+        use mre_core::installation::DEFAULT_INSTALLATION as I;
         Self {
-            resistance_ohm: 4.0,
-            supply_v: 12.0,
+            resistance_ohm: f64::from(I.coil_resistance_ohm),
+            supply_v: f64::from(I.supply_v),
             reverse: true,
         }
     }
