@@ -358,6 +358,22 @@ impl ImpactLaw {
         }
     }
 
+    /// The drive removed (0 A, 0 % duty): the answer to an over-current,
+    /// where the fail-safe current would drive into the failed coil or driver.
+    /// Like [`ImpactLaw::fail_safe`] it bypasses the slew limit.
+    pub fn drive_off(&mut self, flags: Flags) -> Command {
+        self.last_current_a = 0.0;
+        self.planned_last = false;
+        self.expected_n = 0.0;
+        self.coil_a -= self.coil_alpha * self.coil_a;
+        Command {
+            current_a: 0.0,
+            target_force_n: 0.0,
+            branch: self.selector.branch(),
+            flags: flags | Flags::FAIL_SAFE,
+        }
+    }
+
     /// True when both samples are finite and within the plausible ranges,
     /// in one pass of comparisons (each false for NaN).
     #[inline(always)]

@@ -259,7 +259,7 @@ mod fw {
                     defmt::warn!("{=u32} control periods missed before period {=u32}", ticks, period)
                 }
                 Event::FaultLatched { latched, period } => defmt::error!(
-                    "fault latched: {=u32:#010x} in period {=u32}; coil at the fail-safe",
+                    "fault latched: {=u32:#010x} in period {=u32}; coil at the fail-safe (drive off on over-current)",
                     latched,
                     period
                 ),
@@ -312,7 +312,6 @@ mod fw {
     async fn control_task(mut ctl: Controller, mut board: board::Board) {
         let mut last = ctl.stats();
         let mut known_faults = ctl.latched();
-        let mut over_current = mre_core::overcurrent::OverCurrent::default();
         board.start();
         loop {
             let missed = board.io.next_period(&mut ctl).await;
@@ -322,13 +321,10 @@ mod fw {
                     period: ctl.stats().periods,
                 });
             }
-            // Over-current (the shunt at mid on-time of the last PWM period)
-            // latches before the step, so this period already holds the fail-safe.
-            if let Some(measured_a) = board.io.coil_current_a() {
-                if over_current.check(measured_a) {
-                    ctl.latch_fault(mre_core::Flags::OVER_CURRENT);
-                }
-            }
+            // The shunt at mid on-time of the last PWM period, checked before
+            // the step: an over-current already removes this period's drive,
+            // a stale or stuck channel latches CURRENT_SENSE.
+            ctl.check_coil_current(board.io.coil_current());
             let t0 = board::cycles();
             let cmd = ctl.step_io(&mut board.io);
             ctl.record_step_cycles(board::cycles().wrapping_sub(t0));

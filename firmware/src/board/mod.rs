@@ -46,10 +46,12 @@ pub trait BoardIo: DisplacementSensor + VelocitySensor + Coil {
     fn finish_period(&mut self, cmd: &Command, ctl: &Controller) -> bool;
     /// The frame link's counters (PIL), `None` on hardware.
     fn link_stats(&self) -> Option<LinkStats>;
-    /// The measured coil current for the over-current monitor: the shunt at
-    /// mid on-time on hardware, the plant's coil in PIL (`None` when the
-    /// host sends none).
-    fn coil_current_a(&mut self) -> Option<f32>;
+    /// The current-sense channel for the monitor (`mre_core::overcurrent`):
+    /// on hardware the shunt at mid on-time, `Stale` when no conversion ended
+    /// since the last period (ADC3's end-of-injected-conversion flag); in PIL
+    /// the plant's coil current, `Stale` when a frame stops carrying one.
+    /// `None`: no channel (PIL before the host sent a current).
+    fn coil_current(&mut self) -> Option<mre_core::overcurrent::Sense>;
 }
 
 /// The status LED and the user button (thread mode).

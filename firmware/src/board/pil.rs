@@ -24,6 +24,7 @@ use mre_core::frame::{
     CommandFrame, FrameError, Incoming, LinkStats, SampleFrame, SampleReceiver, END_OF_RUN_SEQ, FRAME_LEN, PING_SEQ,
 };
 use mre_core::law::Command;
+use mre_core::overcurrent::Sense;
 use mre_core::table::TableImage;
 use mre_core::upload::{choose_boot_table, BootTable, UploadReceiver};
 use mre_core::Flags;
@@ -153,6 +154,8 @@ pub struct Io {
     current_a: f32,
     last_reply: Option<[u8; FRAME_LEN]>,
     last_rejected: u16,
+    /// A frame carried the plant's coil current: the sense channel is wired.
+    sense_wired: bool,
 }
 
 /// QEMU's model has no LED or button to speak of: nothing shown, never pressed.
@@ -192,6 +195,7 @@ pub fn init(_rate_hz: u32) -> (Board, Status) {
                 current_a: 0.0,
                 last_reply: None,
                 last_rejected: 0,
+                sense_wired: false,
             },
             watchdog: Watchdog,
         },
@@ -319,8 +323,16 @@ impl super::BoardIo for Io {
         Some(self.rx.stats())
     }
 
-    fn coil_current_a(&mut self) -> Option<f32> {
-        self.sample.coil_current_a
+    /// The plant's coil current; once the host has sent one, a frame
+    /// without it is a conversion that did not arrive (a stale channel).
+    fn coil_current(&mut self) -> Option<Sense> {
+        match self.sample.coil_current_a {
+            Some(a) => {
+                self.sense_wired = true;
+                Some(Sense::Fresh(a))
+            }
+            None => self.sense_wired.then_some(Sense::Stale),
+        }
     }
 }
 

@@ -17,6 +17,7 @@ use embassy_time::{Duration, Instant, Ticker};
 use mre_core::boot::ResetCause;
 use mre_core::control::{open_loop_duty, Coil, Controller, DisplacementSensor, VelocitySensor};
 use mre_core::law::{Command, LawConfig};
+use mre_core::overcurrent::Sense;
 use mre_core::pacing::Pacer;
 use mre_core::table::TableImage;
 use mre_core::upload::{choose_boot_table, BootTable};
@@ -463,6 +464,17 @@ impl Io {
             w.set_ocpe(1, true);
         });
         pac::TIM3.ccr(3).write(|w| w.set_ccr(1));
+        // CC4E: the channel 4 compare output enabled (RM0351 §31.4.11,
+        // TIMx_CCER), so OC4REF's edge reaches the ADC as TIM3_CH4. CH4 has
+        // no pin mapped to AF2 here, so nothing is driven.
+        pac::TIM3.ccer().modify(|w| w.set_cce(3, true));
+        // JQDIS = 1: the injected queue disabled (RM0351 §18.7.4, ADC_CFGR
+        // bit 31; §18.4.21, "Queue of context for injected conversions"):
+        // the JSQR below is the one context, kept after every sequence, and
+        // cannot be consumed into an empty queue that ignores triggers. Its
+        // reset value is 1; set explicitly rather than trusted (the stm32
+        // PAC has no field for it: raw bit). Written with JADSTART = 0.
+        pac::ADC3.cfgr().modify(|w| w.0 |= 1 << 31);
         pac::ADC3.jsqr().write(|w| {
             w.set_jl(0);
             w.set_jextsel(JEXTSEL_TIM3_CH4);
@@ -541,10 +553,20 @@ impl super::BoardIo for Io {
         None
     }
 
-    /// The latest mid-on-time shunt conversion (the last PWM period).
-    fn coil_current_a(&mut self) -> Option<f32> {
-        let code = embassy_stm32::pac::ADC3.jdr(0).read().jdata();
-        Some(self.volts(code) / I_SENSE_V_PER_A - self.i_offset_a)
+    /// The latest mid-on-time shunt conversion, with its proof of being new:
+    /// ADC3's JEOC (end of injected conversion, set by hardware, cleared by
+    /// writing 1; RM0351 §18.7.1, ADC_ISR). No JEOC since the last period:
+    /// `Stale` (a dead trigger chain or ADC reads the old JDR1 for ever).
+    /// JEOC is cleared before JDR1 is read, so a conversion that ends in
+    /// between is counted new next period, never lost.
+    fn coil_current(&mut self) -> Option<Sense> {
+        use embassy_stm32::pac;
+        if !pac::ADC3.isr().read().jeoc() {
+            return Some(Sense::Stale);
+        }
+        pac::ADC3.isr().write(|w| w.set_jeoc(true));
+        let code = pac::ADC3.jdr(0).read().jdata();
+        Some(Sense::Fresh(self.volts(code) / I_SENSE_V_PER_A - self.i_offset_a))
     }
 }
 
