@@ -297,13 +297,19 @@ impl Controller {
         self.sense = SenseMonitor::default();
     }
 
+    /// The damper is at rest: the latest displacement within `REST_X_MM` of
+    /// 0 and the estimated speed below `stuck_min_speed_m_s`.
+    pub fn at_rest(&self) -> bool {
+        math::abs(self.sample_x_mm) <= REST_X_MM
+            && math::abs(self.estimator.velocity_m_s()) < self.cfg.stuck_min_speed_m_s
+    }
+
     /// The button's fault clear: only with the damper at rest (the latest
     /// displacement within `REST_X_MM` of 0 and the estimated speed below
     /// `stuck_min_speed_m_s`), never mid-impact. True if it cleared. A fault
     /// whose cause persists latches again.
     pub fn clear_faults_if_at_rest(&mut self) -> bool {
-        let at_rest = math::abs(self.sample_x_mm) <= REST_X_MM
-            && math::abs(self.estimator.velocity_m_s()) < self.cfg.stuck_min_speed_m_s;
+        let at_rest = self.at_rest();
         if at_rest {
             self.clear_faults();
         }

@@ -58,6 +58,7 @@ mod fw {
             new_periods: u32,
             link: Option<LinkStats>,
         },
+        Calibrated(board::DeferredCalibration),
     }
     static EVENTS: Channel<CriticalSectionRawMutex, Event, 16> = Channel::new();
     static DROPPED_EVENTS: AtomicU32 = AtomicU32::new(0);
@@ -111,8 +112,8 @@ mod fw {
 
     #[embassy_executor::main]
     async fn main(spawner: Spawner) {
-        // Before anything else: the coil pin comes out of reset pulled high.
-        board::coil_output_off_at_boot();
+        // The coil pin is already low (`__pre_init`, board/mod.rs); `init`
+        // commands the fail-safe as the reset cause decides.
         let (mut board, status) = board::init(RATE_HZ);
         defmt::info!(
             "mre-firmware on {=str}, core clock {=u32} Hz",
@@ -263,6 +264,19 @@ mod fw {
                     latched,
                     period
                 ),
+                Event::Calibrated(c) => {
+                    match c.vdda {
+                        Ok(v) => defmt::info!("calibration at rest: VDDA {=f32} V", v),
+                        Err(e) => defmt::warn!("calibration at rest: VDDA refused ({=str}), nominal", e.as_str()),
+                    }
+                    match c.sense_zero_a {
+                        Ok(a) => defmt::info!("calibration at rest: current sense zero (A) {=f32}", a),
+                        Err(e) => defmt::warn!(
+                            "calibration at rest: current sense zero refused ({=str}), 0",
+                            e.as_str()
+                        ),
+                    }
+                }
                 Event::Stats {
                     stats: s,
                     new_periods,
@@ -329,6 +343,9 @@ mod fw {
             let cmd = ctl.step_io(&mut board.io);
             ctl.record_step_cycles(board::cycles().wrapping_sub(t0));
             let overran = board.io.finish_period(&cmd, &ctl);
+            if let Some(c) = board.io.take_deferred_calibration() {
+                post(Event::Calibrated(c));
+            }
             ctl.end_period(overran);
             // Fed here only: a stalled control loop must reset the chip.
             board.watchdog.pet();

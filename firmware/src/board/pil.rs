@@ -323,6 +323,11 @@ impl super::BoardIo for Io {
         Some(self.rx.stats())
     }
 
+    /// QEMU models no ADC: nothing is calibrated.
+    fn take_deferred_calibration(&mut self) -> Option<super::DeferredCalibration> {
+        None
+    }
+
     /// The plant's coil current; once the host has sent one, a frame
     /// without it is a conversion that did not arrive (a stale channel).
     fn coil_current(&mut self) -> Option<Sense> {

@@ -302,7 +302,9 @@ fn mre_pil_flies_controller_c_on_a_lagging_coil() {
 fn coil_pin_is_driven_low_first_thing_at_boot() {
     // After reset PB4 (the coil PWM, D5) is NJTRST: alternate function with
     // a pull-up (RM0351: GPIOB_MODER reset 0xFFFF_FEBF, PUPDR 0x0000_0100),
-    // so the driver input reads high. The firmware must make it a low output.
+    // so the driver input reads high. The firmware makes it a low output in
+    // `__pre_init`, before RAM init (firmware/src/board/mod.rs; instructions
+    // to there: firmware/bench/reset_icount.sh).
     let Some((qemu, mut link)) = start() else { return };
     // One exchange: the firmware is past boot and running periods.
     link.exchange(&SampleFrame {
