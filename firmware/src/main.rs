@@ -5,7 +5,8 @@
 //! One embassy task runs the control loop: wait for the period (a `Ticker`
 //! on hardware, the next sample frame in PIL), run the core's
 //! [`Controller::step_io`](mre_core::control::Controller::step_io), account
-//! for overruns, feed the watchdog. On hardware it runs on an
+//! for overruns, feed the watchdog while every thread-mode task checks in
+//! (`mre_core::watchdog`). On hardware it runs on an
 //! `InterruptExecutor` (UART4's vector, which nothing else uses) at high
 //! priority; it never logs itself but posts events to a channel that the
 //! thread-mode main task drains into defmt, so a stalled log reader (RTT
@@ -66,6 +67,35 @@ mod fw {
     static LATCHED: AtomicU32 = AtomicU32::new(0);
     /// Set by a press of B1, taken by the control task.
     static CLEAR_REQUEST: AtomicBool = AtomicBool::new(false);
+
+    /// Thread-mode check-ins for the watchdog (ms since boot,
+    /// `mre_core::watchdog`): the status task every 50 ms, and the log task
+    /// with every event (a stats line at least once a second). The upload
+    /// task waits for bytes and is not a heartbeat: a busy loop in it (or in
+    /// any thread-mode task) starves the status task and is caught there.
+    const STATUS_TASK: usize = 0;
+    const LOG_TASK: usize = 1;
+    static CHECK_INS: [AtomicU32; 2] = [AtomicU32::new(0), AtomicU32::new(0)];
+    const DEADLINES_MS: [u32; 2] = [200, 3_000];
+
+    fn now_ms() -> u32 {
+        embassy_time::Instant::now().as_millis() as u32
+    }
+
+    fn check_in(task: usize) {
+        if let Some(slot) = CHECK_INS.get(task) {
+            slot.store(now_ms(), Ordering::Relaxed);
+        }
+    }
+
+    /// True when every thread-mode task checked in within its deadline.
+    fn thread_tasks_on_time() -> bool {
+        let tasks = core::array::from_fn::<_, 2, _>(|k| mre_core::watchdog::CheckIn {
+            last_ms: CHECK_INS[k].load(Ordering::Relaxed),
+            deadline_ms: DEADLINES_MS[k],
+        });
+        mre_core::watchdog::may_feed(now_ms(), &tasks)
+    }
 
     /// Never blocks: a full channel drops the event and counts it.
     fn post(event: Event) {
@@ -190,6 +220,9 @@ mod fw {
             cfg.law.stroke_max_mm,
             cfg.law.mass_kg
         );
+        // Every supervised task starts on time.
+        check_in(STATUS_TASK);
+        check_in(LOG_TASK);
         board::spawn_uplink(&spawner, &mut board);
         match status_task(status) {
             Ok(token) => spawner.spawn(token),
@@ -244,7 +277,9 @@ mod fw {
     async fn log_events() -> ! {
         let mut reported_dropped = 0;
         loop {
-            match EVENTS.receive().await {
+            let event = EVENTS.receive().await;
+            check_in(LOG_TASK);
+            match event {
                 Event::Overrun { period } => defmt::warn!("overrun in period {=u32}", period),
                 Event::ClearRequest { cleared: true, latched } => {
                     defmt::info!("B1: faults cleared at rest (still latched: {=u32:#010x})", latched)
@@ -312,6 +347,7 @@ mod fw {
         let (mut slot, mut was_pressed) = (0u32, false);
         loop {
             ticker.next().await;
+            check_in(STATUS_TASK);
             status.set_led(led_on(mre_core::Flags(LATCHED.load(Ordering::Relaxed)), slot));
             let pressed = status.button_pressed();
             if pressed && !was_pressed {
@@ -347,8 +383,11 @@ mod fw {
                 post(Event::Calibrated(c));
             }
             ctl.end_period(overran);
-            // Fed here only: a stalled control loop must reset the chip.
-            board.watchdog.pet();
+            // Fed here only, and only while the thread-mode tasks check in:
+            // a stalled control loop or a hung task must reset the chip.
+            if thread_tasks_on_time() {
+                board.watchdog.pet();
+            }
             if overran {
                 post(Event::Overrun {
                     period: ctl.stats().periods,
