@@ -1,5 +1,7 @@
 //! Boot facts decoded from raw register values, so the decoding is tested on
-//! the host: why the chip reset (STM32L4 `RCC_CSR`, RM0351 §6.4.29).
+//! the host: why the chip reset (STM32L4 `RCC_CSR`, RM0351 §6.4.29), and what
+//! the board does first about it ([`BootPlan`], firmware/README.md "Reset
+//! paths").
 
 /// The reset cause, most specific first (NRST pulses on every reset, so
 /// `PINRSTF` accompanies the others and only counts alone).
@@ -64,6 +66,56 @@ impl ResetCause {
             Self::Firewall => "firewall",
             Self::Pin => "NRST pin",
             Self::Unknown => "unknown",
+        }
+    }
+}
+
+/// The first coil command after the pin's safe level in `pre_init`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FirstCommand {
+    /// The fail-safe duty as soon as TIM3 runs (before any calibration).
+    FailSafeAtOnce,
+    /// The coil stays off (0 % duty) through VDDA and current-sense
+    /// calibration (~3.5 ms), then the fail-safe duty.
+    FailSafeAfterCalibration,
+}
+
+/// When VDDA and the current-sense zero are measured.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CalibrationTime {
+    /// At boot, with the coil off.
+    AtBoot,
+    /// In the control loop, once the damper is at rest with the coil
+    /// commanded off ([`crate::calibration::DeferredSenseZero`]); nominal
+    /// VDDA and a zero offset until then.
+    DeferredUntilAtRest,
+}
+
+/// What the board does first after a reset of a given cause.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BootPlan {
+    pub first: FirstCommand,
+    pub calibration: CalibrationTime,
+}
+
+impl ResetCause {
+    /// The decision table (firmware/README.md, "Reset paths"). Only a reset
+    /// by the NRST pin alone (the button or the probe: a person at the bench)
+    /// may calibrate before the fail-safe. Every other cause may strike
+    /// mid-impact: watchdog (the loop hung), software, window watchdog,
+    /// firewall, low-power, option bytes, unknown, and brown-out. A cold
+    /// power-on also sets `BORRSTF` (RCC_CSR reads 0x0C00_0600 after it) and
+    /// cannot be told from a brown-out, so it takes the safe path too.
+    pub fn boot_plan(self) -> BootPlan {
+        match self {
+            Self::Pin => BootPlan {
+                first: FirstCommand::FailSafeAfterCalibration,
+                calibration: CalibrationTime::AtBoot,
+            },
+            _ => BootPlan {
+                first: FirstCommand::FailSafeAtOnce,
+                calibration: CalibrationTime::DeferredUntilAtRest,
+            },
         }
     }
 }

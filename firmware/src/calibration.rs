@@ -99,3 +99,57 @@ pub fn rest_offset(samples: &[f32], expected: f32, limits: RestLimits) -> Result
     }
     Ok(offset)
 }
+
+/// Samples in a deferred current-sense zero (one per control period).
+pub const DEFERRED_SAMPLES: usize = 64;
+/// Periods the coil must have been commanded off before a sample counts:
+/// 5 ms, over 2 coil time constants of the 2 ms coil and far past the
+/// shunt filter.
+pub const DEFERRED_SETTLE_PERIODS: u16 = 50;
+
+/// The current-sense zero taken in the control loop after a reset that
+/// deferred it ([`crate::boot::CalibrationTime::DeferredUntilAtRest`]): one
+/// conversion per period, counted only while the damper is at rest and the
+/// coil has been commanded 0 A for [`DEFERRED_SETTLE_PERIODS`]; any other
+/// period starts the collection again. Then the same range check as at boot.
+#[derive(Clone, Copy, Debug)]
+pub struct DeferredSenseZero {
+    samples: [f32; DEFERRED_SAMPLES],
+    taken: usize,
+    off_periods: u16,
+}
+
+impl Default for DeferredSenseZero {
+    fn default() -> Self {
+        Self {
+            samples: [0.0; DEFERRED_SAMPLES],
+            taken: 0,
+            off_periods: 0,
+        }
+    }
+}
+
+impl DeferredSenseZero {
+    /// One period: whether the damper is at rest, the coil current the last
+    /// period commanded, and this period's raw reading (A, no offset). The
+    /// result once [`DEFERRED_SAMPLES`] samples were taken, else `None`.
+    pub fn push(&mut self, at_rest: bool, commanded_a: f32, raw_a: f32) -> Option<Result<f32, CalError>> {
+        if !at_rest || commanded_a != 0.0 {
+            self.off_periods = 0;
+            self.taken = 0;
+            return None;
+        }
+        if self.off_periods < DEFERRED_SETTLE_PERIODS {
+            self.off_periods = self.off_periods.saturating_add(1);
+            return None;
+        }
+        let slot = self.samples.get_mut(self.taken)?;
+        *slot = raw_a;
+        self.taken = self.taken.saturating_add(1);
+        if self.taken < DEFERRED_SAMPLES {
+            return None;
+        }
+        self.taken = 0;
+        Some(rest_offset(&self.samples, 0.0, I_SENSE_REST))
+    }
+}

@@ -18,13 +18,19 @@
 //!   `overrun_window` periods overran their deadline.
 //! - `TABLE_FAULT` latches at construction if the table was rejected.
 //!
+//! - `OVER_CURRENT` / `CURRENT_SENSE`: the shunt's reading, before the step
+//!   ([`Controller::check_coil_current`], `crate::overcurrent`).
+//!
 //! While any fault is latched every period commands the law's fail-safe
-//! current (default 2 A: the stiffest damper, so an impact cannot bottom out).
+//! current (default 2 A: the stiffest damper, so an impact cannot bottom out),
+//! except `OVER_CURRENT`, which removes the drive (0 A): the fail-safe would
+//! drive 67 % duty into the failed coil or driver.
 //! Latched faults clear only by [`Controller::clear_faults`] (a reset).
 use crate::estimate::AlphaBeta;
 use crate::flags::Flags;
 use crate::law::{Command, ConfigError, ImpactLaw, LawConfig};
 use crate::math;
+use crate::overcurrent::{Sense, SenseMonitor};
 use crate::table::{Table, TableError};
 
 /// Displacement sensor (e.g. an ADC channel with linear scaling).
@@ -221,6 +227,7 @@ pub struct Controller {
     sample_x_mm: f32,
     window_periods: u16,
     window_overruns: u16,
+    sense: SenseMonitor,
     stats: Stats,
 }
 
@@ -243,6 +250,7 @@ impl Controller {
             sample_x_mm: f32::NAN,
             window_periods: 0,
             window_overruns: 0,
+            sense: SenseMonitor::default(),
             stats: Stats::default(),
         };
         match table {
@@ -288,6 +296,7 @@ impl Controller {
         self.disagreeing = 0;
         self.window_periods = 0;
         self.window_overruns = 0;
+        self.sense = SenseMonitor::default();
     }
 
     /// The button's fault clear: only with the damper at rest (the latest
@@ -309,7 +318,22 @@ impl Controller {
             && math::abs(self.estimator.velocity_m_s()) < self.cfg.stuck_min_speed_m_s
     }
 
-    /// Latches a fault detected outside the step (the board's over-current monitor).
+    /// The current-sense channel's reading for this period, before the step
+    /// (`None`: no channel wired, nothing checked). Latches `OVER_CURRENT`
+    /// (this period's step then removes the drive) or `CURRENT_SENSE`
+    /// (stale or stuck channel: the fail-safe current).
+    pub fn check_coil_current(&mut self, reading: Option<Sense>) {
+        let Some(reading) = reading else { return };
+        let verdict = self.sense.check(reading, self.law.coil_estimate_a());
+        if verdict.over_current {
+            self.latch(Flags::OVER_CURRENT);
+        }
+        if verdict.sense_dead {
+            self.latch(Flags::CURRENT_SENSE);
+        }
+    }
+
+    /// Latches a fault detected outside the step.
     pub fn latch_fault(&mut self, fault: Flags) {
         self.latch(fault);
     }
@@ -370,6 +394,7 @@ impl Controller {
         let mut cmd = match &self.table {
             Some(_) if at_full_scale && !self.latched.is_fault() => self.law.fail_safe(Flags::SENSOR_RANGE),
             Some(table) if !self.latched.is_fault() => self.law.step(table, x_mm, v_m_s),
+            _ if self.latched.contains(Flags::OVER_CURRENT) => self.law.drive_off(self.latched),
             _ => self.law.fail_safe(self.latched),
         };
         // A fail-safe period (or a table fault) has bookkeeping to do; the

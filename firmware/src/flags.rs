@@ -44,6 +44,11 @@ impl Flags {
     /// (`mre_core::overcurrent`). Bits 16.. travel in the command frame's
     /// byte 3 (`frame`).
     pub const OVER_CURRENT: Flags = Flags(1 << 16);
+    /// The current-sense channel is dead: no new conversion for
+    /// `overcurrent::STALE_PERIODS` periods, or a reading stuck near 0 A while
+    /// the coil is driven (`mre_core::overcurrent::SenseMonitor`). Over-current
+    /// protection is blind, so this is a fault of its own.
+    pub const CURRENT_SENSE: Flags = Flags(1 << 17);
 
     /// Flags that mean the inputs or the system cannot be trusted.
     pub const FAULTS: Flags = Flags(
@@ -54,7 +59,8 @@ impl Flags {
             | Self::TABLE_FAULT.0
             | Self::FRAME_FAULT.0
             | Self::SENSOR_DISAGREE.0
-            | Self::OVER_CURRENT.0,
+            | Self::OVER_CURRENT.0
+            | Self::CURRENT_SENSE.0,
     );
 
     #[inline]

@@ -36,7 +36,10 @@
 //! of a τ that diagnosis got 13 % wrong leaves the coil short of the model's
 //! current for milliseconds, the plan re-plans that deficit upwards, and the
 //! peak grows (`mre bench-control`, τ = 2 ms: 1.51× the limit without the
-//! observer, 1.11× with it; BENCHMARKS.md).
+//! observer, 1.11× with it; BENCHMARKS.md). The estimate is clamped to
+//! ±[`FORCE_ERROR_LIMIT_N`] and starts from 0 at every re-arm between impacts
+//! (extension branch at contact) and every fail-safe period: no bias learned
+//! in one impact is applied to the next.
 use crate::flags::Flags;
 use crate::math;
 use crate::model::{Branch, BranchSelector};
@@ -107,6 +110,11 @@ pub const TERMINAL_MM: f32 = 0.1;
 /// Displacement (mm) at or below which the damper counts as idle between
 /// impacts (the coil is pre-energised there). Above the sensor's noise.
 pub const CONTACT_MM: f32 = 0.05;
+
+/// The force observer's largest correction (N), either way: about 80 % of
+/// the paper drop's 1242 N force limit. A larger error is a failed model,
+/// not a bias to learn: asking the inverse for more would double the plan.
+pub const FORCE_ERROR_LIMIT_N: f32 = 1000.0;
 
 impl Default for LawConfig {
     /// The paper's drop test (5.5 kg at 2.24 m/s) on a 2 A coil at 10 kHz.
@@ -347,12 +355,32 @@ impl ImpactLaw {
     /// The fail-safe command. It bypasses the slew limit: a fault must not
     /// wait for a ramp.
     pub fn fail_safe(&mut self, flags: Flags) -> Command {
+        // No learned bias survives a fault: the plant it was learned on
+        // (sensors, coil) is in question.
+        self.force_error_n = 0.0;
         self.last_current_a = self.cfg.failsafe_current_a;
         self.planned_last = false;
         self.expected_n = 0.0;
         self.coil_a += self.coil_alpha * (self.cfg.failsafe_current_a - self.coil_a);
         Command {
             current_a: self.cfg.failsafe_current_a,
+            target_force_n: 0.0,
+            branch: self.selector.branch(),
+            flags: flags | Flags::FAIL_SAFE,
+        }
+    }
+
+    /// The drive removed (0 A, 0 % duty): the answer to an over-current,
+    /// where the fail-safe current would drive into the failed coil or driver.
+    /// Like [`ImpactLaw::fail_safe`] it bypasses the slew limit.
+    pub fn drive_off(&mut self, flags: Flags) -> Command {
+        self.force_error_n = 0.0;
+        self.last_current_a = 0.0;
+        self.planned_last = false;
+        self.expected_n = 0.0;
+        self.coil_a -= self.coil_alpha * self.coil_a;
+        Command {
+            current_a: 0.0,
             target_force_n: 0.0,
             branch: self.selector.branch(),
             flags: flags | Flags::FAIL_SAFE,
@@ -397,7 +425,8 @@ impl ImpactLaw {
         // command gives `expected_n`, the difference is the model's error.
         if self.expected_n > 0.0 {
             let measured_n = self.weight_n - self.mass_per_period_kg_s * (v_m_s - self.last_v_m_s);
-            self.force_error_n += cfg.observer_gain * (self.expected_n - measured_n - self.force_error_n);
+            let error_n = self.force_error_n + cfg.observer_gain * (self.expected_n - measured_n - self.force_error_n);
+            self.force_error_n = math::clamp(error_n, -FORCE_ERROR_LIMIT_N, FORCE_ERROR_LIMIT_N);
         }
         self.last_v_m_s = v_m_s;
         let delay_s = table.terms().sensor_delay_s;
@@ -408,6 +437,11 @@ impl ImpactLaw {
             (x_mm, v_m_s)
         };
         let branch = self.selector.update(v_m_s);
+        // Re-armed between impacts: what the last impact taught the observer
+        // says nothing about the next one.
+        if branch == Branch::Extension && x_mm <= CONTACT_MM {
+            self.force_error_n = 0.0;
+        }
         let mut flags = Flags::NONE;
         let mut target_force_n = 0.0;
         let mut expected_n = 0.0;

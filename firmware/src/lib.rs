@@ -7,6 +7,8 @@
 //! `estimate` (velocity from displacement) → `law` (target force for the impact)
 //! → `inverse` (current that gives that force, via `model` and `table`) → coil.
 #![cfg_attr(not(test), no_std)]
+// Pure logic: unsafe code belongs to the board layer (firmware/src/board/).
+#![forbid(unsafe_code)]
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::indexing_slicing)]
 // Integer arithmetic says what happens at its edge (checked, saturating or
 // wrapping): no overflow panic in a debug build, no silent wrap in release.
@@ -34,6 +36,7 @@ pub mod saturation;
 pub mod status;
 pub mod table;
 pub mod upload;
+pub mod watchdog;
 
 pub use flags::Flags;
 pub use model::Branch;

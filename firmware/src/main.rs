@@ -5,7 +5,8 @@
 //! One embassy task runs the control loop: wait for the period (a `Ticker`
 //! on hardware, the next sample frame in PIL), run the core's
 //! [`Controller::step_io`](mre_core::control::Controller::step_io), account
-//! for overruns, feed the watchdog. On hardware it runs on an
+//! for overruns, feed the watchdog while every thread-mode task checks in
+//! (`mre_core::watchdog`). On hardware it runs on an
 //! `InterruptExecutor` (UART4's vector, which nothing else uses) at high
 //! priority; it never logs itself but posts events to a channel that the
 //! thread-mode main task drains into defmt, so a stalled log reader (RTT
@@ -58,6 +59,7 @@ mod fw {
             new_periods: u32,
             link: Option<LinkStats>,
         },
+        Calibrated(board::DeferredCalibration),
     }
     static EVENTS: Channel<CriticalSectionRawMutex, Event, 16> = Channel::new();
     static DROPPED_EVENTS: AtomicU32 = AtomicU32::new(0);
@@ -65,6 +67,35 @@ mod fw {
     static LATCHED: AtomicU32 = AtomicU32::new(0);
     /// Set by a press of B1, taken by the control task.
     static CLEAR_REQUEST: AtomicBool = AtomicBool::new(false);
+
+    /// Thread-mode check-ins for the watchdog (ms since boot,
+    /// `mre_core::watchdog`): the status task every 50 ms, and the log task
+    /// with every event (a stats line at least once a second). The upload
+    /// task waits for bytes and is not a heartbeat: a busy loop in it (or in
+    /// any thread-mode task) starves the status task and is caught there.
+    const STATUS_TASK: usize = 0;
+    const LOG_TASK: usize = 1;
+    static CHECK_INS: [AtomicU32; 2] = [AtomicU32::new(0), AtomicU32::new(0)];
+    const DEADLINES_MS: [u32; 2] = [200, 3_000];
+
+    fn now_ms() -> u32 {
+        embassy_time::Instant::now().as_millis() as u32
+    }
+
+    fn check_in(task: usize) {
+        if let Some(slot) = CHECK_INS.get(task) {
+            slot.store(now_ms(), Ordering::Relaxed);
+        }
+    }
+
+    /// True when every thread-mode task checked in within its deadline.
+    fn thread_tasks_on_time() -> bool {
+        let tasks = core::array::from_fn::<_, 2, _>(|k| mre_core::watchdog::CheckIn {
+            last_ms: CHECK_INS[k].load(Ordering::Relaxed),
+            deadline_ms: DEADLINES_MS[k],
+        });
+        mre_core::watchdog::may_feed(now_ms(), &tasks)
+    }
 
     /// Never blocks: a full channel drops the event and counts it.
     fn post(event: Event) {
@@ -111,8 +142,8 @@ mod fw {
 
     #[embassy_executor::main]
     async fn main(spawner: Spawner) {
-        // Before anything else: the coil pin comes out of reset pulled high.
-        board::coil_output_off_at_boot();
+        // The coil pin is already low (`__pre_init`, board/mod.rs); `init`
+        // commands the fail-safe as the reset cause decides.
         let (mut board, status) = board::init(RATE_HZ);
         defmt::info!(
             "mre-firmware on {=str}, core clock {=u32} Hz",
@@ -189,6 +220,9 @@ mod fw {
             cfg.law.stroke_max_mm,
             cfg.law.mass_kg
         );
+        // Every supervised task starts on time.
+        check_in(STATUS_TASK);
+        check_in(LOG_TASK);
         board::spawn_uplink(&spawner, &mut board);
         match status_task(status) {
             Ok(token) => spawner.spawn(token),
@@ -243,7 +277,9 @@ mod fw {
     async fn log_events() -> ! {
         let mut reported_dropped = 0;
         loop {
-            match EVENTS.receive().await {
+            let event = EVENTS.receive().await;
+            check_in(LOG_TASK);
+            match event {
                 Event::Overrun { period } => defmt::warn!("overrun in period {=u32}", period),
                 Event::ClearRequest { cleared: true, latched } => {
                     defmt::info!("B1: faults cleared at rest (still latched: {=u32:#010x})", latched)
@@ -259,10 +295,23 @@ mod fw {
                     defmt::warn!("{=u32} control periods missed before period {=u32}", ticks, period)
                 }
                 Event::FaultLatched { latched, period } => defmt::error!(
-                    "fault latched: {=u32:#010x} in period {=u32}; coil at the fail-safe",
+                    "fault latched: {=u32:#010x} in period {=u32}; coil at the fail-safe (drive off on over-current)",
                     latched,
                     period
                 ),
+                Event::Calibrated(c) => {
+                    match c.vdda {
+                        Ok(v) => defmt::info!("calibration at rest: VDDA {=f32} V", v),
+                        Err(e) => defmt::warn!("calibration at rest: VDDA refused ({=str}), nominal", e.as_str()),
+                    }
+                    match c.sense_zero_a {
+                        Ok(a) => defmt::info!("calibration at rest: current sense zero (A) {=f32}", a),
+                        Err(e) => defmt::warn!(
+                            "calibration at rest: current sense zero refused ({=str}), 0",
+                            e.as_str()
+                        ),
+                    }
+                }
                 Event::Stats {
                     stats: s,
                     new_periods,
@@ -298,6 +347,7 @@ mod fw {
         let (mut slot, mut was_pressed) = (0u32, false);
         loop {
             ticker.next().await;
+            check_in(STATUS_TASK);
             status.set_led(led_on(mre_core::Flags(LATCHED.load(Ordering::Relaxed)), slot));
             let pressed = status.button_pressed();
             if pressed && !was_pressed {
@@ -312,7 +362,6 @@ mod fw {
     async fn control_task(mut ctl: Controller, mut board: board::Board) {
         let mut last = ctl.stats();
         let mut known_faults = ctl.latched();
-        let mut over_current = mre_core::overcurrent::OverCurrent::default();
         board.start();
         loop {
             let missed = board.io.next_period(&mut ctl).await;
@@ -322,21 +371,24 @@ mod fw {
                     period: ctl.stats().periods,
                 });
             }
-            // Over-current (the shunt at mid on-time of the last PWM period)
-            // latches before the step, so this period already holds the fail-safe.
-            if let Some(measured_a) = board.io.coil_current_a() {
-                if over_current.check(measured_a) {
-                    ctl.latch_fault(mre_core::Flags::OVER_CURRENT);
-                }
-            }
+            // The shunt at mid on-time of the last PWM period, checked before
+            // the step: an over-current already removes this period's drive,
+            // a stale or stuck channel latches CURRENT_SENSE.
+            ctl.check_coil_current(board.io.coil_current());
             let t0 = board::cycles();
             let cmd = ctl.step_io(&mut board.io);
             ctl.record_step_cycles(board::cycles().wrapping_sub(t0));
             board::UPLOAD_GATE.observe(&ctl, &cmd);
             let overran = board.io.finish_period(&cmd, &ctl);
+            if let Some(c) = board.io.take_deferred_calibration() {
+                post(Event::Calibrated(c));
+            }
             ctl.end_period(overran);
-            // Fed here only: a stalled control loop must reset the chip.
-            board.watchdog.pet();
+            // Fed here only, and only while the thread-mode tasks check in:
+            // a stalled control loop or a hung task must reset the chip.
+            if thread_tasks_on_time() {
+                board.watchdog.pet();
+            }
             if overran {
                 post(Event::Overrun {
                     period: ctl.stats().periods,

@@ -1,20 +1,22 @@
 //! What the status LED shows, as a pure function of the latched faults and
 //! a 50 ms slot counter, so the pattern is tested on the host:
 //! - no fault: a 50 ms heartbeat flash once a second;
-//! - a latched fault: its blink code (1–8 flashes of 100 ms, 100 ms apart)
+//! - a latched fault: its blink code (1–9 flashes of 100 ms, 100 ms apart)
 //!   at the start of every 2 s cycle. The most serious fault is shown.
 use crate::flags::Flags;
 
 /// The board updates the LED every slot.
 pub const SLOT_MS: u32 = 50;
-/// 2 s: room for 8 flashes (1.6 s) and a pause that separates the codes.
+/// 2 s: room for 9 flashes (1.8 s) and a pause that separates the codes.
 const CYCLE_SLOTS: u32 = 40;
 const HEARTBEAT_SLOTS: u32 = 1000 / SLOT_MS;
 
 /// Blink codes, most serious first (firmware/README.md, "Bench").
-const CODES: [(Flags, u32); 8] = [
+const CODES: [(Flags, u32); 9] = [
     // Shown first: the coil or its driver may be damaged.
     (Flags::OVER_CURRENT, 8),
+    // Next: over-current protection is blind.
+    (Flags::CURRENT_SENSE, 9),
     (Flags::TABLE_FAULT, 1),
     (Flags::SENSOR_RANGE, 2),
     (Flags::NON_FINITE_INPUT, 3),

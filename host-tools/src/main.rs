@@ -280,7 +280,7 @@ enum Command {
         /// Folder for CSV, summary, plots and pil.json.
         #[arg(long)]
         report: PathBuf,
-        /// Inject faults instead (e.g. `all:1e-2`, `corrupt:1e-3,drop:1e-2,duplicate:1e-2,sensors,upload`);
+        /// Inject faults instead (e.g. `all:1e-2`, `corrupt:1e-3,drop:1e-2,duplicate:1e-2,sensors,upload,sense-stuck,sense-stale`);
         /// writes faults.md and faults.json.
         #[arg(long)]
         faults: Option<String>,

@@ -225,7 +225,9 @@ fn the_force_observer_sees_the_model_error_in_the_measured_deceleration() {
     let (m, g, period) = (5.5f32, 9.81f32, 1.0e-4f32);
     let mut law = observed_law(1.0);
     let first = law.step(&t, 0.4, 1.0);
-    assert!(!first.flags.intersects(Flags::SATURATED_HIGH.union(Flags::SATURATED_LOW)));
+    assert!(!first
+        .flags
+        .intersects(Flags::SATURATED_HIGH.union(Flags::SATURATED_LOW)));
     let asked_n = first.target_force_n;
     let v_next = 1.0 + (g - 0.8 * asked_n / m) * period;
     let second = law.step(&t, 0.5, v_next);
@@ -258,4 +260,64 @@ fn the_force_observer_learns_nothing_where_the_model_does_not_set_the_force() {
     law.step(&t, 0.5, -0.5);
     law.step(&t, 0.45, -0.5 + (g - 500.0 / m) * period);
     assert_eq!(law.force_error_n(), 0.0);
+}
+
+/// A law that learned a model error of 0.2·F (≈ 800 N) over one period, as
+/// in `the_force_observer_sees_the_model_error_in_the_measured_deceleration`.
+fn law_with_a_learned_error() -> (ImpactLaw, Table) {
+    let t = paper();
+    let (m, g, period) = (5.5f32, 9.81f32, 1.0e-4f32);
+    let mut law = observed_law(1.0);
+    let asked_n = law.step(&t, 0.4, 1.0).target_force_n;
+    law.step(&t, 0.5, 1.0 + (g - 0.8 * asked_n / m) * period);
+    assert!(law.force_error_n() > 500.0, "{}", law.force_error_n());
+    (law, t)
+}
+
+#[test]
+fn the_force_observer_starts_from_zero_after_a_fail_safe_period() {
+    let (mut law, t) = law_with_a_learned_error();
+    law.fail_safe(Flags::SENSOR_RANGE);
+    assert_eq!(law.force_error_n(), 0.0);
+    // The next compression period asks the model for the plan alone: the
+    // same command as a law that never learned anything (after one
+    // fail-safe period of its own, for the same slew and coil state).
+    let mut fresh = observed_law(1.0);
+    fresh.step(&t, 0.4, 1.0);
+    fresh.fail_safe(Flags::SENSOR_RANGE);
+    assert_eq!(law.step(&t, 0.45, 1.0), fresh.step(&t, 0.45, 1.0));
+    // The over-current's drive-off too.
+    let (mut law, _) = law_with_a_learned_error();
+    law.drive_off(Flags::OVER_CURRENT);
+    assert_eq!(law.force_error_n(), 0.0);
+}
+
+#[test]
+fn the_force_observer_starts_from_zero_when_the_law_re_arms_between_impacts() {
+    let (mut law, t) = law_with_a_learned_error();
+    // Rebound mid-stroke: not reset (the impact is not over; the rebound
+    // sample itself updates the estimate, which is then non-zero).
+    law.step(&t, 0.3, -0.5);
+    assert_ne!(law.force_error_n(), 0.0);
+    // Back at contact, moving out: re-armed, nothing carried to the next impact.
+    law.step(&t, 0.0, -0.5);
+    assert_eq!(law.force_error_n(), 0.0);
+}
+
+#[test]
+fn the_force_observers_correction_is_clamped() {
+    // A plant that gives no force at all: the whole asked force F ≈ 3980 N
+    // is "model error" with gain 1; the correction stops at the limit.
+    let t = paper();
+    let (g, period) = (9.81f32, 1.0e-4f32);
+    let mut law = observed_law(1.0);
+    let asked_n = law.step(&t, 0.4, 1.0).target_force_n;
+    assert!(asked_n > 2.0 * mre_core::law::FORCE_ERROR_LIMIT_N, "{asked_n}");
+    law.step(&t, 0.5, 1.0 + g * period);
+    assert_eq!(law.force_error_n(), mre_core::law::FORCE_ERROR_LIMIT_N);
+    // And the other way: a plant far stiffer than the model.
+    let mut law = observed_law(1.0);
+    law.step(&t, 0.4, 1.0);
+    law.step(&t, 0.5, 1.0 - 2.0);
+    assert_eq!(law.force_error_n(), -mre_core::law::FORCE_ERROR_LIMIT_N);
 }

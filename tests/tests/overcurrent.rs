@@ -4,7 +4,10 @@ use mre_core::calibration::{rest_offset, CalError, I_SENSE_REST};
 use mre_core::control::{ControlConfig, Controller};
 use mre_core::frame::{CommandFrame, SampleFrame};
 use mre_core::law::LawConfig;
-use mre_core::overcurrent::{OverCurrent, COIL_RATING_A, TRIP_A, TRIP_SAMPLES};
+use mre_core::overcurrent::{
+    OverCurrent, Sense, SenseMonitor, SenseVerdict, COIL_RATING_A, STALE_PERIODS, STUCK_DRIVEN_A, STUCK_PERIODS,
+    TRIP_A, TRIP_SAMPLES,
+};
 use mre_core::table::Table;
 use mre_core::Flags;
 
@@ -67,27 +70,174 @@ fn the_current_sense_zero_is_taken_with_the_pwm_off_and_range_checked() {
 }
 
 #[test]
-fn a_latched_over_current_commands_the_fail_safe_until_cleared_at_rest() {
+fn a_latched_over_current_removes_the_drive_until_cleared_at_rest() {
     let cfg = ControlConfig::at_rate(10_000).unwrap();
     let mut ctl = Controller::new(cfg, Table::paper()).unwrap();
     // At rest: 0 mm, not moving.
     let before = ctl.step_sample(0.0, Some(0.0));
     ctl.end_period(false);
     assert!(!before.flags.contains(Flags::FAIL_SAFE));
-    ctl.latch_fault(Flags::OVER_CURRENT);
-    let cmd = ctl.step_sample(0.0, Some(0.0));
-    ctl.end_period(false);
-    assert!(
-        cmd.flags.contains(Flags::OVER_CURRENT | Flags::FAIL_SAFE),
-        "{:?}",
-        cmd.flags
-    );
-    assert_eq!(cmd.current_a, cfg.law.failsafe_current_a);
+    // Three conversions over the trip level, fed before the step as the
+    // board does: the third period's step already commands no drive.
+    for _ in 0..TRIP_SAMPLES {
+        ctl.check_coil_current(Some(Sense::Fresh(3.0)));
+    }
+    assert!(ctl.latched().contains(Flags::OVER_CURRENT));
+    for _ in 0..50 {
+        // Mid-impact, and with a sensor fault on top: still no drive. The
+        // 2 A fail-safe would be 67 % duty into the shorted coil.
+        let cmd = ctl.step_sample(5.0, Some(2.0));
+        ctl.end_period(false);
+        assert!(
+            cmd.flags.contains(Flags::OVER_CURRENT | Flags::FAIL_SAFE),
+            "{:?}",
+            cmd.flags
+        );
+        assert_eq!(cmd.current_a, 0.0);
+        assert_eq!(ctl.step_sample(f32::NAN, None).current_a, 0.0);
+    }
     assert_eq!(ctl.stats().fault_latches, 1);
     // B1 at rest clears it.
+    for _ in 0..200 {
+        ctl.step_sample(0.0, Some(0.0));
+    }
     assert!(ctl.clear_faults_if_at_rest());
     let after = ctl.step_sample(0.0, Some(0.0));
     assert!(!after.flags.intersects(Flags::OVER_CURRENT | Flags::FAIL_SAFE));
+}
+
+#[test]
+fn over_current_overrides_every_other_fault_with_zero_drive() {
+    let cfg = ControlConfig::at_rate(10_000).unwrap();
+    let mut ctl = Controller::new(cfg, Table::paper()).unwrap();
+    // A dead sense channel first (fail-safe 2 A), then an over-current.
+    for _ in 0..STALE_PERIODS {
+        ctl.check_coil_current(Some(Sense::Stale));
+    }
+    let cmd = ctl.step_sample(0.0, Some(0.0));
+    assert!(cmd.flags.contains(Flags::CURRENT_SENSE | Flags::FAIL_SAFE));
+    assert_eq!(cmd.current_a, cfg.law.failsafe_current_a);
+    ctl.latch_fault(Flags::OVER_CURRENT);
+    let cmd = ctl.step_sample(0.0, Some(0.0));
+    assert_eq!(cmd.current_a, 0.0, "{:?}", cmd.flags);
+}
+
+/// The coil held at 1.5 A between impacts (rebound policy `Fixed`): the
+/// coil is driven without an impact or a fault, so a sense channel that reads
+/// nothing is plainly wrong. Returns the commands; `sense(k, coil_a)` gives
+/// period k's reading (`coil_a`: the last command, what a healthy shunt reads).
+const HELD_A: f32 = 1.5;
+fn hold_the_coil(
+    periods: usize,
+    mut sense: impl FnMut(usize, f32) -> Option<Sense>,
+) -> (ControlConfig, Vec<mre_core::law::Command>) {
+    let mut cfg = ControlConfig::at_rate(10_000).unwrap();
+    cfg.law.rebound = mre_core::law::ReboundPolicy::Fixed { current_a: HELD_A };
+    let mut ctl = Controller::new(cfg, Table::paper()).unwrap();
+    let mut coil_a = 0.0f32;
+    let mut cmds = Vec::new();
+    for k in 0..periods {
+        ctl.check_coil_current(sense(k, coil_a));
+        let cmd = ctl.step_sample(0.0, Some(0.0));
+        ctl.end_period(false);
+        coil_a = cmd.current_a;
+        cmds.push(cmd);
+    }
+    (cfg, cmds)
+}
+
+#[test]
+fn a_sense_channel_that_goes_stale_while_the_coil_is_driven_latches_current_sense() {
+    // The shunt reads the coil for 30 periods, then no conversion arrives
+    // (the trigger chain died) while the coil is driven.
+    let dead_from = 30;
+    let (cfg, cmds) = hold_the_coil(60, |k, coil_a| {
+        Some(if k < dead_from {
+            Sense::Fresh(coil_a)
+        } else {
+            Sense::Stale
+        })
+    });
+    assert!(cmds[..dead_from].iter().all(|c| !c.flags.is_fault()));
+    assert_eq!(
+        cmds[dead_from - 1].current_a,
+        HELD_A,
+        "the coil is driven when the channel dies"
+    );
+    // Latched on the third stale period (dead_from, +1, +2), before its step.
+    let latch_at = dead_from + usize::from(STALE_PERIODS) - 1;
+    assert!(!cmds[latch_at - 1].flags.contains(Flags::CURRENT_SENSE));
+    for c in &cmds[latch_at..] {
+        assert!(
+            c.flags.contains(Flags::CURRENT_SENSE | Flags::FAIL_SAFE),
+            "{:?}",
+            c.flags
+        );
+        // The damper keeps its stiff fail-safe: only over-current removes the drive.
+        assert_eq!(c.current_a, cfg.law.failsafe_current_a);
+    }
+}
+
+#[test]
+fn a_sense_channel_stuck_near_zero_while_the_coil_is_driven_latches_current_sense() {
+    // Fresh conversions that always read 0 A (an open amplifier input).
+    let (cfg, cmds) = hold_the_coil(100, |_, _| Some(Sense::Fresh(0.0)));
+    let latch_at = cmds
+        .iter()
+        .position(|c| c.flags.contains(Flags::CURRENT_SENSE))
+        .expect("a stuck channel latches");
+    // The first period checked with the coil driven ≥ 1 A follows the first
+    // command ≥ 1 A (the slew limit ramps 0.2 A per period); STUCK_PERIODS
+    // such periods in a row latch, before that period's step.
+    let first_driven = cmds.iter().position(|c| c.current_a >= STUCK_DRIVEN_A).unwrap();
+    assert_eq!(latch_at, first_driven + usize::from(STUCK_PERIODS));
+    assert!(cmds[latch_at..]
+        .iter()
+        .all(|c| c.current_a == cfg.law.failsafe_current_a));
+    // The same with a channel that reads the coil: no fault at all.
+    let (_, cmds) = hold_the_coil(100, |_, coil_a| Some(Sense::Fresh(coil_a)));
+    assert!(cmds.iter().all(|c| !c.flags.is_fault()));
+    assert_eq!(cmds.last().unwrap().current_a, HELD_A);
+    // And without a channel (None): nothing is checked.
+    let (_, cmds) = hold_the_coil(100, |_, _| None);
+    assert!(cmds.iter().all(|c| !c.flags.is_fault()));
+}
+
+#[test]
+fn the_sense_monitor_counts_stale_and_stuck_periods_in_a_row() {
+    let mut m = SenseMonitor::default();
+    // Two stale periods, then a fresh one: the count restarts.
+    for _ in 0..STALE_PERIODS - 1 {
+        assert!(!m.check(Sense::Stale, 0.0).sense_dead);
+    }
+    assert!(!m.check(Sense::Fresh(0.0), 0.0).sense_dead);
+    for _ in 0..STALE_PERIODS - 1 {
+        assert!(!m.check(Sense::Stale, 0.0).sense_dead);
+    }
+    assert!(m.check(Sense::Stale, 0.0).sense_dead);
+    // Stuck: needs the coil driven. At 0.5 A driven, a 0 A reading is fine
+    // (half the 1 A threshold) for ever.
+    let mut m = SenseMonitor::default();
+    for _ in 0..1000 {
+        assert_eq!(m.check(Sense::Fresh(0.0), 0.5), SenseVerdict::default());
+    }
+    // Driven at 2 A, read 0.1 A: latched on the 20th period, not the 19th.
+    for _ in 0..STUCK_PERIODS - 1 {
+        assert!(!m.check(Sense::Fresh(0.1), 2.0).sense_dead);
+    }
+    assert!(m.check(Sense::Fresh(0.1), 2.0).sense_dead);
+    // A reading of 0.3 A (above 0.25 A) restarts it.
+    let mut m = SenseMonitor::default();
+    for _ in 0..STUCK_PERIODS - 1 {
+        m.check(Sense::Fresh(0.1), 2.0);
+    }
+    assert!(!m.check(Sense::Fresh(0.3), 2.0).sense_dead);
+    assert!(!m.check(Sense::Fresh(0.1), 2.0).sense_dead);
+    // The over-current verdict is the same debounced monitor as before.
+    let mut m = SenseMonitor::default();
+    assert!(!m.check(Sense::Fresh(3.0), 2.0).over_current);
+    assert!(!m.check(Sense::Fresh(3.0), 2.0).over_current);
+    assert!(m.check(Sense::Fresh(3.0), 2.0).over_current);
 }
 
 #[test]

@@ -33,6 +33,7 @@ fn a_fault_blinks_its_code_every_two_seconds() {
         (Flags::OVERRUN, 6),
         (Flags::FRAME_FAULT, 7),
         (Flags::OVER_CURRENT, 8),
+        (Flags::CURRENT_SENSE, 9),
     ] {
         assert_eq!(blink_code(flag), code);
         assert_eq!(flashes(flag, two_s), code, "{flag:?}");
@@ -45,6 +46,9 @@ fn a_fault_blinks_its_code_every_two_seconds() {
     assert_eq!(blink_code(Flags::OVERRUN | Flags::SENSOR_RANGE), 2);
     // Over-current is shown before everything (the hardware may be damaged).
     assert_eq!(blink_code(Flags::OVER_CURRENT | Flags::TABLE_FAULT), 8);
+    // Then a dead sense channel (over-current protection is blind).
+    assert_eq!(blink_code(Flags::CURRENT_SENSE | Flags::TABLE_FAULT), 9);
+    assert_eq!(blink_code(Flags::CURRENT_SENSE | Flags::OVER_CURRENT), 8);
 }
 
 fn controller() -> Controller {

@@ -54,10 +54,22 @@ pub trait BoardIo: DisplacementSensor + VelocitySensor + Coil {
     fn finish_period(&mut self, cmd: &Command, ctl: &Controller) -> bool;
     /// The frame link's counters (PIL), `None` on hardware.
     fn link_stats(&self) -> Option<LinkStats>;
-    /// The measured coil current for the over-current monitor: the shunt at
-    /// mid on-time on hardware, the plant's coil in PIL (`None` when the
-    /// host sends none).
-    fn coil_current_a(&mut self) -> Option<f32>;
+    /// A calibration deferred by the reset cause that finished this period
+    /// (hardware; once), for the thread-mode log.
+    fn take_deferred_calibration(&mut self) -> Option<DeferredCalibration>;
+    /// The current-sense channel for the monitor (`mre_core::overcurrent`):
+    /// on hardware the shunt at mid on-time, `Stale` when no conversion ended
+    /// since the last period (ADC3's end-of-injected-conversion flag); in PIL
+    /// the plant's coil current, `Stale` when a frame stops carrying one.
+    /// `None`: no channel (PIL before the host sent a current).
+    fn coil_current(&mut self) -> Option<mre_core::overcurrent::Sense>;
+}
+
+/// The outcome of the VDDA and current-sense calibration run at rest.
+#[derive(Clone, Copy)]
+pub struct DeferredCalibration {
+    pub vdda: Result<f32, mre_core::calibration::CalError>,
+    pub sense_zero_a: Result<f32, mre_core::calibration::CalError>,
 }
 
 /// The status LED and the user button (thread mode).
@@ -66,24 +78,56 @@ pub trait StatusIo {
     fn button_pressed(&self) -> bool;
 }
 
-/// The coil PWM pin, D5 = PB4 on both boards (and in QEMU's model).
-const COIL_PIN: usize = 4;
+// The coil pin to its safe level before anything else runs, RAM init
+// included: cortex-m-rt's reset handler calls `__pre_init` first (its
+// `#[pre_init]` attribute is deprecated for `global_asm!`, and Rust code may
+// not run before RAM init anyway). After every reset PB4 (D5, the coil PWM,
+// TIM3_CH1 on both boards and in QEMU's model) is NJTRST: alternate
+// function with a pull-up, so the driver input floats high (100 % duty,
+// 3 A) until this runs. It enables GPIOB's clock (RCC_AHB2ENR.GPIOBEN),
+// sets the output low (BSRR.BR4) before making PB4 an output with a
+// pull-down, so the pin never drives high. Off (0 A) is the only state a
+// bare GPIO can hold; `init` then starts the fail-safe duty as the reset
+// cause decides (`mre_core::boot::BootPlan`). RM0351 §6.4.17 (RCC_AHB2ENR),
+// §8.4 (GPIO registers). Instructions from the reset vector to here:
+// `firmware/bench/reset_icount.sh`.
+core::arch::global_asm!(
+    ".section .text.__pre_init,\"ax\",%progbits",
+    ".global __pre_init",
+    ".type __pre_init,%function",
+    ".thumb_func",
+    "__pre_init:",
+    "ldr r0, =0x4002104C", // RCC_AHB2ENR
+    "ldr r1, [r0]",
+    "orr r1, r1, #2", // GPIOBEN
+    "str r1, [r0]",
+    "ldr r1, [r0]",        // read back: the clock runs before GPIOB is written
+    "ldr r0, =0x48000400", // GPIOB
+    "mov r1, #0x100000",   // BSRR.BR4: output level low first
+    "str r1, [r0, #0x18]",
+    "ldr r1, [r0, #0x0C]", // PUPDR4 = 0b10, pull-down
+    "bic r1, r1, #0x300",
+    "orr r1, r1, #0x200",
+    "str r1, [r0, #0x0C]",
+    "ldr r1, [r0]", // MODER4 = 0b01, general-purpose output
+    "bic r1, r1, #0x300",
+    "orr r1, r1, #0x100",
+    ".global mre_coil_pin_safe",
+    "mre_coil_pin_safe:", // the store below is the first coil command
+    "str r1, [r0]",
+    "bx lr",
+    ".ltorg",
+    ".size __pre_init, . - __pre_init",
+);
 
-/// Drives the coil output off (PB4 low, pull-down) through the PAC: the
-/// first thing `main` does, before clocks or embassy. After every reset PB4
-/// is NJTRST with an internal pull-up, so until this runs the driver input
-/// floats high (100 % duty, 3 A). Only the gate pull-down on the driver
-/// board (firmware/README.md, "Wiring") covers the microseconds from reset
-/// to here. Off (0 A) is the only state a bare GPIO can hold; the 2 A
-/// fail-safe follows once TIM3 runs the PWM in `init`.
-pub fn coil_output_off_at_boot() {
+/// The coil pin low through the PAC (a panic or fault before TIM3 runs).
+#[cfg(feature = "hw")]
+pub fn coil_pin_low() {
     use embassy_stm32::pac;
-    use embassy_stm32::pac::gpio::vals::{Moder, Pupdr};
+    use embassy_stm32::pac::gpio::vals::Moder;
     pac::RCC.ahb2enr().modify(|w| w.set_gpioben(true));
-    // Output level first, then the mode: the pin never drives high.
-    pac::GPIOB.bsrr().write(|w| w.set_br(COIL_PIN, true));
-    pac::GPIOB.pupdr().modify(|w| w.set_pupdr(COIL_PIN, Pupdr::PULL_DOWN));
-    pac::GPIOB.moder().modify(|w| w.set_moder(COIL_PIN, Moder::OUTPUT));
+    pac::GPIOB.bsrr().write(|w| w.set_br(4, true));
+    pac::GPIOB.moder().modify(|w| w.set_moder(4, Moder::OUTPUT));
 }
 
 /// The PIL frame link's counters in a log line (nothing on hardware).

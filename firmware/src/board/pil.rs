@@ -13,6 +13,9 @@ use core::task::Waker;
 use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m_rt::exception;
 use critical_section::Mutex;
+#[cfg(feature = "pil-rtt")]
+use defmt_rtt as _;
+#[cfg(not(feature = "pil-rtt"))]
 use defmt_semihosting as _;
 use embassy_stm32::pac;
 use embassy_time::Timer;
@@ -24,6 +27,7 @@ use mre_core::frame::{
     CommandFrame, FrameError, Incoming, LinkStats, SampleFrame, SampleReceiver, END_OF_RUN_SEQ, FRAME_LEN, PING_SEQ,
 };
 use mre_core::law::Command;
+use mre_core::overcurrent::Sense;
 use mre_core::table::TableImage;
 use mre_core::upload::{choose_boot_table, BootTable, UploadReceiver};
 use mre_core::Flags;
@@ -153,6 +157,8 @@ pub struct Io {
     current_a: f32,
     last_reply: Option<[u8; FRAME_LEN]>,
     last_rejected: u16,
+    /// A frame carried the plant's coil current: the sense channel is wired.
+    sense_wired: bool,
 }
 
 /// QEMU's model has no LED or button to speak of: nothing shown, never pressed.
@@ -176,6 +182,8 @@ pub fn init(_rate_hz: u32) -> (Board, Status) {
     syst.enable_interrupt();
     syst.enable_counter();
     usart_init();
+    #[cfg(feature = "pil-rtt")]
+    rtt::block_if_full_and_fill();
     (
         Board {
             io: Io {
@@ -192,6 +200,7 @@ pub fn init(_rate_hz: u32) -> (Board, Status) {
                 current_a: 0.0,
                 last_reply: None,
                 last_rejected: 0,
+                sense_wired: false,
             },
             watchdog: Watchdog,
         },
@@ -327,8 +336,21 @@ impl super::BoardIo for Io {
         Some(self.rx.stats())
     }
 
-    fn coil_current_a(&mut self) -> Option<f32> {
-        self.sample.coil_current_a
+    /// QEMU models no ADC: nothing is calibrated.
+    fn take_deferred_calibration(&mut self) -> Option<super::DeferredCalibration> {
+        None
+    }
+
+    /// The plant's coil current; once the host has sent one, a frame
+    /// without it is a conversion that did not arrive (a stale channel).
+    fn coil_current(&mut self) -> Option<Sense> {
+        match self.sample.coil_current_a {
+            Some(a) => {
+                self.sense_wired = true;
+                Some(Sense::Fresh(a))
+            }
+            None => self.sense_wired.then_some(Sense::Stale),
+        }
     }
 }
 
@@ -543,5 +565,60 @@ pub mod icount {
         measure(&flown, ctl, DIAGNOSED);
         defmt::info!("icount bench done");
         semihosting::process::exit(0)
+    }
+}
+
+/// `pil-rtt`: the RTT up channel as `probe-rs run` leaves it, block-if-full,
+/// with no reader (QEMU has none), and full before the first period. With
+/// today's defmt-rtt defaults the next frame would spin in a critical section
+/// for ever; with the boards' features it is dropped and counted.
+#[cfg(feature = "pil-rtt")]
+pub mod rtt {
+    use core::sync::atomic::{AtomicU32, Ordering};
+
+    extern "C" {
+        /// defmt-rtt's control block (SEGGER layout: 16-byte id, two u32
+        /// channel counts, then the up channel: name, buffer, size, write,
+        /// read, flags, each 32 bits).
+        static _SEGGER_RTT: [u32; 12];
+    }
+    const WRITE_WORD: usize = 9;
+    const FLAGS_WORD: usize = 11;
+    /// SEGGER_RTT_MODE_BLOCK_IF_FIFO_FULL, what probe-rs writes.
+    const BLOCK_IF_FULL: u32 = 2;
+
+    /// Log frames the logger dropped (the write cursor did not move), read
+    /// by the host test from this symbol.
+    #[no_mangle]
+    pub static MRE_LOG_FRAMES_DROPPED: AtomicU32 = AtomicU32::new(0);
+
+    fn word(index: usize) -> *mut u32 {
+        // SAFETY: only the address is taken; the block has 12 words.
+        unsafe { core::ptr::addr_of!(_SEGGER_RTT).cast::<u32>().cast_mut().add(index) }
+    }
+
+    fn write_cursor() -> u32 {
+        // SAFETY: an aligned word of the control block; the logger updates it.
+        unsafe { word(WRITE_WORD).read_volatile() }
+    }
+
+    /// Logs through `log` and counts the frame if the logger dropped it.
+    pub fn counted(log: impl FnOnce()) {
+        let before = write_cursor();
+        log();
+        if write_cursor() == before {
+            MRE_LOG_FRAMES_DROPPED.fetch_add(1, Ordering::Relaxed);
+        }
+    }
+
+    pub fn block_if_full_and_fill() {
+        // The control block is set up by the logger's first frame.
+        defmt::info!("PIL with the RTT logger: up channel set to block-if-full, no reader");
+        // SAFETY: the flags word, written once here as a probe would.
+        unsafe { word(FLAGS_WORD).write_volatile(BLOCK_IF_FULL) };
+        // 1 KiB buffer, ~10 bytes a frame: 400 frames fill it with room to spare.
+        for k in 0..400u32 {
+            counted(|| defmt::info!("filling the RTT buffer: frame {=u32}", k));
+        }
     }
 }

@@ -3,7 +3,6 @@
 //! counter. Pins and scaling are documented in `firmware/README.md`;
 //! the per-board difference is only the pin table below.
 use defmt_rtt as _;
-use panic_probe as _;
 
 use embassy_stm32::adc::{Adc, AdcChannel, AnyAdcChannel, SampleTime};
 use embassy_stm32::gpio::{Input, Level, Output, OutputType, Pull, Speed};
@@ -16,9 +15,10 @@ use embassy_stm32::usart::BufferedUart;
 use super::flash_upload::Uplink;
 use embassy_stm32::wdg::IndependentWatchdog;
 use embassy_time::{Duration, Instant, Ticker};
-use mre_core::boot::ResetCause;
+use mre_core::boot::{CalibrationTime, FirstCommand, ResetCause};
 use mre_core::control::{open_loop_duty, Coil, Controller, DisplacementSensor, VelocitySensor};
 use mre_core::law::{Command, LawConfig};
+use mre_core::overcurrent::Sense;
 use mre_core::pacing::Pacer;
 
 #[cfg(feature = "board-b-l475e-iot01a")]
@@ -147,8 +147,14 @@ pub struct Io {
     /// ADC3 (kept for its clock and calibration; converts through the PAC
     /// once [`Io::start_current_sense`] ran) and the shunt channel.
     sense: (Adc<'static, ADC3>, AnyAdcChannel<'static, ADC3>),
-    /// From boot calibration with the PWM off (0 if refused).
+    /// From calibration with the PWM off (0 if refused or not yet run).
     i_offset_a: f32,
+    /// The latest shunt conversion without the offset (A).
+    i_raw_a: f32,
+    /// The VDDA and current-sense calibration deferred until at rest
+    /// (`BootPlan`), and its outcome once, for the log.
+    deferred: Option<mre_core::calibration::DeferredSenseZero>,
+    deferred_done: Option<super::DeferredCalibration>,
     pwm: SimplePwmChannel<'static, TIM3>,
     max_duty: u32,
     ticker: Ticker,
@@ -188,6 +194,7 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
     let csr = embassy_stm32::pac::RCC.csr().read().0;
     embassy_stm32::pac::RCC.csr().modify(|w| w.set_rmvf(true));
     let cause = ResetCause::from_rcc_csr(csr);
+    let plan = cause.boot_plan();
     if cause.is_fault() {
         defmt::warn!("reset cause: {=str} (RCC_CSR {=u32:#010x})", cause.name(), csr);
     } else {
@@ -229,6 +236,9 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
         velocity: HAS_VELOCITY_SENSOR.then(|| (Adc::new(p.ADC2), pin_v.degrade_adc())),
         sense: (Adc::new(p.ADC3), pin_i.degrade_adc()),
         i_offset_a: 0.0,
+        i_raw_a: 0.0,
+        deferred: None,
+        deferred_done: None,
         pwm: ch,
         max_duty,
         ticker: Ticker::every(period),
@@ -238,9 +248,22 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
         x_offset_mm: 0.0,
         v_zero_m_s: 0.0,
     };
-    // The PWM runs at 0 % (coil off): VDDA and the current-sense zero first.
-    io.calibrate_vdda();
-    io.calibrate_current_sense();
+    // The first coil command, as the reset cause decides (firmware/README.md,
+    // "Reset paths"): a reset that may strike mid-impact holds the fail-safe
+    // current (stiffest damper) at once and calibrates VDDA and the current
+    // sense later, at rest; a reset by the pin alone calibrates them first
+    // with the PWM at 0 % (coil off).
+    match plan.first {
+        FirstCommand::FailSafeAtOnce => io.set_duty(fail_safe_duty()),
+        FirstCommand::FailSafeAfterCalibration => {
+            io.calibrate_vdda();
+            io.calibrate_current_sense();
+        }
+    }
+    if plan.calibration == CalibrationTime::DeferredUntilAtRest {
+        defmt::info!("calibration: VDDA and current sense deferred until the damper is at rest");
+        io.deferred = Some(mre_core::calibration::DeferredSenseZero::default());
+    }
     io.start_current_sense();
     // Until the loop runs, hold the fail-safe current (stiffest damper).
     io.set_duty(fail_safe_duty());
@@ -316,25 +339,24 @@ impl Io {
     /// (`mre_core::calibration`) and logged; a refused one leaves the
     /// nominal scaling.
     fn calibrate_vdda(&mut self) {
-        use mre_core::calibration::vdda_v;
-        let mut vref = self.adc_x.enable_vrefint();
-        let raw = self.adc_x.blocking_read(&mut vref, SampleTime::CYCLES247_5);
-        match vdda_v(raw, vref.calibrated_value()) {
-            Ok(vdda) => {
-                self.v_per_lsb = vdda / ADC_FULL_SCALE;
-                defmt::info!(
-                    "calibration: VDDA {=f32} V (VREFINT {=u16}, cal {=u16})",
-                    vdda,
-                    raw,
-                    vref.calibrated_value()
-                );
-            }
+        match self.measure_vdda() {
+            Ok(vdda) => defmt::info!("calibration: VDDA {=f32} V", vdda),
             Err(e) => defmt::warn!(
                 "calibration: VDDA refused ({=str}), assuming {=f32} V",
                 e.as_str(),
                 VREF_V
             ),
         }
+    }
+
+    /// One VREFINT conversion (~3 µs): VDDA, applied if accepted. Does not
+    /// log (the control task calls it for a deferred calibration).
+    fn measure_vdda(&mut self) -> Result<f32, mre_core::calibration::CalError> {
+        let mut vref = self.adc_x.enable_vrefint();
+        let raw = self.adc_x.blocking_read(&mut vref, SampleTime::CYCLES247_5);
+        let vdda = mre_core::calibration::vdda_v(raw, vref.calibrated_value())?;
+        self.v_per_lsb = vdda / ADC_FULL_SCALE;
+        Ok(vdda)
     }
 
     /// The current-sense offset, with the coil off (PWM at 0 %).
@@ -360,6 +382,17 @@ impl Io {
             w.set_ocpe(1, true);
         });
         pac::TIM3.ccr(3).write(|w| w.set_ccr(1));
+        // CC4E: the channel 4 compare output enabled (RM0351 §31.4.11,
+        // TIMx_CCER), so OC4REF's edge reaches the ADC as TIM3_CH4. CH4 has
+        // no pin mapped to AF2 here, so nothing is driven.
+        pac::TIM3.ccer().modify(|w| w.set_cce(3, true));
+        // JQDIS = 1: the injected queue disabled (RM0351 §18.7.4, ADC_CFGR
+        // bit 31; §18.4.21, "Queue of context for injected conversions"):
+        // the JSQR below is the one context, kept after every sequence, and
+        // cannot be consumed into an empty queue that ignores triggers. Its
+        // reset value is 1; set explicitly rather than trusted (the stm32
+        // PAC has no field for it: raw bit). Written with JADSTART = 0.
+        pac::ADC3.cfgr().modify(|w| w.0 |= 1 << 31);
         pac::ADC3.jsqr().write(|w| {
             w.set_jl(0);
             w.set_jextsel(JEXTSEL_TIM3_CH4);
@@ -429,8 +462,25 @@ impl super::BoardIo for Io {
     }
 
     /// True when this period's work ended after the next tick was due.
-    fn finish_period(&mut self, _cmd: &Command, _ctl: &Controller) -> bool {
+    /// A deferred calibration takes this period's conversion while the
+    /// damper rests with the coil commanded off (`DeferredSenseZero`), and
+    /// VDDA with its last sample.
+    fn finish_period(&mut self, cmd: &Command, ctl: &Controller) -> bool {
+        if let Some(zero) = self.deferred.as_mut() {
+            if let Some(sense_zero_a) = zero.push(ctl.is_at_rest(), cmd.current_a, self.i_raw_a) {
+                self.deferred = None;
+                if let Ok(a) = sense_zero_a {
+                    self.i_offset_a = a;
+                }
+                let vdda = self.measure_vdda();
+                self.deferred_done = Some(super::DeferredCalibration { vdda, sense_zero_a });
+            }
+        }
         self.pacer.overran(Instant::now().as_ticks())
+    }
+
+    fn take_deferred_calibration(&mut self) -> Option<super::DeferredCalibration> {
+        self.deferred_done.take()
     }
 
     /// No frame link on hardware.
@@ -438,10 +488,21 @@ impl super::BoardIo for Io {
         None
     }
 
-    /// The latest mid-on-time shunt conversion (the last PWM period).
-    fn coil_current_a(&mut self) -> Option<f32> {
-        let code = embassy_stm32::pac::ADC3.jdr(0).read().jdata();
-        Some(self.volts(code) / I_SENSE_V_PER_A - self.i_offset_a)
+    /// The latest mid-on-time shunt conversion, with its proof of being new:
+    /// ADC3's JEOC (end of injected conversion, set by hardware, cleared by
+    /// writing 1; RM0351 §18.7.1, ADC_ISR). No JEOC since the last period:
+    /// `Stale` (a dead trigger chain or ADC reads the old JDR1 for ever).
+    /// JEOC is cleared before JDR1 is read, so a conversion that ends in
+    /// between is counted new next period, never lost.
+    fn coil_current(&mut self) -> Option<Sense> {
+        use embassy_stm32::pac;
+        if !pac::ADC3.isr().read().jeoc() {
+            return Some(Sense::Stale);
+        }
+        pac::ADC3.isr().write(|w| w.set_jeoc(true));
+        let code = pac::ADC3.jdr(0).read().jdata();
+        self.i_raw_a = self.volts(code) / I_SENSE_V_PER_A;
+        Some(Sense::Fresh(self.i_raw_a - self.i_offset_a))
     }
 }
 
@@ -490,4 +551,53 @@ pub fn bench_model_step(table: Option<&mre_core::Table>) {
         sum / points.len() as u32,
         max
     );
+}
+
+/// The coil to its safe state from a panic or a HardFault, through the PAC
+/// only (nothing here trusts the state the fault left): when TIM3 drives
+/// the pin (PB4 in alternate function), CCR1 gets the fail-safe duty of the
+/// current ARR; before that, the pin is driven low (the reset state's safe
+/// level). Then the watchdog is started (a no-op if it runs) and never
+/// fed: the chip resets into the reset path of `BootPlan` (watchdog: the
+/// fail-safe at once).
+fn coil_safe_from_a_fault() {
+    use embassy_stm32::pac;
+    use embassy_stm32::pac::gpio::vals::Moder;
+    let tim3_runs = pac::RCC.apb1enr1().read().tim3en() && pac::TIM3.cr1().read().cen();
+    if tim3_runs && pac::GPIOB.moder().read().moder(4) == Moder::ALTERNATE {
+        let arr = pac::TIM3.arr().read().arr();
+        let compare = (fail_safe_duty() * (arr as f32 + 1.0)) as u32;
+        pac::TIM3
+            .ccr(0)
+            .write(|w| w.set_ccr(compare.min(u32::from(u16::MAX)) as u16));
+    } else {
+        super::coil_pin_low();
+    }
+    // IWDG_KR = 0xCCCC starts the watchdog (RM0351 §32.4.1, §32.7.1).
+    pac::IWDG.kr().write(|w| w.set_key(pac::iwdg::vals::Key::START));
+}
+
+fn wait_for_the_watchdog() -> ! {
+    loop {
+        cortex_m::asm::nop();
+    }
+}
+
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo) -> ! {
+    // The coil first: the log may stall (RTT) and must not delay it.
+    coil_safe_from_a_fault();
+    let (file, line) = info.location().map_or(("?", 0), |l| (l.file(), l.line()));
+    defmt::error!(
+        "panic at {=str}:{=u32}; coil at its safe state, reset by the watchdog",
+        file,
+        line
+    );
+    wait_for_the_watchdog()
+}
+
+#[cortex_m_rt::exception]
+unsafe fn HardFault(_frame: &cortex_m_rt::ExceptionFrame) -> ! {
+    coil_safe_from_a_fault();
+    wait_for_the_watchdog()
 }

@@ -17,6 +17,17 @@
 //! - `upload`: a table upload with one corrupted coefficient word (valid
 //!   frames, wrong table CRC) before the real one. Detected by the firmware
 //!   answering `TABLE_FAULT`; the real upload must then be accepted.
+//! - `sense-stuck`: a drop of its own whose sample frames carry a coil
+//!   current stuck at 0 A (an open shunt amplifier). A stuck-at-0 channel
+//!   shows only while current flows, and the default drop's law peaks at
+//!   0.8 A for a few periods; so this drop flies the rebound policy
+//!   `Fixed` at `STUCK_HOLD_A`, which drives the coil from the rebound on.
+//!   Detected by `CURRENT_SENSE` with the fail-safe current held.
+//! - `sense-stale`: a drop of its own whose frames carry the coil current
+//!   (the last command: what a healthy shunt reads) until period
+//!   `STALE_FROM`, then none (no new conversion: the firmware's PIL board
+//!   reports a stale channel). Detected by `CURRENT_SENSE` within
+//!   `overcurrent::STALE_PERIODS` periods, with the fail-safe held.
 //! - `all:R` is all of the above, with rate R for the frame faults.
 //!
 //! Survived means: the firmware kept answering every period with the right
@@ -49,6 +60,11 @@ const MAX_RETRIES: usize = 5;
 const NAN_AT: u32 = 20;
 const RANGE_AT: u32 = 30;
 const STUCK_FROM: u32 = 40;
+/// The sense channel's last conversion arrives in the period before this one.
+const STALE_FROM: u32 = 20;
+/// The rebound current the stuck-sense drop flies: above
+/// `overcurrent::STUCK_DRIVEN_A`, so a healthy shunt would read it.
+const STUCK_HOLD_A: f32 = 1.5;
 
 /// What to inject.
 #[derive(Clone, Debug, PartialEq)]
@@ -58,6 +74,8 @@ pub struct FaultPlan {
     pub duplicate_rate: f64,
     pub sensors: bool,
     pub upload: bool,
+    pub sense_stuck: bool,
+    pub sense_stale: bool,
     pub seed: u64,
 }
 
@@ -70,6 +88,8 @@ impl FaultPlan {
             duplicate_rate: 0.0,
             sensors: false,
             upload: false,
+            sense_stuck: false,
+            sense_stale: false,
             seed,
         };
         for item in spec.split(',').map(str::trim).filter(|s| !s.is_empty()) {
@@ -92,11 +112,15 @@ impl FaultPlan {
                 ("duplicate", Some(r)) => plan.duplicate_rate = r,
                 ("sensors", None) => plan.sensors = true,
                 ("upload", None) => plan.upload = true,
+                ("sense-stuck", None) => plan.sense_stuck = true,
+                ("sense-stale", None) => plan.sense_stale = true,
                 ("all", Some(r)) => {
                     (plan.corrupt_rate, plan.drop_rate, plan.duplicate_rate) = (r, r, r);
-                    (plan.sensors, plan.upload) = (true, true);
+                    (plan.sensors, plan.upload, plan.sense_stuck, plan.sense_stale) = (true, true, true, true);
                 }
-                _ => bail!("--faults: unknown item `{item}` (corrupt:R, drop:R, duplicate:R, sensors, upload, all:R)"),
+                _ => bail!(
+                    "--faults: unknown item `{item}` (corrupt:R, drop:R, duplicate:R, sensors, upload, sense-stuck, sense-stale, all:R)"
+                ),
             }
         }
         Ok(plan)
@@ -482,6 +506,17 @@ pub fn run_faults(request: &PilRequest, plan: &FaultPlan) -> Result<FaultReport>
     if let Some(u) = upload {
         faults.push(u);
     }
+    let mut first_difference = first_difference;
+    for (on, fault) in [
+        (plan.sense_stuck, SenseFault::Stuck),
+        (plan.sense_stale, SenseFault::Stale),
+    ] {
+        if on {
+            let (count, difference) = run_sense_drop(&setup, &table, &cfg, &elf, fault)?;
+            faults.push(count);
+            first_difference = first_difference.or(difference);
+        }
+    }
     let last = answers.last().copied();
     Ok(FaultReport {
         faults,
@@ -494,6 +529,184 @@ pub fn run_faults(request: &PilRequest, plan: &FaultPlan) -> Result<FaultReport>
         final_flags: last.map_or_else(String::new, |a| format!("{:?}", a.flags)),
         firmware_exit: status.to_string(),
     })
+}
+
+/// A fault of the coil's current-sense channel, each in a drop of its own
+/// (a latched fault holds the fail-safe for the rest of a run).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum SenseFault {
+    /// Every frame carries 0 A, whatever the coil does.
+    Stuck,
+    /// Frames carry the coil current until `STALE_FROM`, then none.
+    Stale,
+}
+
+impl SenseFault {
+    /// The coil current sample frame `seq` carries; `coil_a` is the last
+    /// command, what a healthy shunt reads.
+    fn reading(self, seq: u32, coil_a: f32) -> Option<f32> {
+        match self {
+            SenseFault::Stuck => Some(0.0),
+            SenseFault::Stale => (seq < STALE_FROM).then_some(coil_a),
+        }
+    }
+
+    fn kind(self) -> &'static str {
+        match self {
+            SenseFault::Stuck => "current sense stuck at 0 A while driven",
+            SenseFault::Stale => "current sense stale (no new conversion)",
+        }
+    }
+}
+
+/// What the PIL board hands the monitor for a frame's current (its
+/// `coil_current`): fresh when present, stale once a current has been seen.
+fn sense_of(reading: Option<f32>, wired: &mut bool) -> Option<mre_core::overcurrent::Sense> {
+    use mre_core::overcurrent::Sense;
+    match reading {
+        Some(a) => {
+            *wired = true;
+            Some(Sense::Fresh(a))
+        }
+        None => wired.then_some(Sense::Stale),
+    }
+}
+
+/// One drop through the firmware with `fault` in the current-sense channel,
+/// and the same drop in process; the fault count and the first difference.
+fn run_sense_drop(
+    setup: &crate::plant::closed_loop::SimSetup,
+    table: &mre_core::table::Table,
+    cfg: &ControlConfig,
+    elf: &std::path::Path,
+    fault: SenseFault,
+) -> Result<(FaultCount, Option<String>)> {
+    let mut cfg = *cfg;
+    if fault == SenseFault::Stuck {
+        cfg.law.rebound = mre_core::law::ReboundPolicy::Fixed {
+            current_a: STUCK_HOLD_A,
+        };
+    }
+    let cfg = &cfg;
+    let failsafe_a = cfg.law.failsafe_current_a;
+    let mut reference: Vec<CommandFrame> = Vec::new();
+    {
+        let mut ctl = Controller::new(*cfg, Ok(*table)).map_err(|e| anyhow!("controller: {e:?}"))?;
+        let (mut wired, mut coil_a) = (false, 0.0f32);
+        let out = &mut reference;
+        let controller = move |x_mm: f32, v_m_s: f32| {
+            let seq = out.len() as u32 + 1;
+            ctl.check_coil_current(sense_of(fault.reading(seq, coil_a), &mut wired));
+            let cmd = ctl.step_sample(x_mm, Some(v_m_s));
+            ctl.end_period(false);
+            coil_a = cmd.current_a;
+            out.push(CommandFrame {
+                seq,
+                current_a: cmd.current_a,
+                target_force_n: cmd.target_force_n,
+                flags: cmd.flags,
+                rejected: 0,
+            });
+            cmd.current_a
+        };
+        simulate(
+            &setup.plant,
+            &setup.impact,
+            CurrentSource::Controller(Box::new(controller)),
+        )?;
+    }
+
+    let qemu_bin = qemu_binary().ok_or_else(|| anyhow!("qemu-system-arm not found: {INSTALL_HINT}"))?;
+    let (qemu, mut link): (Qemu, PilLink) = Qemu::start(&qemu_bin, elf, None)?;
+    link.upload_config(table, cfg)?;
+    let answers = RefCell::new(Vec::<CommandFrame>::new());
+    let error = RefCell::new(None);
+    {
+        let link = &mut link;
+        let mut coil_a = 0.0f32;
+        let controller = |x_mm: f32, v_m_s: f32| {
+            let seq = answers.borrow().len() as u32 + 1;
+            let frame = SampleFrame {
+                seq,
+                x_mm,
+                v_m_s: Some(v_m_s),
+                force_n: None,
+                coil_current_a: fault.reading(seq, coil_a),
+            };
+            let current_a = match link.exchange(&frame) {
+                Ok(cmd) => {
+                    answers.borrow_mut().push(cmd);
+                    cmd.current_a
+                }
+                Err(e) => {
+                    error.borrow_mut().get_or_insert(e);
+                    failsafe_a
+                }
+            };
+            coil_a = current_a;
+            current_a
+        };
+        simulate(
+            &setup.plant,
+            &setup.impact,
+            CurrentSource::Controller(Box::new(controller)),
+        )?;
+    }
+    if let Some(e) = error.into_inner() {
+        return Err(e.context("PIL link failed during the current-sense fault drop"));
+    }
+    link.end_of_run()?;
+    let status = qemu.wait(Duration::from_secs(20))?;
+    let answers = answers.into_inner();
+    let difference = answers
+        .iter()
+        .zip(&reference)
+        .find_map(|(a, r)| {
+            let same = a.current_a.to_bits() == r.current_a.to_bits()
+                && a.target_force_n.to_bits() == r.target_force_n.to_bits()
+                && a.flags == r.flags;
+            (!same).then(|| format!("{}: period {}: firmware {a:?}, in process {r:?}", fault.kind(), a.seq))
+        })
+        .or_else(|| {
+            (answers.len() != reference.len()).then(|| {
+                format!(
+                    "{}: {} firmware periods, {} in process",
+                    fault.kind(),
+                    answers.len(),
+                    reference.len()
+                )
+            })
+        });
+    let latch_at = answers.iter().position(|a| a.flags.contains(Flags::CURRENT_SENSE));
+    let in_time = match fault {
+        // Stale from STALE_FROM: latched by the STALE_PERIODS-th stale frame.
+        SenseFault::Stale => latch_at
+            .is_some_and(|k| k + 1 == (STALE_FROM + u32::from(mre_core::overcurrent::STALE_PERIODS) - 1) as usize),
+        // Latched after STUCK_PERIODS periods driven ≥ STUCK_DRIVEN_A, not before.
+        SenseFault::Stuck => latch_at.is_some_and(|k| {
+            let driven = answers[..k]
+                .iter()
+                .rev()
+                .take_while(|a| a.current_a >= mre_core::overcurrent::STUCK_DRIVEN_A)
+                .count();
+            driven == usize::from(mre_core::overcurrent::STUCK_PERIODS)
+        }),
+    };
+    let held = latch_at.is_some_and(|k| {
+        answers[k..]
+            .iter()
+            .all(|a| a.current_a == failsafe_a && a.flags.contains(Flags::CURRENT_SENSE))
+    });
+    let survived = held && difference.is_none() && status.success();
+    Ok((
+        FaultCount {
+            kind: fault.kind().into(),
+            injected: 1,
+            detected: u32::from(in_time),
+            survived: u32::from(survived),
+        },
+        difference,
+    ))
 }
 
 /// `mre pil --faults`: runs, writes `faults.md` and `faults.json` into `report_dir`.
@@ -518,7 +731,10 @@ mod tests {
         assert!(p.sensors && !p.upload);
         let all = FaultPlan::parse("all:0.01", 1).unwrap();
         assert!(all.sensors && all.upload && all.duplicate_rate == 0.01);
-        for bad in ["corrupt", "drop:2", "stuck", "duplicate:x"] {
+        assert!(all.sense_stuck && all.sense_stale);
+        let p = FaultPlan::parse("sense-stale", 1).unwrap();
+        assert!(p.sense_stale && !p.sense_stuck && !p.sensors);
+        for bad in ["corrupt", "drop:2", "stuck", "duplicate:x", "sense-stale:0.1"] {
             assert!(FaultPlan::parse(bad, 0).is_err(), "{bad}");
         }
     }

@@ -302,7 +302,9 @@ fn mre_pil_flies_controller_c_on_a_lagging_coil() {
 fn coil_pin_is_driven_low_first_thing_at_boot() {
     // After reset PB4 (the coil PWM, D5) is NJTRST: alternate function with
     // a pull-up (RM0351: GPIOB_MODER reset 0xFFFF_FEBF, PUPDR 0x0000_0100),
-    // so the driver input reads high. The firmware must make it a low output.
+    // so the driver input reads high. The firmware makes it a low output in
+    // `__pre_init`, before RAM init (firmware/src/board/mod.rs; instructions
+    // to there: firmware/bench/reset_icount.sh).
     let Some((qemu, mut link)) = start() else { return };
     // One exchange: the firmware is past boot and running periods.
     link.exchange(&SampleFrame {
@@ -490,7 +492,8 @@ fn mre_pil_serial_closes_the_drop_test_over_qemu_serial() {
 fn firmware_latches_over_current_from_the_measured_coil_current() {
     // The sample frame carries the plant's coil current (bit 2); the
     // firmware's monitor (`mre_core::overcurrent`, 2.4 A for 3 periods)
-    // latches OVER_CURRENT before the step, which then holds the fail-safe.
+    // latches OVER_CURRENT before the step, which then removes the drive
+    // (0 A: the 2 A fail-safe would drive into the failed coil).
     let Some((qemu, mut link)) = start() else { return };
     let sample = |seq, coil_current_a| SampleFrame {
         seq,
@@ -530,10 +533,11 @@ fn firmware_latches_over_current_from_the_measured_coil_current() {
         tripped.flags.contains(Flags::OVER_CURRENT | Flags::FAIL_SAFE),
         "{tripped:?}"
     );
-    let failsafe_a = mre_core::law::LawConfig::default().failsafe_current_a;
-    assert_eq!(tripped.current_a, failsafe_a);
-    // Latched: the current back to normal does not release it.
+    assert_eq!(tripped.current_a, 0.0);
+    // Latched: the current back to normal does not release it, nor does a
+    // mid-stroke sample that would otherwise ask for current.
     let later = link.exchange(&sample(27, 0.5)).unwrap();
     assert!(later.flags.contains(Flags::OVER_CURRENT | Flags::FAIL_SAFE));
+    assert_eq!(later.current_a, 0.0);
     finish(qemu, link);
 }
