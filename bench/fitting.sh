@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Host fitting benchmark: mre's GSA against niapy's GSA (same objective, N, T,
-# evaluation count and search box), in one run. Needs `pip install niapy`.
-# Usage: bench/run.sh [DATASET]   (default: data/mr-damper-mts)
+# evaluation count and search box), in one run. Installs niapy if missing.
+# Usage: bench/fitting.sh [DATASET]   (default: data/mr-damper-mts)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 DATA="${1:-data/mr-damper-mts}"
+python3 -c "import niapy" 2>/dev/null || pip install --quiet niapy
 cargo build --release -q -p host-tools
 MRE=target/release/mre
 tmp="$(mktemp -d)"
