@@ -38,11 +38,12 @@ fn model_out_carries_the_coil_lag_the_answer_key_holds() {
         serde_json::from_str(&std::fs::read_to_string(root().join("data/keys/drop-coil_lag.json")).unwrap()).unwrap();
     let true_tau_s = key["parameters"]["time_constant_s"].as_f64().unwrap();
     let tau_s = f64::from(table.terms().coil_tau_s);
-    println!("coil τ in the model file: {:.4} ms, key {:.4} ms", tau_s * 1e3, true_tau_s * 1e3);
-    assert!(
-        tau_within_tolerance(tau_s, true_tau_s),
-        "{tau_s} vs {true_tau_s}"
+    println!(
+        "coil τ in the model file: {:.4} ms, key {:.4} ms",
+        tau_s * 1e3,
+        true_tau_s * 1e3
     );
+    assert!(tau_within_tolerance(tau_s, true_tau_s), "{tau_s} vs {true_tau_s}");
     assert_eq!(table.version(), 2);
     // The file is what `mre tables` flashes: it reads back as the same table,
     // and the generated source carries τ and the data set's hash.

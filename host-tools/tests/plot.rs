@@ -99,7 +99,11 @@ fn affine(values: &[f64], pixels: &[f64]) -> (f64, f64, f64) {
     let var: f64 = values.iter().map(|v| (v - mv) * (v - mv)).sum();
     let a = cov / var;
     let b = mp - a * mv;
-    let worst = values.iter().zip(pixels).map(|(v, p)| (a * v + b - p).abs()).fold(0.0, f64::max);
+    let worst = values
+        .iter()
+        .zip(pixels)
+        .map(|(v, p)| (a * v + b - p).abs())
+        .fold(0.0, f64::max);
     (a, b, worst)
 }
 
@@ -110,7 +114,14 @@ fn the_loop_figure_draws_the_recorded_samples_and_the_model_quartics() {
     let out = tempfile::tempdir().unwrap();
     let model = out.path().join("model.toml");
     run_fit(data.path(), &quick_fit(), &[], &model).unwrap();
-    run_plot(data.path(), &model, &[], &PlotOptions { interpolated_a: vec![] }, out.path()).unwrap();
+    run_plot(
+        data.path(),
+        &model,
+        &[],
+        &PlotOptions { interpolated_a: vec![] },
+        out.path(),
+    )
+    .unwrap();
     let svg = std::fs::read_to_string(out.path().join("fig08_loop_1A.svg")).unwrap();
     let tags: Vec<&str> = svg.split('<').collect();
 
@@ -119,7 +130,12 @@ fn the_loop_figure_draws_the_recorded_samples_and_the_model_quartics() {
     let dots: Vec<(f64, f64)> = tags
         .iter()
         .filter(|t| t.starts_with("circle"))
-        .map(|t| (attr(t, "cx").unwrap().parse().unwrap(), attr(t, "cy").unwrap().parse().unwrap()))
+        .map(|t| {
+            (
+                attr(t, "cx").unwrap().parse().unwrap(),
+                attr(t, "cy").unwrap().parse().unwrap(),
+            )
+        })
         .collect();
     let csv = std::fs::read_to_string(data.path().join("i1.csv")).unwrap();
     let samples: Vec<(f64, f64)> = csv
@@ -137,7 +153,10 @@ fn the_loop_figure_draws_the_recorded_samples_and_the_model_quartics() {
     let (af, bf, worst_f) = affine(&fs, &dots.iter().map(|d| d.1).collect::<Vec<_>>());
     // Pixel coordinates are whole numbers: residuals up to one pixel.
     assert!(ax > 0.0 && af < 0.0, "x → right, F → up: {ax}, {af}");
-    assert!(worst_x <= 1.0 && worst_f <= 1.0, "dots off the samples by {worst_x}, {worst_f} px");
+    assert!(
+        worst_x <= 1.0 && worst_f <= 1.0,
+        "dots off the samples by {worst_x}, {worst_f} px"
+    );
 
     // The model line (palette colour 1, width 3): compression out to the
     // stroke's end, then extension back. Each vertex, mapped back through the
@@ -145,7 +164,9 @@ fn the_loop_figure_draws_the_recorded_samples_and_the_model_quartics() {
     // within 2 px plus the curve's own change over ±1 px of x (rounding).
     let line = tags
         .iter()
-        .find(|t| t.starts_with("polyline") && attr(t, "stroke") == Some("#D55E00") && attr(t, "stroke-width") == Some("3"))
+        .find(|t| {
+            t.starts_with("polyline") && attr(t, "stroke") == Some("#D55E00") && attr(t, "stroke-width") == Some("3")
+        })
         .expect("the model line");
     let vertices: Vec<(f64, f64)> = attr(line, "points")
         .unwrap()
@@ -178,10 +199,15 @@ fn the_loop_figure_draws_the_recorded_samples_and_the_model_quartics() {
     }
     // The branches differ by more than the tolerance on much of the stroke,
     // so the check tells them apart.
-    assert!(far_apart > vertices.len() / 4, "branches apart at only {far_apart} vertices");
+    assert!(
+        far_apart > vertices.len() / 4,
+        "branches apart at only {far_apart} vertices"
+    );
 
     // The PNG is the same drawing: the line's colour at its vertices.
-    let decoder = png::Decoder::new(std::io::Cursor::new(std::fs::read(out.path().join("fig08_loop_1A.png")).unwrap()));
+    let decoder = png::Decoder::new(std::io::Cursor::new(
+        std::fs::read(out.path().join("fig08_loop_1A.png")).unwrap(),
+    ));
     let mut reader = decoder.read_info().unwrap();
     let mut rgb = vec![0; reader.output_buffer_size()];
     let info = reader.next_frame(&mut rgb).unwrap();
@@ -191,7 +217,11 @@ fn the_loop_figure_draws_the_recorded_samples_and_the_model_quartics() {
         (rgb[k], rgb[k + 1], rgb[k + 2])
     };
     let orange = vertices.iter().filter(|&&(x, y)| pixel(x, y) == (213, 94, 0)).count();
-    assert!(orange * 10 >= vertices.len() * 9, "{orange} of {} vertices orange in the PNG", vertices.len());
+    assert!(
+        orange * 10 >= vertices.len() * 9,
+        "{orange} of {} vertices orange in the PNG",
+        vertices.len()
+    );
 }
 
 #[test]
