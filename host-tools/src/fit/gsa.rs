@@ -27,7 +27,7 @@
 //! ([`RandomWeights::PerAgent`]): the paper we implement cites the published
 //! equations, and a per-agent weight keeps each pull along the line joining
 //! two agents. The code's form is [`RandomWeights::PerDimension`];
-//! BENCHMARKS.md reports both.
+//! whether that changes results is not measured yet.
 //!
 //! Coordinates: the algorithm runs on the search box mapped affinely onto
 //! [−100, 100]ⁿ, the range of Rashedi's benchmark functions for which G0 = 100
