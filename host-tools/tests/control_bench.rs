@@ -11,6 +11,16 @@ fn root() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
 }
 
+/// Whether the diagnosed coil τ lies close enough to the true one. The
+/// estimator refines τ on a grid of 2^(1/16) steps (diagnose/candidates.rs),
+/// so the nearest grid point is within 2^(1/32) − 1 = 2.2 %; the held-out
+/// error is flat within a step under the recordings' noise, so the
+/// neighbouring point is as likely: one more step, 2^(3/32) − 1 = 6.7 %.
+/// (The old 25 % would have passed the √2 grid's 2.26 ms for a 2 ms coil.)
+fn tau_within_tolerance(tau_s: f64, true_tau_s: f64) -> bool {
+    (tau_s / true_tau_s).ln().abs() < (3.0 / 32.0) * 2f64.ln()
+}
+
 #[test]
 fn model_out_carries_the_coil_lag_the_answer_key_holds() {
     let dir = tempfile::tempdir().unwrap();
@@ -28,10 +38,12 @@ fn model_out_carries_the_coil_lag_the_answer_key_holds() {
         serde_json::from_str(&std::fs::read_to_string(root().join("data/keys/drop-coil_lag.json")).unwrap()).unwrap();
     let true_tau_s = key["parameters"]["time_constant_s"].as_f64().unwrap();
     let tau_s = f64::from(table.terms().coil_tau_s);
-    assert!(
-        (tau_s - true_tau_s).abs() < 0.25 * true_tau_s,
-        "{tau_s} vs {true_tau_s}"
+    println!(
+        "coil τ in the model file: {:.4} ms, key {:.4} ms",
+        tau_s * 1e3,
+        true_tau_s * 1e3
     );
+    assert!(tau_within_tolerance(tau_s, true_tau_s), "{tau_s} vs {true_tau_s}");
     assert_eq!(table.version(), 2);
     // The file is what `mre tables` flashes: it reads back as the same table,
     // and the generated source carries τ and the data set's hash.
@@ -72,7 +84,8 @@ fn controller_c_meets_its_target_on_a_2_ms_coil_and_beats_the_paper_table() {
     let (a, b, c) = (&out.runs[0], &out.runs[1], &out.runs[2]);
     // diagnose finds the lag from the campaign's controlled impacts.
     assert_eq!(out.diagnosed, vec!["coil_lag".to_owned()]);
-    assert!((f64::from(out.identified_coil_tau_s) - 2.0e-3).abs() < 0.5e-3);
+    let tau_s = f64::from(out.identified_coil_tau_s);
+    assert!(tau_within_tolerance(tau_s, 2.0e-3), "τ = {tau_s} s");
     assert!(!c.bottomed_out && c.over_limit <= 1.25, "{c:?}");
     assert!(c.peak_force_n < a.peak_force_n && c.peak_force_n < b.peak_force_n);
     assert!(out.target_met);
@@ -96,8 +109,9 @@ fn controller_c_meets_the_nominal_target() {
 
 #[test]
 fn controller_c_holds_its_target_when_the_coil_time_constant_is_20_percent_off() {
-    // Diagnosis reports τ on a grid (the 2 ms coil of seed 203 comes out at
-    // 2.26 ms), and a real coil's τ drifts with temperature. With the
+    // Diagnosis reports τ within 6.7 % (the 2 ms coil of seed 203
+    // comes out at 1.987 ms), but a real coil's τ drifts with temperature
+    // (copper's resistance, +0.39 %/K, sets τ = L/R). With the
     // diagnosed quartics but τ set 20 % below and above the plant's, (c)
     // must still meet the τ ≤ 2 ms target: within the stroke and at
     // most 1.25× the limit.

@@ -1,4 +1,6 @@
-//! Plots render to PNG and SVG with labelled axes, on a synthetic data set.
+//! Plots render to PNG and SVG with labelled axes, on a synthetic data set,
+//! and draw what they claim to: the Fig. 8 loop's dots sit at the recorded
+//! samples and its line on the model file's quartics, branch by branch.
 use mre_host::fit::{run_fit, FitOptions};
 use mre_host::plot::{run_plot, PlotOptions};
 use std::path::Path;
@@ -81,6 +83,145 @@ fn fit_then_plot_writes_every_figure() {
     }
     let svg = std::fs::read_to_string(out.path().join("fig08_loop_1A.svg")).unwrap();
     assert!(svg.contains("displacement x (mm)") && svg.contains("force F (N)") && svg.contains("measured, 1 A"));
+}
+
+/// The value of attribute `name` in one SVG tag's text.
+fn attr<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
+    let start = tag.find(&format!(" {name}=\""))? + name.len() + 3;
+    Some(&tag[start..start + tag[start..].find('"')?])
+}
+
+/// Least-squares line `pixel = a·value + b` and its largest residual (px).
+fn affine(values: &[f64], pixels: &[f64]) -> (f64, f64, f64) {
+    let n = values.len() as f64;
+    let (mv, mp) = (values.iter().sum::<f64>() / n, pixels.iter().sum::<f64>() / n);
+    let cov: f64 = values.iter().zip(pixels).map(|(v, p)| (v - mv) * (p - mp)).sum();
+    let var: f64 = values.iter().map(|v| (v - mv) * (v - mv)).sum();
+    let a = cov / var;
+    let b = mp - a * mv;
+    let worst = values
+        .iter()
+        .zip(pixels)
+        .map(|(v, p)| (a * v + b - p).abs())
+        .fold(0.0, f64::max);
+    (a, b, worst)
+}
+
+#[test]
+fn the_loop_figure_draws_the_recorded_samples_and_the_model_quartics() {
+    let data = tempfile::tempdir().unwrap();
+    synthetic_dataset(data.path());
+    let out = tempfile::tempdir().unwrap();
+    let model = out.path().join("model.toml");
+    run_fit(data.path(), &quick_fit(), &[], &model).unwrap();
+    run_plot(
+        data.path(),
+        &model,
+        &[],
+        &PlotOptions { interpolated_a: vec![] },
+        out.path(),
+    )
+    .unwrap();
+    let svg = std::fs::read_to_string(out.path().join("fig08_loop_1A.svg")).unwrap();
+    let tags: Vec<&str> = svg.split('<').collect();
+
+    // Dots: one per recorded 1 A sample, in order. Their pixel positions must
+    // be an affine image of the recorded (x, F): x to the right, F upwards.
+    let dots: Vec<(f64, f64)> = tags
+        .iter()
+        .filter(|t| t.starts_with("circle"))
+        .map(|t| {
+            (
+                attr(t, "cx").unwrap().parse().unwrap(),
+                attr(t, "cy").unwrap().parse().unwrap(),
+            )
+        })
+        .collect();
+    let csv = std::fs::read_to_string(data.path().join("i1.csv")).unwrap();
+    let samples: Vec<(f64, f64)> = csv
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|c| c.parse().unwrap()).collect();
+            (v[1], v[3])
+        })
+        .collect();
+    assert_eq!(dots.len(), samples.len());
+    let xs: Vec<f64> = samples.iter().map(|s| s.0).collect();
+    let fs: Vec<f64> = samples.iter().map(|s| s.1).collect();
+    let (ax, bx, worst_x) = affine(&xs, &dots.iter().map(|d| d.0).collect::<Vec<_>>());
+    let (af, bf, worst_f) = affine(&fs, &dots.iter().map(|d| d.1).collect::<Vec<_>>());
+    // Pixel coordinates are whole numbers: residuals up to one pixel.
+    assert!(ax > 0.0 && af < 0.0, "x → right, F → up: {ax}, {af}");
+    assert!(
+        worst_x <= 1.0 && worst_f <= 1.0,
+        "dots off the samples by {worst_x}, {worst_f} px"
+    );
+
+    // The model line (palette colour 1, width 3): compression out to the
+    // stroke's end, then extension back. Each vertex, mapped back through the
+    // dots' scale, must lie on the model file's quartic for its branch, to
+    // within 2 px plus the curve's own change over ±1 px of x (rounding).
+    let line = tags
+        .iter()
+        .find(|t| {
+            t.starts_with("polyline") && attr(t, "stroke") == Some("#D55E00") && attr(t, "stroke-width") == Some("3")
+        })
+        .expect("the model line");
+    let vertices: Vec<(f64, f64)> = attr(line, "points")
+        .unwrap()
+        .split_whitespace()
+        .map(|p| {
+            let (x, y) = p.split_once(',').unwrap();
+            (x.parse().unwrap(), y.parse().unwrap())
+        })
+        .collect();
+    assert!(vertices.len() > 100, "{} vertices", vertices.len());
+    let table = mre_host::table_file::read_table_file(&model).unwrap();
+    // The last compression vertex: the first at the stroke's end.
+    let x_end = vertices.iter().map(|v| v.0).fold(f64::NEG_INFINITY, f64::max);
+    let turn = vertices.iter().position(|v| v.0 == x_end).unwrap();
+    let model_py = |px: f64, v_m_s: f64| {
+        let x_mm = (px - bx) / ax;
+        af * table.force(x_mm as f32, v_m_s as f32, 1.0).force_n as f64 + bf
+    };
+    let mut far_apart = 0;
+    for (i, &(px, py)) in vertices.iter().enumerate() {
+        let v_m_s = if i <= turn { 0.5 } else { -0.5 };
+        let slope = (model_py(px + 1.0, v_m_s) - model_py(px - 1.0, v_m_s)).abs() / 2.0;
+        let want = model_py(px, v_m_s);
+        assert!(
+            (py - want).abs() <= 2.0 + slope,
+            "vertex {i} at ({px}, {py}) px: the {} quartic is at {want:.1} px",
+            if i <= turn { "compression" } else { "extension" }
+        );
+        far_apart += usize::from((model_py(px, 0.5) - model_py(px, -0.5)).abs() > 10.0 + 2.0 * slope);
+    }
+    // The branches differ by more than the tolerance on much of the stroke,
+    // so the check tells them apart.
+    assert!(
+        far_apart > vertices.len() / 4,
+        "branches apart at only {far_apart} vertices"
+    );
+
+    // The PNG is the same drawing: the line's colour at its vertices.
+    let decoder = png::Decoder::new(std::io::Cursor::new(
+        std::fs::read(out.path().join("fig08_loop_1A.png")).unwrap(),
+    ));
+    let mut reader = decoder.read_info().unwrap();
+    let mut rgb = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut rgb).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    let pixel = |x: f64, y: f64| {
+        let k = 3 * (y as usize * info.width as usize + x as usize);
+        (rgb[k], rgb[k + 1], rgb[k + 2])
+    };
+    let orange = vertices.iter().filter(|&&(x, y)| pixel(x, y) == (213, 94, 0)).count();
+    assert!(
+        orange * 10 >= vertices.len() * 9,
+        "{orange} of {} vertices orange in the PNG",
+        vertices.len()
+    );
 }
 
 #[test]

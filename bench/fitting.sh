@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Fitting benchmarks (BENCHMARKS.md, "Fitting"), in one run:
+#  1. mre's GSA against niapy's GSA on DATASET (default data/mr-damper-mts):
+#     same objective values, N, T, evaluation count and search box (data box);
+#  2. the two-box benchmark on BOX_DATASET (default data/drop-none, the
+#     paper's scale): GSA on the data box and on the paper's Table 3 box, each
+#     against the least-squares optimum inside the box and against niapy's GSA
+#     on the same moment-form objective; and the speed-up split in two (the
+#     objective: niapy per-sample vs moment form; the search: mre vs niapy on
+#     the moment form).
+# Installs niapy and scipy if missing. MRE=path uses that binary (no build).
+# Usage: bench/fitting.sh [DATASET [BOX_DATASET]]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+DATA="${1:-data/mr-damper-mts}"
+BOX_DATA="${2:-data/drop-none}"
+python3 -c "import niapy, scipy" 2>/dev/null || pip install --quiet niapy scipy
+if [[ -z "${MRE:-}" ]]; then
+    cargo build --release -q -p host-tools
+    MRE=target/release/mre
+fi
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+
+# Median fit time (ms, excludes loading) of RUNS GSA fits at N = T = 100.
+gsa_ms() {
+    local times=() ms
+    for _ in $(seq "${RUNS:-7}"); do
+        ms="$("$MRE" fit "$@" --method gsa --out "$tmp/gsa.toml" | sed -n 's/^fitted .* in \([0-9.]*\) ms.*/\1/p')"
+        times+=("$ms")
+    done
+    printf '%s\n' "${times[@]}" | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'
+}
+
+echo "== 1. mre GSA vs niapy GSA on $DATA (data box)"
+median_ms="$(gsa_ms "$DATA")"
+echo "mre fit --method gsa: median ${median_ms} ms"
+"$MRE" fit "$DATA" --method lsq --out "$tmp/lsq.toml" | tail -1
+"$MRE" fit "$DATA" --method both --out "$tmp/both.toml" > /dev/null
+python3 bench/gsa_peer.py "$DATA" "$tmp/both.toml" "$(python3 -c "print($median_ms / 1000)")"
+
+echo "== 2. two boxes on $BOX_DATA"
+data_ms="$(gsa_ms "$BOX_DATA" --bounds data)"
+paper_ms="$(gsa_ms "$BOX_DATA" --bounds paper)"
+"$MRE" fit "$BOX_DATA" --method both --bounds data --out "$tmp/box-data.toml" > /dev/null
+"$MRE" fit "$BOX_DATA" --method both --bounds paper --out "$tmp/box-paper.toml" > /dev/null
+python3 bench/gsa_boxes.py "$BOX_DATA" "$tmp/box-data.toml" "$tmp/box-paper.toml" \
+    "$(python3 -c "print($data_ms / 1000)")" "$(python3 -c "print($paper_ms / 1000)")" "${PER_SAMPLE_BRANCHES:-2}"
