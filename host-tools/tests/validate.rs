@@ -35,6 +35,7 @@ fn recording(table: &Table, current_a: f64, gain: f64, role: Role) -> Recording 
         tags: BTreeMap::new(),
         samples: s,
         velocity_estimated: false,
+        motion_from: None,
     }
 }
 

@@ -1,8 +1,9 @@
 //! `Dataset::load`: reads `dataset.toml` and the recording files it lists
-//! (`shared/spec/dataset-format.md`, a contract). Every rejection is one
+//! (`docs/dataset-format.md`, a contract). Every rejection is one
 //! [`DatasetError`] naming file, line and column.
 use super::columns::{parse_header, required_columns, Quantity};
 use super::error::DatasetError;
+use super::motion::MotionSource;
 use super::velocity::estimate_velocity_m_s;
 use super::{Dataset, Recording, Role, Samples, TagValue};
 use serde::Deserialize;
@@ -207,20 +208,36 @@ impl Dataset {
                 }
                 (false, _) => read_samples(&data_path, delimiter, columns, &mpath, text)?,
             };
+            let mass_kg = finite(s.mass_kg.as_ref().or(d.mass_kg.as_ref()), "mass_kg")?;
+            let impact_velocity_m_s = finite(
+                s.impact_velocity_m_s.as_ref().or(d.impact_velocity_m_s.as_ref()),
+                "impact_velocity_m_s",
+            )?;
+            let mut samples = samples;
+            let motion_from = if samples.x_mm.is_empty() {
+                Some(derive_motion(
+                    &mut samples,
+                    &file,
+                    mass_kg,
+                    impact_velocity_m_s,
+                    &mpath,
+                    line,
+                )?)
+            } else {
+                None
+            };
             recordings.push(Recording {
                 file,
                 current_a,
                 role: s.role.or(d.role).unwrap_or(Role::Fit),
-                mass_kg: finite(s.mass_kg.as_ref().or(d.mass_kg.as_ref()), "mass_kg")?,
-                impact_velocity_m_s: finite(
-                    s.impact_velocity_m_s.as_ref().or(d.impact_velocity_m_s.as_ref()),
-                    "impact_velocity_m_s",
-                )?,
+                mass_kg,
+                impact_velocity_m_s,
                 sequence: s.sequence.or(d.sequence),
                 temperature_c: finite(s.temperature_c.as_ref().or(d.temperature_c.as_ref()), "temperature_c")?,
                 tags: s.tags.clone().or_else(|| d.tags.clone()).unwrap_or_default(),
                 samples,
                 velocity_estimated,
+                motion_from,
             });
         }
         Ok(Dataset {
@@ -229,6 +246,55 @@ impl Dataset {
             recordings,
         })
     }
+}
+
+/// Velocity and displacement of a record without displacement, from its
+/// acceleration (when recorded) or its force, the drop mass and the impact
+/// velocity (`super::motion`).
+fn derive_motion(
+    samples: &mut Samples,
+    file: &str,
+    mass_kg: Option<f64>,
+    impact_velocity_m_s: Option<f64>,
+    mpath: &str,
+    line: usize,
+) -> Result<MotionSource, DatasetError> {
+    let missing = |what: &str| DatasetError::Manifest {
+        path: mpath.to_string(),
+        line,
+        message: format!(
+            "`{file}` has no displacement column, so its motion is integrated from force and time \
+             (docs/dataset-format.md, force–time drop records); that needs {what}"
+        ),
+    };
+    let v0 = impact_velocity_m_s.ok_or_else(|| missing("`impact_velocity_m_s`"))?;
+    let source = if samples.accel_m_s2.is_some() {
+        MotionSource::Acceleration {
+            impact_velocity_m_s: v0,
+        }
+    } else {
+        MotionSource::Force {
+            mass_kg: mass_kg.ok_or_else(|| missing("`mass_kg` (or an acceleration column)"))?,
+            impact_velocity_m_s: v0,
+        }
+    };
+    let window = super::motion::derive_motion(samples, source).ok_or_else(|| DatasetError::Manifest {
+        path: mpath.to_string(),
+        line,
+        message: format!("`{file}`: no force above zero, so no contact to integrate from"),
+    })?;
+    if samples.len() < MIN_SAMPLES {
+        return Err(DatasetError::Manifest {
+            path: mpath.to_string(),
+            line,
+            message: format!(
+                "`{file}`: the contact (force above {} % of its peak) spans {} samples; a fit needs {MIN_SAMPLES}",
+                super::motion::CONTACT_FRACTION * 100.0,
+                window.end - window.start
+            ),
+        });
+    }
+    Ok(source)
 }
 
 /// Rejects keys the format does not define, naming the key and its line.
@@ -512,9 +578,13 @@ pub(super) fn samples_from_rows(
     let time_s = take(Quantity::Time, &mut channels).unwrap_or_default();
     let x_mm = take(Quantity::Displacement, &mut channels).unwrap_or_default();
     let force_n = take(Quantity::Force, &mut channels).unwrap_or_default();
-    let (v_m_s, estimated) = match take(Quantity::Velocity, &mut channels) {
-        Some(v) => (v, false),
-        None => (estimate_velocity_m_s(&time_s, &x_mm), true),
+    // Without displacement, both are derived later from force or
+    // acceleration (`super::motion`), and a velocity column is not used.
+    let velocity = take(Quantity::Velocity, &mut channels);
+    let (v_m_s, estimated) = match (velocity, x_mm.is_empty()) {
+        (_, true) => (Vec::new(), false),
+        (Some(v), false) => (v, false),
+        (None, false) => (estimate_velocity_m_s(&time_s, &x_mm), true),
     };
     if estimated {
         // Samples closer in time than the displacement allows give an absurd
