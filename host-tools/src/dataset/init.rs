@@ -15,7 +15,7 @@
 //!   `current_a`, `impact_velocity_m_s`, `temperature_c`, `mass_kg` and
 //!   `sequence` are recording keys; any other name becomes a tag.
 //! - An existing dataset.toml is never overwritten.
-use super::columns::parse_header;
+use super::columns::{parse_header, Quantity};
 use anyhow::{bail, Context, Result};
 use std::fmt::Write;
 use std::path::Path;
@@ -45,6 +45,8 @@ struct Layout {
     columns: Option<Vec<String>>,
     /// Said in a comment: unmapped columns, assumed units.
     notes: Vec<String>,
+    /// `sign = { … }` for columns that read compression negative.
+    sign: Option<String>,
 }
 
 /// One `{name}` or literal piece of a file-name pattern.
@@ -340,10 +342,12 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
             .collect();
         parse_header(&names, &path.display().to_string(), 1).map_err(|e| anyhow::anyhow!("{e}"))?;
         let unchanged = names.iter().zip(&records[0]).all(|(n, raw)| n == raw);
+        let sign = detect_flip(&names, &records[1..], &mut notes);
         return Ok(Layout {
             delimiter,
             columns: (!unchanged).then_some(names),
             notes,
+            sign,
         });
     }
     let width = records[0].len();
@@ -360,11 +364,48 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
         bail!("fewer than 5 numeric rows to tell the columns from");
     }
     let columns = infer_columns(&data, amplitude_mm, &mut notes)?;
+    let sign = detect_flip(&columns, &records, &mut notes);
     Ok(Layout {
         delimiter,
         columns: Some(columns),
         notes,
+        sign,
     })
+}
+
+/// The `sign = { … }` that makes an impact record read compression
+/// positive (`super::sign`), with the evidence as an assumption in `notes`;
+/// `None` when nothing looks inverted or the record is not one-sided.
+fn detect_flip(names: &[String], rows: &[Vec<String>], notes: &mut Vec<String>) -> Option<String> {
+    let layout = parse_header(names, "", 1).ok()?;
+    let column = |q: Quantity| -> Option<(usize, Vec<f64>)> {
+        let i = layout.iter().position(|c| matches!(c, Some((qq, _)) if *qq == q))?;
+        let values = rows
+            .iter()
+            .map_while(|r| r.get(i).and_then(|f| f.parse::<f64>().ok()))
+            .collect();
+        Some((i, values))
+    };
+    let (fi, force) = column(Quantity::Force)?;
+    if force.is_empty() || !super::sign::one_sided(&force) {
+        return None;
+    }
+    let x = column(Quantity::Displacement);
+    let found = super::sign::inverted_columns(&force, x.as_ref().map(|(_, v)| v.as_slice()), None, None);
+    let mut flips = Vec::new();
+    for inv in &found {
+        let i = if inv.quantity == Quantity::Force {
+            fi
+        } else {
+            x.as_ref()?.0
+        };
+        flips.push(format!("{} = -1", names[i]));
+        notes.push(format!(
+            "assumed: `{}` reads compression negative ({}), so `sign` flips it; check",
+            names[i], inv.evidence
+        ));
+    }
+    (!flips.is_empty()).then(|| format!("sign = {{ {} }}", flips.join(", ")))
 }
 
 /// A number as TOML writes it (always with a decimal point, so it reads
@@ -463,6 +504,7 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
                         delimiter: Delimiter::Comma,
                         columns: None,
                         notes,
+                        sign: None,
                     },
                     fields,
                     variables: Some(line),
@@ -529,6 +571,7 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
             delimiter: Delimiter::Comma,
             columns: None,
             notes: Vec::new(),
+            sign: None,
         });
     let same = |l: &Layout| l.delimiter == common.delimiter && l.columns == common.columns;
 
@@ -546,7 +589,7 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
     );
     let _ = writeln!(
         s,
-        "# Check the units and fill in what file names cannot say (shared/spec/dataset-format.md)."
+        "# Check the units and fill in what file names cannot say (docs/dataset-format.md)."
     );
     if !found.iter().any(|f| key(f, "current_a").is_some()) {
         let _ = writeln!(
@@ -566,7 +609,8 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
             let _ = writeln!(s, "{}", columns_line(c));
         }
     };
-    for note in &common.notes {
+    // A sign is per recording: its assumption goes with the recording.
+    for note in common.notes.iter().filter(|n| !n.starts_with("assumed:")) {
         let _ = writeln!(s, "# {note}");
     }
     write_layout(&mut s, &common);
@@ -579,7 +623,15 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
                 let _ = writeln!(s, "# {note}");
             }
         }
+        if !own && f.variables.is_none() && f.layout.sign.is_some() {
+            for note in f.layout.notes.iter().filter(|n| n.starts_with("assumed:")) {
+                let _ = writeln!(s, "# {note}");
+            }
+        }
         let _ = writeln!(s, "file = {}", toml_string(&f.file));
+        if let Some(sign) = &f.layout.sign {
+            let _ = writeln!(s, "{sign}");
+        }
         let mut tags = Vec::new();
         for (k, v) in &f.fields {
             if k == "sequence" {

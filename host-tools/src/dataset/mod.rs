@@ -12,6 +12,7 @@ pub mod init;
 pub mod matlab;
 pub mod motion;
 pub mod read;
+pub mod sign;
 pub mod velocity;
 
 pub use branches::{split_branches, split_pooled, BranchSamples};

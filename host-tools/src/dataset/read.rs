@@ -29,6 +29,7 @@ const RECORDING_KEYS: &[&str] = &[
     "delimiter",
     "columns",
     "variables",
+    "sign",
 ];
 
 /// Plausible ranges of the numeric settings (key, min, max, unit): a value
@@ -63,6 +64,8 @@ struct Settings {
     columns: Option<Spanned<Vec<String>>>,
     /// For a .mat file: unit-named column → MATLAB variable name.
     variables: Option<Spanned<BTreeMap<String, String>>>,
+    /// Column name → +1 or −1: flips what an instrument reports.
+    sign: Option<Spanned<BTreeMap<String, i64>>>,
 }
 
 #[derive(Deserialize)]
@@ -214,6 +217,25 @@ impl Dataset {
                 "impact_velocity_m_s",
             )?;
             let mut samples = samples;
+            let sign = s.sign.as_ref().or(d.sign.as_ref());
+            let declared = match sign {
+                Some(sign) => apply_signs(&mut samples, sign.get_ref(), &mpath, line_of(text, sign.span().start))?,
+                None => Vec::new(),
+            };
+            let impact = mass_kg.is_some() || impact_velocity_m_s.is_some();
+            let check = |samples: &Samples, measured_v: bool| {
+                let found = super::sign::inverted_columns(
+                    &samples.force_n,
+                    (!samples.x_mm.is_empty()).then_some(samples.x_mm.as_slice()),
+                    measured_v.then_some(samples.v_m_s.as_slice()),
+                    samples.accel_m_s2.as_deref(),
+                );
+                match found.first() {
+                    Some(inv) if impact => Err(inverted_error(&mpath, line, &file, inv, &declared)),
+                    _ => Ok(()),
+                }
+            };
+            check(&samples, !velocity_estimated && !samples.x_mm.is_empty())?;
             let motion_from = if samples.x_mm.is_empty() {
                 Some(derive_motion(
                     &mut samples,
@@ -245,6 +267,97 @@ impl Dataset {
             root: dir.to_path_buf(),
             recordings,
         })
+    }
+}
+
+/// The canonical column name of a quantity, for messages and `sign`.
+fn canonical_name(q: Quantity) -> &'static str {
+    match q {
+        Quantity::Time => "time_s",
+        Quantity::Displacement => "displacement_mm",
+        Quantity::Velocity => "velocity_m_s",
+        Quantity::Acceleration => "acceleration_m_s2",
+        Quantity::Force => "force_n",
+        Quantity::Current => "current_a",
+        Quantity::Temperature => "temperature_c",
+    }
+}
+
+/// Applies `sign = { force_n = -1, … }` to the samples; returns the
+/// quantities declared −1.
+fn apply_signs(
+    samples: &mut Samples,
+    sign: &BTreeMap<String, i64>,
+    mpath: &str,
+    line: usize,
+) -> Result<Vec<Quantity>, DatasetError> {
+    let mut flipped = Vec::new();
+    for (name, &value) in sign {
+        let bad = |message: String| DatasetError::Manifest {
+            path: mpath.to_string(),
+            line,
+            message,
+        };
+        let layout = parse_header(std::slice::from_ref(name), mpath, line).map_err(|_| {
+            bad(format!(
+                "sign: `{name}` is not a column name (e.g. force_n, displacement_mm)"
+            ))
+        })?;
+        let Some((quantity, _)) = layout[0] else {
+            return Err(bad("sign: `ignore` has no sign".to_string()));
+        };
+        if value != 1 && value != -1 {
+            return Err(bad(format!("sign: `{name} = {value}`; a sign is 1 or -1")));
+        }
+        if value == 1 {
+            continue;
+        }
+        let channel: Option<&mut Vec<f64>> = match quantity {
+            Quantity::Force => Some(&mut samples.force_n),
+            Quantity::Displacement => Some(&mut samples.x_mm),
+            Quantity::Velocity => Some(&mut samples.v_m_s),
+            Quantity::Acceleration => samples.accel_m_s2.as_mut(),
+            Quantity::Current => samples.current_a.as_mut(),
+            _ => None,
+        };
+        let Some(channel) = channel else {
+            return Err(bad(format!("sign: `{name}` cannot be flipped")));
+        };
+        channel.iter_mut().for_each(|v| *v = -*v);
+        flipped.push(quantity);
+    }
+    Ok(flipped)
+}
+
+/// The refusal of a recording whose column reads compression negative.
+fn inverted_error(
+    mpath: &str,
+    line: usize,
+    file: &str,
+    inv: &super::sign::Inverted,
+    declared: &[Quantity],
+) -> DatasetError {
+    let name = canonical_name(inv.quantity);
+    let q = inv.quantity.describe();
+    let message = if declared.contains(&inv.quantity) {
+        format!(
+            "`{file}`: the {q} column looks inverted after the declared sign {{ {name} = -1 }}: {}; \
+             compression must read positive force and displacement (docs/dataset-format.md, sign); \
+             remove the declaration for this recording",
+            inv.evidence
+        )
+    } else {
+        format!(
+            "`{file}`: the {q} column looks inverted: {}; compression must read positive force and \
+             displacement (docs/dataset-format.md, sign); if the instrument reads it that way, declare \
+             sign = {{ {name} = -1 }} for this recording or in [defaults]",
+            inv.evidence
+        )
+    };
+    DatasetError::Manifest {
+        path: mpath.to_string(),
+        line,
+        message,
     }
 }
 
