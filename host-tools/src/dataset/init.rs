@@ -134,7 +134,7 @@ fn map_name(raw: &str) -> Option<String> {
     let word = words.join(" ");
     let quantity = match word.as_str() {
         "time" | "t" => "time",
-        "displacement" | "disp" | "position" | "stroke" | "x" | "deflection" => "displacement",
+        "displacement" | "disp" | "position" | "stroke" | "x" | "deflection" | "extension" => "displacement",
         "velocity" | "vel" | "speed" | "v" => "velocity",
         "force" | "load" | "f" => "force",
         "acceleration" | "accel" | "acc" | "a" => "acceleration",
@@ -328,9 +328,33 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
     let text = std::str::from_utf8(&bytes).context("not UTF-8 text")?;
     let (delimiter, records) = sniff_records(text)?;
     let mut notes = Vec::new();
-    let header = !records[0].iter().all(|f| is_number(f));
+    // Rows above the first all-numeric one: vendor metadata, then the name
+    // row, and under it perhaps a units row (`(sec),(mm),(N)`, Bluehill).
+    let first_data = records
+        .iter()
+        .position(|r| r.iter().all(|f| is_number(f)))
+        .unwrap_or(records.len());
+    let header = first_data > 0;
     if header {
-        let names: Vec<String> = records[0]
+        let unit_row = |r: &Vec<String>| r.iter().all(|f| f.starts_with('(') && f.ends_with(')'));
+        let raw_names: Vec<String> = match first_data {
+            n if n >= 2 && unit_row(&records[n - 1]) && records[n - 2].len() == records[n - 1].len() => {
+                notes.push("units from the units row under the names".to_string());
+                records[n - 2]
+                    .iter()
+                    .zip(&records[n - 1])
+                    .map(|(name, unit)| format!("{name} {unit}"))
+                    .collect()
+            }
+            n => records[n - 1].clone(),
+        };
+        if first_data > 1 {
+            notes.push(format!(
+                "{} rows above the data skipped (metadata, names, units)",
+                first_data
+            ));
+        }
+        let names: Vec<String> = raw_names
             .iter()
             .map(|raw| match map_name(raw) {
                 Some(n) => n,
@@ -341,8 +365,8 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
             })
             .collect();
         parse_header(&names, &path.display().to_string(), 1).map_err(|e| anyhow::anyhow!("{e}"))?;
-        let unchanged = names.iter().zip(&records[0]).all(|(n, raw)| n == raw);
-        let sign = detect_flip(&names, &records[1..], &mut notes);
+        let unchanged = first_data == 1 && names.iter().zip(&records[0]).all(|(n, raw)| n == raw);
+        let sign = detect_flip(&names, &records[first_data..], &mut notes);
         return Ok(Layout {
             delimiter,
             columns: (!unchanged).then_some(names),

@@ -551,9 +551,11 @@ fn parse_samples(
     // Column names come from `columns` in dataset.toml, or from the header row.
     let (names, name_path, name_line): (Vec<String>, &str, usize) = match columns {
         Some(c) => {
-            // A header row that `columns` renames (`Force (kN)` → `force_kn`,
-            // as `mre dataset init` writes) is skipped, not read as data.
-            if lines
+            // Header rows that `columns` renames (`Force (kN)` → `force_kn`,
+            // as `mre dataset init` writes), and a vendor's metadata and
+            // units rows above the data, are skipped: every row before the
+            // first all-numeric one.
+            while lines
                 .as_slice()
                 .first()
                 .is_some_and(|(_, f)| f.iter().any(|x| x.parse::<f64>().is_err()))
