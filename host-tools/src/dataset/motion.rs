@@ -67,7 +67,7 @@ pub struct ContactWindow {
 /// Finds the contact in a force record; `None` when no force is positive.
 pub fn contact_window(force_n: &[f64]) -> Option<ContactWindow> {
     let peak = force_n.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    if !(peak > 0.0) {
+    if peak <= 0.0 {
         return None;
     }
     let threshold = CONTACT_FRACTION * peak;
