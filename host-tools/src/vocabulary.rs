@@ -1,4 +1,4 @@
-//! The missing-physics vocabulary (`shared/spec/effects.md`): one name per
+//! The missing-physics vocabulary (`docs/effects.md`): one name per
 //! effect, shared by the synthesiser (which conceals an effect,
 //! [`crate::plant::effects`]) and `mre diagnose` (which names what it finds).
 //! The names are a contract: reports, keys and scripts rely on them.
@@ -79,7 +79,7 @@ pub fn join_names(effects: &[Effect]) -> String {
 mod tests {
     use super::*;
 
-    /// The names as written in `shared/spec/effects.md`'s table, plus `none`.
+    /// The names as written in `docs/effects.md`'s table, plus `none`.
     #[test]
     fn names_are_the_spec_words_and_round_trip() {
         let spec = [

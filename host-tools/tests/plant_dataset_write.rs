@@ -28,6 +28,7 @@ fn recording(file: &str, current_a: f64, role: Role) -> Recording {
             temperature_c: None,
         },
         velocity_estimated: false,
+        motion_from: None,
     }
 }
 

@@ -35,6 +35,7 @@ fn recording(table: &Table, current_a: f64, gain: f64, role: Role) -> Recording 
         tags: BTreeMap::new(),
         samples: s,
         velocity_estimated: false,
+        motion_from: None,
     }
 }
 
@@ -146,4 +147,12 @@ fn a_recorded_current_column_is_followed_sample_by_sample() {
     // second half's error is the 0.5 A vs 1.5 A force difference, not zero.
     rec.samples.current_a = None;
     assert!(validate_recording(&table, &rec).rmse_n > 1.0);
+}
+
+/// Output hygiene (#27): a bracket's neighbour currents print as written.
+#[test]
+fn f32_currents_print_as_written() {
+    assert_eq!(mre_host::validate::as_written(0.45f32).to_string(), "0.45");
+    assert_eq!(mre_host::validate::as_written(0.73f32).to_string(), "0.73");
+    assert_ne!((0.45f32 as f64).to_string(), "0.45", "the cast this replaces");
 }

@@ -1,4 +1,4 @@
-//! Unit-carrying column names (`shared/spec/dataset-format.md`) and their
+//! Unit-carrying column names (`docs/dataset-format.md`) and their
 //! conversion factors to the internal units.
 use super::error::DatasetError;
 
@@ -106,9 +106,10 @@ pub fn parse_header(names: &[String], path: &str, line: usize) -> Result<Vec<Col
     Ok(layout)
 }
 
-/// Time, displacement and force must be present.
+/// Time and force must be present. Without displacement the motion is
+/// derived from force or acceleration (`super::motion`).
 pub fn required_columns(layout: &[Column], path: &str, line: usize) -> Result<(), DatasetError> {
-    for q in [Quantity::Time, Quantity::Displacement, Quantity::Force] {
+    for q in [Quantity::Time, Quantity::Force] {
         if !layout.iter().any(|c| matches!(c, Some((qq, _)) if *qq == q)) {
             return Err(DatasetError::MissingColumn {
                 path: path.to_string(),

@@ -15,7 +15,7 @@
 //!   `current_a`, `impact_velocity_m_s`, `temperature_c`, `mass_kg` and
 //!   `sequence` are recording keys; any other name becomes a tag.
 //! - An existing dataset.toml is never overwritten.
-use super::columns::parse_header;
+use super::columns::{parse_header, Quantity};
 use anyhow::{bail, Context, Result};
 use std::fmt::Write;
 use std::path::Path;
@@ -45,6 +45,8 @@ struct Layout {
     columns: Option<Vec<String>>,
     /// Said in a comment: unmapped columns, assumed units.
     notes: Vec<String>,
+    /// `sign = { … }` for columns that read compression negative.
+    sign: Option<String>,
 }
 
 /// One `{name}` or literal piece of a file-name pattern.
@@ -132,7 +134,7 @@ fn map_name(raw: &str) -> Option<String> {
     let word = words.join(" ");
     let quantity = match word.as_str() {
         "time" | "t" => "time",
-        "displacement" | "disp" | "position" | "stroke" | "x" | "deflection" => "displacement",
+        "displacement" | "disp" | "position" | "stroke" | "x" | "deflection" | "extension" => "displacement",
         "velocity" | "vel" | "speed" | "v" => "velocity",
         "force" | "load" | "f" => "force",
         "acceleration" | "accel" | "acc" | "a" => "acceleration",
@@ -326,9 +328,33 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
     let text = std::str::from_utf8(&bytes).context("not UTF-8 text")?;
     let (delimiter, records) = sniff_records(text)?;
     let mut notes = Vec::new();
-    let header = !records[0].iter().all(|f| is_number(f));
+    // Rows above the first all-numeric one: vendor metadata, then the name
+    // row, and under it perhaps a units row (`(sec),(mm),(N)`, Bluehill).
+    let first_data = records
+        .iter()
+        .position(|r| r.iter().all(|f| is_number(f)))
+        .unwrap_or(records.len());
+    let header = first_data > 0;
     if header {
-        let names: Vec<String> = records[0]
+        let unit_row = |r: &Vec<String>| r.iter().all(|f| f.starts_with('(') && f.ends_with(')'));
+        let raw_names: Vec<String> = match first_data {
+            n if n >= 2 && unit_row(&records[n - 1]) && records[n - 2].len() == records[n - 1].len() => {
+                notes.push("units from the units row under the names".to_string());
+                records[n - 2]
+                    .iter()
+                    .zip(&records[n - 1])
+                    .map(|(name, unit)| format!("{name} {unit}"))
+                    .collect()
+            }
+            n => records[n - 1].clone(),
+        };
+        if first_data > 1 {
+            notes.push(format!(
+                "{} rows above the data skipped (metadata, names, units)",
+                first_data
+            ));
+        }
+        let names: Vec<String> = raw_names
             .iter()
             .map(|raw| match map_name(raw) {
                 Some(n) => n,
@@ -339,11 +365,13 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
             })
             .collect();
         parse_header(&names, &path.display().to_string(), 1).map_err(|e| anyhow::anyhow!("{e}"))?;
-        let unchanged = names.iter().zip(&records[0]).all(|(n, raw)| n == raw);
+        let unchanged = first_data == 1 && names.iter().zip(&records[0]).all(|(n, raw)| n == raw);
+        let sign = detect_flip(&names, &records[first_data..], &mut notes);
         return Ok(Layout {
             delimiter,
             columns: (!unchanged).then_some(names),
             notes,
+            sign,
         });
     }
     let width = records[0].len();
@@ -360,11 +388,48 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
         bail!("fewer than 5 numeric rows to tell the columns from");
     }
     let columns = infer_columns(&data, amplitude_mm, &mut notes)?;
+    let sign = detect_flip(&columns, &records, &mut notes);
     Ok(Layout {
         delimiter,
         columns: Some(columns),
         notes,
+        sign,
     })
+}
+
+/// The `sign = { … }` that makes an impact record read compression
+/// positive (`super::sign`), with the evidence as an assumption in `notes`;
+/// `None` when nothing looks inverted or the record is not one-sided.
+fn detect_flip(names: &[String], rows: &[Vec<String>], notes: &mut Vec<String>) -> Option<String> {
+    let layout = parse_header(names, "", 1).ok()?;
+    let column = |q: Quantity| -> Option<(usize, Vec<f64>)> {
+        let i = layout.iter().position(|c| matches!(c, Some((qq, _)) if *qq == q))?;
+        let values = rows
+            .iter()
+            .map_while(|r| r.get(i).and_then(|f| f.parse::<f64>().ok()))
+            .collect();
+        Some((i, values))
+    };
+    let (fi, force) = column(Quantity::Force)?;
+    if force.is_empty() || !super::sign::one_sided(&force) {
+        return None;
+    }
+    let x = column(Quantity::Displacement);
+    let found = super::sign::inverted_columns(&force, x.as_ref().map(|(_, v)| v.as_slice()), None, None);
+    let mut flips = Vec::new();
+    for inv in &found {
+        let i = if inv.quantity == Quantity::Force {
+            fi
+        } else {
+            x.as_ref()?.0
+        };
+        flips.push(format!("{} = -1", names[i]));
+        notes.push(format!(
+            "assumed: `{}` reads compression negative ({}), so `sign` flips it; check",
+            names[i], inv.evidence
+        ));
+    }
+    (!flips.is_empty()).then(|| format!("sign = {{ {} }}", flips.join(", ")))
 }
 
 /// A number as TOML writes it (always with a decimal point, so it reads
@@ -463,6 +528,7 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
                         delimiter: Delimiter::Comma,
                         columns: None,
                         notes,
+                        sign: None,
                     },
                     fields,
                     variables: Some(line),
@@ -529,6 +595,7 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
             delimiter: Delimiter::Comma,
             columns: None,
             notes: Vec::new(),
+            sign: None,
         });
     let same = |l: &Layout| l.delimiter == common.delimiter && l.columns == common.columns;
 
@@ -546,7 +613,7 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
     );
     let _ = writeln!(
         s,
-        "# Check the units and fill in what file names cannot say (shared/spec/dataset-format.md)."
+        "# Check the units and fill in what file names cannot say (docs/dataset-format.md)."
     );
     if !found.iter().any(|f| key(f, "current_a").is_some()) {
         let _ = writeln!(
@@ -566,7 +633,8 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
             let _ = writeln!(s, "{}", columns_line(c));
         }
     };
-    for note in &common.notes {
+    // A sign is per recording: its assumption goes with the recording.
+    for note in common.notes.iter().filter(|n| !n.starts_with("assumed:")) {
         let _ = writeln!(s, "# {note}");
     }
     write_layout(&mut s, &common);
@@ -579,7 +647,15 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
                 let _ = writeln!(s, "# {note}");
             }
         }
+        if !own && f.variables.is_none() && f.layout.sign.is_some() {
+            for note in f.layout.notes.iter().filter(|n| n.starts_with("assumed:")) {
+                let _ = writeln!(s, "# {note}");
+            }
+        }
         let _ = writeln!(s, "file = {}", toml_string(&f.file));
+        if let Some(sign) = &f.layout.sign {
+            let _ = writeln!(s, "{sign}");
+        }
         let mut tags = Vec::new();
         for (k, v) in &f.fields {
             if k == "sequence" {

@@ -1,4 +1,4 @@
-//! Recording data sets (`shared/spec/dataset-format.md`, a contract other tools
+//! Recording data sets (`docs/dataset-format.md`, a contract other tools
 //! read): the in-memory types every host module shares.
 //!
 //! Internal units: time s, displacement mm, velocity m/s, acceleration m/s²,
@@ -10,7 +10,9 @@ pub mod error;
 pub mod hash;
 pub mod init;
 pub mod matlab;
+pub mod motion;
 pub mod read;
+pub mod sign;
 pub mod velocity;
 
 pub use branches::{split_branches, split_pooled, BranchSamples};
@@ -77,6 +79,9 @@ pub struct Recording {
     pub samples: Samples,
     /// True when the file had no velocity column and it was estimated.
     pub velocity_estimated: bool,
+    /// Set when the file had no displacement: velocity and displacement were
+    /// integrated from force or acceleration (docs/dataset-format.md).
+    pub motion_from: Option<motion::MotionSource>,
 }
 
 /// A data set folder, loaded.

@@ -1,8 +1,9 @@
 //! `Dataset::load`: reads `dataset.toml` and the recording files it lists
-//! (`shared/spec/dataset-format.md`, a contract). Every rejection is one
+//! (`docs/dataset-format.md`, a contract). Every rejection is one
 //! [`DatasetError`] naming file, line and column.
 use super::columns::{parse_header, required_columns, Quantity};
 use super::error::DatasetError;
+use super::motion::MotionSource;
 use super::velocity::estimate_velocity_m_s;
 use super::{Dataset, Recording, Role, Samples, TagValue};
 use serde::Deserialize;
@@ -28,6 +29,7 @@ const RECORDING_KEYS: &[&str] = &[
     "delimiter",
     "columns",
     "variables",
+    "sign",
 ];
 
 /// Plausible ranges of the numeric settings (key, min, max, unit): a value
@@ -62,6 +64,8 @@ struct Settings {
     columns: Option<Spanned<Vec<String>>>,
     /// For a .mat file: unit-named column → MATLAB variable name.
     variables: Option<Spanned<BTreeMap<String, String>>>,
+    /// Column name → +1 or −1: flips what an instrument reports.
+    sign: Option<Spanned<BTreeMap<String, i64>>>,
 }
 
 #[derive(Deserialize)]
@@ -207,20 +211,55 @@ impl Dataset {
                 }
                 (false, _) => read_samples(&data_path, delimiter, columns, &mpath, text)?,
             };
+            let mass_kg = finite(s.mass_kg.as_ref().or(d.mass_kg.as_ref()), "mass_kg")?;
+            let impact_velocity_m_s = finite(
+                s.impact_velocity_m_s.as_ref().or(d.impact_velocity_m_s.as_ref()),
+                "impact_velocity_m_s",
+            )?;
+            let mut samples = samples;
+            let sign = s.sign.as_ref().or(d.sign.as_ref());
+            let declared = match sign {
+                Some(sign) => apply_signs(&mut samples, sign.get_ref(), &mpath, line_of(text, sign.span().start))?,
+                None => Vec::new(),
+            };
+            let impact = mass_kg.is_some() || impact_velocity_m_s.is_some();
+            let check = |samples: &Samples, measured_v: bool| {
+                let found = super::sign::inverted_columns(
+                    &samples.force_n,
+                    (!samples.x_mm.is_empty()).then_some(samples.x_mm.as_slice()),
+                    measured_v.then_some(samples.v_m_s.as_slice()),
+                    samples.accel_m_s2.as_deref(),
+                );
+                match found.first() {
+                    Some(inv) if impact => Err(inverted_error(&mpath, line, &file, inv, &declared)),
+                    _ => Ok(()),
+                }
+            };
+            check(&samples, !velocity_estimated && !samples.x_mm.is_empty())?;
+            let motion_from = if samples.x_mm.is_empty() {
+                Some(derive_motion(
+                    &mut samples,
+                    &file,
+                    mass_kg,
+                    impact_velocity_m_s,
+                    &mpath,
+                    line,
+                )?)
+            } else {
+                None
+            };
             recordings.push(Recording {
                 file,
                 current_a,
                 role: s.role.or(d.role).unwrap_or(Role::Fit),
-                mass_kg: finite(s.mass_kg.as_ref().or(d.mass_kg.as_ref()), "mass_kg")?,
-                impact_velocity_m_s: finite(
-                    s.impact_velocity_m_s.as_ref().or(d.impact_velocity_m_s.as_ref()),
-                    "impact_velocity_m_s",
-                )?,
+                mass_kg,
+                impact_velocity_m_s,
                 sequence: s.sequence.or(d.sequence),
                 temperature_c: finite(s.temperature_c.as_ref().or(d.temperature_c.as_ref()), "temperature_c")?,
                 tags: s.tags.clone().or_else(|| d.tags.clone()).unwrap_or_default(),
                 samples,
                 velocity_estimated,
+                motion_from,
             });
         }
         Ok(Dataset {
@@ -229,6 +268,146 @@ impl Dataset {
             recordings,
         })
     }
+}
+
+/// The canonical column name of a quantity, for messages and `sign`.
+fn canonical_name(q: Quantity) -> &'static str {
+    match q {
+        Quantity::Time => "time_s",
+        Quantity::Displacement => "displacement_mm",
+        Quantity::Velocity => "velocity_m_s",
+        Quantity::Acceleration => "acceleration_m_s2",
+        Quantity::Force => "force_n",
+        Quantity::Current => "current_a",
+        Quantity::Temperature => "temperature_c",
+    }
+}
+
+/// Applies `sign = { force_n = -1, … }` to the samples; returns the
+/// quantities declared −1.
+fn apply_signs(
+    samples: &mut Samples,
+    sign: &BTreeMap<String, i64>,
+    mpath: &str,
+    line: usize,
+) -> Result<Vec<Quantity>, DatasetError> {
+    let mut flipped = Vec::new();
+    for (name, &value) in sign {
+        let bad = |message: String| DatasetError::Manifest {
+            path: mpath.to_string(),
+            line,
+            message,
+        };
+        let layout = parse_header(std::slice::from_ref(name), mpath, line).map_err(|_| {
+            bad(format!(
+                "sign: `{name}` is not a column name (e.g. force_n, displacement_mm)"
+            ))
+        })?;
+        let Some((quantity, _)) = layout[0] else {
+            return Err(bad("sign: `ignore` has no sign".to_string()));
+        };
+        if value != 1 && value != -1 {
+            return Err(bad(format!("sign: `{name} = {value}`; a sign is 1 or -1")));
+        }
+        if value == 1 {
+            continue;
+        }
+        let channel: Option<&mut Vec<f64>> = match quantity {
+            Quantity::Force => Some(&mut samples.force_n),
+            Quantity::Displacement => Some(&mut samples.x_mm),
+            Quantity::Velocity => Some(&mut samples.v_m_s),
+            Quantity::Acceleration => samples.accel_m_s2.as_mut(),
+            Quantity::Current => samples.current_a.as_mut(),
+            _ => None,
+        };
+        let Some(channel) = channel else {
+            return Err(bad(format!("sign: `{name}` cannot be flipped")));
+        };
+        channel.iter_mut().for_each(|v| *v = -*v);
+        flipped.push(quantity);
+    }
+    Ok(flipped)
+}
+
+/// The refusal of a recording whose column reads compression negative.
+fn inverted_error(
+    mpath: &str,
+    line: usize,
+    file: &str,
+    inv: &super::sign::Inverted,
+    declared: &[Quantity],
+) -> DatasetError {
+    let name = canonical_name(inv.quantity);
+    let q = inv.quantity.describe();
+    let message = if declared.contains(&inv.quantity) {
+        format!(
+            "`{file}`: the {q} column looks inverted after the declared sign {{ {name} = -1 }}: {}; \
+             compression must read positive force and displacement (docs/dataset-format.md, sign); \
+             remove the declaration for this recording",
+            inv.evidence
+        )
+    } else {
+        format!(
+            "`{file}`: the {q} column looks inverted: {}; compression must read positive force and \
+             displacement (docs/dataset-format.md, sign); if the instrument reads it that way, declare \
+             sign = {{ {name} = -1 }} for this recording or in [defaults]",
+            inv.evidence
+        )
+    };
+    DatasetError::Manifest {
+        path: mpath.to_string(),
+        line,
+        message,
+    }
+}
+
+/// Velocity and displacement of a record without displacement, from its
+/// acceleration (when recorded) or its force, the drop mass and the impact
+/// velocity (`super::motion`).
+fn derive_motion(
+    samples: &mut Samples,
+    file: &str,
+    mass_kg: Option<f64>,
+    impact_velocity_m_s: Option<f64>,
+    mpath: &str,
+    line: usize,
+) -> Result<MotionSource, DatasetError> {
+    let missing = |what: &str| DatasetError::Manifest {
+        path: mpath.to_string(),
+        line,
+        message: format!(
+            "`{file}` has no displacement column, so its motion is integrated from force and time \
+             (docs/dataset-format.md, force–time drop records); that needs {what}"
+        ),
+    };
+    let v0 = impact_velocity_m_s.ok_or_else(|| missing("`impact_velocity_m_s`"))?;
+    let source = if samples.accel_m_s2.is_some() {
+        MotionSource::Acceleration {
+            impact_velocity_m_s: v0,
+        }
+    } else {
+        MotionSource::Force {
+            mass_kg: mass_kg.ok_or_else(|| missing("`mass_kg` (or an acceleration column)"))?,
+            impact_velocity_m_s: v0,
+        }
+    };
+    let window = super::motion::derive_motion(samples, source).ok_or_else(|| DatasetError::Manifest {
+        path: mpath.to_string(),
+        line,
+        message: format!("`{file}`: no force above zero, so no contact to integrate from"),
+    })?;
+    if samples.len() < MIN_SAMPLES {
+        return Err(DatasetError::Manifest {
+            path: mpath.to_string(),
+            line,
+            message: format!(
+                "`{file}`: the contact (force above {} % of its peak) spans {} samples; a fit needs {MIN_SAMPLES}",
+                super::motion::CONTACT_FRACTION * 100.0,
+                window.end - window.start
+            ),
+        });
+    }
+    Ok(source)
 }
 
 /// Rejects keys the format does not define, naming the key and its line.
@@ -372,9 +551,11 @@ fn parse_samples(
     // Column names come from `columns` in dataset.toml, or from the header row.
     let (names, name_path, name_line): (Vec<String>, &str, usize) = match columns {
         Some(c) => {
-            // A header row that `columns` renames (`Force (kN)` → `force_kn`,
-            // as `mre dataset init` writes) is skipped, not read as data.
-            if lines
+            // Header rows that `columns` renames (`Force (kN)` → `force_kn`,
+            // as `mre dataset init` writes), and a vendor's metadata and
+            // units rows above the data, are skipped: every row before the
+            // first all-numeric one.
+            while lines
                 .as_slice()
                 .first()
                 .is_some_and(|(_, f)| f.iter().any(|x| x.parse::<f64>().is_err()))
@@ -512,9 +693,13 @@ pub(super) fn samples_from_rows(
     let time_s = take(Quantity::Time, &mut channels).unwrap_or_default();
     let x_mm = take(Quantity::Displacement, &mut channels).unwrap_or_default();
     let force_n = take(Quantity::Force, &mut channels).unwrap_or_default();
-    let (v_m_s, estimated) = match take(Quantity::Velocity, &mut channels) {
-        Some(v) => (v, false),
-        None => (estimate_velocity_m_s(&time_s, &x_mm), true),
+    // Without displacement, both are derived later from force or
+    // acceleration (`super::motion`), and a velocity column is not used.
+    let velocity = take(Quantity::Velocity, &mut channels);
+    let (v_m_s, estimated) = match (velocity, x_mm.is_empty()) {
+        (_, true) => (Vec::new(), false),
+        (Some(v), false) => (v, false),
+        (None, false) => (estimate_velocity_m_s(&time_s, &x_mm), true),
     };
     if estimated {
         // Samples closer in time than the displacement allows give an absurd

@@ -1,4 +1,4 @@
-//! Writes a [`Dataset`] in the `shared/spec/dataset-format.md` format:
+//! Writes a [`Dataset`] in the `docs/dataset-format.md` format:
 //! `dataset.toml` plus one comma-separated file per recording with
 //! unit-carrying headers (`time_s`, `displacement_mm`, `velocity_m_s`,
 //! `force_n`, and `acceleration_m_s2`, `current_a`, `temperature_c` when

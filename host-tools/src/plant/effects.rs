@@ -1,4 +1,4 @@
-//! Concealed effects (`shared/spec/effects.md`): physics the paper's model
+//! Concealed effects (`docs/effects.md`): physics the paper's model
 //! leaves out, added to the true law so `mre diagnose` has something to find.
 //! Each acts exactly through the spec's "usable model term".
 use anyhow::{bail, Result};

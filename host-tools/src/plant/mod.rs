@@ -5,7 +5,7 @@
 //!   rate-independent hysteresis, field-dependent gain), calibrated to the
 //!   paper's Table 5 peaks. The physics and the calibration are in
 //!   `README.md` beside this file.
-//! - [`effects`]: concealed effects from `shared/spec/effects.md`.
+//! - [`effects`]: concealed effects from `docs/effects.md`.
 //! - [`measure`]: the instrument (sampling, noise, quantisation).
 //! - [`base_laws`], [`synth_mts`]: shaker/MTS campaigns (`mre synth --campaign
 //!   mts`) from a rate-independent Dahl or Bouc–Wen base law, outside the

@@ -592,6 +592,7 @@ pub fn synthesize_plant(plant: Plant, seed: u64, plan: &SynthPlan) -> Result<Syn
                 tags,
                 samples,
                 velocity_estimated: false,
+                motion_from: None,
             })
         })
         .collect::<Result<Vec<_>>>()?;

@@ -234,6 +234,7 @@ pub fn synthesize_mts_with(law: &HystereticLaw, effect: &MtsEffect, seed: u64) -
                     temperature_c: None,
                 },
                 velocity_estimated: false,
+                motion_from: None,
             });
         }
     }

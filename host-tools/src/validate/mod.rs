@@ -58,14 +58,24 @@ pub struct RecordingReport {
     /// Fraction of samples outside the table's fitted stroke (x clamped).
     pub x_clamped_fraction: f64,
     pub velocity_estimated: bool,
+    /// Set when velocity and displacement were integrated from force or
+    /// acceleration: what from (docs/dataset-format.md).
+    pub motion_derived_from: Option<String>,
     pub bracket: Option<Bracket>,
 }
+
+/// The point of largest error is sought only where the measured force is
+/// at least this share of its peak: near zero force a percentage error
+/// means nothing (a 50 N miss at 0.3 N measured is 16 000 %).
+pub const PERCENT_ERROR_MIN_SHARE: f64 = 0.10;
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ValidationReport {
     pub dataset: String,
     pub model: String,
     pub nrmse_normaliser: String,
+    /// [`PERCENT_ERROR_MIN_SHARE`], as used.
+    pub percent_error_min_share_of_peak: f64,
     pub recordings: Vec<RecordingReport>,
 }
 
@@ -97,6 +107,7 @@ pub fn validate(ds: &Dataset, table: &Table, model_label: &str) -> ValidationRep
         dataset: ds.name.clone(),
         model: model_label.to_string(),
         nrmse_normaliser: "measured force range (max F − min F) of the recording".to_string(),
+        percent_error_min_share_of_peak: PERCENT_ERROR_MIN_SHARE,
         recordings: ds.recordings.iter().map(|r| validate_recording(table, r)).collect(),
     }
 }
@@ -110,10 +121,12 @@ pub fn validate_recording(table: &Table, rec: &Recording) -> RecordingReport {
     let (lo, hi) = crate::fit::poly::min_max(measured);
     let range = hi - lo;
     let peak = |v: &[f64]| v.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let floor_n = PERCENT_ERROR_MIN_SHARE * peak(measured);
     let worst = measured
         .iter()
         .zip(&model)
         .enumerate()
+        .filter(|(_, (m, _))| m.abs() >= floor_n)
         .max_by(|a, b| (a.1 .0 - a.1 .1).abs().total_cmp(&(b.1 .0 - b.1 .1).abs()))
         .map_or(0, |(i, _)| i);
     let measured_n = measured.get(worst).copied().unwrap_or(0.0);
@@ -143,6 +156,7 @@ pub fn validate_recording(table: &Table, rec: &Recording) -> RecordingReport {
         },
         x_clamped_fraction: clamped.iter().filter(|&&c| c).count() as f64 / n,
         velocity_estimated: rec.velocity_estimated,
+        motion_derived_from: rec.motion_from.map(|m| m.describe()),
         bracket: if interpolated { bracket(table, rec) } else { None },
     }
 }
@@ -176,10 +190,16 @@ pub fn bracket(table: &Table, rec: &Recording) -> Option<Bracket> {
         })
         .count();
     Some(Bracket {
-        lower_current_a: lo as f64,
-        upper_current_a: hi as f64,
+        lower_current_a: as_written(lo),
+        upper_current_a: as_written(hi),
         measured_between: measured_inside as f64 / s.len().max(1) as f64,
     })
+}
+
+/// A table's f32 current as the number that was written (0.45, not the
+/// 0.44999998807907104 that `as f64` gives): f32's shortest decimal form.
+pub fn as_written(current_a: f32) -> f64 {
+    current_a.to_string().parse().unwrap_or(current_a as f64)
 }
 
 /// `mre validate DATASET --model MODEL --report DIR`.

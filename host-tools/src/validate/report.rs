@@ -27,6 +27,22 @@ pub fn markdown(r: &ValidationReport) -> String {
              recordings marked *.\n"
         );
     }
+    let derived: Vec<String> = r
+        .recordings
+        .iter()
+        .filter_map(|x| x.motion_derived_from.as_ref().map(|m| format!("`{}`: {m}", x.file)))
+        .collect();
+    if !derived.is_empty() {
+        let _ = writeln!(
+            s,
+            "Motion was **derived**: these recordings have no displacement column, so their velocity and \
+             displacement were integrated (docs/dataset-format.md, force–time drop records):\n"
+        );
+        for line in derived {
+            let _ = writeln!(s, "- {line}");
+        }
+        let _ = writeln!(s);
+    }
     let _ = writeln!(s, "## Error per recording\n");
     let _ = writeln!(
         s,
@@ -63,8 +79,12 @@ pub fn markdown(r: &ValidationReport) -> String {
         "| recording | current (A) | t (s) | x (mm) | experiment (N) | simulation (N) | error (%) |"
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|");
-    let note = "The error is in % of the measured force at that sample; where the measured force passes near zero \
-                (e.g. at velocity reversal) the percentage is large even for a moderate error in N.";
+    let note = format!(
+        "The error is in % of the measured force at that sample. The sample is the largest error among those \
+         where the measured force is at least {} % of the recording's peak: near zero force a percentage means \
+         nothing.",
+        r.percent_error_min_share_of_peak * 100.0
+    );
     for x in &r.recordings {
         let e = &x.largest_error;
         let _ = writeln!(

@@ -96,6 +96,7 @@ pub fn dataset_with_steps(added: Added, seed: u64) -> Dataset {
             tags: BTreeMap::new(),
             samples: s,
             velocity_estimated: false,
+            motion_from: None,
         });
     }
     ds
@@ -164,6 +165,7 @@ pub fn dataset(added: Added, seed: u64) -> Dataset {
                     tags: BTreeMap::new(),
                     samples: s,
                     velocity_estimated: false,
+                    motion_from: None,
                 });
                 n += 1;
             }
@@ -189,5 +191,6 @@ pub fn fit_recording(file: String, current_a: f64, samples: Samples) -> Recordin
         tags: BTreeMap::new(),
         samples,
         velocity_estimated: false,
+        motion_from: None,
     }
 }
