@@ -3,7 +3,8 @@
 //! has no unit, and fmi-schema 0.8's `Float64` variable no `unit`
 //! attribute): every float variable gets a declared type whose unit is the
 //! SI unit its name ends in, with the unit definitions, the interface
-//! elements and a default experiment.
+//! elements and a default experiment. One fix-up of fmi-schema's output:
+//! the ampere exponent's attribute name (see [`model_description`]).
 use fmi::schema::fmi3::{
     BaseUnit, DefaultExperiment, Fmi3CoSimulation, Fmi3ModelDescription, Fmi3ModelExchange, Fmi3Unit,
     Float64Type, TypeDefinition, TypeDefinitions, UnitDefinitions, Variable,
@@ -159,5 +160,8 @@ pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, Stri
         model_structure: meta.model_structure,
         ..Default::default()
     };
-    fmi::schema::serialize(&md, false).map_err(|e| format!("cannot write the model description: {e}"))
+    let xml = fmi::schema::serialize(&md, false).map_err(|e| format!("cannot write the model description: {e}"))?;
+    // fmi-schema 0.8 writes the ampere exponent as `a`; FMI 3.0's attribute is `A`
+    // (FMPy's schema validation rejects `a`). Ours is the only unit with one.
+    Ok(xml.replace(r#"<BaseUnit a="1"/>"#, r#"<BaseUnit A="1"/>"#))
 }
