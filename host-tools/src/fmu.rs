@@ -62,13 +62,24 @@ pub fn controller_path(out: &Path) -> PathBuf {
 
 /// Writes damper.fmu (and controller.fmu); returns the paths written.
 pub fn run_fmu(request: &FmuRequest) -> Result<Vec<PathBuf>> {
-    let text = std::fs::read_to_string(&request.model)
-        .with_context(|| format!("cannot read model file {}", request.model.display()))?;
-    let table = crate::table_file::parse_table_toml(&text)
-        .with_context(|| format!("in model file {}", request.model.display()))?;
+    // A bad model file is reported before the libraries are built.
+    read_model(&request.model)?;
+    let libraries = library_dir()?;
+    run_fmu_with(request, &libraries)
+}
+
+fn read_model(path: &Path) -> Result<(String, Table)> {
+    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read model file {}", path.display()))?;
+    let table =
+        crate::table_file::parse_table_toml(&text).with_context(|| format!("in model file {}", path.display()))?;
+    Ok((text, table))
+}
+
+/// [`run_fmu`] with the FMU libraries in `libraries`.
+pub fn run_fmu_with(request: &FmuRequest, libraries: &Path) -> Result<Vec<PathBuf>> {
+    let (text, table) = read_model(&request.model)?;
     let cfg = installation(&table)?;
     let page = mre_fmu::page::page_bytes(&table, &cfg).map_err(|e| anyhow!(e))?;
-    let libraries = library_dir()?;
     let source = request
         .model
         .file_name()
@@ -81,10 +92,9 @@ pub fn run_fmu(request: &FmuRequest) -> Result<Vec<PathBuf>> {
         let describe = describe_for(*kind, &source, &table, &cfg);
         let xml = mre_fmu::describe::model_description(*kind, &describe).map_err(|e| anyhow!(e))?;
         let library = libraries.join(library_file(*kind));
-        let binary = std::fs::read(&library).with_context(|| format!("cannot read the FMU library {}", library.display()))?;
-        write_atomic_with(path, |buf| {
-            pack(buf, *kind, &xml, &binary, &page, &text)
-        })?;
+        let binary =
+            std::fs::read(&library).with_context(|| format!("cannot read the FMU library {}", library.display()))?;
+        write_atomic_with(path, |buf| pack(buf, *kind, &xml, &binary, &page, &text))?;
     }
     Ok(kinds.into_iter().map(|(_, p)| p).collect())
 }
@@ -130,10 +140,7 @@ fn pack(buf: &mut Vec<u8>, kind: Kind, xml: &str, binary: &[u8], page: &[u8], mo
     let deflate = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
     let files: [(String, &[u8]); 4] = [
         ("modelDescription.xml".to_owned(), xml.as_bytes()),
-        (
-            format!("binaries/{PLATFORM}/{}.so", kind.model_identifier()),
-            binary,
-        ),
+        (format!("binaries/{PLATFORM}/{}.so", kind.model_identifier()), binary),
         (format!("resources/{}", mre_fmu::page::PAGE_FILE), page),
         ("resources/model.toml".to_owned(), model_toml.as_bytes()),
     ];
@@ -176,7 +183,14 @@ fn build_libraries(root: &Path) -> Result<PathBuf> {
         // The workspace's fat LTO buys a model evaluation nothing measurable
         // behind an FMI call, and costs minutes of linking.
         .args(["build", "--release", "--quiet", "--config", "profile.release.lto=false"])
-        .args(["--config", "profile.release.debug=0", "-p", "mre-fmu-damper", "-p", "mre-fmu-controller"])
+        .args([
+            "--config",
+            "profile.release.debug=0",
+            "-p",
+            "mre-fmu-damper",
+            "-p",
+            "mre-fmu-controller",
+        ])
         .status()
         .context("cannot run cargo to build the FMU libraries")?;
     if !status.success() {

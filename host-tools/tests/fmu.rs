@@ -38,7 +38,8 @@ fn damper_force_is_the_cores_on_a_recorded_drop() {
     let md = import.model_description();
     assert_eq!(md.fmi_version, "3.0");
     assert!(md.model_exchange.is_some() && md.co_simulation.is_some());
-    let [x, v, i, f, tau] = ["displacement_m", "velocity_m_s", "current_a", "force_n", "coil_tau_s"].map(|n| vr(&import, n));
+    let [x, v, i, f, tau] =
+        ["displacement_m", "velocity_m_s", "current_a", "force_n", "coil_tau_s"].map(|n| vr(&import, n));
 
     let samples = trace();
     let scale = samples
@@ -47,7 +48,9 @@ fn damper_force_is_the_cores_on_a_recorded_drop() {
         .fold(0.0f32, f32::max);
     // x goes in as m and the FMU converts to mm in f32: a few ulps of the force.
     let allowed_n = 8.0 * f64::from(f32::EPSILON) * f64::from(scale);
-    let mut cs = import.instantiate_cs("damper", false, false, false, false, &[]).expect("CS instance");
+    let mut cs = import
+        .instantiate_cs("damper", false, false, false, false, &[])
+        .expect("CS instance");
     cs.enter_initialization_mode(None, 0.0, None).unwrap();
     cs.exit_initialization_mode().unwrap();
     let mut me = import.instantiate_me("damper-me", false, false).expect("ME instance");
@@ -85,7 +88,9 @@ fn controller_commands_what_the_board_controller_commands() {
         fmi::import::from_path(mre_host::fmu::controller_path(&damper)).expect("the fmi crate imports controller.fmu");
     let [x, v, u, period] =
         ["displacement_m", "velocity_m_s", "coil_command_a", "control_period_s"].map(|n| vr(&import, n));
-    let mut cs = import.instantiate_cs("controller", false, false, false, false, &[]).unwrap();
+    let mut cs = import
+        .instantiate_cs("controller", false, false, false, false, &[])
+        .unwrap();
     cs.enter_initialization_mode(None, 0.0, None).unwrap();
     cs.exit_initialization_mode().unwrap();
     let period_s = get(&mut cs, period);
@@ -107,7 +112,11 @@ fn controller_commands_what_the_board_controller_commands() {
         let expected = board.step_sample((s.x_mm * 1e-3 * 1e3) as f32, Some(s.v_m_s as f32));
         let command = get(&mut cs, u);
         assert_eq!(command, f64::from(expected.current_a), "tick at {t} s");
-        assert!(!expected.flags.is_fault(), "the drop should fly without a fault ({:?})", expected.flags);
+        assert!(
+            !expected.flags.is_fault(),
+            "the drop should fly without a fault ({:?})",
+            expected.flags
+        );
         changed += usize::from(command != last);
         last = command;
     }
@@ -139,7 +148,9 @@ fn a_refused_table_page_fails_initialisation() {
         zout.finish().unwrap();
     }
     let import: Fmi3Import = fmi::import::from_path(&corrupted).unwrap();
-    let mut cs = import.instantiate_cs("damper", false, false, false, false, &[]).unwrap();
+    let mut cs = import
+        .instantiate_cs("damper", false, false, false, false, &[])
+        .unwrap();
     cs.enter_initialization_mode(None, 0.0, None).unwrap();
     assert!(
         cs.exit_initialization_mode().is_err(),

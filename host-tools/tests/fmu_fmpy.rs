@@ -37,7 +37,13 @@ fn fmpy_validates_evaluates_and_closes_the_loop() {
     mre_fmu(&every.join("model.toml"), &every, false);
     let mut csv = String::from("displacement_m,velocity_m_s,current_a,force_core_n\n");
     for s in trace() {
-        csv += &format!("{:e},{:e},{:e},{:e}\n", s.x_mm * 1e-3, s.v_m_s, s.current_a, core_force_n(&table, &s));
+        csv += &format!(
+            "{:e},{:e},{:e},{:e}\n",
+            s.x_mm * 1e-3,
+            s.v_m_s,
+            s.current_a,
+            core_force_n(&table, &s)
+        );
     }
     std::fs::write(root.join("trace.csv"), csv).unwrap();
 
@@ -51,7 +57,10 @@ fn fmpy_validates_evaluates_and_closes_the_loop() {
     mre_fmu(&sim_dir.join("model.toml"), &sim_dir, true);
     let cmp = run_comparison(&setup, &[RunSpec::Controlled]).unwrap();
     let s = cmp.runs[0].summary;
-    let impact = mre_host::plant::closed_loop::controlled_impact(&setup, &mre_host::table_file::parse_table_toml(&text).unwrap());
+    let impact = mre_host::plant::closed_loop::controlled_impact(
+        &setup,
+        &mre_host::table_file::parse_table_toml(&text).unwrap(),
+    );
     let sim = serde_json::json!({
         "peak_force_n": s.peak_force_n,
         "max_stroke_mm": s.max_stroke_mm,

@@ -3,11 +3,12 @@
 //! has no unit, and fmi-schema 0.8's `Float64` variable no `unit`
 //! attribute): every float variable gets a declared type whose unit is the
 //! SI unit its name ends in, with the unit definitions, the interface
-//! elements and a default experiment. One fix-up of fmi-schema's output:
-//! the ampere exponent's attribute name (see [`model_description`]).
+//! elements and a default experiment. The ampere is declared by name only:
+//! fmi-schema 0.8 names its `BaseUnit` exponent `a` where FMI 3.0 has `A`,
+//! so `a` fails FMPy's schema validation and `A` the `fmi` crate's reader.
 use fmi::schema::fmi3::{
-    BaseUnit, DefaultExperiment, Fmi3CoSimulation, Fmi3ModelDescription, Fmi3ModelExchange, Fmi3Unit,
-    Float64Type, TypeDefinition, TypeDefinitions, UnitDefinitions, Variable,
+    BaseUnit, DefaultExperiment, Float64Type, Fmi3CoSimulation, Fmi3ModelDescription, Fmi3ModelExchange, Fmi3Unit,
+    TypeDefinition, TypeDefinitions, UnitDefinitions, Variable,
 };
 use fmi_export::fmi3::Model;
 
@@ -80,8 +81,7 @@ pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, Stri
             if f.name == "time" {
                 continue;
             }
-            let unit = unit_of(&f.name)
-                .ok_or_else(|| format!("internal: variable {} has no unit suffix", f.name))?;
+            let unit = unit_of(&f.name).ok_or_else(|| format!("internal: variable {} has no unit suffix", f.name))?;
             f.declared_type = Some(unit.1.to_string());
             if !used.contains(&unit) {
                 used.push(unit);
@@ -104,11 +104,11 @@ pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, Stri
         .iter()
         .map(|(_, _, unit, [kg, m, s, a])| Fmi3Unit {
             name: (*unit).to_string(),
-            base_unit: Some(BaseUnit {
+            // The ampere by name only (see the module docs).
+            base_unit: (*a == 0).then(|| BaseUnit {
                 kg: (*kg != 0).then_some(*kg),
                 m: (*m != 0).then_some(*m),
                 s: (*s != 0).then_some(*s),
-                a: (*a != 0).then_some(*a),
                 ..Default::default()
             }),
             ..Default::default()
@@ -149,7 +149,9 @@ pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, Stri
             ..Default::default()
         }),
         unit_definitions: Some(UnitDefinitions { units }),
-        type_definitions: Some(TypeDefinitions { type_definitions: types }),
+        type_definitions: Some(TypeDefinitions {
+            type_definitions: types,
+        }),
         default_experiment: Some(DefaultExperiment {
             start_time: Some(0.0),
             stop_time: Some(describe.stop_time_s),
@@ -160,8 +162,5 @@ pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, Stri
         model_structure: meta.model_structure,
         ..Default::default()
     };
-    let xml = fmi::schema::serialize(&md, false).map_err(|e| format!("cannot write the model description: {e}"))?;
-    // fmi-schema 0.8 writes the ampere exponent as `a`; FMI 3.0's attribute is `A`
-    // (FMPy's schema validation rejects `a`). Ours is the only unit with one.
-    Ok(xml.replace(r#"<BaseUnit a="1"/>"#, r#"<BaseUnit A="1"/>"#))
+    fmi::schema::serialize(&md, false).map_err(|e| format!("cannot write the model description: {e}"))
 }

@@ -27,7 +27,11 @@ pub fn mre_fmu(model: &Path, dir: &Path, controller: bool) -> PathBuf {
         cmd.arg("--controller");
     }
     let o = cmd.output().expect("run mre fmu");
-    assert!(o.status.success(), "mre fmu failed: {}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        o.status.success(),
+        "mre fmu failed: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     out
 }
 
