@@ -12,7 +12,8 @@
 //!    pairs held out, 0.5 A predicted).
 //! 4. The closed-loop drop test: passive 0 A, passive 2 A, controlled by the core.
 //!    Then the chain from recordings to flash on `data/drop-coil_lag`
-//!    (`control_bench::demo_step`).
+//!    (`control_bench::demo_step`), and its model as `damper.fmu` and
+//!    `controller.fmu` (`mre fmu`).
 //! 5. The same with the firmware in QEMU closing the loop (`mre pil`), when
 //!    `qemu-system-arm` is installed; otherwise it says how to install it.
 use anyhow::{Context, Result};
@@ -169,6 +170,53 @@ fn model_families(data: &Path, out: &Path, seed: u64) -> Result<DemoStep> {
     })
 }
 
+/// The diagnosed model of "from recordings to flash" as `damper.fmu` and
+/// `controller.fmu` (`mre fmu --controller`). Without the FMU libraries
+/// (building them needs libclang) the step says so and the demo goes on.
+fn fmus(out: &Path) -> Result<DemoStep> {
+    let _progress = crate::progress::spinner("building the FMUs of the diagnosed model");
+    let title =
+        "the diagnosed model as FMUs for vehicle models (FMI 3.0: OpenModelica, Simulink, Dymola, FMPy)".to_string();
+    let model = out.join("recordings-to-flash").join("final.toml");
+    let dir = out.join("fmu");
+    let libraries = match crate::fmu::library_dir() {
+        Ok(dir) => dir,
+        Err(e) => {
+            return Ok(DemoStep {
+                title,
+                headline: format!("skipped: {e:#}"),
+                report: model,
+            })
+        }
+    };
+    let request = crate::fmu::FmuRequest {
+        model: model.clone(),
+        out: dir.join("damper.fmu"),
+        controller: true,
+    };
+    let written = crate::fmu::run_fmu_with(&request, &libraries)?;
+    let summary = format!(
+        "# The diagnosed model as FMUs\n\n\
+         `damper.fmu` and `controller.fmu` are `mre fmu ../recordings-to-flash/final.toml --controller`: FMI 3.0 \
+         (damper: Co-Simulation and Model Exchange; controller: Co-Simulation) for {}, evaluated by the \
+         board's control core.\n\n\
+         - damper: `displacement_m` (m), `velocity_m_s` (m/s), `current_a` (A) in; `force_n` (N) out.\n\
+         - controller: measured `displacement_m`, `velocity_m_s` in; `coil_command_a` (A) out, one control tick \
+         per `control_period_s` (the board's 10 kHz).\n\n\
+         The README's section \"FMUs\" shows how to use them in OpenModelica, Simulink and FMPy.\n",
+        crate::fmu::PLATFORM
+    );
+    crate::atomic_write::write_atomic(&dir.join("summary.md"), summary.as_bytes())?;
+    crate::html::Page::new("The diagnosed model as FMUs")
+        .folder(&dir)
+        .write(&dir.join("index.html"))?;
+    Ok(DemoStep {
+        title,
+        headline: format!("wrote {} FMUs of the diagnosed model", written.len()),
+        report: dir.join("summary.md"),
+    })
+}
+
 fn processor_in_the_loop(out: &Path, seed: u64) -> Result<DemoStep> {
     use crate::pil::qemu::{qemu_binary, workspace_root, INSTALL_HINT};
     let title = "closed-loop drop test, firmware in QEMU (PIL)".to_string();
@@ -278,6 +326,7 @@ fn run_steps(options: &DemoOptions) -> Result<Vec<DemoStep>> {
         model_families(data, out, options.seed)?,
         closed_loop(out, options.seed)?,
         crate::control_bench::demo_step::recordings_to_flash(data, out)?,
+        fmus(out)?,
         processor_in_the_loop(out, options.seed)?,
     ];
     Ok(steps)

@@ -7,6 +7,7 @@ pub mod dataset;
 pub mod demo;
 pub mod diagnose;
 pub mod fit;
+pub mod fmu;
 pub mod html;
 pub mod linalg;
 pub mod loops;

@@ -299,6 +299,16 @@ enum Command {
         #[arg(long)]
         rate_hz: Option<u32>,
     },
+    /// Write the model as an FMI 3.0 FMU (damper: displacement, velocity, current in; force out), evaluated by the board's core.
+    Fmu {
+        /// Model or table file (as `mre tables` reads).
+        model: PathBuf,
+        #[arg(long, default_value = "damper.fmu")]
+        out: PathBuf,
+        /// Also write controller.fmu beside it: the impact controller as the board runs it.
+        #[arg(long)]
+        controller: bool,
+    },
 }
 
 #[derive(Subcommand)]
@@ -773,6 +783,14 @@ fn run(cli: Cli) -> Result<()> {
             println!("page: {}", report.join("index.html").display());
             if !a.agrees() {
                 anyhow::bail!("the firmware run does not match the in-process run (see pil.json)");
+            }
+        }
+        Command::Fmu { model, out, controller } => {
+            let progress = mre_host::progress::spinner("building the FMU libraries and packing the FMUs");
+            let written = mre_host::fmu::run_fmu(&mre_host::fmu::FmuRequest { model, out, controller })?;
+            std::mem::drop(progress);
+            for path in written {
+                println!("wrote {}", path.display());
             }
         }
         Command::Upload { port, model, rate_hz } => {

@@ -239,10 +239,16 @@ pub fn record_campaign(plant: &Plant, seed: u64) -> Result<(tempfile::TempDir, D
 /// `mre diagnose --model-out`'s model file (what `mre sim --controlled` and
 /// `mre pil` fly).
 pub fn diagnosed_table(plant: &Plant, seed: u64) -> Result<Table> {
+    let text = diagnosed_model_file(plant, seed)?;
+    crate::table_file::parse_table_toml(&text).context("(c): the model file")
+}
+
+/// [`diagnosed_table`]'s model file (TOML text), e.g. for `mre fmu`.
+pub fn diagnosed_model_file(plant: &Plant, seed: u64) -> Result<String> {
     let (_dir, campaign) = record_campaign(plant, seed)?;
     let d = crate::diagnose::diagnose(&campaign, &crate::diagnose::DiagnoseOptions::default())?;
     let (_, text) = crate::diagnose::model_out::model_file(&d, &campaign)?;
-    crate::table_file::parse_table_toml(&text).context("(c): the model file")
+    Ok(text)
 }
 
 /// Runs one case end to end.

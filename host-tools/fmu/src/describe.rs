@@ -1,0 +1,166 @@
+//! `modelDescription.xml` of each FMU: the variables rust-fmi's derive
+//! builds, plus what the derive cannot say (fmi-export 0.3's `#[variable]`
+//! has no unit, and fmi-schema 0.8's `Float64` variable no `unit`
+//! attribute): every float variable gets a declared type whose unit is the
+//! SI unit its name ends in, with the unit definitions, the interface
+//! elements and a default experiment. The ampere is declared by name only:
+//! fmi-schema 0.8 names its `BaseUnit` exponent `a` where FMI 3.0 has `A`,
+//! so `a` fails FMPy's schema validation and `A` the `fmi` crate's reader.
+use fmi::schema::fmi3::{
+    BaseUnit, DefaultExperiment, Float64Type, Fmi3CoSimulation, Fmi3ModelDescription, Fmi3ModelExchange, Fmi3Unit,
+    TypeDefinition, TypeDefinitions, UnitDefinitions, Variable,
+};
+use fmi_export::fmi3::Model;
+
+/// Which FMU.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    Damper,
+    Controller,
+}
+
+impl Kind {
+    /// The FMU's model identifier: its shared library's name without prefix
+    /// and extension (the `cdylib` name).
+    pub fn model_identifier(self) -> &'static str {
+        match self {
+            Kind::Damper => "mre_damper",
+            Kind::Controller => "mre_controller",
+        }
+    }
+
+    /// `damper` or `controller` (the file stem `mre fmu` writes).
+    pub fn stem(self) -> &'static str {
+        match self {
+            Kind::Damper => "damper",
+            Kind::Controller => "controller",
+        }
+    }
+}
+
+/// Unit of a variable from its name's suffix (longest first), as
+/// `(suffix, declared type, unit, SI base exponents kg, m, s, A)`.
+const UNITS: [(&str, &str, &str, [i32; 4]); 6] = [
+    ("_m_s", "Velocity", "m/s", [0, 1, -1, 0]),
+    ("_kg", "Mass", "kg", [1, 0, 0, 0]),
+    ("_m", "Length", "m", [0, 1, 0, 0]),
+    ("_s", "Time", "s", [0, 0, 1, 0]),
+    ("_a", "Current", "A", [0, 0, 0, 1]),
+    ("_n", "Force", "N", [1, 1, -2, 0]),
+];
+
+fn unit_of(name: &str) -> Option<&'static (&'static str, &'static str, &'static str, [i32; 4])> {
+    UNITS.iter().find(|(suffix, ..)| name.ends_with(suffix))
+}
+
+/// What the XML says besides the variables.
+#[derive(Clone, Debug)]
+pub struct Describe {
+    /// The model's name and a one-line description (with the model file's provenance).
+    pub model_name: String,
+    pub description: String,
+    /// Default experiment: stop time and step (s).
+    pub stop_time_s: f64,
+    pub step_size_s: f64,
+}
+
+/// The model description of `kind`, as XML.
+pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, String> {
+    let meta = match kind {
+        Kind::Damper => <crate::Damper as Model>::build_toplevel_metadata(),
+        Kind::Controller => <crate::Controller as Model>::build_toplevel_metadata(),
+    };
+    let token = match kind {
+        Kind::Damper => <crate::Damper as Model>::INSTANTIATION_TOKEN,
+        Kind::Controller => <crate::Controller as Model>::INSTANTIATION_TOKEN,
+    };
+    let mut variables = meta.model_variables;
+    let mut used: Vec<&(&str, &str, &str, [i32; 4])> = Vec::new();
+    for v in variables.variables.iter_mut() {
+        if let Variable::Float64(f) = v {
+            if f.name == "time" {
+                continue;
+            }
+            let unit = unit_of(&f.name).ok_or_else(|| format!("internal: variable {} has no unit suffix", f.name))?;
+            f.declared_type = Some(unit.1.to_string());
+            if !used.contains(&unit) {
+                used.push(unit);
+            }
+        }
+    }
+    // The independent variable `time` in seconds too.
+    let time = unit_of("time_s");
+    for v in variables.variables.iter_mut() {
+        if let (Variable::Float64(f), Some(unit)) = (v, time) {
+            if f.name == "time" {
+                f.declared_type = Some(unit.1.to_string());
+                if !used.contains(&unit) {
+                    used.push(unit);
+                }
+            }
+        }
+    }
+    let units = used
+        .iter()
+        .map(|(_, _, unit, [kg, m, s, a])| Fmi3Unit {
+            name: (*unit).to_string(),
+            // The ampere by name only (see the module docs).
+            base_unit: (*a == 0).then(|| BaseUnit {
+                kg: (*kg != 0).then_some(*kg),
+                m: (*m != 0).then_some(*m),
+                s: (*s != 0).then_some(*s),
+                ..Default::default()
+            }),
+            ..Default::default()
+        })
+        .collect();
+    let types = used
+        .iter()
+        .map(|(_, name, unit, _)| {
+            TypeDefinition::Float64(Float64Type {
+                name: (*name).to_string(),
+                quantity: Some((*name).to_string()),
+                unit: Some((*unit).to_string()),
+                ..Default::default()
+            })
+        })
+        .collect();
+    let id = kind.model_identifier().to_string();
+    let md = Fmi3ModelDescription {
+        fmi_version: "3.0".to_string(),
+        model_name: describe.model_name.clone(),
+        instantiation_token: token.to_string(),
+        description: Some(describe.description.clone()),
+        generation_tool: Some(format!("mre {} (rust-fmi fmi-export 0.3)", env!("CARGO_PKG_VERSION"))),
+        license: Some("MIT OR Apache-2.0".to_string()),
+        model_exchange: (kind == Kind::Damper).then(|| Fmi3ModelExchange {
+            model_identifier: id.clone(),
+            can_get_and_set_fmu_state: Some(false),
+            can_serialize_fmu_state: Some(false),
+            ..Default::default()
+        }),
+        co_simulation: Some(Fmi3CoSimulation {
+            model_identifier: id,
+            can_handle_variable_communication_step_size: Some(true),
+            fixed_internal_step_size: (kind == Kind::Controller).then_some(describe.step_size_s),
+            has_event_mode: Some(false),
+            can_get_and_set_fmu_state: Some(false),
+            can_serialize_fmu_state: Some(false),
+            ..Default::default()
+        }),
+        unit_definitions: Some(UnitDefinitions { units }),
+        type_definitions: Some(TypeDefinitions {
+            type_definitions: types,
+        }),
+        default_experiment: Some(DefaultExperiment {
+            start_time: Some(0.0),
+            stop_time: Some(describe.stop_time_s),
+            step_size: Some(describe.step_size_s),
+            ..Default::default()
+        }),
+        model_variables: variables,
+        model_structure: meta.model_structure,
+        ..Default::default()
+    };
+    fmi::schema::serialize(&md, false).map_err(|e| format!("cannot write the model description: {e}"))
+}

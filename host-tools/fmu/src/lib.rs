@@ -1,0 +1,19 @@
+//! The identified damper and the impact controller as FMI 3.0 models.
+//!
+//! Both evaluate through `mre_core`, the code the board runs. An FMU carries
+//! its table and installation as `resources/table.page`: the 2 KiB flash
+//! page the board stores after `mre upload` (`mre_core::flash_table`), read
+//! back through the core's own loader (magic, CRC, table and configuration
+//! validation) when the FMU is instantiated.
+//!
+//! Each model is exported by its own `cdylib` (`damper/`, `controller/`:
+//! one FMI library per FMU). This crate holds the models and their
+//! `modelDescription.xml` ([`describe`]), which `mre fmu` writes beside the
+//! library.
+pub mod controller;
+pub mod damper;
+pub mod describe;
+pub mod page;
+
+pub use controller::Controller;
+pub use damper::Damper;

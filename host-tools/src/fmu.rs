@@ -1,0 +1,203 @@
+//! `mre fmu`: the model file as FMI 3.0 FMUs. `damper.fmu` is the damper
+//! (x, v, I in, force out); `controller.fmu` the impact controller as the
+//! board runs it. Both evaluate through `mre_core` (crate `mre-fmu`).
+//!
+//! An FMU is a zip of
+//! - `modelDescription.xml` (`mre_fmu::describe`),
+//! - `binaries/x86_64-linux/mre_damper.so` (or `mre_controller.so`): the
+//!   `cdylib` of `host-tools/fmu/damper` (`…/controller`),
+//! - `resources/table.page`: the table and the control configuration as the
+//!   board's flash page (`mre_fmu::page`), and `resources/model.toml`, the
+//!   model file it came from (for people; the library reads only the page).
+//!
+//! The libraries: `$MRE_FMU_LIB_DIR` if set; else, in a source checkout,
+//! `cargo build --release` of the two `cdylib` crates into `target/fmu`
+//! (its own target folder, so it never waits on a running `cargo test`);
+//! else the folder of the running `mre`.
+use crate::atomic_write::write_atomic_with;
+use anyhow::{anyhow, bail, Context, Result};
+use mre_core::control::ControlConfig;
+use mre_core::law::LawConfig;
+use mre_core::Table;
+use mre_fmu::describe::{Describe, Kind};
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The FMI platform folder of the libraries this build packs.
+pub const PLATFORM: &str = "x86_64-linux";
+
+/// What `mre fmu` was asked for.
+#[derive(Clone, Debug)]
+pub struct FmuRequest {
+    pub model: PathBuf,
+    /// damper.fmu's path; controller.fmu goes beside it.
+    pub out: PathBuf,
+    pub controller: bool,
+}
+
+/// The installation the controller plans for and the control rate: today
+/// `mre sim`'s drop (5.5 kg, 9.81 m/s², 10 kHz) and usable stroke
+/// (`closed_loop::USABLE_STROKE_MM`), the law's other settings at their
+/// defaults. The one place to read them from the model file when it carries
+/// them (issue #31).
+pub fn installation(_table: &Table) -> Result<ControlConfig> {
+    let setup = crate::plant::closed_loop::SimSetup::default();
+    let law = crate::plant::closed_loop::law_config(&setup);
+    let rate_hz = (1.0 / setup.impact.control_period_s).round() as u32;
+    let mut cfg = ControlConfig::at_rate(rate_hz).map_err(|e| anyhow!("control rate {rate_hz} Hz: {e:?}"))?;
+    cfg.law = LawConfig {
+        period_s: cfg.law.period_s,
+        ..law
+    };
+    cfg.validate()
+        .map_err(|e| anyhow!("the installation's control configuration is invalid: {e:?}"))?;
+    Ok(cfg)
+}
+
+/// The path of controller.fmu for damper.fmu at `out`.
+pub fn controller_path(out: &Path) -> PathBuf {
+    out.with_file_name("controller.fmu")
+}
+
+/// Writes damper.fmu (and controller.fmu); returns the paths written.
+pub fn run_fmu(request: &FmuRequest) -> Result<Vec<PathBuf>> {
+    // A bad model file is reported before the libraries are built.
+    read_model(&request.model)?;
+    let libraries = library_dir()?;
+    run_fmu_with(request, &libraries)
+}
+
+fn read_model(path: &Path) -> Result<(String, Table)> {
+    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read model file {}", path.display()))?;
+    let table =
+        crate::table_file::parse_table_toml(&text).with_context(|| format!("in model file {}", path.display()))?;
+    Ok((text, table))
+}
+
+/// [`run_fmu`] with the FMU libraries in `libraries`.
+pub fn run_fmu_with(request: &FmuRequest, libraries: &Path) -> Result<Vec<PathBuf>> {
+    let (text, table) = read_model(&request.model)?;
+    let cfg = installation(&table)?;
+    let page = mre_fmu::page::page_bytes(&table, &cfg).map_err(|e| anyhow!(e))?;
+    let source = request
+        .model
+        .file_name()
+        .map_or_else(|| "model".to_owned(), |n| n.to_string_lossy().into_owned());
+    let mut kinds = vec![(Kind::Damper, request.out.clone())];
+    if request.controller {
+        kinds.push((Kind::Controller, controller_path(&request.out)));
+    }
+    for (kind, path) in &kinds {
+        let describe = describe_for(*kind, &source, &table, &cfg);
+        let xml = mre_fmu::describe::model_description(*kind, &describe).map_err(|e| anyhow!(e))?;
+        let library = libraries.join(library_file(*kind));
+        let binary =
+            std::fs::read(&library).with_context(|| format!("cannot read the FMU library {}", library.display()))?;
+        write_atomic_with(path, |buf| pack(buf, *kind, &xml, &binary, &page, &text))?;
+    }
+    Ok(kinds.into_iter().map(|(_, p)| p).collect())
+}
+
+fn describe_for(kind: Kind, source: &str, table: &Table, cfg: &ControlConfig) -> Describe {
+    let (lo, hi) = table.current_range_a();
+    match kind {
+        Kind::Damper => Describe {
+            model_name: format!("mre damper ({source})"),
+            description: format!(
+                "MRE impact damper identified by mre from {source} (table format {}, CRC-32 {:#010x}, {} currents {lo}–{hi} A): \
+                 force from displacement, velocity and coil current, evaluated by the board's control core",
+                table.version(),
+                table.crc32(),
+                table.entries().len()
+            ),
+            stop_time_s: 0.05,
+            step_size_s: f64::from(cfg.period_s()),
+        },
+        Kind::Controller => Describe {
+            model_name: format!("mre impact controller ({source})"),
+            description: format!(
+                "MRE impact controller as the board runs it at {} Hz with {source} (CRC-32 {:#010x}): \
+                 {} kg within {} mm of stroke; measured displacement and velocity in, coil command out",
+                cfg.rate_hz,
+                table.crc32(),
+                cfg.law.mass_kg,
+                cfg.law.stroke_max_mm
+            ),
+            stop_time_s: 0.05,
+            step_size_s: f64::from(cfg.period_s()),
+        },
+    }
+}
+
+/// The shared library's file name on this platform.
+pub fn library_file(kind: Kind) -> String {
+    format!("lib{}.so", kind.model_identifier())
+}
+
+fn pack(buf: &mut Vec<u8>, kind: Kind, xml: &str, binary: &[u8], page: &[u8], model_toml: &str) -> Result<()> {
+    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(buf));
+    let deflate = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+    let files: [(String, &[u8]); 4] = [
+        ("modelDescription.xml".to_owned(), xml.as_bytes()),
+        (format!("binaries/{PLATFORM}/{}.so", kind.model_identifier()), binary),
+        (format!("resources/{}", mre_fmu::page::PAGE_FILE), page),
+        ("resources/model.toml".to_owned(), model_toml.as_bytes()),
+    ];
+    for (name, bytes) in files {
+        zip.start_file(name, deflate)?;
+        zip.write_all(bytes)?;
+    }
+    zip.finish()?;
+    Ok(())
+}
+
+/// The folder holding both FMU libraries (see the module docs).
+pub fn library_dir() -> Result<PathBuf> {
+    if let Some(dir) = std::env::var_os("MRE_FMU_LIB_DIR") {
+        return Ok(PathBuf::from(dir));
+    }
+    let root = crate::pil::qemu::workspace_root();
+    if root.join("host-tools/fmu/Cargo.toml").is_file() {
+        return build_libraries(&root);
+    }
+    let exe = std::env::current_exe().context("cannot locate the running mre")?;
+    let dir = exe.parent().map(Path::to_path_buf).unwrap_or_default();
+    if dir.join(library_file(Kind::Damper)).is_file() {
+        return Ok(dir);
+    }
+    bail!(
+        "no FMU libraries: set MRE_FMU_LIB_DIR to the folder holding {} and {}, or run mre from a source checkout",
+        library_file(Kind::Damper),
+        library_file(Kind::Controller)
+    )
+}
+
+/// `cargo build --release` of both FMU crates into `target/fmu`.
+fn build_libraries(root: &Path) -> Result<PathBuf> {
+    let target = root.join("target/fmu");
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let status = Command::new(cargo)
+        .current_dir(root)
+        .env("CARGO_TARGET_DIR", &target)
+        // The workspace's fat LTO buys a model evaluation nothing measurable
+        // behind an FMI call, and costs minutes of linking.
+        .args(["build", "--release", "--quiet", "--config", "profile.release.lto=false"])
+        .args([
+            "--config",
+            "profile.release.debug=0",
+            "-p",
+            "mre-fmu-damper",
+            "-p",
+            "mre-fmu-controller",
+        ])
+        .status()
+        .context("cannot run cargo to build the FMU libraries")?;
+    if !status.success() {
+        bail!(
+            "building the FMU libraries failed (cargo build --release -p mre-fmu-damper -p mre-fmu-controller: {status}); \
+             rust-fmi generates its bindings with bindgen, which needs libclang (Debian: apt-get install libclang-dev)"
+        );
+    }
+    Ok(target.join("release"))
+}
