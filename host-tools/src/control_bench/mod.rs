@@ -240,7 +240,7 @@ pub fn record_campaign(plant: &Plant, seed: u64) -> Result<(tempfile::TempDir, D
 /// `mre pil` fly).
 pub fn diagnosed_table(plant: &Plant, seed: u64) -> Result<Table> {
     let (_dir, campaign) = record_campaign(plant, seed)?;
-    let d = crate::diagnose::diagnose(&campaign, &crate::diagnose::DiagnoseOptions::default())?;
+    let d = crate::diagnose::diagnose(&campaign, &crate::diagnose::DiagnoseOptions::with_validate_evidence())?;
     let (_, text) = crate::diagnose::model_out::model_file(&d, &campaign)?;
     crate::table_file::parse_table_toml(&text).context("(c): the model file")
 }
