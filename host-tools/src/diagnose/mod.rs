@@ -54,7 +54,7 @@ impl Default for DiagnoseOptions {
             folds: FoldPlan::Stratified { k: 5 },
             validate_currents_a: Vec::new(),
             thresholds: Thresholds::default(),
-            parameter_resamples: 60,
+            parameter_resamples: 200,
         }
     }
 }
