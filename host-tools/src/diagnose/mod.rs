@@ -346,7 +346,9 @@ pub fn summary_line(r: &report::ReportJson) -> String {
     let names: Vec<String> = r
         .effects
         .iter()
-        .map(|e| format!("{} ({:.2}× held out)", e.name, e.heldout_improvement))
+        // The nested figure: each held-out unit scored by a choice it played
+        // no part in (the plain one carries the winner's selection bias).
+        .map(|e| format!("{} ({:.2}× held out, nested)", e.name, e.heldout_improvement_nested))
         .collect();
     format!(
         "found: {}; RMSE {:.3} → {:.3} N",
