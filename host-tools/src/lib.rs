@@ -1,11 +1,12 @@
 //! `mre` host tools: everything that needs `std`. Each command is a library
 //! function here; `main.rs` only parses arguments.
 pub mod atomic_write;
-pub mod control_bench;
 pub mod compare;
+pub mod control_bench;
 pub mod dataset;
 pub mod demo;
 pub mod diagnose;
+pub mod diagnose_bench;
 pub mod fit;
 pub mod fmu;
 pub mod html;
@@ -15,6 +16,7 @@ pub mod pil;
 pub mod plant;
 pub mod plot;
 pub mod progress;
+pub mod signal;
 pub mod table_file;
 pub mod tables;
 pub mod upload;

@@ -166,6 +166,10 @@ enum Command {
         /// Also write the final model (format 2 table file) for `mre tables`.
         #[arg(long)]
         model_out: Option<PathBuf>,
+        /// Change a decision rule, NAME=VALUE (repeatable; the rules and their frozen
+        /// defaults: host-tools/DIAGNOSE.md, "Rules").
+        #[arg(long = "set")]
+        rules: Vec<String>,
     },
     /// Controllers (a) paper table, (b) `mre fit`, (c) `mre diagnose` against the physical limit.
     BenchControl {
@@ -202,6 +206,13 @@ enum Command {
         /// each case keeps its seed, so the cases run are the same as in the full benchmark.
         #[arg(long, value_delimiter = ',')]
         only: Vec<String>,
+        /// Run this many calibration cases instead (effects not in the candidates' forms;
+        /// seeds from --seed); reports false-positive and top-1 rates with 95 % bounds.
+        #[arg(long)]
+        calibration: Option<usize>,
+        /// Change a decision rule, NAME=VALUE (repeatable), as for `mre diagnose`.
+        #[arg(long = "set")]
+        rules: Vec<String>,
     },
     /// Fit the paper's polynomial, the polynomial with diagnose's terms and five
     /// nonlinear families (GSA + Levenberg–Marquardt) side by side (Fig. 15).
@@ -565,8 +576,11 @@ fn run(cli: Cli) -> Result<()> {
             validate_current,
             seed,
             model_out,
+            rules,
         } => {
-            let opts = mre_host::diagnose::options_from_cli(model.as_deref(), folds_by, folds, validate_current, seed)?;
+            let mut opts =
+                mre_host::diagnose::options_from_cli(model.as_deref(), folds_by, folds, validate_current, seed)?;
+            opts.thresholds = opts.thresholds.with_overrides(&rules)?;
             let progress = mre_host::progress::spinner("diagnosing");
             let out = match &model_out {
                 Some(path) => {
@@ -589,6 +603,31 @@ fn run(cli: Cli) -> Result<()> {
             println!("page: {}", out.join("index.html").display());
         }
         Command::BenchDiagnose {
+            seed,
+            json,
+            calibration: Some(n),
+            rules,
+            ..
+        } => {
+            let mut opts = mre_host::diagnose::DiagnoseOptions::default();
+            opts.thresholds = opts.thresholds.with_overrides(&rules)?;
+            let summary = mre_host::diagnose_bench::calibration::run(n, seed, &opts, |c| {
+                eprintln!(
+                    "seed {}: truth {:<16} ({:.1} %) found {:?} ({:.1} s)",
+                    c.seed,
+                    c.truth,
+                    100.0 * c.strength,
+                    c.found,
+                    c.seconds
+                )
+            })?;
+            print_summary(
+                &mre_host::diagnose_bench::calibration::format_summary(&summary),
+                &summary,
+                json,
+            )?;
+        }
+        Command::BenchDiagnose {
             cases,
             seed,
             json,
@@ -596,9 +635,11 @@ fn run(cli: Cli) -> Result<()> {
             folds_by,
             validate_current,
             only,
+            rules,
             ..
         } => {
-            let opts = mre_host::diagnose::options_from_cli(None, folds_by, 5, validate_current, seed)?;
+            let mut opts = mre_host::diagnose::options_from_cli(None, folds_by, 5, validate_current, seed)?;
+            opts.thresholds = opts.thresholds.with_overrides(&rules)?;
             let ds = mre_host::dataset::Dataset::load(&real)?;
             let summary = mre_host::diagnose::bench_real::run_real_bench(&ds, cases, seed, &only, &opts, |c| {
                 eprintln!(

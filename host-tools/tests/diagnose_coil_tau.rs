@@ -21,7 +21,7 @@ fn a_2_ms_first_order_coil_is_diagnosed_at_2_ms() {
         .flat_map(|r| r.samples.current_a.iter().flatten().copied());
     let (min_a, max_a) = commands.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), i| (l.min(i), h.max(i)));
     assert!(min_a >= lo_a && max_a <= hi_a, "commands {min_a}…{max_a} A");
-    let d = diagnose(&campaign, &DiagnoseOptions::default()).unwrap();
+    let d = diagnose(&campaign, &DiagnoseOptions::with_validate_evidence()).unwrap();
     let lag = d
         .findings
         .iter()

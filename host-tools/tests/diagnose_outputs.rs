@@ -24,7 +24,10 @@ fn outputs_follow_the_contract() {
     let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).expect("json")).expect("parse");
     let mut keys: Vec<&str> = v.as_object().expect("object").keys().map(|k| k.as_str()).collect();
     keys.sort_unstable();
-    assert_eq!(keys, ["baseline", "effects", "final", "not_identifiable", "unexplained"]);
+    assert_eq!(
+        keys,
+        ["baseline", "effects", "final", "not_identifiable", "unexplained"]
+    );
     assert!(v["unexplained"].is_array());
     for m in ["baseline", "final"] {
         assert!(v[m]["rmse_n"].is_f64() && v[m]["nrmse"].is_f64());
@@ -41,7 +44,15 @@ fn outputs_follow_the_contract() {
     ] {
         assert!(!e[k].is_null(), "missing {k}");
     }
-    assert!(v["final"]["rmse_n"].as_f64() < v["baseline"]["rmse_n"].as_f64());
+    // The law is in the model class plus c·v: the final model leaves the
+    // 1 N noise (and the CSV's rounding) only, and the baseline misses
+    // c·v (400 N·s/m × up to 0.52 m/s, partly absorbed by the quartics).
+    let (base, fin) = (
+        v["baseline"]["rmse_n"].as_f64().expect("rmse"),
+        v["final"]["rmse_n"].as_f64().expect("rmse"),
+    );
+    assert!(fin < 1.3, "final RMSE {fin} N");
+    assert!(base > 2.0 * fin, "baseline {base} N, final {fin} N");
     let csvs: Vec<_> = std::fs::read_dir(&pred).expect("pred dir").collect();
     assert_eq!(csvs.len(), 18);
     let one = std::fs::read_to_string(pred.join("i0_x2_r1.predictions.csv")).expect("csv");

@@ -32,7 +32,8 @@ fn viscous_damping_is_found_with_its_coefficient() {
     for current in ["0", "0.5", "1"] {
         let p = &f.parameters[&format!("c_at_{current}a_n_s_per_m")];
         assert!((p.value - c).abs() < 0.15 * c, "c at {current} A = {}", p.value);
-        assert!(p.ci95[0] <= p.value && p.value <= p.ci95[1]);
+        // The interval covers the true c, not merely its own estimate.
+        assert!(p.ci95[0] <= c && c <= p.ci95[1], "c at {current} A: {:?}", p.ci95);
     }
 }
 
@@ -95,13 +96,16 @@ fn coil_lag_is_found_with_its_time_constant_on_controlled_impacts() {
     let tau = 6.0 * SAMPLE_PERIOD_S;
     let d = diagnose(
         &dataset_with_steps(Added::CoilLag { tau_s: tau }, 7),
-        &DiagnoseOptions::default(),
+        // The controlled impacts are validate recordings, the lag's only evidence.
+        &DiagnoseOptions::with_validate_evidence(),
     )
     .expect("diagnosis");
     assert_eq!(names(&d), vec!["coil_lag"]);
     let p = &d.findings[0].parameters["time_constant_s"];
     assert!((p.value - tau).abs() < 0.1 * tau, "tau {} vs {tau}", p.value);
-    assert!(p.ci95[0] <= p.value && p.value <= p.ci95[1]);
+    // Not asserted: that the interval covers the true τ. It does not here
+    // (measured 2026-11-26): the re-chosen τ of the bootstrap is too narrow;
+    // open, see DIAGNOSE.md "Known limits".
     assert!(
         d.findings[0].heldout_improvement > 2.0,
         "{}",
@@ -114,7 +118,11 @@ fn coil_lag_is_found_with_its_time_constant_on_controlled_impacts() {
 
 #[test]
 fn controlled_impacts_without_a_lag_are_explained_by_the_recorded_current() {
-    let d = diagnose(&dataset_with_steps(Added::None, 8), &DiagnoseOptions::default()).expect("diagnosis");
+    let d = diagnose(
+        &dataset_with_steps(Added::None, 8),
+        &DiagnoseOptions::with_validate_evidence(),
+    )
+    .expect("diagnosis");
     assert!(d.findings.is_empty(), "invented {:?}", names(&d));
     let j = report::report_json(&d);
     // coil_lag was testable here, and the baseline interpolates at each sample's current.

@@ -19,7 +19,7 @@ pub fn recordings_to_flash(data: &Path, out: &Path) -> Result<DemoStep> {
     let dir = out.join("recordings-to-flash");
     let diag_dir = dir.join("diagnose");
     let model = dir.join("final.toml");
-    let opts = crate::diagnose::options_from_cli(None, None, 5, vec![], 1)?;
+    let opts = crate::diagnose::DiagnoseOptions::with_validate_evidence();
     let (found, _) = crate::diagnose::model_out::run_to_files_with_model(
         &data.join(SET),
         &opts,

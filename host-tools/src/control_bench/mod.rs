@@ -246,7 +246,7 @@ pub fn diagnosed_table(plant: &Plant, seed: u64) -> Result<Table> {
 /// [`diagnosed_table`]'s model file (TOML text), e.g. for `mre fmu`.
 pub fn diagnosed_model_file(plant: &Plant, seed: u64) -> Result<String> {
     let (_dir, campaign) = record_campaign(plant, seed)?;
-    let d = crate::diagnose::diagnose(&campaign, &crate::diagnose::DiagnoseOptions::default())?;
+    let d = crate::diagnose::diagnose(&campaign, &crate::diagnose::DiagnoseOptions::with_validate_evidence())?;
     let (_, text) = crate::diagnose::model_out::model_file(&d, &campaign)?;
     Ok(text)
 }

@@ -2,6 +2,7 @@
 //! whether this data set can identify it, and the variants to search.
 use super::design::{SofteningLaw, Terms, Viscous};
 use super::prepared::Prepared;
+use super::select::Thresholds;
 
 pub use crate::vocabulary::Effect;
 
@@ -162,7 +163,17 @@ fn intermediate_validate_count(prep: &Prepared) -> usize {
 
 /// `Err(needs)` when this data set cannot separate the effect from the
 /// baseline, with the test that would.
-pub fn identifiable(prep: &Prepared, effect: Effect) -> Result<(), String> {
+///
+/// `magnetic_saturation` and `coil_lag` change only how validate currents
+/// are predicted, so their only evidence is the validate recordings: unless
+/// `validate_evidence` lets those be read, they are not identifiable.
+pub fn identifiable(prep: &Prepared, effect: Effect, th: &Thresholds) -> Result<(), String> {
+    if !th.validate_evidence && matches!(effect, Effect::MagneticSaturation | Effect::CoilLag) {
+        return Err(
+            "its only evidence is the `validate` recordings, which no decision reads by default;              `--set validate_evidence=true` judges it on them (they then stop being an independent check)"
+                .into(),
+        );
+    }
     match effect {
         Effect::ViscousDamping => {
             if spread_within_currents(prep, |i| prep.recs[i].max_abs_v_m_s()) >= 0.15 {
@@ -207,14 +218,23 @@ pub fn identifiable(prep: &Prepared, effect: Effect) -> Result<(), String> {
         }
         Effect::Inertia => {
             if prep.free_drop {
-                Err(
+                return Err(
                     "a test whose acceleration is not proportional to the measured force (shaker or MTS \
                      test, or a measured acceleration channel): in a free drop a = g − F/M, a pure scale the \
                      fit absorbs"
                         .into(),
-                )
-            } else {
+                );
+            }
+            let misfit = acceleration_misfit_over_noise(prep);
+            if misfit >= th.inertia_min_accel_misfit_over_noise {
                 Ok(())
+            } else {
+                Err(format!(
+                    "an acceleration that is not proportional to the measured force (a shaker or MTS test, or \
+                     drops of two masses): here a = α + β·F fits the acceleration to {misfit:.1}× its noise \
+                     (below {:.1}×), so an `m·a` term would only feed the measured force back",
+                    th.inertia_min_accel_misfit_over_noise
+                ))
             }
         }
         Effect::HysteresisMemory => Ok(()),
@@ -233,6 +253,59 @@ pub fn identifiable(prep: &Prepared, effect: Effect) -> Result<(), String> {
             }
         }
     }
+}
+
+/// How far the acceleration departs from an affine function of the measured
+/// force, in units of what the two channels' noise alone would leave: the
+/// RMS residual of `a = α + β·F` fitted over every fit recording, over
+/// `√(σ_a² + β²·σ_F²)` (median white-noise estimates of the channels). A
+/// one-mass drop's striker accelerometer records `a = g − F/M` and gives ≈ 1:
+/// the force again, no evidence of inertia. A shaker, an MTS or two drop
+/// masses give far more.
+pub fn acceleration_misfit_over_noise(prep: &Prepared) -> f64 {
+    let fit = prep.fit_indices();
+    let (mut n, mut sf, mut sa, mut sff, mut sfa) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for &i in &fit {
+        let r = &prep.recs[i];
+        for (f, a) in r.force_n.iter().zip(&r.a_m_s2) {
+            n += 1.0;
+            sf += f;
+            sa += a;
+            sff += f * f;
+            sfa += f * a;
+        }
+    }
+    if n < 3.0 {
+        return 0.0;
+    }
+    let (mf, ma) = (sf / n, sa / n);
+    let var_f = sff / n - mf * mf;
+    let beta = if var_f > 0.0 { (sfa / n - mf * ma) / var_f } else { 0.0 };
+    let alpha = ma - beta * mf;
+    let mut sse = 0.0;
+    for &i in &fit {
+        let r = &prep.recs[i];
+        for (f, a) in r.force_n.iter().zip(&r.a_m_s2) {
+            let e = a - alpha - beta * f;
+            sse += e * e;
+        }
+    }
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v.get(v.len() / 2).copied().unwrap_or(0.0)
+    };
+    let sigma_a = median(
+        fit.iter()
+            .map(|&i| crate::signal::white_noise_sd(&prep.recs[i].a_m_s2))
+            .collect(),
+    );
+    let sigma_f = median(
+        fit.iter()
+            .map(|&i| crate::signal::white_noise_sd(&prep.recs[i].force_n))
+            .collect(),
+    );
+    let noise = (sigma_a * sigma_a + beta * beta * sigma_f * sigma_f).sqrt();
+    (sse / n).sqrt() / noise.max(1e-300)
 }
 
 /// Validate recordings whose recorded current moves by at least a tenth of

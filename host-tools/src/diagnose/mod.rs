@@ -21,8 +21,8 @@ pub mod parameters;
 pub mod plots;
 pub mod prepared;
 pub mod report;
-pub mod select;
 pub mod scale;
+pub mod select;
 pub mod signals;
 pub mod support;
 pub mod unexplained;
@@ -54,8 +54,20 @@ impl Default for DiagnoseOptions {
             folds: FoldPlan::Stratified { k: 5 },
             validate_currents_a: Vec::new(),
             thresholds: Thresholds::default(),
-            parameter_resamples: 60,
+            parameter_resamples: 200,
         }
+    }
+}
+
+impl DiagnoseOptions {
+    /// The defaults, with the validate recordings as the evidence for the
+    /// terms that change only their predictions (`coil_lag`,
+    /// `magnetic_saturation`): for a campaign whose controlled impacts are
+    /// there to pin the coil, not to check the model.
+    pub fn with_validate_evidence() -> Self {
+        let mut o = DiagnoseOptions::default();
+        o.thresholds.validate_evidence = true;
+        o
     }
 }
 
@@ -105,7 +117,8 @@ pub fn predictions(prep: &Prepared, scored: &Scored) -> Vec<Vec<f64>> {
 
 /// Runs the whole diagnosis on a loaded data set.
 pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
-    let prep = prepared::prepare(ds, &opts.folds, &opts.validate_currents_a)?;
+    let mut prep = prepared::prepare(ds, &opts.folds, &opts.validate_currents_a)?;
+    prep.validate_evidence = opts.thresholds.validate_evidence;
     let (baseline_table, baseline_given) = match &opts.model {
         Some(t) => (*t, true),
         None => (baseline::fit_table(&prep)?, false),
@@ -302,6 +315,7 @@ pub fn run_to_files(
     json_path: &std::path::Path,
     predictions_dir: &std::path::Path,
 ) -> Result<report::ReportJson> {
+    let json_path = &in_a_folder(json_path);
     let ds = Dataset::load(dataset_dir)?;
     let d = diagnose(&ds, opts)?;
     let json = report::write_all(&d, report_dir, json_path, predictions_dir)?;
@@ -310,6 +324,15 @@ pub fn run_to_files(
         .file(json_path)
         .write(&report_dir.join("index.html"))?;
     Ok(json)
+}
+
+/// `path` with its folder spelt out: a bare file name (`--json diag.json`)
+/// has an empty parent, which the HTML page cannot list; `./diag.json` has one.
+pub fn in_a_folder(path: &std::path::Path) -> std::path::PathBuf {
+    match path.parent() {
+        Some(p) if p.as_os_str().is_empty() => std::path::Path::new(".").join(path),
+        _ => path.to_path_buf(),
+    }
 }
 
 /// One line for the terminal: what was found.
@@ -323,7 +346,9 @@ pub fn summary_line(r: &report::ReportJson) -> String {
     let names: Vec<String> = r
         .effects
         .iter()
-        .map(|e| format!("{} ({:.2}× held out)", e.name, e.heldout_improvement))
+        // The nested figure: each held-out unit scored by a choice it played
+        // no part in (the plain one carries the winner's selection bias).
+        .map(|e| format!("{} ({:.2}× held out, nested)", e.name, e.heldout_improvement_nested))
         .collect();
     format!(
         "found: {}; RMSE {:.3} → {:.3} N",

@@ -155,11 +155,18 @@ pub fn with_intervals(
     let boot: Vec<Vec<(String, f64, String)>> = boot.into_iter().flatten().collect();
     // Searched parameter: which variant wins on resampled recordings.
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
-    let m = prep.recs.len();
-    let searched: Vec<Terms> = if variant_sse.len() > 1 {
+    // The recordings the searched value was chosen on: the fit recordings,
+    // or the validate ones for a term judged on them (never both).
+    let pool = if prep.validate_evidence && matches!(effect, Effect::MagneticSaturation | Effect::CoilLag) {
+        prep.validate_indices()
+    } else {
+        fit.clone()
+    };
+    let m = pool.len().max(1);
+    let searched: Vec<Terms> = if variant_sse.len() > 1 && !pool.is_empty() {
         (0..resamples.max(200))
             .map(|_| {
-                let idx: Vec<usize> = (0..m).map(|_| rng.random_range(0..m)).collect();
+                let idx: Vec<usize> = (0..m).map(|_| pool[rng.random_range(0..m)]).collect();
                 let best = variant_sse
                     .iter()
                     .min_by(|a, b| {

@@ -170,6 +170,10 @@ pub struct Prepared {
     pub n_folds: usize,
     /// Free drop: the acceleration is the drop mass's, `a = g − F/M`.
     pub free_drop: bool,
+    /// Whether validate recordings may be evidence for a term that changes
+    /// only their predictions ([`super::select::Thresholds::validate_evidence`]);
+    /// false: no choice reads them.
+    pub validate_evidence: bool,
 }
 
 impl Prepared {
@@ -269,6 +273,7 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
         currents_a,
         n_folds,
         free_drop,
+        validate_evidence: false,
     })
 }
 
@@ -423,32 +428,9 @@ where
 /// standard deviations of the velocity noise (two-sided ≈ 95 %).
 pub const BRANCH_AMBIGUITY_SIGMAS: f64 = 2.0;
 
-/// White-noise standard deviation of a channel sampled fast enough that its
-/// signal is smooth: the second difference of white noise has σ·√6, that of a
-/// smooth signal is small, and the median absolute value (scaled by 1.4826
-/// for a Gaussian) ignores the few samples where the signal bends sharply.
+/// Velocity channel noise (m/s): [`crate::signal::white_noise_sd`].
 pub fn velocity_noise_m_s(v: &[f64]) -> f64 {
-    let mut d2: Vec<f64> = v.windows(3).map(|w| (w[2] - 2.0 * w[1] + w[0]).abs()).collect();
-    if d2.is_empty() {
-        return 0.0;
-    }
-    let mid = d2.len() / 2;
-    let (_, median, _) = d2.select_nth_unstable_by(mid, f64::total_cmp);
-    1.4826 * *median / 6f64.sqrt()
+    crate::signal::white_noise_sd(v)
 }
 
-/// Central difference (one-sided at the ends).
-pub fn differentiate(t: &[f64], y: &[f64]) -> Vec<f64> {
-    let n = t.len();
-    (0..n)
-        .map(|i| {
-            let (a, b) = (i.saturating_sub(1), (i + 1).min(n - 1));
-            let dt = t[b] - t[a];
-            if dt > 0.0 {
-                (y[b] - y[a]) / dt
-            } else {
-                0.0
-            }
-        })
-        .collect()
-}
+pub use crate::signal::differentiate;

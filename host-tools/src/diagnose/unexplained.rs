@@ -8,7 +8,7 @@
 //! sits in one part of the data — a branch, a stretch of stroke or of time,
 //! one excitation frequency or one current — far more than that part's
 //! share of the samples.
-use super::prepared::{velocity_noise_m_s, Prepared, BRANCH_AMBIGUITY_SIGMAS};
+use super::prepared::{Prepared, BRANCH_AMBIGUITY_SIGMAS};
 
 /// The residual counts as structure only above this multiple of the force noise.
 pub const NOISE_FACTOR: f64 = 2.0;
@@ -39,14 +39,16 @@ pub struct Unexplained {
     pub noise_rmse_n: f64,
 }
 
-/// Force-channel noise (N): the median over recordings of the same robust
-/// white-noise estimate the velocity channel gets (second differences,
-/// MAD, √6).
+/// Force-channel noise (N): the median over the fit recordings of the
+/// robust white-noise estimate [`crate::signal::white_noise_sd`] (second
+/// differences, MAD, √6). Fit recordings only: the noise gates of selection
+/// read it, and no decision reads a validate recording.
 pub fn force_noise_n(prep: &Prepared) -> f64 {
     let mut per: Vec<f64> = prep
         .recs
         .iter()
-        .map(|r| velocity_noise_m_s(&r.force_n))
+        .filter(|r| r.is_fit())
+        .map(|r| crate::signal::white_noise_sd(&r.force_n))
         .filter(|v| v.is_finite())
         .collect();
     per.sort_by(f64::total_cmp);

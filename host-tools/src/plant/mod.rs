@@ -10,9 +10,12 @@
 //! - [`base_laws`], [`synth_mts`]: shaker/MTS campaigns (`mre synth --campaign
 //!   mts`) from a rate-independent Dahl or Bouc–Wen base law, outside the
 //!   paper's class.
+//! - [`calibration`]: campaigns with effects in other forms than the
+//!   diagnosis' candidates, for calibrating its rules.
 //! - [`stepper`]: RK4 drop simulation, one control period at a time
 //!   ([`PlantStepper`]) or a whole impact ([`simulate`]).
 pub mod base_laws;
+pub mod calibration;
 pub mod closed_loop;
 pub mod effects;
 pub mod law;
@@ -26,4 +29,6 @@ pub mod synth_mts;
 pub use effects::{ConcealedEffect, Effect, DROP_EFFECTS};
 pub use law::LawParams;
 pub use measure::MeasurementModel;
-pub use stepper::{simulate, CoilDriver, CurrentSource, ImpactConfig, ImpactSummary, Plant, PlantStepper, Sample, Trajectory};
+pub use stepper::{
+    simulate, CoilDriver, CurrentSource, ImpactConfig, ImpactSummary, Plant, PlantStepper, Sample, Trajectory,
+};

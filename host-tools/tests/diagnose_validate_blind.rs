@@ -1,0 +1,96 @@
+//! No decision reads a `validate` recording: replace the validate
+//! recordings' forces with anything, and every decision (which terms are
+//! tested, which routes pass, which effects are accepted) and every fitted
+//! parameter and interval stays bit-identical. Only the figures scored on
+//! the validate recordings (held-out checks) may move.
+use mre_host::dataset::{Dataset, Role};
+use mre_host::diagnose::{diagnose, DiagnoseOptions, Diagnosis};
+use std::path::Path;
+
+/// Everything the diagnosis decided or fitted, as text (f64 bit patterns
+/// through `{:?}`, which prints the shortest round-tripping decimal).
+fn decisions(d: &Diagnosis) -> Vec<String> {
+    let s = &d.selection;
+    let mut out = vec![format!("baseline table {:?}", d.baseline_table)];
+    out.push(format!(
+        "memory accepted {:?} route {:?} pool ratio {:?}",
+        s.memory.as_ref().map(|m| m.accepted),
+        s.memory.as_ref().map(|m| m.route),
+        s.memory.as_ref().map(|m| m.ratio_pool)
+    ));
+    out.push(format!("not identifiable {:?}", s.not_identifiable));
+    for (k, r) in s.rounds.iter().enumerate() {
+        out.push(format!("round {k} accepted {:?}", r.accepted));
+        for c in &r.tested {
+            out.push(format!(
+                "round {k} {:?}: accepted {} route {:?} pool ratio {:?} units {}/{} terms {:?} beta {:?}",
+                c.effect,
+                c.accepted,
+                c.route,
+                c.ratio_pool,
+                c.units_improved,
+                c.n_units,
+                c.scored.terms,
+                c.scored.solution.beta
+            ));
+        }
+    }
+    out.push(format!(
+        "final terms {:?} beta {:?} delta {:?}",
+        s.final_model.terms, s.final_model.solution.beta, s.final_model.solution.delta
+    ));
+    for f in &d.findings {
+        for (name, p) in &f.parameters {
+            out.push(format!("{} {name} = {:?} ci {:?}", f.effect.name(), p.value, p.ci95));
+        }
+    }
+    out
+}
+
+/// The validate recordings' forces replaced: time-reversed, tripled and
+/// offset by 500 N (anything would do; this keeps them finite).
+fn scrambled(ds: &Dataset) -> Dataset {
+    let mut out = ds.clone();
+    let mut n = 0;
+    for r in out.recordings.iter_mut().filter(|r| r.role == Role::Validate) {
+        let f = &mut r.samples.force_n;
+        f.reverse();
+        for v in f.iter_mut() {
+            *v = 3.0 * *v + 500.0;
+        }
+        n += 1;
+    }
+    assert!(n >= 2, "the data set needs validate recordings");
+    out
+}
+
+fn check(dir: &str) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(dir);
+    let ds = Dataset::load(&root).expect("bundled data set");
+    let opts = DiagnoseOptions::default();
+    let a = diagnose(&ds, &opts).expect("diagnosis");
+    let b = diagnose(&scrambled(&ds), &opts).expect("diagnosis");
+    let (da, db) = (decisions(&a), decisions(&b));
+    assert!(
+        !a.findings.is_empty(),
+        "{dir}: the effect should be found, or the test checks little"
+    );
+    for (x, y) in da.iter().zip(&db) {
+        assert_eq!(x, y, "{dir}: a decision or parameter read the validate recordings");
+    }
+    assert_eq!(da.len(), db.len(), "{dir}");
+}
+
+/// The scale route (softening over the run order) read the validate
+/// recordings' gains; the noise gates the force noise of every recording.
+#[test]
+fn softening_is_decided_without_the_validate_recordings() {
+    check("data/drop-stress_softening");
+}
+
+/// `hysteresis_memory` was accepted on every recording; the delay's
+/// refinement and the parameter bootstrap resampled every recording.
+#[test]
+fn a_delay_is_decided_without_the_validate_recordings() {
+    check("data/drop-sensor_delay");
+}
