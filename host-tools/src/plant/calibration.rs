@@ -229,6 +229,7 @@ fn build(
                 sequence: None,
                 temperature_c: None,
                 tags,
+                motion_from: None,
                 samples: Samples {
                     time_s: t_all[keep.clone()].iter().map(|t| t.max(0.0)).collect(),
                     x_mm: x[keep.clone()].iter().map(|x| x + x_noise.sample(rng)).collect(),
