@@ -1,4 +1,4 @@
-//! The data set writer against the contract `shared/spec/dataset-format.md`:
+//! The data set writer against the contract `docs/dataset-format.md`:
 //! write, then parse back with the `toml` and `csv` crates independently.
 use mre_host::dataset::write::{write_dataset, Precision, WriteOptions};
 use mre_host::dataset::{Dataset, Recording, Role, Samples, TagValue};

@@ -1,5 +1,5 @@
 //! `mre synth`: each concealed effect changes the recordings the way
-//! `shared/spec/effects.md` documents, `none` changes nothing, and a seed
+//! `docs/effects.md` documents, `none` changes nothing, and a seed
 //! always gives the same bytes.
 //!
 //! Every comparison pairs a data set with effect E and the `none` data set of

@@ -1,4 +1,4 @@
-//! `inertia` in drop campaigns (`shared/spec/effects.md`): the load cell sits
+//! `inertia` in drop campaigns (`docs/effects.md`): the load cell sits
 //! above a striker of mass m_s and reads `F + m_s·a`. In a drop the mass
 //! obeys `M·a = M·g − F`, so the recorded force is
 //!

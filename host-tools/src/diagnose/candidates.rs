@@ -1,4 +1,4 @@
-//! One candidate model term per vocabulary effect (`shared/spec/effects.md`):
+//! One candidate model term per vocabulary effect (`docs/effects.md`):
 //! whether this data set can identify it, and the variants to search.
 use super::design::{SofteningLaw, Terms, Viscous};
 use super::prepared::Prepared;

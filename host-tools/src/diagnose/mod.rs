@@ -1,5 +1,5 @@
 //! `mre diagnose`: locate the model-vs-recording mismatch, name the missing
-//! physics from the vocabulary (`shared/spec/effects.md`), model it, and show
+//! physics from the vocabulary (`docs/effects.md`), model it, and show
 //! the out-of-sample fit improve.
 //!
 //! Stages, each using only those before it: [`prepared`] (channels, folds,

@@ -1,5 +1,5 @@
 //! What the final model leaves: the residual located again, and the places
-//! where it is concentrated reported as `unexplained` (`shared/spec/effects.md`).
+//! where it is concentrated reported as `unexplained` (`docs/effects.md`).
 //!
 //! Every vocabulary term was tested on top of the final model and none
 //! passed, so structure still in the residual is structure no term explains.
