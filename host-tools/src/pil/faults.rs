@@ -378,13 +378,7 @@ pub fn run_faults(request: &PilRequest, plan: &FaultPlan) -> Result<FaultReport>
             let seq = out.len() as u32 + 1;
             let cmd = ctl.step_sample(s.read(seq, x_mm), Some(v_m_s));
             ctl.end_period(false);
-            out.push(CommandFrame {
-                seq,
-                current_a: cmd.current_a,
-                target_force_n: cmd.target_force_n,
-                flags: cmd.flags,
-                rejected: 0,
-            });
+            out.push(super::in_process_frame(seq, &cmd));
             cmd.current_a
         };
         simulate(
@@ -600,13 +594,7 @@ fn run_sense_drop(
             let cmd = ctl.step_sample(x_mm, Some(v_m_s));
             ctl.end_period(false);
             coil_a = cmd.current_a;
-            out.push(CommandFrame {
-                seq,
-                current_a: cmd.current_a,
-                target_force_n: cmd.target_force_n,
-                flags: cmd.flags,
-                rejected: 0,
-            });
+            out.push(super::in_process_frame(seq, &cmd));
             cmd.current_a
         };
         simulate(

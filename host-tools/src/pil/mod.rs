@@ -20,6 +20,7 @@ mod tests;
 use anyhow::{bail, Result};
 use mre_core::control::{ControlConfig, Controller, DEFAULT_RATE_HZ};
 use mre_core::frame::{CommandFrame, SampleFrame};
+use mre_core::law::Command;
 use mre_core::table::Table;
 use mre_core::Flags;
 
@@ -55,13 +56,19 @@ impl ControlBackend for InProcess {
         let cmd = self.ctl.step_sample(sample.x_mm, sample.v_m_s);
         // The board ends every period with an overrun check; PIL never overruns.
         self.ctl.end_period(false);
-        Ok(CommandFrame {
-            seq: sample.seq,
-            current_a: cmd.current_a,
-            target_force_n: cmd.target_force_n,
-            flags: cmd.flags,
-            rejected: 0,
-        })
+        Ok(in_process_frame(sample.seq, &cmd))
+    }
+}
+
+/// The answer an in-process controller gives for period `seq`: its command,
+/// as the firmware would frame it (no frame is ever rejected in process).
+pub(crate) fn in_process_frame(seq: u32, cmd: &Command) -> CommandFrame {
+    CommandFrame {
+        seq,
+        current_a: cmd.current_a,
+        target_force_n: cmd.target_force_n,
+        flags: cmd.flags,
+        rejected: 0,
     }
 }
 
