@@ -122,6 +122,8 @@ pub fn read_installation(path: &Path) -> Result<Option<mre_core::installation::I
         supply_v: Option<f32>,
         x_sensor_range_mm: Option<f32>,
         v_sensor_full_scale_m_s: Option<f32>,
+        impact_v_min_m_s: Option<f32>,
+        impact_v_max_m_s: Option<f32>,
     }
     let text = std::fs::read_to_string(path).with_context(|| format!("cannot read table file {}", path.display()))?;
     let doc: Doc = toml::from_str(&text).with_context(|| format!("in table file {}", path.display()))?;
@@ -135,6 +137,8 @@ pub fn read_installation(path: &Path) -> Result<Option<mre_core::installation::I
         supply_v: t.supply_v.unwrap_or(d.supply_v),
         x_sensor_range_mm: t.x_sensor_range_mm.unwrap_or(d.x_sensor_range_mm),
         v_sensor_full_scale_m_s: t.v_sensor_full_scale_m_s.unwrap_or(d.v_sensor_full_scale_m_s),
+        impact_v_min_m_s: t.impact_v_min_m_s.unwrap_or(d.impact_v_min_m_s),
+        impact_v_max_m_s: t.impact_v_max_m_s.unwrap_or(d.impact_v_max_m_s),
     }))
 }
 
