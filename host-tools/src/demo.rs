@@ -195,15 +195,23 @@ fn fmus(out: &Path) -> Result<DemoStep> {
         controller: true,
     };
     let written = crate::fmu::run_fmu_with(&request, &libraries)?;
+    // Linked from the page so a reader downloads them (the browser check
+    // fails on a link to a file that is not there).
+    let links: Vec<String> = written
+        .iter()
+        .filter_map(|p| p.file_name())
+        .map(|n| format!("[`{0}`]({0})", n.to_string_lossy()))
+        .collect();
     let summary = format!(
         "# The diagnosed model as FMUs\n\n\
-         `damper.fmu` and `controller.fmu` are `mre fmu ../recordings-to-flash/final.toml --controller`: FMI 3.0 \
+         {} are `mre fmu ../recordings-to-flash/final.toml --controller`: FMI 3.0 \
          (damper: Co-Simulation and Model Exchange; controller: Co-Simulation) for {}, evaluated by the \
          board's control core.\n\n\
          - damper: `displacement_m` (m), `velocity_m_s` (m/s), `current_a` (A) in; `force_n` (N) out.\n\
          - controller: measured `displacement_m`, `velocity_m_s` in; `coil_command_a` (A) out, one control tick \
          per `control_period_s` (the board's 10 kHz).\n\n\
          The README's section \"FMUs\" shows how to use them in OpenModelica, Simulink and FMPy.\n",
+        links.join(" and "),
         crate::fmu::PLATFORM
     );
     crate::atomic_write::write_atomic(&dir.join("summary.md"), summary.as_bytes())?;

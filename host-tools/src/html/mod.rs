@@ -242,7 +242,7 @@ fn render_files(out: &mut String, base: &Path, files: &[(PathBuf, PathBuf)], top
     let links: Vec<&PathBuf> = files
         .iter()
         .map(|(d, _)| d)
-        .filter(|d| ["csv", "json", "md", "toml", "svg", "rs", "txt"].contains(&extension(d).as_str()))
+        .filter(|d| ["csv", "json", "md", "toml", "svg", "rs", "txt", "fmu"].contains(&extension(d).as_str()))
         .collect();
     if !links.is_empty() {
         let _ = writeln!(out, "<{h}>Files</{h}>\n<ul class=\"files\">");
@@ -385,6 +385,7 @@ mod tests {
         .unwrap();
         std::fs::write(d.join("report.json"), r#"{"rmse_n": 0.125}"#).unwrap();
         std::fs::write(d.join("run.csv"), "t,x\n").unwrap();
+        std::fs::write(d.join("damper.fmu"), b"PK").unwrap();
         std::fs::write(
             d.join("fig.svg"),
             "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'/>",
@@ -401,6 +402,8 @@ mod tests {
         assert!(html.contains("<img src=\"data:image/svg+xml;base64,") && html.contains("alt=\"loops\""));
         assert_eq!(html.matches("<figcaption>").count(), 1, "only fig.svg in the gallery");
         assert!(html.contains("<a href=\"run.csv\">run.csv</a>"));
+        // An FMU is a download the page offers, not a file left unlisted.
+        assert!(html.contains("<a href=\"damper.fmu\">damper.fmu</a>"));
         assert!(!html.contains("<script"), "no script");
     }
 
