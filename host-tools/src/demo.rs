@@ -35,6 +35,8 @@ pub struct DemoStep {
     pub title: String,
     pub headline: String,
     pub report: PathBuf,
+    /// Files a reader takes away (the FMUs), linked from `index.html` too.
+    pub downloads: Vec<PathBuf>,
 }
 
 /// Fit (GSA and lsq), validate, plot, sweep and flash table for one data set.
@@ -85,6 +87,7 @@ fn fit_validate_plot(dataset: &Path, out: &Path, seed: u64, hold_out_a: &[f64], 
             nrmse.len()
         ),
         report: page,
+        downloads: Vec::new(),
     })
 }
 
@@ -104,6 +107,7 @@ fn closed_loop(out: &Path, seed: u64) -> Result<DemoStep> {
         title: "closed-loop drop test (host)".into(),
         headline,
         report: dir.join("summary.md"),
+        downloads: Vec::new(),
     })
 }
 
@@ -131,6 +135,7 @@ fn diagnosis(data: &Path, out: &Path, seed: u64) -> Result<DemoStep> {
         title: format!("diagnosis of data/{SET} (blind)"),
         headline: format!("{}; answer key: {truth}", crate::diagnose::summary_line(&found)),
         report: dir.join("report.md"),
+        downloads: Vec::new(),
     })
 }
 
@@ -151,6 +156,7 @@ fn real_data_diagnosis(data: &Path, out: &Path, seed: u64) -> Result<DemoStep> {
         title: "diagnosis of the real MR damper data (whole frequencies held out, 0.5 A predicted)".into(),
         headline: crate::diagnose::summary_line(&found),
         report: dir.join("report.md"),
+        downloads: Vec::new(),
     })
 }
 
@@ -167,6 +173,7 @@ fn model_families(data: &Path, out: &Path, seed: u64) -> Result<DemoStep> {
         title: "model families side by side on the real MR damper data (0.5 A held out)".into(),
         headline: crate::compare::report::summary_line(&r),
         report: dir.join("report.md"),
+        downloads: Vec::new(),
     })
 }
 
@@ -186,6 +193,7 @@ fn fmus(out: &Path) -> Result<DemoStep> {
                 title,
                 headline: format!("skipped: {e:#}"),
                 report: model,
+                downloads: Vec::new(),
             })
         }
     };
@@ -220,8 +228,9 @@ fn fmus(out: &Path) -> Result<DemoStep> {
         .write(&dir.join("index.html"))?;
     Ok(DemoStep {
         title,
-        headline: format!("wrote {} FMUs of the diagnosed model", written.len()),
+        headline: format!("wrote {} FMUs of the diagnosed model:", written.len()),
         report: dir.join("summary.md"),
+        downloads: written,
     })
 }
 
@@ -233,6 +242,7 @@ fn processor_in_the_loop(out: &Path, seed: u64) -> Result<DemoStep> {
             title,
             headline: format!("skipped: {INSTALL_HINT}"),
             report: workspace_root().join("firmware/README.md"),
+            downloads: Vec::new(),
         });
     }
     let _progress = crate::progress::spinner("building the PIL firmware and running it in QEMU");
@@ -257,6 +267,7 @@ fn processor_in_the_loop(out: &Path, seed: u64) -> Result<DemoStep> {
             a.bit_identical_commands, a.samples, a.frames
         ),
         report: dir.join("summary.md"),
+        downloads: Vec::new(),
     })
 }
 
@@ -299,6 +310,7 @@ fn write_index(out: &Path, steps: &[DemoStep]) -> Result<()> {
             title: &s.title,
             headline: &s.headline,
             link: page.as_deref(),
+            downloads: &s.downloads,
         })
         .collect();
     crate::html::write_index(

@@ -89,5 +89,6 @@ pub fn recordings_to_flash(data: &Path, out: &Path) -> Result<DemoStep> {
             c.peak_force_n, c.over_limit, a.peak_force_n, a.over_limit
         ),
         report: dir.join("summary.md"),
+        downloads: Vec::new(),
     })
 }

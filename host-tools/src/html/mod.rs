@@ -347,6 +347,8 @@ pub struct IndexEntry<'a> {
     pub headline: &'a str,
     /// The step's page (or report) to link; `None` when it has none.
     pub link: Option<&'a Path>,
+    /// Files offered for download beside the headline (the demo's FMUs).
+    pub downloads: &'a [PathBuf],
 }
 
 /// The demo's `index.html` in `dir`: one row per step with its headline and
@@ -359,7 +361,20 @@ pub fn write_index(dir: &Path, title: &str, lead: &str, entries: &[IndexEntry]) 
             Some(link) => format!("<a href=\"{}\">{}</a>", escape(&href(dir, link)), escape(e.title)),
             None => escape(e.title),
         };
-        let _ = writeln!(body, "<li><h2>{heading}</h2><p>{}</p></li>", escape(e.headline));
+        let downloads: Vec<String> = e
+            .downloads
+            .iter()
+            .map(|d| {
+                let name = d.file_name().unwrap_or_default().to_string_lossy();
+                format!(" <a href=\"{}\">{}</a>", escape(&href(dir, d)), escape(&name))
+            })
+            .collect();
+        let _ = writeln!(
+            body,
+            "<li><h2>{heading}</h2><p>{}{}</p></li>",
+            escape(e.headline),
+            downloads.concat()
+        );
     }
     body.push_str("</ol>\n");
     crate::atomic_write::write_atomic(&dest, skeleton(title, Some(lead), &body).as_bytes())
@@ -445,11 +460,19 @@ mod tests {
                     title: "drop test",
                     headline: "peak 3 % lower",
                     link: Some(&page),
+                    downloads: &[],
+                },
+                IndexEntry {
+                    title: "FMUs",
+                    headline: "wrote 1 FMU:",
+                    link: None,
+                    downloads: &[d.join("fmu").join("damper.fmu")],
                 },
                 IndexEntry {
                     title: "PIL",
                     headline: "skipped",
                     link: None,
+                    downloads: &[],
                 },
             ],
         )
@@ -457,5 +480,9 @@ mod tests {
         let html = std::fs::read_to_string(d.join("index.html")).unwrap();
         assert!(html.contains("<a href=\"sim/index.html\">drop test</a>"));
         assert!(html.contains("<h2>PIL</h2><p>skipped</p>"));
+        assert!(
+            html.contains("<p>wrote 1 FMU: <a href=\"fmu/damper.fmu\">damper.fmu</a></p>"),
+            "{html}"
+        );
     }
 }
