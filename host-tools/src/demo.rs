@@ -228,7 +228,7 @@ fn fmus(out: &Path) -> Result<DemoStep> {
         .write(&dir.join("index.html"))?;
     Ok(DemoStep {
         title,
-        headline: format!("wrote {} FMUs of the diagnosed model:", written.len()),
+        headline: format!("wrote {} FMUs of the diagnosed model", written.len()),
         report: dir.join("summary.md"),
         downloads: written,
     })

@@ -366,14 +366,18 @@ pub fn write_index(dir: &Path, title: &str, lead: &str, entries: &[IndexEntry]) 
             .iter()
             .map(|d| {
                 let name = d.file_name().unwrap_or_default().to_string_lossy();
-                format!(" <a href=\"{}\">{}</a>", escape(&href(dir, d)), escape(&name))
+                format!("<a href=\"{}\">{}</a>", escape(&href(dir, d)), escape(&name))
             })
             .collect();
+        let downloads = if downloads.is_empty() {
+            String::new()
+        } else {
+            format!(". Download: {}", downloads.join(", "))
+        };
         let _ = writeln!(
             body,
-            "<li><h2>{heading}</h2><p>{}{}</p></li>",
-            escape(e.headline),
-            downloads.concat()
+            "<li><h2>{heading}</h2><p>{}{downloads}</p></li>",
+            escape(e.headline)
         );
     }
     body.push_str("</ol>\n");
@@ -464,7 +468,7 @@ mod tests {
                 },
                 IndexEntry {
                     title: "FMUs",
-                    headline: "wrote 1 FMU:",
+                    headline: "wrote 1 FMU",
                     link: None,
                     downloads: &[d.join("fmu").join("damper.fmu")],
                 },
@@ -481,7 +485,7 @@ mod tests {
         assert!(html.contains("<a href=\"sim/index.html\">drop test</a>"));
         assert!(html.contains("<h2>PIL</h2><p>skipped</p>"));
         assert!(
-            html.contains("<p>wrote 1 FMU: <a href=\"fmu/damper.fmu\">damper.fmu</a></p>"),
+            html.contains("<p>wrote 1 FMU. Download: <a href=\"fmu/damper.fmu\">damper.fmu</a></p>"),
             "{html}"
         );
     }
