@@ -13,6 +13,8 @@
 //! else X0 + k·Delta_X for sample k of the segment. X must be time
 //! (`X_Dimension` Time), in seconds. A file with several segments must list
 //! the same channels and units in each; their rows continue the record.
+//! A segment holding fewer rows than its `Samples`, or a last line without a
+//! line end, is a file cut short and refused.
 use super::error::DatasetError;
 use super::read::Cell;
 use super::vendor::{cell, Table, VendorReader};
@@ -49,6 +51,7 @@ struct SegmentHeader {
     x_dimension: Vec<String>,
     x0: Vec<String>,
     delta_x: Vec<String>,
+    samples: Option<usize>,
 }
 
 fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
@@ -64,6 +67,12 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
         line,
         message,
     };
+    if !text.ends_with('\n') {
+        return Err(bad(
+            text.lines().count().max(1),
+            "the last line has no line end: the file is cut short".to_string(),
+        ));
+    }
     let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l)).peekable();
 
     // File header: the separator is not known yet, but tags are one word.
@@ -72,9 +81,11 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
     let mut x_columns = XColumns::One;
     let mut closed = false;
     for (n, line) in lines.by_ref() {
-        let mut parts = line.splitn(2, ['\t', ',']);
-        let tag = parts.next().unwrap_or("").trim();
-        let value = parts.next().unwrap_or("").trim().trim_end_matches([',', '\t']).trim();
+        let (tag, value) = match line.split_once('\t') {
+            Some((tag, value)) => (tag, value.trim_end_matches('\t')),
+            None => line.split_once(',').map_or((line, ""), |(t, v)| (t, v.trim_end_matches(','))),
+        };
+        let (tag, value) = (tag.trim(), value.trim());
         match tag {
             END_OF_HEADER => {
                 closed = true;
@@ -144,6 +155,7 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
                     let c = values.first().and_then(|v| v.parse::<usize>().ok()).filter(|&c| c > 0);
                     h.channels = Some(c.ok_or_else(|| bad(n, "Channels is not a positive count".to_string()))?);
                 }
+                "Samples" => h.samples = values.first().and_then(|v| v.parse().ok()),
                 "Y_Unit_Label" => h.units = values,
                 "X_Dimension" => h.x_dimension = values,
                 "X0" => h.x0 = values,
@@ -252,6 +264,12 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
             }
             rows.push((n, row));
             k += 1;
+        }
+        if let Some(samples) = h.samples.filter(|&s| s != k) {
+            return Err(bad(
+                rows.last().map_or(names_line, |r| r.0),
+                format!("segment {segment} declares {samples} samples but holds {k}: the file is cut short or corrupt"),
+            ));
         }
     }
     let Some((channels, names_line)) = channels else {

@@ -12,6 +12,8 @@
 //! same channels and units, and its rows continue the record.
 //!
 //! Plain files are refused: their names (`Axial Force`) hold the separator.
+//! A file whose last line has no line end was cut short and is refused; one
+//! cut at a line end cannot be told from a shorter test.
 use super::error::DatasetError;
 use super::read::Cell;
 use super::vendor::{cell, Table, VendorReader};
@@ -99,6 +101,12 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
         line,
         message,
     };
+    if !text.ends_with('\n') {
+        return Err(bad(
+            text.lines().count().max(1),
+            "the last line has no line end: the file is cut short".to_string(),
+        ));
+    }
     let mut channels: Option<(Vec<String>, usize)> = None;
     let mut rows = Vec::new();
     let mut format: Option<(char, char)> = None;
