@@ -166,7 +166,24 @@ fn tdms_files_the_reader_cannot_take_whole_are_refused() {
         b[4..8].copy_from_slice(&toc.to_le_bytes());
         b
     };
+    // The first segment's raw data written twice (two chunks): the crate
+    // would read one and lose the other.
+    let first_end = 28 + u64::from_le_bytes(bytes[12..20].try_into().unwrap()) as usize;
+    let raw_start = 28 + u64::from_le_bytes(bytes[20..28].try_into().unwrap()) as usize;
+    let mut two_chunks = bytes[..first_end].to_vec();
+    two_chunks.extend_from_slice(&bytes[raw_start..first_end]);
+    let next = (first_end - 28 + (first_end - raw_start)) as u64;
+    two_chunks[12..20].copy_from_slice(&next.to_le_bytes());
+    two_chunks.extend_from_slice(&bytes[first_end..]);
+    // A value count no file can hold (the Force channel's, after its path,
+    // raw-index length, type and dimension).
+    let path = b"/'Drop'/'Force'";
+    let at = bytes.windows(path.len()).position(|w| w == path).unwrap() + path.len() + 12;
+    let mut huge_count = bytes.clone();
+    huge_count[at..at + 8].copy_from_slice(&u64::MAX.to_le_bytes());
     let cases = [
+        (two_chunks, "account for"),
+        (huge_count, "corrupt TDMS header"),
         (with_toc(1 << 5), "interleaved"),
         (with_toc(1 << 6), "big-endian"),
         (with_toc(1 << 7), "DAQmx"),
@@ -258,4 +275,31 @@ fn dataset_init_recognises_each_vendor_file() {
         let ds = Dataset::from_manifest(dir.path(), &toml).unwrap_or_else(|e| panic!("{name}: {e}\n{toml}"));
         check_drop(&ds, if name.ends_with(".lvm") { 1e-3 } else { 0.0 });
     }
+}
+
+/// The fuzz target's seeds (fuzz/seeds/dataset_reader) replayed through its
+/// entry point with its promises: the vendor seeds read whole.
+#[test]
+fn fuzz_seeds_hold_the_readers_promises() {
+    let seeds = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fuzz/seeds/dataset_reader");
+    let mut vendor_seeds = 0;
+    for entry in std::fs::read_dir(&seeds).unwrap() {
+        let path = entry.unwrap().path();
+        let bytes = std::fs::read(&path).unwrap();
+        let name = path.to_string_lossy().into_owned();
+        for whitespace in [false, true] {
+            if let Ok(s) = parse_recording(&bytes, whitespace, &name) {
+                let n = s.len();
+                assert!(n >= mre_host::dataset::read::MIN_SAMPLES, "{name}");
+                assert!(s.x_mm.len() == n && s.force_n.len() == n && s.v_m_s.len() == n, "{name}");
+                assert!(s.time_s.windows(2).all(|w| w[1] > w[0]), "{name}: time increases");
+            }
+        }
+        if ["specimen.dat", "drop.lvm", "drop.tdms"].iter().any(|v| name.ends_with(v)) {
+            let s = parse_recording(&bytes, false, &name).unwrap_or_else(|e| panic!("{e}"));
+            assert_eq!(s.len(), 41, "{name}");
+            vendor_seeds += 1;
+        }
+    }
+    assert_eq!(vendor_seeds, 3, "one seed per vendor format");
 }
