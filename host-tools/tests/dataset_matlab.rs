@@ -252,7 +252,11 @@ fn a_matrix_column_is_picked_as_matlab_numbers_it() {
     assert_eq!(s.force_n, f);
 
     // A column the matrix does not have, and a bad selection, are said.
-    let e = one_file(dir.path(), &vars, r#"{ time_s = "t", displacement_mm = "x_F[:,1]", force_n = "x_F[:,4]" }"#);
+    let e = one_file(
+        dir.path(),
+        &vars,
+        r#"{ time_s = "t", displacement_mm = "x_F[:,1]", force_n = "x_F[:,4]" }"#,
+    );
     assert!(e.contains("picks column 4") && e.contains("3001×3"), "{e}");
     let e = one_file(dir.path(), &vars, r#"{ time_s = "t", force_n = "x_F[2,:]" }"#);
     assert!(e.contains("x_F[2,:]") && e.contains("x_F[:,3]"), "{e}");

@@ -12,7 +12,9 @@ use mre_host::dataset::{Dataset, DatasetError};
 use std::path::{Path, PathBuf};
 
 fn fixture(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/vendor").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures/vendor")
+        .join(name)
 }
 
 /// A folder holding `file` (with `bytes`) and a manifest with `settings`
@@ -50,19 +52,17 @@ fn check_drop(ds: &Dataset, t0_s: f64) {
 fn message(e: &DatasetError) -> String {
     let m = e.to_string();
     // A sentence for a person, not a Debug dump.
-    assert!(!m.contains("{ path") && !m.contains("Error(") && !m.contains("Os {"), "{m}");
+    assert!(
+        !m.contains("{ path") && !m.contains("Error(") && !m.contains("Os {"),
+        "{m}"
+    );
     m
 }
 
 #[test]
 fn mts_specimen_dat_loads_with_kn_converted_and_the_declared_flip() {
     let bytes = std::fs::read(fixture("drop_specimen.dat")).unwrap();
-    let ds = load(
-        "Specimen.dat",
-        &bytes,
-        "sign = { force_kn = -1, displacement_mm = -1 }",
-    )
-    .unwrap();
+    let ds = load("Specimen.dat", &bytes, "sign = { force_kn = -1, displacement_mm = -1 }").unwrap();
     check_drop(&ds, 0.0);
 }
 
@@ -93,12 +93,7 @@ fn columns_in_the_manifest_rename_a_vendor_files_channels() {
     // The LabVIEW file's channels renamed by hand: displacement ignored, so
     // the motion is derived from force (force–time record).
     let bytes = std::fs::read(fixture("drop.lvm")).unwrap();
-    let ds = load(
-        "drop.lvm",
-        &bytes,
-        "columns = [\"time_s\", \"force_n\", \"ignore\"]",
-    )
-    .unwrap();
+    let ds = load("drop.lvm", &bytes, "columns = [\"time_s\", \"force_n\", \"ignore\"]").unwrap();
     let r = &ds.recordings[0];
     assert!(r.motion_from.is_some(), "motion derived from force");
     // Too few names for the channels: said, with the channels listed.
@@ -126,7 +121,8 @@ fn malformed_mts_files_get_a_sentence() {
         ),
         (text.replacen("Sec\tmm\tkN\t\r\n", "", 1), "channel names and"),
         (
-            text.replacen("Axial Force\t", "Axial Load\t", 2).replacen("Axial Load\t", "Axial Force\t", 1),
+            text.replacen("Axial Force\t", "Axial Load\t", 2)
+                .replacen("Axial Load\t", "Axial Force\t", 1),
             "differ from the first buffer's",
         ),
         (text.replacen("0.0005\t", "0.0005x\t", 1), "0.0005x"),
@@ -134,7 +130,12 @@ fn malformed_mts_files_get_a_sentence() {
     ];
     for (bad, expected) in cases {
         assert_ne!(bad, text, "the case changes the file");
-        let e = load("Specimen.dat", bad.as_bytes(), "sign = { force_n = -1, displacement_mm = -1 }").unwrap_err();
+        let e = load(
+            "Specimen.dat",
+            bad.as_bytes(),
+            "sign = { force_n = -1, displacement_mm = -1 }",
+        )
+        .unwrap_err();
         let m = message(&e);
         assert!(m.contains(expected), "expected `{expected}` in: {m}");
     }
@@ -144,11 +145,24 @@ fn malformed_mts_files_get_a_sentence() {
 fn malformed_lvm_files_get_a_sentence() {
     let text = std::fs::read_to_string(fixture("drop.lvm")).unwrap();
     let cases = [
-        (text.replacen("X_Dimension\tTime\tTime", "X_Dimension\tFrequency\tFrequency", 1), "X_Dimension `Frequency`"),
-        (text.replacen("Delta_X\t1,000000E-4\t1,000000E-4", "Delta_X\t1,000000E-4\t2,000000E-4", 1), "Delta_X"),
+        (
+            text.replacen("X_Dimension\tTime\tTime", "X_Dimension\tFrequency\tFrequency", 1),
+            "X_Dimension `Frequency`",
+        ),
+        (
+            text.replacen(
+                "Delta_X\t1,000000E-4\t1,000000E-4",
+                "Delta_X\t1,000000E-4\t2,000000E-4",
+                1,
+            ),
+            "Delta_X",
+        ),
         (text.replacen("X_Columns\tNo", "X_Columns\tSome", 1), "X_Columns `Some`"),
         (text.replacen("\t156,918191\t", "\t156;918191\t", 1), "156;918191"),
-        (text.replacen("Samples\t41\t41", "Samples\t42\t42", 1), "declares 42 samples but holds 41"),
+        (
+            text.replacen("Samples\t41\t41", "Samples\t42\t42", 1),
+            "declares 42 samples but holds 41",
+        ),
     ];
     for (bad, expected) in cases {
         assert_ne!(bad, text, "the case changes the file");
@@ -265,7 +279,10 @@ fn dataset_init_recognises_each_vendor_file() {
         assert!(toml.contains("(names and units from the file)"), "{toml}");
         if name.ends_with(".dat") {
             // MTS reads compression negative: the flip is written, as an assumption.
-            assert!(toml.contains("sign = { force_kn = -1, displacement_mm = -1 }"), "{toml}");
+            assert!(
+                toml.contains("sign = { force_kn = -1, displacement_mm = -1 }"),
+                "{toml}"
+            );
             assert!(toml.contains("# assumed:"), "{toml}");
         } else {
             assert!(!toml.contains("sign ="), "{toml}");
@@ -291,11 +308,17 @@ fn fuzz_seeds_hold_the_readers_promises() {
             if let Ok(s) = parse_recording(&bytes, whitespace, &name) {
                 let n = s.len();
                 assert!(n >= mre_host::dataset::read::MIN_SAMPLES, "{name}");
-                assert!(s.x_mm.len() == n && s.force_n.len() == n && s.v_m_s.len() == n, "{name}");
+                assert!(
+                    s.x_mm.len() == n && s.force_n.len() == n && s.v_m_s.len() == n,
+                    "{name}"
+                );
                 assert!(s.time_s.windows(2).all(|w| w[1] > w[0]), "{name}: time increases");
             }
         }
-        if ["specimen.dat", "drop.lvm", "drop.tdms"].iter().any(|v| name.ends_with(v)) {
+        if ["specimen.dat", "drop.lvm", "drop.tdms"]
+            .iter()
+            .any(|v| name.ends_with(v))
+        {
             let s = parse_recording(&bytes, false, &name).unwrap_or_else(|e| panic!("{e}"));
             assert_eq!(s.len(), 41, "{name}");
             vendor_seeds += 1;

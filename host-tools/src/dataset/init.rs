@@ -446,7 +446,11 @@ fn sniff_mat(path: &Path, notes: &mut Vec<String>) -> Result<String> {
         anyhow::anyhow!(
             "{e}; the file holds {}; name the variables by hand, a matrix column as in \
              variables = {{ time_s = \"t\", force_n = \"x_F[:,3]\" }} (docs/dataset-format.md)",
-            if found.is_empty() { "no variables".to_string() } else { found.join(", ") }
+            if found.is_empty() {
+                "no variables".to_string()
+            } else {
+                found.join(", ")
+            }
         )
     })?;
     let inner: Vec<String> = pairs.iter().map(|(c, v)| format!("{c} = {}", toml_string(v))).collect();

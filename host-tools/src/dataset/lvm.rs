@@ -83,7 +83,9 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
     for (n, line) in lines.by_ref() {
         let (tag, value) = match line.split_once('\t') {
             Some((tag, value)) => (tag, value.trim_end_matches('\t')),
-            None => line.split_once(',').map_or((line, ""), |(t, v)| (t, v.trim_end_matches(','))),
+            None => line
+                .split_once(',')
+                .map_or((line, ""), |(t, v)| (t, v.trim_end_matches(','))),
         };
         let (tag, value) = (tag.trim(), value.trim());
         match tag {
@@ -176,7 +178,10 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
             if values.len() < count {
                 return Err(bad(
                     n,
-                    format!("segment {segment}: {tag} has {} values for {count} channels", values.len()),
+                    format!(
+                        "segment {segment}: {tag} has {} values for {count} channels",
+                        values.len()
+                    ),
                 ));
             }
         }
@@ -188,14 +193,20 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
         }
         // The column-name row: X_Value, the channels (each after its X with Multi), Comment.
         let Some((names_line, names_row)) = lines.next() else {
-            return Err(bad(n, format!("segment {segment} has no column-name row: the file is cut short")));
+            return Err(bad(
+                n,
+                format!("segment {segment} has no column-name row: the file is cut short"),
+            ));
         };
         let names_row = split(names_row);
         let y_columns: Vec<usize> = match x_columns {
             XColumns::No | XColumns::One => (1..=count).collect(),
             XColumns::Multi => (0..count).map(|c| 2 * c + 1).collect(),
         };
-        let names: Vec<String> = y_columns.iter().map(|&c| names_row.get(c).cloned().unwrap_or_default()).collect();
+        let names: Vec<String> = y_columns
+            .iter()
+            .map(|&c| names_row.get(c).cloned().unwrap_or_default())
+            .collect();
         if names_row.first().map(String::as_str) != Some("X_Value") || names.iter().any(String::is_empty) {
             return Err(bad(
                 names_line,

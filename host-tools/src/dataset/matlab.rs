@@ -119,7 +119,8 @@ pub(super) fn read_samples(
             .ok_or_else(|| setting(format!("`{file}`: variable `{var}` (for {column}) is complex")))?;
         let values = match pick {
             Some(k) => {
-                let (&[rows, cols], true) = (size.as_slice(), (1..=size.get(1).copied().unwrap_or(0)).contains(&k)) else {
+                let (&[rows, cols], true) = (size.as_slice(), (1..=size.get(1).copied().unwrap_or(0)).contains(&k))
+                else {
                     return Err(setting(format!(
                         "`{file}`: `{spec}` (for {column}) picks column {k} of `{var}`, which is {}",
                         shape(size)
@@ -128,7 +129,11 @@ pub(super) fn read_samples(
                 // MATLAB stores a matrix column by column.
                 match values.get((k - 1) * rows..k * rows) {
                     Some(column) if values.len() == rows * cols => column.to_vec(),
-                    _ => return Err(setting(format!("`{file}`: variable `{var}` holds fewer values than its shape"))),
+                    _ => {
+                        return Err(setting(format!(
+                            "`{file}`: variable `{var}` holds fewer values than its shape"
+                        )))
+                    }
                 }
             }
             None => values,

@@ -63,7 +63,11 @@ fn layout(line: &str, bad: &dyn Fn(String) -> DatasetError) -> Result<(char, cha
                     .to_string(),
             ))
         }
-        other => return Err(bad(format!("iDelim `{other}` in the MTS793 header line is not 0, 1 or 2"))),
+        other => {
+            return Err(bad(format!(
+                "iDelim `{other}` in the MTS793 header line is not 0, 1 or 2"
+            )))
+        }
     };
     let mut decimal = fields[5].chars();
     let decimal = match (decimal.next(), decimal.next()) {

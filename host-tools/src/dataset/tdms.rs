@@ -65,7 +65,9 @@ fn raw_data_bytes(bytes: &[u8]) -> Result<u64, String> {
         let next = u64_at(lead_in, 12);
         let raw_offset = u64_at(lead_in, 20);
         if toc & TOC_BIG_ENDIAN != 0 {
-            return Err(format!("segment {segment} is big-endian, which mre's TDMS reader does not read"));
+            return Err(format!(
+                "segment {segment} is big-endian, which mre's TDMS reader does not read"
+            ));
         }
         if toc & TOC_INTERLEAVED != 0 {
             return Err(format!(
@@ -80,7 +82,9 @@ fn raw_data_bytes(bytes: &[u8]) -> Result<u64, String> {
             ));
         }
         if next == u64::MAX {
-            return Err(format!("segment {segment} was never completed (the writer stopped while writing it)"));
+            return Err(format!(
+                "segment {segment} was never completed (the writer stopped while writing it)"
+            ));
         }
         let end = at
             .checked_add(LEAD_IN_BYTES)
@@ -186,7 +190,9 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
                 _ => String::new(),
             };
             if channels.iter().any(|c| c.0 == name) {
-                return Err(bad(format!("two groups have a channel `{name}`; mre reads one of each")));
+                return Err(bad(format!(
+                    "two groups have a channel `{name}`; mre reads one of each"
+                )));
             }
             time_base.push((
                 property_f64(&channel, "wf_start_offset"),
