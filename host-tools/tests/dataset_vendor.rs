@@ -326,3 +326,43 @@ fn fuzz_seeds_hold_the_readers_promises() {
     }
     assert_eq!(vendor_seeds, 3, "one seed per vendor format");
 }
+
+/// The same LabVIEW file written with X columns (`X_Columns One`: one X
+/// before the channels; `Multi`: an X before each channel, "Header" in the
+/// specification): time is read from the first X column.
+#[test]
+fn lvm_x_columns_one_and_multi_give_the_time() {
+    let text = std::fs::read_to_string(fixture("drop.lvm")).unwrap();
+    for mode in ["One", "Multi"] {
+        let mut out = String::new();
+        let (mut k, mut in_data) = (0, false);
+        for line in text.split_inclusive("\r\n") {
+            let body = line.trim_end_matches("\r\n");
+            if body == "X_Columns\tNo" {
+                out.push_str(&format!("X_Columns\t{mode}\r\n"));
+            } else if body == "X_Value\tLoad\tDisplacement\tComment" {
+                in_data = true;
+                out.push_str(match mode {
+                    "One" => line,
+                    _ => "X_Value\tLoad\tX_Value\tDisplacement\tComment\r\n",
+                });
+            } else if let Some(values) = body.strip_prefix('\t').filter(|_| in_data) {
+                // 1 ms + k·0.1 ms, written with the file's decimal comma.
+                let t = format!("{:.6}", 1e-3 + k as f64 * 1e-4).replace('.', ",");
+                let (load, disp) = values.split_once('\t').unwrap();
+                let row = match mode {
+                    "One" => format!("{t}\t{load}\t{disp}"),
+                    _ => format!("{t}\t{load}\t{t}\t{disp}"),
+                };
+                out.push_str(&row);
+                out.push_str("\r\n");
+                k += 1;
+            } else {
+                out.push_str(line);
+            }
+        }
+        assert_eq!(k, 41);
+        let ds = load("drop.lvm", out.as_bytes(), "").unwrap_or_else(|e| panic!("{mode}: {e}"));
+        check_drop(&ds, 1e-3);
+    }
+}
