@@ -284,6 +284,9 @@ fn dataset_init_recognises_each_vendor_file() {
                 "{toml}"
             );
             assert!(toml.contains("# assumed:"), "{toml}");
+            // The evidence in N: the mean of 2000·sin(πk/40) N over the
+            // loading branch k = 0..20 is 1259.60 N (as written, 5 decimals of kN).
+            assert!(toml.contains("is -1259.60"), "{toml}");
         } else {
             assert!(!toml.contains("sign ="), "{toml}");
         }
@@ -364,5 +367,37 @@ fn lvm_x_columns_one_and_multi_give_the_time() {
         assert_eq!(k, 41);
         let ds = load("drop.lvm", out.as_bytes(), "").unwrap_or_else(|e| panic!("{mode}: {e}"));
         check_drop(&ds, 1e-3);
+    }
+}
+
+/// One folder holding a Bluehill-style CSV with `columns` in `[defaults]`
+/// and the three vendor files: each vendor recording names its own columns,
+/// so the defaults' do not apply to it, and all load.
+#[test]
+fn dataset_init_keeps_vendor_columns_apart_from_the_defaults() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, current) in [("drop_specimen.dat", "1x0"), ("drop.lvm", "1x5"), ("drop.tdms", "2x0")] {
+        let ext = Path::new(name).extension().unwrap().to_string_lossy();
+        std::fs::copy(fixture(name), dir.path().join(format!("drop{current}A.{ext}"))).unwrap();
+    }
+    let mut csv = String::from("Time (ms),Force (kN),Displacement (mm)\n");
+    for k in 0..41 {
+        let s = (std::f64::consts::PI * k as f64 / 40.0).sin();
+        csv.push_str(&format!("{},{},{}\n", k as f64 * 0.1, 2.0 * s, 5.0 * s));
+    }
+    std::fs::write(dir.path().join("drop0x5A.csv"), csv).unwrap();
+    let toml = mre_host::dataset::init::manifest_for(dir.path(), Some("drop{current_a}A"), None).unwrap();
+    let defaults = &toml[toml.find("[defaults]").unwrap()..toml.find("[[recording]]").unwrap()];
+    assert!(
+        defaults.contains("columns = [\"time_ms\", \"force_kn\", \"displacement_mm\"]"),
+        "{toml}"
+    );
+    assert!(!defaults.contains("MTS") && !defaults.contains("LabVIEW"), "{toml}");
+    let toml = toml.replace("[defaults]", "[defaults]\nmass_kg = 5.5\nimpact_velocity_m_s = 2.24");
+    let ds = Dataset::from_manifest(dir.path(), &toml).unwrap_or_else(|e| panic!("{e}\n{toml}"));
+    assert_eq!(ds.recordings.len(), 4);
+    for r in &ds.recordings {
+        let peak = r.samples.force_n.iter().cloned().fold(f64::MIN, f64::max);
+        assert!((peak - 2000.0).abs() < 1e-6, "{}: peak {peak}", r.file);
     }
 }

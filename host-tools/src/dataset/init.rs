@@ -363,11 +363,14 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
 /// `None` when nothing looks inverted or the record is not one-sided.
 fn detect_flip(names: &[String], rows: &[Vec<String>], notes: &mut Vec<String>) -> Option<String> {
     let layout = parse_header(names, "", 1).ok()?;
+    // In internal units (N, mm), as `super::sign` reports them.
     let column = |q: Quantity| -> Option<(usize, Vec<f64>)> {
         let i = layout.iter().position(|c| matches!(c, Some((qq, _)) if *qq == q))?;
+        let scale = layout[i].map_or(1.0, |(_, factor)| factor);
         let values = rows
             .iter()
             .map_while(|r| r.get(i).and_then(|f| f.parse::<f64>().ok()))
+            .map(|v| v * scale)
             .collect();
         Some((i, values))
     };
@@ -415,6 +418,8 @@ struct Found {
     fields: Vec<(String, f64)>,
     /// For a .mat file: its `variables = { … }` line.
     variables: Option<String>,
+    /// A vendor export: its notes and `columns` go with the recording.
+    vendor: bool,
 }
 
 /// The `variables` line of a .mat file: each real vector whose name maps to
@@ -458,7 +463,8 @@ fn sniff_mat(path: &Path, notes: &mut Vec<String>) -> Result<String> {
 }
 
 /// The layout of a vendor export (`super::vendor`): its channels named from
-/// their names and units, `ignore` (listed in `notes`) where that fails.
+/// their names and units, `ignore` (listed in `notes`) where that fails;
+/// `columns` always set, so no `[defaults]` columns apply to it.
 fn sniff_vendor(reader: &super::vendor::VendorReader, path: &Path, bytes: &[u8]) -> Result<Layout> {
     let table = (reader.read)(path, bytes).map_err(|e| anyhow::anyhow!("{e}"))?;
     let mut notes = vec![format!(
@@ -485,7 +491,7 @@ fn sniff_vendor(reader: &super::vendor::VendorReader, path: &Path, bytes: &[u8])
     let sign = detect_flip(&names, &rows, &mut notes);
     Ok(Layout {
         delimiter: Delimiter::Comma,
-        columns: names.iter().any(|n| n == "ignore").then_some(names),
+        columns: Some(names),
         notes,
         sign,
     })
@@ -545,12 +551,14 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
                     },
                     fields,
                     variables: Some(line),
+                    vendor: false,
                 }),
                 Err(e) => skipped.push(format!("{file}: {e:#}")),
             }
             continue;
         }
         let bytes = std::fs::read(&path).unwrap_or_default();
+        let vendor = super::vendor::recognise(&bytes).is_some();
         let sniffed = match super::vendor::recognise(&bytes) {
             Some(reader) => sniff_vendor(reader, &path, &bytes),
             None => sniff(&path, amplitude_mm),
@@ -561,6 +569,7 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
                 layout,
                 fields,
                 variables: None,
+                vendor,
             }),
             Err(e) => skipped.push(format!("{file}: {e:#}")),
         }
@@ -596,7 +605,7 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
 
     // The layout most files share goes to [defaults]; the others set their own.
     let mut counts: Vec<(&Layout, usize)> = Vec::new();
-    for f in found.iter().filter(|f| f.variables.is_none()) {
+    for f in found.iter().filter(|f| f.variables.is_none() && !f.vendor) {
         match counts
             .iter_mut()
             .find(|(l, _)| l.delimiter == f.layout.delimiter && l.columns == f.layout.columns)
@@ -659,13 +668,14 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
     for f in &found {
         let _ = writeln!(s, "\n[[recording]]");
         // A .mat file says its own variables; delimiter and columns do not apply.
-        let own = f.variables.is_none() && !same(&f.layout);
-        if own || f.variables.is_some() {
+        // A vendor file names all its channels itself (never the defaults' `columns`).
+        let own = f.variables.is_none() && !f.vendor && !same(&f.layout);
+        if own || f.variables.is_some() || f.vendor {
             for note in &f.layout.notes {
                 let _ = writeln!(s, "# {note}");
             }
         }
-        if !own && f.variables.is_none() && f.layout.sign.is_some() {
+        if !own && f.variables.is_none() && !f.vendor && f.layout.sign.is_some() {
             for note in f.layout.notes.iter().filter(|n| n.starts_with("assumed:")) {
                 let _ = writeln!(s, "# {note}");
             }
@@ -689,6 +699,9 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
         }
         if let Some(line) = &f.variables {
             let _ = writeln!(s, "{line}");
+        }
+        if let (true, Some(c)) = (f.vendor, &f.layout.columns) {
+            let _ = writeln!(s, "{}", columns_line(c));
         }
         if own {
             if f.layout.delimiter != common.delimiter {
