@@ -230,3 +230,54 @@ fn v73_and_missing_variables_get_clear_errors() {
     let e = load_error(dir.path(), &b"not a mat file at all, just text".repeat(8), vars);
     assert!(e.contains("not a MATLAB v5/v7 MAT-file"), "{e}");
 }
+
+/// The issue's case: a 3001×3 `x_F` holding position (mm), velocity (m/s)
+/// and force (N) column by column; `x_F[:,3]` picks the force.
+#[test]
+fn a_matrix_column_is_picked_as_matlab_numbers_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 3001;
+    let t: Vec<f64> = (0..n).map(|k| k as f64 * 1e-5).collect();
+    let x: Vec<f64> = t.iter().map(|t| 5.0 * (t * 100.0).sin()).collect();
+    let v: Vec<f64> = t.iter().map(|t| 0.5 * (t * 100.0).cos()).collect();
+    let f: Vec<f64> = t.iter().map(|t| 1000.0 * (t * 100.0).sin() + 3.0).collect();
+    // MATLAB stores a matrix column by column: x, then v, then F.
+    let x_f: Vec<f64> = x.iter().chain(&v).chain(&f).cloned().collect();
+    let vars = [("t", n, 1, t.as_slice()), ("x_F", n, 3, x_f.as_slice())];
+    let picks = r#"{ time_s = "t", displacement_mm = "x_F[:,1]", velocity_m_s = "x_F(:,2)", force_n = "x_F[:,3]" }"#;
+    assert_eq!(one_file(dir.path(), &vars, picks), "");
+    let s = Dataset::load(dir.path()).unwrap().recordings.remove(0).samples;
+    assert_eq!(s.x_mm, x);
+    assert_eq!(s.v_m_s, v);
+    assert_eq!(s.force_n, f);
+
+    // A column the matrix does not have, and a bad selection, are said.
+    let e = one_file(
+        dir.path(),
+        &vars,
+        r#"{ time_s = "t", displacement_mm = "x_F[:,1]", force_n = "x_F[:,4]" }"#,
+    );
+    assert!(e.contains("picks column 4") && e.contains("3001×3"), "{e}");
+    let e = one_file(dir.path(), &vars, r#"{ time_s = "t", force_n = "x_F[2,:]" }"#);
+    assert!(e.contains("x_F[2,:]") && e.contains("x_F[:,3]"), "{e}");
+    // The whole matrix for one column: the error shows how to pick one.
+    let e = one_file(dir.path(), &vars, r#"{ time_s = "t", force_n = "x_F" }"#);
+    assert!(e.contains("3001×3") && e.contains("x_F[:,1]"), "{e}");
+}
+
+/// `mre dataset init` on a .mat file it cannot map lists what it found.
+#[test]
+fn init_lists_the_variables_and_shapes_it_cannot_map() {
+    let dir = tempfile::tempdir().unwrap();
+    let t: Vec<f64> = (0..30).map(|k| k as f64 * 1e-3).collect();
+    let x_f: Vec<f64> = (0..90).map(|k| k as f64).collect();
+    std::fs::write(
+        dir.path().join("drop1A.mat"),
+        mat_v5::mat_v5(&[("t", 30, 1, &t), ("x_F", 30, 3, &x_f)]),
+    )
+    .unwrap();
+    let e = mre_host::dataset::init::manifest_for(dir.path(), None, None).unwrap_err();
+    let m = format!("{e:#}");
+    assert!(m.contains("t (30×1)") && m.contains("x_F (30×3)"), "{m}");
+    assert!(m.contains("x_F[:,3]"), "{m}");
+}

@@ -121,3 +121,60 @@ pub fn required_columns(layout: &[Column], path: &str, line: usize) -> Result<()
     }
     Ok(())
 }
+
+/// A header name to a unit-carrying column name, if it can be told:
+/// `Time (ms)` → `time_ms`, `Load [kN]` → `force_kn`, `Axial Force (kN)`
+/// → `force_kn`, `Load (Newtons)` → `force_n`.
+pub fn map_name(raw: &str) -> Option<String> {
+    let lower = raw.trim().to_ascii_lowercase();
+    if parse_header(std::slice::from_ref(&lower), "", 1).is_ok() {
+        return Some(lower);
+    }
+    // Split "Force (kN)", "force[kN]", "Force_kN", "force kn" into word and unit.
+    let cleaned: String = lower
+        .chars()
+        .map(|c| if "()[]{}_,;:".contains(c) { ' ' } else { c })
+        .collect();
+    // "Axial Force" (MTS channel names): the axis says nothing about the quantity.
+    let mut words: Vec<&str> = cleaned.split_whitespace().skip_while(|w| *w == "axial").collect();
+    let unit = if words.len() > 1 { words.pop() } else { None };
+    let word = words.join(" ");
+    let quantity = match word.as_str() {
+        "time" | "t" => "time",
+        "displacement" | "disp" | "position" | "stroke" | "x" | "deflection" | "extension" => "displacement",
+        "velocity" | "vel" | "speed" | "v" => "velocity",
+        "force" | "load" | "f" => "force",
+        "acceleration" | "accel" | "acc" | "a" => "acceleration",
+        "current" | "i" | "coil current" => "current",
+        "temperature" | "temp" => "temperature",
+        _ => return None,
+    };
+    // Spelled-out units (LabVIEW's `Newtons`, MTS's `Sec`) to their symbols.
+    let unit = unit.map(|u| {
+        let u = u.replace(['/', ' '], "_");
+        match u.as_str() {
+            "sec" | "secs" | "second" | "seconds" => "s".to_string(),
+            "newton" | "newtons" => "n".to_string(),
+            "kilonewton" | "kilonewtons" => "kn".to_string(),
+            "meter" | "meters" | "metre" | "metres" => "m".to_string(),
+            "millimeter" | "millimeters" | "millimetre" | "millimetres" => "mm".to_string(),
+            "ampere" | "amperes" | "amps" => "a".to_string(),
+            _ => u,
+        }
+    });
+    let name = match (quantity, unit.as_deref()) {
+        ("time", None | Some("s")) => "time_s",
+        ("time", Some("ms")) => "time_ms",
+        ("displacement", None | Some("mm")) => "displacement_mm",
+        ("displacement", Some("m")) => "displacement_m",
+        ("velocity", None | Some("m_s")) => "velocity_m_s",
+        ("velocity", Some("mm_s")) => "velocity_mm_s",
+        ("acceleration", None | Some("m_s2") | Some("m_s^2")) => "acceleration_m_s2",
+        ("force", None | Some("n")) => "force_n",
+        ("force", Some("kn")) => "force_kn",
+        ("current", None | Some("a")) => "current_a",
+        ("temperature", None | Some("c") | Some("degc") | Some("°c")) => "temperature_c",
+        _ => return None,
+    };
+    Some(name.to_string())
+}

@@ -14,14 +14,17 @@
 //!   from file names, with `x` for the decimal point (`0x5` = 0.5).
 //!   `current_a`, `impact_velocity_m_s`, `temperature_c`, `mass_kg` and
 //!   `sequence` are recording keys; any other name becomes a tag.
+//! - Vendor exports (MTS 793 Specimen.dat, LabVIEW .lvm, NI TDMS:
+//!   `super::vendor`) are told by their content; their channel names and
+//!   units name the columns.
 //! - An existing dataset.toml is never overwritten.
-use super::columns::{parse_header, Quantity};
+use super::columns::{map_name, parse_header, Quantity};
 use anyhow::{bail, Context, Result};
 use std::fmt::Write;
 use std::path::Path;
 
 /// Extensions taken as recordings.
-const DATA_EXTENSIONS: &[&str] = &["txt", "csv", "dat", "tsv", "asc"];
+const DATA_EXTENSIONS: &[&str] = &["txt", "csv", "dat", "tsv", "asc", "lvm", "tdms"];
 /// Pattern names that are recording keys rather than tags.
 const KEYS: &[&str] = &[
     "current_a",
@@ -116,48 +119,6 @@ fn match_pattern(pieces: &[Piece], stem: &str) -> Option<Vec<(String, f64)>> {
         }
     }
     rest.is_empty().then_some(values)
-}
-
-/// A header name to a unit-carrying column name, if it can be told.
-fn map_name(raw: &str) -> Option<String> {
-    let lower = raw.trim().to_ascii_lowercase();
-    if parse_header(std::slice::from_ref(&lower), "", 1).is_ok() {
-        return Some(lower);
-    }
-    // Split "Force (kN)", "force[kN]", "Force_kN", "force kn" into word and unit.
-    let cleaned: String = lower
-        .chars()
-        .map(|c| if "()[]{}_,;:".contains(c) { ' ' } else { c })
-        .collect();
-    let mut words: Vec<&str> = cleaned.split_whitespace().collect();
-    let unit = if words.len() > 1 { words.pop() } else { None };
-    let word = words.join(" ");
-    let quantity = match word.as_str() {
-        "time" | "t" => "time",
-        "displacement" | "disp" | "position" | "stroke" | "x" | "deflection" | "extension" => "displacement",
-        "velocity" | "vel" | "speed" | "v" => "velocity",
-        "force" | "load" | "f" => "force",
-        "acceleration" | "accel" | "acc" | "a" => "acceleration",
-        "current" | "i" | "coil current" => "current",
-        "temperature" | "temp" => "temperature",
-        _ => return None,
-    };
-    let unit = unit.map(|u| u.replace(['/', ' '], "_").replace("sec", "s"));
-    let name = match (quantity, unit.as_deref()) {
-        ("time", None | Some("s")) => "time_s",
-        ("time", Some("ms")) => "time_ms",
-        ("displacement", None | Some("mm")) => "displacement_mm",
-        ("displacement", Some("m")) => "displacement_m",
-        ("velocity", None | Some("m_s")) => "velocity_m_s",
-        ("velocity", Some("mm_s")) => "velocity_mm_s",
-        ("acceleration", None | Some("m_s2") | Some("m_s^2")) => "acceleration_m_s2",
-        ("force", None | Some("n")) => "force_n",
-        ("force", Some("kn")) => "force_kn",
-        ("current", None | Some("a")) => "current_a",
-        ("temperature", None | Some("c") | Some("degc") | Some("°c")) => "temperature_c",
-        _ => return None,
-    };
-    Some(name.to_string())
 }
 
 /// The non-comment, non-blank lines split into fields; the first one
@@ -402,11 +363,14 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
 /// `None` when nothing looks inverted or the record is not one-sided.
 fn detect_flip(names: &[String], rows: &[Vec<String>], notes: &mut Vec<String>) -> Option<String> {
     let layout = parse_header(names, "", 1).ok()?;
+    // In internal units (N, mm), as `super::sign` reports them.
     let column = |q: Quantity| -> Option<(usize, Vec<f64>)> {
         let i = layout.iter().position(|c| matches!(c, Some((qq, _)) if *qq == q))?;
+        let scale = layout[i].map_or(1.0, |(_, factor)| factor);
         let values = rows
             .iter()
             .map_while(|r| r.get(i).and_then(|f| f.parse::<f64>().ok()))
+            .map(|v| v * scale)
             .collect();
         Some((i, values))
     };
@@ -454,6 +418,8 @@ struct Found {
     fields: Vec<(String, f64)>,
     /// For a .mat file: its `variables = { … }` line.
     variables: Option<String>,
+    /// A vendor export: its notes and `columns` go with the recording.
+    vendor: bool,
 }
 
 /// The `variables` line of a .mat file: each real vector whose name maps to
@@ -463,19 +429,72 @@ fn sniff_mat(path: &Path, notes: &mut Vec<String>) -> Result<String> {
     let mat = matfile::MatFile::parse(bytes.as_slice())
         .map_err(|e| anyhow::anyhow!("not a MATLAB v5/v7 MAT-file ({e}); a v7.3 file must be saved with -v7"))?;
     let mut pairs: Vec<(String, String)> = Vec::new();
+    let found: Vec<String> = mat
+        .arrays()
+        .iter()
+        .map(|a| format!("{} ({})", a.name(), super::matlab::shape(a.size())))
+        .collect();
     for a in mat.arrays() {
         let vector = a.size().iter().filter(|&&d| d != 1).count() <= 1;
         match map_name(a.name()).filter(|_| vector) {
             Some(column) if !pairs.iter().any(|(c, _)| *c == column) => pairs.push((column, a.name().to_string())),
-            _ => notes.push(format!("variable `{}` not recognised: not read", a.name())),
+            _ => notes.push(format!(
+                "variable `{}` not recognised ({}): not read",
+                a.name(),
+                super::matlab::shape(a.size())
+            )),
         }
     }
     let names: Vec<String> = pairs.iter().map(|(c, _)| c.clone()).collect();
     let layout = parse_header(&names, &path.display().to_string(), 1).map_err(|e| anyhow::anyhow!("{e}"))?;
-    super::columns::required_columns(&layout, &path.display().to_string(), 1)
-        .map_err(|e| anyhow::anyhow!("{e}; name the variables in `variables = {{ time_s = \"…\", … }}` by hand"))?;
+    super::columns::required_columns(&layout, &path.display().to_string(), 1).map_err(|e| {
+        anyhow::anyhow!(
+            "{e}; the file holds {}; name the variables by hand, a matrix column as in \
+             variables = {{ time_s = \"t\", force_n = \"x_F[:,3]\" }} (docs/dataset-format.md)",
+            if found.is_empty() {
+                "no variables".to_string()
+            } else {
+                found.join(", ")
+            }
+        )
+    })?;
     let inner: Vec<String> = pairs.iter().map(|(c, v)| format!("{c} = {}", toml_string(v))).collect();
     Ok(format!("variables = {{ {} }}", inner.join(", ")))
+}
+
+/// The layout of a vendor export (`super::vendor`): its channels named from
+/// their names and units, `ignore` (listed in `notes`) where that fails;
+/// `columns` always set, so no `[defaults]` columns apply to it.
+fn sniff_vendor(reader: &super::vendor::VendorReader, path: &Path, bytes: &[u8]) -> Result<Layout> {
+    let table = (reader.read)(path, bytes).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let mut notes = vec![format!(
+        "{}: channels {} (names and units from the file)",
+        reader.name,
+        table.channels.join(", ")
+    )];
+    let names: Vec<String> = table
+        .channels
+        .iter()
+        .map(|c| {
+            map_name(c).unwrap_or_else(|| {
+                notes.push(format!("channel `{c}` not recognised: ignored"));
+                "ignore".into()
+            })
+        })
+        .collect();
+    parse_header(&names, &path.display().to_string(), 1).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let rows: Vec<Vec<String>> = table
+        .rows
+        .iter()
+        .map(|(_, cells)| cells.iter().map(|c| c.to_string()).collect())
+        .collect();
+    let sign = detect_flip(&names, &rows, &mut notes);
+    Ok(Layout {
+        delimiter: Delimiter::Comma,
+        columns: Some(names),
+        notes,
+        sign,
+    })
 }
 
 /// The text of `dataset.toml` for the recordings in `dir`.
@@ -532,17 +551,25 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
                     },
                     fields,
                     variables: Some(line),
+                    vendor: false,
                 }),
                 Err(e) => skipped.push(format!("{file}: {e:#}")),
             }
             continue;
         }
-        match sniff(&path, amplitude_mm) {
+        let bytes = std::fs::read(&path).unwrap_or_default();
+        let vendor = super::vendor::recognise(&bytes).is_some();
+        let sniffed = match super::vendor::recognise(&bytes) {
+            Some(reader) => sniff_vendor(reader, &path, &bytes),
+            None => sniff(&path, amplitude_mm),
+        };
+        match sniffed {
             Ok(layout) => found.push(Found {
                 file,
                 layout,
                 fields,
                 variables: None,
+                vendor,
             }),
             Err(e) => skipped.push(format!("{file}: {e:#}")),
         }
@@ -578,7 +605,7 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
 
     // The layout most files share goes to [defaults]; the others set their own.
     let mut counts: Vec<(&Layout, usize)> = Vec::new();
-    for f in found.iter().filter(|f| f.variables.is_none()) {
+    for f in found.iter().filter(|f| f.variables.is_none() && !f.vendor) {
         match counts
             .iter_mut()
             .find(|(l, _)| l.delimiter == f.layout.delimiter && l.columns == f.layout.columns)
@@ -641,13 +668,14 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
     for f in &found {
         let _ = writeln!(s, "\n[[recording]]");
         // A .mat file says its own variables; delimiter and columns do not apply.
-        let own = f.variables.is_none() && !same(&f.layout);
-        if own || f.variables.is_some() {
+        // A vendor file names all its channels itself (never the defaults' `columns`).
+        let own = f.variables.is_none() && !f.vendor && !same(&f.layout);
+        if own || f.variables.is_some() || f.vendor {
             for note in &f.layout.notes {
                 let _ = writeln!(s, "# {note}");
             }
         }
-        if !own && f.variables.is_none() && f.layout.sign.is_some() {
+        if !own && f.variables.is_none() && !f.vendor && f.layout.sign.is_some() {
             for note in f.layout.notes.iter().filter(|n| n.starts_with("assumed:")) {
                 let _ = writeln!(s, "# {note}");
             }
@@ -671,6 +699,9 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
         }
         if let Some(line) = &f.variables {
             let _ = writeln!(s, "{line}");
+        }
+        if let (true, Some(c)) = (f.vendor, &f.layout.columns) {
+            let _ = writeln!(s, "{}", columns_line(c));
         }
         if own {
             if f.layout.delimiter != common.delimiter {

@@ -2,7 +2,8 @@
 //! `variables = { time_s = "t", displacement_mm = "x", force_n = "F" }`
 //! (unit-named column = variable name). Read through the `matfile` crate
 //! (MAT v5 and v7, compressed or not); each variable must be a real numeric
-//! vector (one row or one column), all of one length. The samples then go
+//! vector (one row or one column), or a column picked from a matrix as
+//! `x_F[:,3]` (MATLAB's `x_F(:,3)` too; counted from 1), all of one length. The samples then go
 //! through the same checks and unit conversions as a CSV file's, with the
 //! sample number as the "line" of an error.
 //!
@@ -47,6 +48,26 @@ fn to_f64(data: &matfile::NumericData) -> Option<Vec<f64>> {
     }
 }
 
+/// A variable's shape as MATLAB prints it (`3001×3`).
+pub(super) fn shape(size: &[usize]) -> String {
+    let dims: Vec<String> = size.iter().map(|d| d.to_string()).collect();
+    dims.join("×")
+}
+
+/// `x_F` → (`x_F`, None); `x_F[:,3]` or `x_F(:,3)` → (`x_F`, Some(3)): a
+/// column, counted from 1 as MATLAB counts.
+fn parse_selection(spec: &str) -> Option<(&str, Option<usize>)> {
+    let spec = spec.trim();
+    let Some(open) = spec.find(['[', '(']) else {
+        return (!spec.is_empty()).then_some((spec, None));
+    };
+    let close = if spec[open..].starts_with('[') { ']' } else { ')' };
+    let inner = spec[open + 1..].strip_suffix(close)?;
+    let (rows, col) = inner.split_once(',')?;
+    let k: usize = col.trim().parse().ok()?;
+    (rows.trim() == ":" && k >= 1 && open > 0).then_some((spec[..open].trim(), Some(k)))
+}
+
 /// Reads the `variables` of a .mat file as samples. `mpath`/`line` locate
 /// the `variables` setting in dataset.toml, for errors about it.
 pub(super) fn read_samples(
@@ -76,7 +97,12 @@ pub(super) fn read_samples(
     let file = path.file_name().unwrap_or_default().to_string_lossy();
     let mut names = Vec::with_capacity(variables.len());
     let mut columns: Vec<(&str, Vec<f64>)> = Vec::with_capacity(variables.len());
-    for (column, var) in variables {
+    for (column, spec) in variables {
+        let (var, pick) = parse_selection(spec).ok_or_else(|| {
+            setting(format!(
+                "`{spec}` (for {column}) is not a variable name or a column of one such as `x_F[:,3]`"
+            ))
+        })?;
         let Some(array) = mat.find_by_name(var) else {
             let have: Vec<&str> = mat.arrays().iter().map(|a| a.name()).collect();
             return Err(setting(format!(
@@ -89,15 +115,36 @@ pub(super) fn read_samples(
             )));
         };
         let size = array.size();
-        if size.iter().filter(|&&d| d != 1).count() > 1 {
-            let shape: Vec<String> = size.iter().map(|d| d.to_string()).collect();
-            return Err(setting(format!(
-                "`{file}`: variable `{var}` (for {column}) is {}; a column needs a vector (one row or one column)",
-                shape.join("×")
-            )));
-        }
         let values = to_f64(array.data())
             .ok_or_else(|| setting(format!("`{file}`: variable `{var}` (for {column}) is complex")))?;
+        let values = match pick {
+            Some(k) => {
+                let (&[rows, cols], true) = (size.as_slice(), (1..=size.get(1).copied().unwrap_or(0)).contains(&k))
+                else {
+                    return Err(setting(format!(
+                        "`{file}`: `{spec}` (for {column}) picks column {k} of `{var}`, which is {}",
+                        shape(size)
+                    )));
+                };
+                // MATLAB stores a matrix column by column.
+                match values.get((k - 1) * rows..k * rows) {
+                    Some(column) if values.len() == rows * cols => column.to_vec(),
+                    _ => {
+                        return Err(setting(format!(
+                            "`{file}`: variable `{var}` holds fewer values than its shape"
+                        )))
+                    }
+                }
+            }
+            None => values,
+        };
+        if pick.is_none() && size.iter().filter(|&&d| d != 1).count() > 1 {
+            return Err(setting(format!(
+                "`{file}`: variable `{var}` (for {column}) is {}; a column needs a vector (one row or one column), \
+                 or pick one of its columns: {column} = \"{var}[:,1]\"",
+                shape(size)
+            )));
+        }
         if let Some((first, v0)) = columns.first() {
             if v0.len() != values.len() {
                 return Err(setting(format!(
@@ -108,7 +155,7 @@ pub(super) fn read_samples(
             }
         }
         names.push(column.clone());
-        columns.push((var.as_str(), values));
+        columns.push((spec.as_str(), values));
     }
     let n = columns.first().map_or(0, |(_, v)| v.len());
     let rows = (0..n).map(|k| (k + 1, columns.iter().map(|(_, c)| Cell::Number(c[k])).collect()));
@@ -123,6 +170,17 @@ pub(super) mod mat_v5;
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn columns_are_picked_as_matlab_writes_them() {
+        assert_eq!(parse_selection("x_F[:,3]"), Some(("x_F", Some(3))));
+        assert_eq!(parse_selection(" x_F(:, 2) "), Some(("x_F", Some(2))));
+        assert_eq!(parse_selection("F"), Some(("F", None)));
+        assert_eq!(parse_selection("x_F[:,0]"), None);
+        assert_eq!(parse_selection("x_F[1,:]"), None);
+        assert_eq!(parse_selection("x_F[:,3"), None);
+        assert_eq!(parse_selection("[:,3]"), None);
+    }
 
     #[test]
     fn v73_is_told_from_its_header() {

@@ -9,11 +9,15 @@ pub mod columns;
 pub mod error;
 pub mod hash;
 pub mod init;
+pub mod lvm;
 pub mod matlab;
 pub mod motion;
+pub mod mts;
 pub mod read;
 pub mod sign;
+pub mod tdms;
 pub mod velocity;
+pub mod vendor;
 
 pub use branches::{split_branches, split_pooled, BranchSamples};
 pub use error::DatasetError;

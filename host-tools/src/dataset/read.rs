@@ -522,13 +522,24 @@ fn read_samples(
         path: dpath.clone(),
         reason: e.to_string(),
     })?;
+    if let Some(reader) = super::vendor::recognise(&bytes) {
+        let (names, line) = match columns {
+            Some(c) => (Some(c.get_ref().as_slice()), line_of(manifest_text, c.span().start)),
+            None => (None, 1),
+        };
+        return super::vendor::read_samples(reader, path, &bytes, names, mpath, line);
+    }
     parse_samples(&bytes, delimiter, columns, &dpath, mpath, manifest_text)
 }
 
-/// Parses one recording file with a header row, as [`Dataset::load`] does
-/// (`whitespace`: the `delimiter = "whitespace"` format). `path` names the
-/// file in errors.
+/// Parses one recording file with a header row, or a vendor export
+/// (`super::vendor`), as [`Dataset::load`] does (`whitespace`: the
+/// `delimiter = "whitespace"` format). `path` names the file in errors (a
+/// TDMS file is read from it).
 pub fn parse_recording(bytes: &[u8], whitespace: bool, path: &str) -> Result<Samples, DatasetError> {
+    if let Some(reader) = super::vendor::recognise(bytes) {
+        return super::vendor::read_samples(reader, Path::new(path), bytes, None, "", 0).map(|(samples, _)| samples);
+    }
     let delimiter = if whitespace {
         Delimiter::Whitespace
     } else {
@@ -582,7 +593,7 @@ fn parse_samples(
 
 /// One field of a recording: text from a CSV file, or a number from a
 /// MATLAB file (already binary).
-pub(super) enum Cell {
+pub enum Cell {
     Text(String),
     Number(f64),
 }

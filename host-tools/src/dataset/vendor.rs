@@ -1,0 +1,109 @@
+//! Vendor exports that are not a plain table (docs/dataset-format.md,
+//! vendor layouts): each format is one file with a [`VendorReader`], listed
+//! once in [`READERS`]. A reader recognises its files by their content and
+//! turns one into a [`Table`]: channel names with their units, and rows of
+//! values. The dispatch then names the columns (`columns` in dataset.toml,
+//! else from the channel names and units) and checks and converts the rows
+//! as it does a CSV file's.
+use super::columns::map_name;
+use super::error::DatasetError;
+use super::read::{samples_from_rows, Cell};
+use super::Samples;
+use std::path::Path;
+
+/// One vendor format.
+pub struct VendorReader {
+    /// As the vendor names it, for messages and `mre dataset init`.
+    pub name: &'static str,
+    /// True when the bytes are this format's (a signature, never the extension).
+    pub recognises: fn(&[u8]) -> bool,
+    /// Reads the file; `path` names it in errors (and is opened by formats
+    /// whose crate reads from a path).
+    pub read: fn(&Path, &[u8]) -> Result<Table, DatasetError>,
+}
+
+/// A vendor file's channels and rows, before any unit conversion.
+pub struct Table {
+    /// Each channel as `Name (unit)`, e.g. `Axial Force (kN)`.
+    pub channels: Vec<String>,
+    /// Line (or sample number, for a binary file) of the names, for errors.
+    pub names_line: usize,
+    /// (line or sample number, one cell per channel).
+    pub rows: Vec<(usize, Vec<Cell>)>,
+}
+
+/// Every vendor format mre reads: registering a new one is one line here.
+pub const READERS: &[VendorReader] = &[super::mts::READER, super::lvm::READER, super::tdms::READER];
+
+/// The reader for these bytes, if a vendor format's.
+pub fn recognise(bytes: &[u8]) -> Option<&'static VendorReader> {
+    READERS.iter().find(|r| (r.recognises)(bytes))
+}
+
+/// The unit-carrying names of a table's channels; `Err` names the first
+/// channel that cannot be told.
+pub fn column_names(table: &Table) -> Result<Vec<String>, String> {
+    table
+        .channels
+        .iter()
+        .map(|c| map_name(c).ok_or_else(|| c.clone()))
+        .collect()
+}
+
+/// Samples of a vendor file. `columns` (from dataset.toml, located at
+/// `mpath`:`columns_line`) names the channels in file order; without it the
+/// names come from the file's channel names and units.
+pub fn read_samples(
+    reader: &VendorReader,
+    path: &Path,
+    bytes: &[u8],
+    columns: Option<&[String]>,
+    mpath: &str,
+    columns_line: usize,
+) -> Result<(Samples, bool), DatasetError> {
+    let dpath = path.display().to_string();
+    let table = (reader.read)(path, bytes)?;
+    let (names, name_path, name_line) = match columns {
+        Some(c) => (c.to_vec(), mpath, columns_line),
+        None => {
+            let names = column_names(&table).map_err(|channel| DatasetError::BadRecord {
+                path: dpath.clone(),
+                line: table.names_line,
+                message: format!(
+                    "{} channel `{channel}`: no column name mre knows for it (docs/dataset-format.md); \
+                     name the channels in dataset.toml, e.g. columns = [\"time_s\", \"force_kn\", \"ignore\"]",
+                    reader.name
+                ),
+            })?;
+            (names, dpath.as_str(), table.names_line)
+        }
+    };
+    if names.len() != table.channels.len() {
+        return Err(DatasetError::Manifest {
+            path: mpath.to_string(),
+            line: columns_line,
+            message: format!(
+                "`columns` names {} columns but the {} file `{dpath}` has {} channels: {}",
+                names.len(),
+                reader.name,
+                table.channels.len(),
+                table.channels.join(", ")
+            ),
+        });
+    }
+    samples_from_rows(&dpath, &names, name_path, name_line, table.rows.into_iter())
+}
+
+/// A number written with `decimal` as its decimal separator, as a cell
+/// (text, so a bad value is reported as written).
+pub fn cell(text: &str, decimal: char) -> Cell {
+    let t = text.trim();
+    if decimal == '.' {
+        Cell::Text(t.to_string())
+    } else {
+        match t.replace(decimal, ".").parse::<f64>() {
+            Ok(v) => Cell::Number(v),
+            Err(_) => Cell::Text(t.to_string()),
+        }
+    }
+}
