@@ -100,6 +100,9 @@ impl Term for HysteresisMemory {
         }
         out
     }
+    fn wrong_sign(&self, name: &str, value: f64) -> Option<&'static str> {
+        (name.starts_with("f_yield_at_") && value < 0.0).then_some("a yield force below zero pushes along the motion")
+    }
     fn searched(&self) -> &'static [&'static str] {
         &["v0_m_s", "delta_mm"]
     }

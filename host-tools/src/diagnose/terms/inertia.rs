@@ -58,6 +58,9 @@ impl Term for Inertia {
             .into_iter()
             .collect()
     }
+    fn wrong_sign(&self, name: &str, value: f64) -> Option<&'static str> {
+        (name == "m_s_kg" && value < 0.0).then_some("a mass below zero")
+    }
     fn signature(&self) -> &'static [&'static str] {
         &["acceleration"]
     }

@@ -124,6 +124,11 @@ pub trait Term: Sync {
     }
     /// Its parameters in a fitted model.
     fn parameters(&self, prep: &Prepared, layout: &Layout, t: &Terms, sol: &Solution) -> Vec<Value>;
+    /// Why a fitted value of parameter `name` is unphysical (a wrong sign),
+    /// or `None` when it is not; reported with the parameter.
+    fn wrong_sign(&self, _name: &str, _value: f64) -> Option<&'static str> {
+        None
+    }
     /// Parameters chosen by the variant search (their intervals re-choose
     /// among the variants); the rest are solved.
     fn searched(&self) -> &'static [&'static str] {

@@ -82,6 +82,10 @@ impl Term for ViscousDamping {
         }
         out
     }
+    fn wrong_sign(&self, name: &str, value: f64) -> Option<&'static str> {
+        (name.starts_with("c_at_") && value < 0.0)
+            .then_some("a damping coefficient below zero feeds energy in at this current")
+    }
     fn searched(&self) -> &'static [&'static str] {
         &["v0_m_s"]
     }
