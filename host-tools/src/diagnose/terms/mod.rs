@@ -154,3 +154,42 @@ pub fn describe(t: &Terms) -> String {
         format!("the paper's model with {}", parts.join(", "))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_vocabulary_effect_but_none_has_exactly_one_term() {
+        for e in Effect::VOCABULARY {
+            let n = REGISTRY.iter().filter(|t| t.effect() == e).count();
+            assert_eq!(n, usize::from(e != Effect::None), "{}", e.name());
+        }
+        // One reference term, tested before the candidates.
+        assert_eq!(REGISTRY.iter().filter(|t| t.is_reference()).count(), 1);
+    }
+
+    #[test]
+    fn a_model_is_described_in_words_not_as_a_struct() {
+        assert_eq!(describe(&Terms::default()), "the paper's model");
+        let t = Terms {
+            delay_s: Some(2.5e-3),
+            inertia: true,
+            ..Terms::default()
+        };
+        assert_eq!(describe(&t), "the paper's model with a sensor delay of 2.500 ms, inertia");
+    }
+
+    #[test]
+    fn wrong_signs_are_named_for_damping_yield_and_mass_only() {
+        let viscous = of(Effect::ViscousDamping).unwrap();
+        assert!(viscous.wrong_sign("c_at_0a_n_s_per_m", -1.0).is_some());
+        assert!(viscous.wrong_sign("c_at_0a_n_s_per_m", 1.0).is_none());
+        assert!(viscous.wrong_sign("v0_m_s", -1.0).is_none());
+        let memory = of(Effect::HysteresisMemory).unwrap();
+        assert!(memory.wrong_sign("f_yield_at_1a_n", -120.0).is_some());
+        assert!(of(Effect::Inertia).unwrap().wrong_sign("m_s_kg", -0.1).is_some());
+        // A lead is a legitimate delay sign.
+        assert!(of(Effect::SensorDelay).unwrap().wrong_sign("tau_s", -1e-3).is_none());
+    }
+}
