@@ -104,6 +104,8 @@ pub struct Diagnosis {
     /// Where the final residual is still concentrated, beyond the noise.
     pub unexplained: Vec<unexplained::Unexplained>,
     pub thresholds: Thresholds,
+    /// Bootstrap resamples behind the parameter intervals.
+    pub parameter_resamples: usize,
 }
 
 /// In-sample predictions of a scored model for every recording.
@@ -210,6 +212,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
         scored_mask,
         unexplained,
         thresholds: opts.thresholds,
+        parameter_resamples: opts.parameter_resamples,
     })
 }
 

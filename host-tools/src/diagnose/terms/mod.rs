@@ -177,7 +177,10 @@ mod tests {
             inertia: true,
             ..Terms::default()
         };
-        assert_eq!(describe(&t), "the paper's model with a sensor delay of 2.500 ms, inertia");
+        assert_eq!(
+            describe(&t),
+            "the paper's model with a sensor delay of 2.500 ms, inertia"
+        );
     }
 
     #[test]
