@@ -641,7 +641,7 @@ fn run(cli: Cli) -> Result<()> {
             let mut opts = mre_host::diagnose::options_from_cli(None, folds_by, 5, validate_current, seed)?;
             opts.thresholds = opts.thresholds.with_overrides(&rules)?;
             let ds = mre_host::dataset::Dataset::load(&real)?;
-            let summary = mre_host::diagnose::bench_real::run_real_bench(&ds, cases, seed, &only, &opts, |c| {
+            let summary = mre_host::diagnose_bench::real::run_real_bench(&ds, cases, seed, &only, &opts, |c| {
                 eprintln!(
                     "case {:>3}: {} at {:.1} % {:?}: found {:?} ({:.2} s); oracle {:?}; tested {:?}",
                     c.case + 1,
@@ -655,7 +655,7 @@ fn run(cli: Cli) -> Result<()> {
                 )
             })?;
             print_summary(
-                &mre_host::diagnose::bench_real::format_real_summary(&summary),
+                &mre_host::diagnose_bench::real::format_real_summary(&summary),
                 &summary,
                 json,
             )?;
@@ -670,23 +670,28 @@ fn run(cli: Cli) -> Result<()> {
         } => {
             let opts = mre_host::diagnose::DiagnoseOptions::default();
             let progress = mre_host::progress::bar((cases + mts_cases + inst) as u64, "cases");
-            let summary = mre_host::diagnose::bench::run_bench(cases, mts_cases, inst, seed, &opts, |k, c| {
-                progress.inc();
-                progress.println(&format!(
-                    "case {:>3} seed {}: truth {:<20} diagnosed {:?} ({:.2} s); first round {:?}",
-                    k + 1,
-                    c.seed,
-                    c.truth,
-                    mre_host::vocabulary::names(&c.found),
-                    c.seconds,
-                    c.first_round
-                        .iter()
-                        .map(|(n, r)| format!("{n} {r:.3}"))
-                        .collect::<Vec<_>>()
-                ))
-            })?;
+            let summary =
+                mre_host::diagnose_bench::simulated::run_bench(cases, mts_cases, inst, seed, &opts, |k, c| {
+                    progress.inc();
+                    progress.println(&format!(
+                        "case {:>3} seed {}: truth {:<20} diagnosed {:?} ({:.2} s); first round {:?}",
+                        k + 1,
+                        c.seed,
+                        c.truth,
+                        mre_host::vocabulary::names(&c.found),
+                        c.seconds,
+                        c.first_round
+                            .iter()
+                            .map(|(n, r)| format!("{n} {r:.3}"))
+                            .collect::<Vec<_>>()
+                    ))
+                })?;
             std::mem::drop(progress);
-            print_summary(&mre_host::diagnose::bench::format_summary(&summary), &summary, json)?;
+            print_summary(
+                &mre_host::diagnose_bench::simulated::format_summary(&summary),
+                &summary,
+                json,
+            )?;
         }
         Command::Compare {
             dataset,

@@ -25,8 +25,8 @@ pub enum Effect {
 }
 
 impl Effect {
-    /// Every word, in declaration order. (Not `ALL`: diagnose's candidate
-    /// list is [`Effect::CANDIDATES`].)
+    /// Every word, in declaration order. (Not `ALL`: diagnose's candidates
+    /// are the terms registered in `diagnose::terms::REGISTRY`.)
     pub const VOCABULARY: [Effect; 9] = [
         Effect::ViscousDamping,
         Effect::SensorDelay,

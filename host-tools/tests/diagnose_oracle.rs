@@ -1,4 +1,4 @@
-//! The real-data benchmark's oracle (`diagnose::oracle`): the reference
+//! The real-data benchmark's oracle (`diagnose_bench::oracle`): the reference
 //! model given the true injected force as a column with a free amplitude.
 //! On a set whose only misfit is that column plus a pattern no column can
 //! follow, the held-out ratio is known by hand; on `none` it is 1.
@@ -6,9 +6,9 @@ mod diagnose_support;
 
 use mre_host::dataset::{Dataset, Role, Samples};
 use mre_host::diagnose::design::Terms;
-use mre_host::diagnose::oracle::{oracle, Amplitude};
 use mre_host::diagnose::prepared::{prepare, FoldPlan};
 use mre_host::diagnose::select::Thresholds;
+use mre_host::diagnose_bench::oracle::{oracle, Amplitude};
 use mre_host::vocabulary::Effect;
 use std::f64::consts::PI;
 
@@ -90,7 +90,7 @@ fn set(added: &dyn Fn(Role, usize) -> f64) -> (Dataset, Vec<Vec<f64>>) {
     )
 }
 
-fn run(added: &dyn Fn(Role, usize) -> f64, effect: Effect) -> mre_host::diagnose::oracle::Oracle {
+fn run(added: &dyn Fn(Role, usize) -> f64, effect: Effect) -> mre_host::diagnose_bench::oracle::Oracle {
     let (ds, injected) = set(added);
     let prep = prepare(&ds, &FoldPlan::Stratified { k: 3 }, &[]).unwrap();
     oracle(

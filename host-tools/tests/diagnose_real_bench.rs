@@ -4,8 +4,8 @@
 mod diagnose_support;
 
 use mre_host::dataset::{Dataset, Samples};
-use mre_host::diagnose::bench_real::{acceleration_from_x, added_force_n, force_rms_n, inject};
 use mre_host::diagnose::DiagnoseOptions;
+use mre_host::diagnose_bench::real::{acceleration_from_x, added_force_n, force_rms_n, inject};
 use mre_host::vocabulary::Effect;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

@@ -16,7 +16,9 @@
 //! solve each, and a constant row scale `s_r` just scales `R_A`.
 use super::prepared::{Prepared, Rec};
 use super::signals::{current_weights, sample_at};
+use super::terms::{Block, Sample, Term, REGISTRY};
 use crate::linalg;
+use crate::vocabulary::Effect;
 use anyhow::Result;
 use nalgebra::{DMatrix, DVector};
 
@@ -192,40 +194,84 @@ pub struct Terms {
     pub friction_v0_m_s: Option<f64>,
 }
 
-/// Global column layout of a [`Terms`] over a table of currents.
+/// One term's block of columns in a [`Layout`].
+#[derive(Clone, Copy)]
+pub struct Placed {
+    pub term: &'static dyn Term,
+    /// Which of the term's [`Term::blocks`].
+    pub index: usize,
+    pub block: Block,
+    /// First global column.
+    pub at: usize,
+}
+
+impl std::fmt::Debug for Placed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} block {} ({:?}) at {}",
+            self.term.effect().name(),
+            self.index,
+            self.block,
+            self.at
+        )
+    }
+}
+
+/// Global column layout of a [`Terms`] over a table of currents: the
+/// quartics, then each registered term's blocks in registry order.
 #[derive(Clone, Debug)]
 pub struct Layout {
     pub n_currents: usize,
+    pub blocks: Vec<Placed>,
+    /// The viscous and end stop blocks (read by the model writer).
     pub viscous_at: Option<usize>,
     pub end_stop_at: Option<usize>,
-    pub inertia_at: Option<usize>,
     pub memory_at: Option<usize>,
-    pub friction_at: Option<usize>,
     pub n_cols: usize,
 }
 
 impl Layout {
     pub fn new(n_currents: usize, terms: &Terms) -> Self {
         let mut n = n_currents * 2 * QUARTIC_TERMS;
-        let mut next = |w: usize| {
-            let at = n;
-            n += w;
-            at
+        let mut blocks = Vec::new();
+        for &term in REGISTRY {
+            for (index, block) in term.blocks(terms).into_iter().enumerate() {
+                blocks.push(Placed {
+                    term,
+                    index,
+                    block,
+                    at: n,
+                });
+                n += match block {
+                    Block::PerCurrent => n_currents,
+                    Block::Global => 1,
+                    Block::MemoryBasis => 2 * MEMORY_TERMS * n_currents,
+                };
+            }
+        }
+        let at = |e: Effect, block: Block| {
+            blocks
+                .iter()
+                .find(|p| p.term.effect() == e && p.block == block)
+                .map(|p| p.at)
         };
-        let viscous_at = terms.viscous.map(|_| next(n_currents));
-        let end_stop_at = terms.end_stop_x_mm.map(|_| next(n_currents));
-        let inertia_at = terms.inertia.then(|| next(1));
-        let memory_at = terms.memory_mm.map(|_| next(2 * MEMORY_TERMS * n_currents));
-        let friction_at = terms.friction_v0_m_s.map(|_| next(n_currents));
         Layout {
             n_currents,
-            viscous_at,
-            end_stop_at,
-            inertia_at,
-            memory_at,
-            friction_at,
+            viscous_at: at(Effect::ViscousDamping, Block::PerCurrent),
+            end_stop_at: at(Effect::EndStop, Block::PerCurrent),
+            memory_at: at(Effect::HysteresisMemory, Block::MemoryBasis),
+            blocks,
             n_cols: n,
         }
+    }
+
+    /// First column of block `index` of `effect`'s term.
+    pub fn at(&self, effect: Effect, index: usize) -> Option<usize> {
+        self.blocks
+            .iter()
+            .find(|p| p.term.effect() == effect && p.index == index)
+            .map(|p| p.at)
     }
 
     pub fn quartic_col(&self, current: usize, compression: bool, power: usize) -> usize {
@@ -368,22 +414,23 @@ impl Designs {
         // Columns no training recording touches (e.g. an end stop nobody
         // reached) are left out and get a zero coefficient.
         let mut used: Vec<usize> = (0..p).filter(|&c| a.column(c).iter().any(|v| *v != 0.0)).collect();
-        // An end stop only pushes back (k_e ≥ 0 at every current): a current
-        // whose stop coefficient comes out negative is refitted without it.
-        // Unconstrained, the 1 A tests of the real MR damper fit k_e < 0 (their
-        // own misfit at the stroke ends), which made a true stop's prediction
-        // worse there.
-        let stop_cols = self
+        // A term whose coefficients are physically ≥ 0 ([`Term::nonnegative`],
+        // an end stop): a current whose coefficient comes out negative is
+        // refitted without it.
+        let nonnegative: Vec<usize> = self
             .layout
-            .end_stop_at
-            .map_or(0..0, |at| at..at + self.layout.n_currents);
+            .blocks
+            .iter()
+            .filter(|p| p.term.nonnegative() && p.block == Block::PerCurrent)
+            .flat_map(|p| p.at..p.at + self.layout.n_currents)
+            .collect();
         loop {
             let ls = linalg::solve(&a.select_columns(&used), &y)?;
             let mut beta = vec![0.0; p];
             for (k, &c) in used.iter().enumerate() {
                 beta[c] = ls.coeffs[k];
             }
-            let negative: Vec<usize> = stop_cols.clone().filter(|&c| beta[c] < 0.0).collect();
+            let negative: Vec<usize> = nonnegative.iter().copied().filter(|&c| beta[c] < 0.0).collect();
             if negative.is_empty() {
                 return Ok(Solution {
                     beta,
@@ -444,27 +491,6 @@ impl Designs {
         Ok(if fa.sse < fb.sse { fa } else { fb })
     }
 
-    /// The same model with one more column, `column[i][t]` at sample t of
-    /// recording i, and a free coefficient (the last): the real-data
-    /// benchmark's oracle gives the true injected force this way. A
-    /// recording whose column is all zero keeps its design.
-    pub fn with_column(&self, prep: &Prepared, column: &[Vec<f64>]) -> Designs {
-        let mut out = self.clone();
-        let at = out.layout.n_cols;
-        out.layout.n_cols += 1;
-        for ((d, rec), col) in out.recs.iter_mut().zip(&prep.recs).zip(column) {
-            if col.iter().all(|v| *v == 0.0) || col.len() != d.a.nrows() {
-                continue;
-            }
-            let n = d.cols.len();
-            d.a = std::mem::replace(&mut d.a, DMatrix::zeros(0, 0)).insert_column(n, 0.0);
-            d.a.set_column(n, &DVector::from_column_slice(col));
-            d.cols.push(at);
-            (d.r_a, d.r_y) = compress(rec, &d.a, &d.mask);
-        }
-        out
-    }
-
     /// Predicted force of recording `i`.
     pub fn predict(&self, prep: &Prepared, i: usize, sol: &Solution) -> Vec<f64> {
         let s = match self.terms.softening {
@@ -509,14 +535,8 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
                 cols.push(layout.quartic_col(k, comp, p));
             }
         }
-        if let Some(at) = layout.viscous_at {
-            cols.push(at + k);
-        }
-        if let Some(at) = layout.friction_at {
-            cols.push(at + k);
-        }
-        if let Some(at) = layout.end_stop_at {
-            cols.push(at + k);
+        for p in layout.blocks.iter().filter(|p| p.block == Block::PerCurrent) {
+            cols.push(p.at + k);
         }
     }
     for comp in [true, false] {
@@ -526,7 +546,7 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
             }
         }
     }
-    cols.extend(layout.inertia_at);
+    cols.extend(layout.blocks.iter().filter(|p| p.block == Block::Global).map(|p| p.at));
     cols.sort_unstable();
     cols.dedup();
     let local = |c: usize| cols.binary_search(&c).unwrap_or(0);
@@ -554,8 +574,15 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
     let memory = terms
         .memory_mm
         .map(|_| memory_feature_on_branches(&rec.time_s, &xs, &vs, rec.branch_band_m_s()));
+    let per_current: Vec<&Placed> = layout.blocks.iter().filter(|p| p.block == Block::PerCurrent).collect();
+    let global: Vec<&Placed> = layout.blocks.iter().filter(|p| p.block == Block::Global).collect();
     for t in 0..n {
         let (x, v, acc) = (xs[t], vs[t], accs[t]);
+        let sample = Sample {
+            x_mm: x,
+            v_m_s: v,
+            a_m_s2: acc,
+        };
         let comp = v > 0.0;
         let weights = &weights_at[t.min(weights_at.len() - 1)];
         for &(k, w) in weights {
@@ -567,18 +594,8 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
                 a[(t, local(layout.quartic_col(k, comp, p)))] += xp;
                 xp *= x;
             }
-            if let (Some(at), Some(visc)) = (layout.viscous_at, terms.viscous) {
-                let phi = match visc {
-                    Viscous::Linear => v,
-                    Viscous::Saturating { v0_m_s } => v0_m_s * (v / v0_m_s).tanh(),
-                };
-                a[(t, local(at + k))] += w * phi;
-            }
-            if let (Some(at), Some(v0)) = (layout.friction_at, terms.friction_v0_m_s) {
-                a[(t, local(at + k))] += w * (v / v0).tanh();
-            }
-            if let (Some(at), Some(xe)) = (layout.end_stop_at, terms.end_stop_x_mm) {
-                a[(t, local(at + k))] += w * end_stop_shape(x, xe, terms.end_stop_lower);
+            for p in &per_current {
+                a[(t, local(p.at + k))] += w * p.term.shape(terms, p.index, &sample);
             }
         }
         if let (Some((m, dir)), Some(delta)) = (&memory, terms.memory_mm) {
@@ -611,8 +628,8 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
                 }
             }
         }
-        if let Some(at) = layout.inertia_at {
-            a[(t, local(at))] = acc;
+        for p in &global {
+            a[(t, local(p.at))] = p.term.shape(terms, p.index, &sample);
         }
     }
     // Keep only the columns this recording touches (e.g. no compression
@@ -641,7 +658,7 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
 
 /// The R factor of the QR of `[A | y]` over the masked samples of a fit
 /// recording (validate recordings are never fitted: `None`).
-fn compress(rec: &Rec, a: &DMatrix<f64>, mask: &[bool]) -> (Option<DMatrix<f64>>, Option<DVector<f64>>) {
+pub fn compress(rec: &Rec, a: &DMatrix<f64>, mask: &[bool]) -> (Option<DMatrix<f64>>, Option<DVector<f64>>) {
     if !rec.is_fit() {
         return (None, None);
     }

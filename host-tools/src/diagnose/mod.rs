@@ -5,18 +5,16 @@
 //! Stages, each using only those before it: [`prepared`] (channels, folds,
 //! branches; on the primitives of [`signals`]) → [`baseline`] (the paper's
 //! model) → [`locate`] (where the residual sits) → [`candidates`] (one term
-//! per word of [`crate::vocabulary`], built by [`design`]) → [`select`]
+//! per word of [`crate::vocabulary`], each a plug-in of [`terms`], built by
+//! [`design`]) → [`select`]
 //! (forward selection on held-out data, judged by [`support`]) →
 //! [`parameters`] (values and intervals) → [`report`] (with what stays
 //! [`unexplained`]).
 pub mod baseline;
-pub mod bench;
-pub mod bench_real;
 pub mod candidates;
 pub mod design;
 pub mod locate;
 pub mod model_out;
-pub mod oracle;
 pub mod parameters;
 pub mod plots;
 pub mod prepared;
@@ -25,6 +23,7 @@ pub mod scale;
 pub mod select;
 pub mod signals;
 pub mod support;
+pub mod terms;
 pub mod unexplained;
 
 use crate::dataset::Dataset;
@@ -105,6 +104,8 @@ pub struct Diagnosis {
     /// Where the final residual is still concentrated, beyond the noise.
     pub unexplained: Vec<unexplained::Unexplained>,
     pub thresholds: Thresholds,
+    /// Bootstrap resamples behind the parameter intervals.
+    pub parameter_resamples: usize,
 }
 
 /// In-sample predictions of a scored model for every recording.
@@ -211,22 +212,8 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
         scored_mask,
         unexplained,
         thresholds: opts.thresholds,
+        parameter_resamples: opts.parameter_resamples,
     })
-}
-
-/// The covariate an effect's signature follows, as named by [`locate`].
-fn signature_of(effect: Effect) -> &'static str {
-    match effect {
-        Effect::ViscousDamping => "velocity",
-        Effect::SensorDelay => "model force rate dF/dt (time shift)",
-        Effect::StressSoftening => "sequence",
-        Effect::EndStop => "displacement beyond 80 % of the largest stroke",
-        Effect::MagneticSaturation => "current_a",
-        Effect::Inertia => "acceleration",
-        Effect::CoilLag => locate::CURRENT_NOT_FOLLOWED,
-        Effect::HysteresisMemory => "peak stroke",
-        Effect::None => "nothing (no model term)",
-    }
 }
 
 fn evidence_for(
@@ -256,12 +243,13 @@ fn evidence_for(
         .take(3)
         .map(|(rms, f, c)| format!("{f} ({c} A, {rms:.0} N RMS)"))
         .collect();
-    let sig = signature_of(effect);
+    // The covariates the effect's signature follows, as named by [`locate`].
+    let sig = terms::of(effect).map_or(&[][..], |t| t.signature());
     let follows = loc
         .sample_correlations
         .iter()
         .chain(&loc.recording_correlations)
-        .find(|(n, _)| n == sig || (effect == Effect::StressSoftening && n == "temperature_c"))
+        .find(|(n, _)| sig.contains(&n.as_str()))
         .map(|(n, r)| format!("; residual correlates with {n} (r = {r:+.2})"))
         .unwrap_or_default();
     format!(

@@ -1,7 +1,8 @@
 //! Effect parameters with units and 95 % bootstrap intervals over recordings.
 use super::candidates::Effect;
-use super::design::{Designs, Layout, SofteningLaw, Solution, Terms, Viscous};
+use super::design::{Designs, Layout, Solution, Terms};
 use super::prepared::Prepared;
+use super::terms::Value;
 use anyhow::bail;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -19,78 +20,9 @@ pub struct Param {
 }
 
 /// `(name, value, unit)` of an effect's parameters in a fitted model.
-pub fn extract(prep: &Prepared, effect: Effect, terms: &Terms, sol: &Solution) -> Vec<(String, f64, String)> {
+pub fn extract(prep: &Prepared, effect: Effect, terms: &Terms, sol: &Solution) -> Vec<Value> {
     let layout = Layout::new(prep.currents_a.len(), terms);
-    let mut out = Vec::new();
-    let mut push = |n: String, v: f64, u: &str| out.push((n, v, u.to_string()));
-    match effect {
-        Effect::ViscousDamping => {
-            if let (Some(at), Some(visc)) = (layout.viscous_at, terms.viscous) {
-                for (k, c) in prep.currents_a.iter().enumerate() {
-                    push(format!("c_at_{c}a_n_s_per_m"), sol.beta[at + k], "N·s/m");
-                }
-                if let Viscous::Saturating { v0_m_s } = visc {
-                    push("v0_m_s".into(), v0_m_s, "m/s");
-                }
-            }
-        }
-        Effect::SensorDelay => {
-            if let Some(tau) = terms.delay_s {
-                push("tau_s".into(), tau, "s");
-            }
-        }
-        Effect::StressSoftening => match terms.softening {
-            Some(SofteningLaw::Sequence { n0 }) => {
-                push("delta".into(), sol.delta, "1");
-                push("n0".into(), n0, "tests");
-            }
-            Some(SofteningLaw::Temperature { .. }) => {
-                push("beta_per_c".into(), -sol.delta, "1/°C");
-            }
-            None => {}
-        },
-        Effect::EndStop => {
-            if let (Some(at), Some(xe)) = (layout.end_stop_at, terms.end_stop_x_mm) {
-                // Per tabulated current (fitted ≥ 0; 0 where a current's tests
-                // give no push-back at the stop).
-                for (k, c) in prep.currents_a.iter().enumerate() {
-                    push(format!("k_e_at_{c}a_n_per_mm2"), sol.beta[at + k], "N/mm²");
-                }
-                push("x_e_mm".into(), xe, "mm");
-                // 1: the stop acts at the extension end (x < x_e); 0: the compression end.
-                push("lower_end".into(), f64::from(u8::from(terms.end_stop_lower)), "1");
-            }
-        }
-        Effect::MagneticSaturation => {
-            if let Some(is) = terms.saturation_i_a {
-                push("i_s_a".into(), is, "A");
-            }
-        }
-        Effect::Inertia => {
-            if let Some(at) = layout.inertia_at {
-                push("m_s_kg".into(), sol.beta[at], "kg");
-            }
-        }
-        Effect::None => {}
-        Effect::HysteresisMemory => {
-            if let Some(delta) = terms.memory_mm {
-                push("delta_mm".into(), delta, "mm");
-            }
-            if let (Some(at), Some(v0)) = (layout.friction_at, terms.friction_v0_m_s) {
-                // The yield / dry-friction force reached beyond the knee.
-                for (k, c) in prep.currents_a.iter().enumerate() {
-                    push(format!("f_yield_at_{c}a_n"), sol.beta[at + k], "N");
-                }
-                push("v0_m_s".into(), v0, "m/s");
-            }
-        }
-        Effect::CoilLag => {
-            if let Some(tau) = terms.coil_lag_s {
-                push("time_constant_s".into(), tau, "s");
-            }
-        }
-    }
-    out
+    super::terms::of(effect).map_or_else(Vec::new, |t| t.parameters(prep, &layout, terms, sol))
 }
 
 fn percentile(v: &mut [f64], p: f64) -> f64 {
@@ -120,7 +52,7 @@ pub fn with_intervals(
     } else {
         resamples
     };
-    let boot: Vec<Option<Vec<(String, f64, String)>>> = (0..resamples_linear)
+    let boot: Vec<Option<Vec<Value>>> = (0..resamples_linear)
         .into_par_iter()
         .map(|b| {
             let mut rng = ChaCha8Rng::seed_from_u64(seed.wrapping_add(b as u64));
@@ -152,12 +84,13 @@ pub fn with_intervals(
             effect.name()
         );
     }
-    let boot: Vec<Vec<(String, f64, String)>> = boot.into_iter().flatten().collect();
+    let boot: Vec<Vec<Value>> = boot.into_iter().flatten().collect();
     // Searched parameter: which variant wins on resampled recordings.
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
     // The recordings the searched value was chosen on: the fit recordings,
     // or the validate ones for a term judged on them (never both).
-    let pool = if prep.validate_evidence && matches!(effect, Effect::MagneticSaturation | Effect::CoilLag) {
+    let term = super::terms::of(effect);
+    let pool = if prep.validate_evidence && term.is_some_and(|t| t.validate_only()) {
         prep.validate_indices()
     } else {
         fit.clone()
@@ -192,14 +125,12 @@ pub fn with_intervals(
                     .map(|q| q.1)
             })
             .collect();
-        let is_searched = matches!(
-            name.as_str(),
-            "tau_s" | "x_e_mm" | "v0_m_s" | "n0" | "i_s_a" | "time_constant_s" | "delta_mm"
-        );
+        let is_searched = term.is_some_and(|t| t.searched().contains(&name.as_str()));
         let mut samples = if is_searched { from_search } else { from_linear };
         // Set by design, not estimated (the stop's side; a searched value
         // with a single alternative): no interval, said so.
-        let fixed = name == "lower_end" || (is_searched && variant_sse.len() <= 1);
+        let fixed =
+            term.is_some_and(|t| t.set_by_design().contains(&name.as_str())) || (is_searched && variant_sse.len() <= 1);
         let ci95 = if fixed {
             [*value, *value]
         } else if samples.is_empty() && is_searched {

@@ -38,6 +38,12 @@ pub struct Rec {
     pub in_range: Vec<bool>,
     /// Velocity channel noise (m/s), estimated from the recording itself.
     pub velocity_noise_m_s: f64,
+    /// The file had no velocity column: v was estimated from x
+    /// ([`crate::dataset::velocity`]).
+    pub velocity_estimated: bool,
+    /// The file had no displacement: x and v were integrated from force or
+    /// acceleration.
+    pub motion_from: Option<crate::dataset::motion::MotionSource>,
 }
 
 impl Rec {
@@ -251,6 +257,8 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
             in_domain: vec![true; s.len()],
             in_range: vec![true; s.len()],
             velocity_noise_m_s: velocity_noise_m_s(&s.v_m_s),
+            velocity_estimated: r.velocity_estimated,
+            motion_from: r.motion_from,
         });
     }
     let mut currents_a: Vec<f64> = recs.iter().filter(|r| r.is_fit()).map(|r| r.current_a).collect();

@@ -235,6 +235,7 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
         1e3 * median_noise_m_s,
         n_total - n_scored - n_ambiguous,
     );
+    let _ = writeln!(s, "{}\n", velocity_sentence(p));
     let _ = writeln!(s, "## Result\n");
     if json.effects.is_empty() {
         let _ = writeln!(
@@ -257,14 +258,23 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
             e.heldout_improvement_nested,
             f.delta_bic
         );
+        let term = super::terms::of(f.effect);
         for (n, p) in &e.parameters {
+            // A wrong sign is said next to the value, not hidden.
+            let warning = term
+                .and_then(|t| t.wrong_sign(n, p.value))
+                .map(|why| format!(" — **not physical**: {why}"))
+                .unwrap_or_default();
             let _ = writeln!(
                 s,
-                "   - `{n}` = {:.6} {} (95 % bootstrap {:.6} … {:.6})",
+                "   - `{n}` = {:.6} {} (95 % bootstrap {:.6} … {:.6}){warning}",
                 p.value, p.unit, p.ci95[0], p.ci95[1]
             );
         }
         let _ = writeln!(s, "   - evidence: {}", e.evidence);
+    }
+    if !d.findings.is_empty() {
+        let _ = writeln!(s, "\n{}", interval_sentence(d.parameter_resamples));
     }
     unexplained_markdown(&mut s, json);
     let _ = writeln!(s, "\n## Where the baseline misses\n");
@@ -457,4 +467,56 @@ pub fn write_all(d: &Diagnosis, report_dir: &Path, json_path: &Path, predictions
     let text = serde_json::to_string_pretty(&json)?;
     write_atomic(json_path, text.as_bytes())?;
     Ok(json)
+}
+
+/// How the velocity every rate term and branch reads was obtained.
+fn velocity_sentence(p: &crate::diagnose::prepared::Prepared) -> String {
+    let n = p.recs.len();
+    let mut from_motion: Vec<String> = p
+        .recs
+        .iter()
+        .filter_map(|r| r.motion_from.as_ref().map(|m| m.describe()))
+        .collect();
+    from_motion.dedup();
+    let integrated = p.recs.iter().filter(|r| r.motion_from.is_some()).count();
+    let estimated = p
+        .recs
+        .iter()
+        .filter(|r| r.velocity_estimated && r.motion_from.is_none())
+        .count();
+    let mut parts = Vec::new();
+    if integrated > 0 {
+        parts.push(format!("in {integrated} of {n} recordings {}", from_motion.join("; ")));
+    }
+    if estimated > 0 {
+        parts.push(format!(
+            "in {estimated} of {n} recordings estimated from displacement (a local quadratic \
+             least-squares fit over ±{} samples, differentiated at each sample): its noise and lag \
+             enter the branch choice and every rate term",
+            crate::dataset::velocity::HALF_WINDOW
+        ));
+    }
+    if parts.is_empty() {
+        format!("Velocity: measured in all {n} recordings.")
+    } else {
+        format!("Velocity: {}.", parts.join("; "))
+    }
+}
+
+/// How the parameter intervals were drawn, with their Monte Carlo error.
+fn interval_sentence(resamples: usize) -> String {
+    let b = resamples.max(1) as f64;
+    // The 2.5 % bound is an order statistic: among B resamples the number
+    // falling below the true 2.5 % point is binomial, B·0.025 ± √(B·0.025·0.975).
+    let rank = (0.025 * b).round().max(1.0);
+    let sd = (b * 0.025 * 0.975).sqrt();
+    format!(
+        "Parameter intervals: 95 % percentile bootstrap over the fit recordings (resampled within each \
+         current), {resamples} resamples ({} for a model with softening, each a 1-D search); searched \
+         parameters re-choose among the scored variants in {} resamples. Each bound is about the {rank:.0}th \
+         value from its end; Monte Carlo error of that rank ±{sd:.1} (binomial), so another seed moves a bound \
+         by about {sd:.0} neighbouring resampled values.",
+        resamples.div_ceil(4),
+        resamples.max(200),
+    )
 }

@@ -11,7 +11,7 @@
 //! one, or one where its term acts), each reading only its decision pool
 //! ([`decision_pool`]); ΔBIC is reported, not a gate.
 use super::candidates::{self, Effect};
-use super::design::{Designs, SofteningLaw, Solution, Terms};
+use super::design::{Designs, Solution, Terms};
 use super::prepared::{scored, scored_by_both, Prepared};
 use super::scale::{self, ScaleStats, ScaleTest};
 use super::support::{self, Local, LocalStats};
@@ -283,7 +283,7 @@ fn eval_designs(prep: &Prepared, d: &Designs) -> Result<VariantEval> {
 /// Scores one model given by its designs (no search), the way [`score`]
 /// scores a single variant: fit recordings held out by their fold, validate
 /// recordings from the full fit. For a model with a column [`Terms`] cannot
-/// name (the real-data benchmark's oracle, [`Designs::with_column`]).
+/// name (the real-data benchmark's oracle, `diagnose_bench::oracle::with_column`).
 pub fn score_designs(prep: &Prepared, d: &Designs) -> Result<Scored> {
     let ev = eval_designs(prep, d)?;
     let fit = prep.fit_indices();
@@ -326,7 +326,16 @@ pub fn score_refined(
     }
     let evaluate = |vs: &[Terms]| -> Vec<Option<VariantEval>> {
         vs.par_iter()
-            .map(|t| eval_variant(prep, t).map_err(|e| eprintln!("{t:?}: {e:#}")).ok())
+            .map(|t| {
+                eval_variant(prep, t)
+                    .map_err(|e| {
+                        eprintln!(
+                            "warning: {} was left out of the search: {e:#}",
+                            super::terms::describe(t)
+                        )
+                    })
+                    .ok()
+            })
             .collect()
     };
     let mut evals = evaluate(&variants);
@@ -662,27 +671,19 @@ fn accepts(
     j.route.is_some() && delta_bic < th.max_delta_bic && dissipative(prep, after, effect)
 }
 
-/// `viscous_damping` is a dissipative force: `c(I)·φ(v)` with c > 0. A fit
-/// whose coefficients are negative on average over the tabulated currents
-/// is not damping but the model's misfit anti-correlated with velocity: on
-/// simulated drops after a true sensor delay, a rate-independent base law's
-/// turn-around structure was fitted by c ≈ −1…−16 N·s/m at every current
-/// and accepted (1.10× on the fit folds, 1.025× over all recordings).
-/// Every other term passes.
+/// The candidate's own physical constraint ([`super::terms::Term::physical`],
+/// e.g. damping dissipates); a model without a vocabulary term passes.
 fn dissipative(prep: &Prepared, after: &Scored, effect: Option<Effect>) -> bool {
-    if effect != Some(Effect::ViscousDamping) {
-        return true;
-    }
-    let layout = super::design::Layout::new(prep.currents_a.len(), &after.terms);
-    let Some(at) = layout.viscous_at else {
+    let Some(term) = effect.and_then(super::terms::of) else {
         return true;
     };
-    let c = &after.solution.beta[at..at + layout.n_currents];
-    c.iter().sum::<f64>() > 0.0
+    let layout = super::design::Layout::new(prep.currents_a.len(), &after.terms);
+    term.physical(&layout, &after.terms, &after.solution)
 }
 
-/// The gains for the scale route: only for `stress_softening` over a run
-/// order, against the model it would join (`before`'s held-out predictions).
+/// The gains for the scale route: only for a term that scales whole
+/// recordings ([`super::terms::Term::scale_route`]: softening over a run
+/// order), against the model it would join (`before`'s held-out predictions).
 /// Every fit recording with a run order contributes its gain, each measured
 /// against its fold's held-out prediction; validate recordings do not (no
 /// decision reads them).
@@ -693,7 +694,9 @@ fn scale_stats(
     effect: Option<Effect>,
     th: &Thresholds,
 ) -> Option<ScaleStats> {
-    if effect != Some(Effect::StressSoftening) || !matches!(after.terms.softening, Some(SofteningLaw::Sequence { .. }))
+    if !effect
+        .and_then(super::terms::of)
+        .is_some_and(|t| t.scale_route(&after.terms))
     {
         return None;
     }
@@ -986,7 +989,7 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
     let mut rounds = Vec::new();
     let mut not_identifiable = Vec::new();
     let mut testable = Vec::new();
-    for e in Effect::CANDIDATES {
+    for e in super::terms::candidates().map(|t| t.effect()) {
         match candidates::identifiable(prep, e, th) {
             Ok(()) => testable.push(e),
             Err(needs) => not_identifiable.push((e, needs)),
@@ -996,7 +999,7 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
         let todo: Vec<Effect> = testable
             .iter()
             .copied()
-            .filter(|e| !e.present_in(&current.terms))
+            .filter(|e| !super::terms::of(*e).is_some_and(|t| t.present_in(&current.terms)))
             .collect();
         if todo.is_empty() {
             break;
@@ -1037,11 +1040,8 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
     let mut memory_share = None;
     let others_accepted = rounds.iter().any(|r| r.accepted.is_some());
     if memory.as_ref().is_some_and(|m| m.accepted) && others_accepted {
-        let without = Terms {
-            memory_mm: None,
-            friction_v0_m_s: None,
-            ..current.terms
-        };
+        let without =
+            super::terms::of(Effect::HysteresisMemory).map_or(current.terms, |t| t.removed_from(&current.terms));
         let share = compare(
             prep,
             &score(prep, &[without])?,

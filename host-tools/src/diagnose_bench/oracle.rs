@@ -23,12 +23,13 @@
 //! Not available to the column oracle: the scale route (`stress_softening` over a
 //! run order judged on per-recording gains), which needs the softening law
 //! in the model terms, not a fixed column.
-use super::candidates::Effect;
-use super::design::{Designs, Terms};
-use super::prepared::{scored, Prepared};
-use super::select::{self, Scored, Thresholds};
-use super::signals::current_weights;
+use crate::diagnose::design::{Designs, Terms};
+use crate::diagnose::prepared::{scored, Prepared};
+use crate::diagnose::select::{self, Scored, Thresholds};
+use crate::diagnose::signals::current_weights;
+use crate::vocabulary::Effect;
 use anyhow::Result;
+use nalgebra::{DMatrix, DVector};
 
 /// The oracle's verdict on one injected case.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -39,7 +40,7 @@ pub struct Oracle {
     pub held_out_ratio: f64,
     /// The same ratio over every recording.
     pub held_out_ratio_all: f64,
-    /// The comparison on the column's support ([`super::support`]): ratio,
+    /// The comparison on the column's support ([`crate::diagnose::support`]): ratio,
     /// share of the samples, paired z.
     pub support_ratio: f64,
     pub support_share: f64,
@@ -106,7 +107,7 @@ pub fn oracle(
         };
         let base = Designs::build(prep, reference);
         let first = base.layout.n_cols;
-        let d = columns.iter().fold(base, |d, c| d.with_column(prep, c));
+        let d = columns.iter().fold(base, |d, c| with_column(&d, prep, c));
         let after = select::score_designs(prep, &d)?;
         // The fitted added force (N) at every sample, for its RMS.
         let fitted: Vec<Vec<f64>> = (0..prep.recs.len())
@@ -239,4 +240,25 @@ fn validate_only(prep: &Prepared, before: &Scored, column: &[Vec<f64>]) -> (Scor
     after.insample_n = validate.iter().map(|&i| after.n[i]).sum();
     after.n_params += 1;
     (after, amplitude(None))
+}
+
+/// The same model with one more column, `column[i][t]` at sample t of
+/// recording i, and a free coefficient (the last): the real-data
+/// benchmark's oracle gives the true injected force this way. A
+/// recording whose column is all zero keeps its design.
+pub fn with_column(designs: &Designs, prep: &Prepared, column: &[Vec<f64>]) -> Designs {
+    let mut out = designs.clone();
+    let at = out.layout.n_cols;
+    out.layout.n_cols += 1;
+    for ((d, rec), col) in out.recs.iter_mut().zip(&prep.recs).zip(column) {
+        if col.iter().all(|v| *v == 0.0) || col.len() != d.a.nrows() {
+            continue;
+        }
+        let n = d.cols.len();
+        d.a = std::mem::replace(&mut d.a, DMatrix::zeros(0, 0)).insert_column(n, 0.0);
+        d.a.set_column(n, &DVector::from_column_slice(col));
+        d.cols.push(at);
+        (d.r_a, d.r_y) = crate::diagnose::design::compress(rec, &d.a, &d.mask);
+    }
+    out
 }

@@ -5,10 +5,10 @@
 //! where validate currents sit between the tabulated ones, or nothing) at a
 //! random strength of 3–15 % of the force RMS, diagnoses the result blind,
 //! and scores it against what the untouched recordings already give.
-use super::design::{SofteningLaw, Terms};
 use super::oracle::{oracle, oracle_terms, Amplitude, Oracle};
-use super::{baseline, diagnose, prepared, DiagnoseOptions};
 use crate::dataset::Dataset;
+use crate::diagnose::design::{SofteningLaw, Terms};
+use crate::diagnose::{baseline, diagnose, prepared, DiagnoseOptions};
 use crate::vocabulary::{names, Effect};
 use anyhow::{bail, Result};
 use mre_core::model::Branch;
@@ -132,7 +132,7 @@ pub fn delayed_force(ds: &Dataset, delay_s: f64) -> Vec<Vec<f64>> {
             let mut hint = 0;
             s.time_s
                 .iter()
-                .map(|&t| super::signals::sample_at(&s.time_s, &s.force_n, t - delay_s, &mut hint))
+                .map(|&t| crate::diagnose::signals::sample_at(&s.time_s, &s.force_n, t - delay_s, &mut hint))
                 .collect()
         })
         .collect()
@@ -256,7 +256,7 @@ pub fn inject(
                     r.samples
                         .x_mm
                         .iter()
-                        .map(|&x| super::design::end_stop_shape(x, x_e, lower))
+                        .map(|&x| crate::diagnose::design::end_stop_shape(x, x_e, lower))
                         .collect()
                 })
                 .collect();
@@ -403,7 +403,7 @@ pub fn run_real_bench(
     let untouched: Vec<Effect> = diagnose(ds, opts)?.findings.iter().map(|f| f.effect).collect();
     let mut cases = Vec::with_capacity(n_cases);
     for k in 0..n_cases {
-        let mut rng = ChaCha8Rng::seed_from_u64(super::bench::case_seed(seed, k));
+        let mut rng = ChaCha8Rng::seed_from_u64(super::simulated::case_seed(seed, k));
         let effect = effects[k % effects.len()];
         if !only.is_empty() && !only.iter().any(|name| name == effect.name()) {
             continue;
@@ -494,7 +494,7 @@ pub fn run_real_bench(
 /// The scale route's numbers for `stress_softening` (all gains; fit
 /// recordings' only), and each recording's gain as `index:run order:level:gain`
 /// (read by `bench/softening_oracle.py`).
-fn scale_note(c: &super::select::Comparison, validate: &[usize]) -> String {
+fn scale_note(c: &crate::diagnose::select::Comparison, validate: &[usize]) -> String {
     match (&c.scale, c.scale_test) {
         (Some(s), Some(t)) => {
             let f = s.test(validate);

@@ -6,7 +6,7 @@
 //! identified there and is never drawn), instrumented drops (`mre synth
 //! --campaign instrumented`: two drop masses and a striker accelerometer,
 //! every effect including `inertia`) and shaker/MTS campaigns.
-use super::{diagnose, DiagnoseOptions};
+use crate::diagnose::{diagnose, DiagnoseOptions};
 use crate::plant::effects::{Effect, DROP_EFFECTS, INSTRUMENTED_EFFECTS};
 use crate::plant::synth::{key_identifiable, synthesize_with_plan, SynthPlan};
 use crate::vocabulary::names;
@@ -165,7 +165,7 @@ pub fn summarize(cases: Vec<BenchCase>) -> BenchSummary {
 pub fn run_mts_case(seed: u64) -> Result<BenchCase> {
     let synth = crate::plant::synth_mts::synthesize_mts("random", seed)?;
     let truth = synth.effect.kind();
-    let opts = super::options_from_cli(None, Some("frequency_hz".into()), 5, vec![0.5], 1)?;
+    let opts = crate::diagnose::options_from_cli(None, Some("frequency_hz".into()), 5, vec![0.5], 1)?;
     let start = Instant::now();
     let d = diagnose(&synth.dataset, &opts)?;
     let seconds = start.elapsed().as_secs_f64();

@@ -1,0 +1,81 @@
+//! `coil_lag`: the material sees the recorded current through a first-order
+//! lag L/R ([`crate::diagnose::design::effective_current_a`]).
+use super::{Term, Value};
+use crate::diagnose::candidates::{median_dt_s, stepped_validate_count};
+use crate::diagnose::design::{Layout, Solution, Terms};
+use crate::diagnose::locate::CURRENT_NOT_FOLLOWED;
+use crate::diagnose::prepared::Prepared;
+use crate::diagnose::select::Thresholds;
+use crate::vocabulary::Effect;
+
+pub struct CoilLag;
+
+impl Term for CoilLag {
+    fn effect(&self) -> Effect {
+        Effect::CoilLag
+    }
+    fn present_in(&self, t: &Terms) -> bool {
+        t.coil_lag_s.is_some()
+    }
+    fn removed_from(&self, t: &Terms) -> Terms {
+        Terms { coil_lag_s: None, ..*t }
+    }
+    fn identifiable(&self, prep: &Prepared, _th: &Thresholds) -> Result<(), String> {
+        let n = stepped_validate_count(prep);
+        if n >= 2 {
+            Ok(())
+        } else {
+            Err(format!(
+                "at least two `validate` recordings in which the coil current changes during the test \
+                 (controlled impacts), with the command recorded per sample (`current_a` column); this \
+                 data set has {n}"
+            ))
+        }
+    }
+    /// The fit recordings hold their current: only the controlled
+    /// (validate) impacts change.
+    fn validate_only(&self) -> bool {
+        true
+    }
+    /// From one sample period to about 90 (√2 steps): an L/R from well under
+    /// the sampling time to longer than an impact.
+    fn variants(&self, prep: &Prepared, base: &Terms) -> Vec<Terms> {
+        let dt = median_dt_s(prep);
+        (0..14)
+            .map(|k| dt * 2f64.powf(0.5 * k as f64))
+            .map(|tau| Terms {
+                coil_lag_s: Some(tau),
+                ..*base
+            })
+            .collect()
+    }
+    /// The √2 grid refined to 2^(1/16) steps: within 2.2 % of any τ between
+    /// the grid's points.
+    fn refinements(&self, _prep: &Prepared, best: &Terms) -> Vec<Terms> {
+        let Some(tau) = best.coil_lag_s else {
+            return Vec::new();
+        };
+        [-0.25, -0.1875, -0.125, -0.0625, 0.0625, 0.125, 0.1875, 0.25]
+            .iter()
+            .map(|e| Terms {
+                coil_lag_s: Some(tau * 2f64.powf(*e)),
+                ..*best
+            })
+            .collect()
+    }
+    fn parameters(&self, _prep: &Prepared, _layout: &Layout, t: &Terms, _sol: &Solution) -> Vec<Value> {
+        t.coil_lag_s
+            .map(|tau| ("time_constant_s".into(), tau, "s".into()))
+            .into_iter()
+            .collect()
+    }
+    fn searched(&self) -> &'static [&'static str] {
+        &["time_constant_s"]
+    }
+    fn signature(&self) -> &'static [&'static str] {
+        &[CURRENT_NOT_FOLLOWED]
+    }
+    fn describe(&self, t: &Terms) -> Option<String> {
+        t.coil_lag_s.map(|tau| format!("a coil lag of {:.3} ms", tau * 1e3))
+    }
+}

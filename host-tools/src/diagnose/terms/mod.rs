@@ -1,0 +1,198 @@
+//! The vocabulary's effects as plug-ins (`docs/effects.md`): one file per
+//! effect, each a [`Term`], listed once in [`REGISTRY`]. The stages read
+//! effects only through the trait: [`super::candidates`] asks each term what
+//! the data must contain and which variants to search, [`super::design`]
+//! builds its columns, [`super::select`] checks its physical constraint and
+//! [`super::parameters`] reads its parameters.
+//!
+//! Adding an effect: a new file here implementing [`Term`], its line in
+//! [`REGISTRY`], its searched value as a field of [`Terms`] and its word in
+//! [`crate::vocabulary::Effect`] (DIAGNOSE.md, "Adding an effect").
+use super::design::{Layout, Solution, Terms};
+use super::prepared::Prepared;
+use super::select::Thresholds;
+use crate::vocabulary::Effect;
+
+mod coil_lag;
+mod end_stop;
+mod hysteresis_memory;
+mod inertia;
+mod magnetic_saturation;
+mod sensor_delay;
+mod stress_softening;
+mod viscous_damping;
+
+pub use hysteresis_memory::memory_variants;
+
+/// Every effect diagnose can add, in column order (the layout places each
+/// term's [`Block`]s in this order).
+pub static REGISTRY: &[&dyn Term] = &[
+    &viscous_damping::ViscousDamping,
+    &sensor_delay::SensorDelay,
+    &stress_softening::StressSoftening,
+    &end_stop::EndStop,
+    &magnetic_saturation::MagneticSaturation,
+    &inertia::Inertia,
+    &coil_lag::CoilLag,
+    &hysteresis_memory::HysteresisMemory,
+];
+
+/// The term of a vocabulary effect (`None` for `none`).
+pub fn of(effect: Effect) -> Option<&'static dyn Term> {
+    REGISTRY.iter().copied().find(|t| t.effect() == effect)
+}
+
+/// The candidates forward selection adds to the reference model (the
+/// reference's own term, tested first, is not among them).
+pub fn candidates() -> impl Iterator<Item = &'static dyn Term> {
+    REGISTRY.iter().copied().filter(|t| !t.is_reference())
+}
+
+/// A block of linear design columns a term adds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Block {
+    /// One column per tabulated current, weighted between currents like the
+    /// quartics: `w_k(I) · shape(sample)`.
+    PerCurrent,
+    /// One column for every current: `shape(sample)`.
+    Global,
+    /// The turn-around memory basis (per current, direction and basis
+    /// function), built by [`super::design`] from the memory feature.
+    MemoryBasis,
+}
+
+/// One sample's inputs to a column shape, after any sensor delay.
+#[derive(Clone, Copy, Debug)]
+pub struct Sample {
+    pub x_mm: f64,
+    pub v_m_s: f64,
+    pub a_m_s2: f64,
+}
+
+/// `(name, value, unit)` of one parameter.
+pub type Value = (String, f64, String);
+
+/// One vocabulary effect as a model term.
+pub trait Term: Sync {
+    /// Its vocabulary word.
+    fn effect(&self) -> Effect;
+    /// The reference model's own term, tested before the candidates.
+    fn is_reference(&self) -> bool {
+        false
+    }
+    /// Is the term in the model `t`?
+    fn present_in(&self, t: &Terms) -> bool;
+    /// `t` without this term.
+    fn removed_from(&self, t: &Terms) -> Terms;
+    /// `Ok` when these data can separate the term from the rest of the
+    /// model; otherwise what the data must contain.
+    fn identifiable(&self, prep: &Prepared, th: &Thresholds) -> Result<(), String>;
+    /// The term changes only how the `validate` recordings are predicted
+    /// (its only evidence is them).
+    fn validate_only(&self) -> bool {
+        false
+    }
+    /// `base` plus this term at every searched value of its nonlinear
+    /// parameter (one variant when it has none).
+    fn variants(&self, prep: &Prepared, base: &Terms) -> Vec<Terms>;
+    /// Extra variants around the grid's best, where the grid is too coarse.
+    fn refinements(&self, _prep: &Prepared, _best: &Terms) -> Vec<Terms> {
+        Vec::new()
+    }
+    /// The linear columns it adds to the model `t` (none for a term that
+    /// transforms the inputs, such as a delay).
+    fn blocks(&self, _t: &Terms) -> Vec<Block> {
+        Vec::new()
+    }
+    /// The shape of column block `block` at one sample.
+    fn shape(&self, _t: &Terms, _block: usize, _s: &Sample) -> f64 {
+        0.0
+    }
+    /// Its coefficients are physically ≥ 0: a current whose coefficient
+    /// comes out negative is refitted without it.
+    fn nonnegative(&self) -> bool {
+        false
+    }
+    /// The fitted term is physical (checked before it is accepted).
+    fn physical(&self, _layout: &Layout, _t: &Terms, _sol: &Solution) -> bool {
+        true
+    }
+    /// The term scales each recording as a whole, so the per-recording gain
+    /// route can judge it ([`super::scale`]).
+    fn scale_route(&self, _t: &Terms) -> bool {
+        false
+    }
+    /// Its parameters in a fitted model.
+    fn parameters(&self, prep: &Prepared, layout: &Layout, t: &Terms, sol: &Solution) -> Vec<Value>;
+    /// Why a fitted value of parameter `name` is unphysical (a wrong sign),
+    /// or `None` when it is not; reported with the parameter.
+    fn wrong_sign(&self, _name: &str, _value: f64) -> Option<&'static str> {
+        None
+    }
+    /// Parameters chosen by the variant search (their intervals re-choose
+    /// among the variants); the rest are solved.
+    fn searched(&self) -> &'static [&'static str] {
+        &[]
+    }
+    /// Parameters set by the search design, not estimated (no interval).
+    fn set_by_design(&self) -> &'static [&'static str] {
+        &[]
+    }
+    /// The covariates its residual signature follows, as [`super::locate`]
+    /// names them.
+    fn signature(&self) -> &'static [&'static str];
+    /// The term's searched values in words (`None` when absent from `t`).
+    fn describe(&self, t: &Terms) -> Option<String>;
+}
+
+/// The model `t` in words: "the paper's model" plus each term's values.
+pub fn describe(t: &Terms) -> String {
+    let parts: Vec<String> = REGISTRY.iter().filter_map(|term| term.describe(t)).collect();
+    if parts.is_empty() {
+        "the paper's model".into()
+    } else {
+        format!("the paper's model with {}", parts.join(", "))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_vocabulary_effect_but_none_has_exactly_one_term() {
+        for e in Effect::VOCABULARY {
+            let n = REGISTRY.iter().filter(|t| t.effect() == e).count();
+            assert_eq!(n, usize::from(e != Effect::None), "{}", e.name());
+        }
+        // One reference term, tested before the candidates.
+        assert_eq!(REGISTRY.iter().filter(|t| t.is_reference()).count(), 1);
+    }
+
+    #[test]
+    fn a_model_is_described_in_words_not_as_a_struct() {
+        assert_eq!(describe(&Terms::default()), "the paper's model");
+        let t = Terms {
+            delay_s: Some(2.5e-3),
+            inertia: true,
+            ..Terms::default()
+        };
+        assert_eq!(
+            describe(&t),
+            "the paper's model with a sensor delay of 2.500 ms, inertia"
+        );
+    }
+
+    #[test]
+    fn wrong_signs_are_named_for_damping_yield_and_mass_only() {
+        let viscous = of(Effect::ViscousDamping).unwrap();
+        assert!(viscous.wrong_sign("c_at_0a_n_s_per_m", -1.0).is_some());
+        assert!(viscous.wrong_sign("c_at_0a_n_s_per_m", 1.0).is_none());
+        assert!(viscous.wrong_sign("v0_m_s", -1.0).is_none());
+        let memory = of(Effect::HysteresisMemory).unwrap();
+        assert!(memory.wrong_sign("f_yield_at_1a_n", -120.0).is_some());
+        assert!(of(Effect::Inertia).unwrap().wrong_sign("m_s_kg", -0.1).is_some());
+        // A lead is a legitimate delay sign.
+        assert!(of(Effect::SensorDelay).unwrap().wrong_sign("tau_s", -1e-3).is_none());
+    }
+}
