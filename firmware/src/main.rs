@@ -62,7 +62,9 @@ mod fw {
         Calibrated(board::DeferredCalibration),
     }
     static EVENTS: Channel<CriticalSectionRawMutex, Event, 16> = Channel::new();
-    static DROPPED_EVENTS: AtomicU32 = AtomicU32::new(0);
+    /// Events the channel had no room for; `mre pil` reads it by symbol.
+    #[no_mangle]
+    static MRE_LOG_EVENTS_DROPPED: AtomicU32 = AtomicU32::new(0);
     /// Latched faults for the status LED (written by the control task).
     static LATCHED: AtomicU32 = AtomicU32::new(0);
     /// Set by a press of B1, taken by the control task.
@@ -100,7 +102,7 @@ mod fw {
     /// Never blocks: a full channel drops the event and counts it.
     fn post(event: Event) {
         if EVENTS.try_send(event).is_err() {
-            DROPPED_EVENTS.fetch_add(1, Ordering::Relaxed);
+            MRE_LOG_EVENTS_DROPPED.fetch_add(1, Ordering::Relaxed);
         }
     }
 
@@ -273,40 +275,61 @@ mod fw {
         }
     }
 
+    /// One defmt frame, counted if the logger drops it (`board::log_drops`).
+    macro_rules! log {
+        ($level:ident, $($arg:tt)*) => {
+            board::log_drops::counted(|| defmt::$level!($($arg)*))
+        };
+    }
+
     /// Thread mode: turns the control task's events into defmt lines.
     async fn log_events() -> ! {
-        let mut reported_dropped = 0;
+        // Counters as of the last stats line: each line reports what is new.
+        let (mut reported_dropped, mut reported_frames) = (0, 0);
         loop {
             let event = EVENTS.receive().await;
             check_in(LOG_TASK);
             match event {
-                Event::Overrun { period } => defmt::warn!("overrun in period {=u32}", period),
+                Event::Overrun { period } => log!(warn, "overrun in period {=u32}", period),
                 Event::ClearRequest { cleared: true, latched } => {
-                    defmt::info!("B1: faults cleared at rest (still latched: {=u32:#010x})", latched)
+                    log!(
+                        info,
+                        "B1: faults cleared at rest (still latched: {=u32:#010x})",
+                        latched
+                    )
                 }
                 Event::ClearRequest {
                     cleared: false,
                     latched,
-                } => defmt::warn!(
+                } => log!(
+                    warn,
                     "B1: faults not cleared, the damper is not at rest (latched {=u32:#010x})",
                     latched
                 ),
                 Event::Missed { ticks, period } => {
-                    defmt::warn!("{=u32} control periods missed before period {=u32}", ticks, period)
+                    log!(
+                        warn,
+                        "{=u32} control periods missed before period {=u32}",
+                        ticks,
+                        period
+                    )
                 }
-                Event::FaultLatched { latched, period } => defmt::error!(
+                Event::FaultLatched { latched, period } => {
+                    log!(error,
                     "fault latched: {=u32:#010x} in period {=u32}; coil at the fail-safe (drive off on over-current)",
                     latched,
                     period
-                ),
+                )
+                }
                 Event::Calibrated(c) => {
                     match c.vdda {
-                        Ok(v) => defmt::info!("calibration at rest: VDDA {=f32} V", v),
-                        Err(e) => defmt::warn!("calibration at rest: VDDA refused ({=str}), nominal", e.as_str()),
+                        Ok(v) => log!(info, "calibration at rest: VDDA {=f32} V", v),
+                        Err(e) => log!(warn, "calibration at rest: VDDA refused ({=str}), nominal", e.as_str()),
                     }
                     match c.sense_zero_a {
-                        Ok(a) => defmt::info!("calibration at rest: current sense zero (A) {=f32}", a),
-                        Err(e) => defmt::warn!(
+                        Ok(a) => log!(info, "calibration at rest: current sense zero (A) {=f32}", a),
+                        Err(e) => log!(
+                            warn,
                             "calibration at rest: current sense zero refused ({=str}), 0",
                             e.as_str()
                         ),
@@ -317,9 +340,10 @@ mod fw {
                     new_periods,
                     link,
                 } => {
-                    let dropped = DROPPED_EVENTS.load(Ordering::Relaxed);
-                    defmt::info!(
-                        "stats: periods {=u32} (+{=u32}), overruns {=u32}, fail-safe periods {=u32}, latched {=u32:#010x}, step cycles min/mean/max {=u32}/{=u32}/{=u32}, log events dropped {=u32}{}",
+                    let dropped = MRE_LOG_EVENTS_DROPPED.load(Ordering::Relaxed);
+                    let frames = board::log_drops::frames_dropped();
+                    log!(info,
+                        "stats: periods {=u32} (+{=u32}), overruns {=u32}, fail-safe periods {=u32}, latched {=u32:#010x}, step cycles min/mean/max {=u32}/{=u32}/{=u32}, log events dropped {=u32}, log frames dropped {=u32}{}",
                         s.periods,
                         new_periods,
                         s.overruns,
@@ -329,9 +353,11 @@ mod fw {
                         s.step_cycles_mean(),
                         s.step_cycles_max,
                         dropped.wrapping_sub(reported_dropped),
+                        frames.wrapping_sub(reported_frames),
                         board::LinkSummary(link)
                     );
                     reported_dropped = dropped;
+                    reported_frames = frames;
                 }
             }
         }

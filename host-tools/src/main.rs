@@ -825,6 +825,12 @@ fn run(cli: Cli) -> Result<()> {
                 "firmware ({firmware_on}) vs in-process control: {} of {} commands bit-identical, max diff {:.3e} A, {} frames",
                 a.bit_identical_commands, a.samples, a.max_command_diff_a, a.frames
             );
+            if let Some(c) = out.counters {
+                println!(
+                    "firmware log: {} defmt frames dropped, {} events dropped",
+                    c.log_frames_dropped, c.log_events_dropped
+                );
+            }
             println!("report: {}", report.join("summary.md").display());
             println!("page: {}", report.join("index.html").display());
             if !a.agrees() {

@@ -16,6 +16,8 @@ compile_error!("enable one board: use `--no-default-features` with `board-nucleo
 #[cfg(not(any(feature = "hw", feature = "pil")))]
 compile_error!("enable a board feature (board-b-l475e-iot01a, board-nucleo-l476rg or pil)");
 
+pub mod log_drops;
+
 #[cfg(feature = "hw")]
 mod flash_upload;
 #[cfg(feature = "hw")]

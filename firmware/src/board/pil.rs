@@ -183,7 +183,7 @@ pub fn init(_rate_hz: u32) -> (Board, Status) {
     syst.enable_counter();
     usart_init();
     #[cfg(feature = "pil-rtt")]
-    rtt::block_if_full_and_fill();
+    super::log_drops::rtt::block_if_full_and_fill();
     (
         Board {
             io: Io {
@@ -327,6 +327,11 @@ impl super::BoardIo for Io {
             rejected,
         }
         .encode();
+        // `pil-rtt`: one log frame per period into the full block-if-full
+        // buffer, before the answer: a logger that waits for a reader holds
+        // the answer back (`pil::tests`, the full-buffer logging test).
+        #[cfg(feature = "pil-rtt")]
+        super::log_drops::counted(|| defmt::info!("period {=u32}: coil {=f32} A", self.sample.seq, self.current_a));
         usart_write(&reply);
         self.last_reply = Some(reply);
         false
@@ -565,60 +570,5 @@ pub mod icount {
         measure(&flown, ctl, DIAGNOSED);
         defmt::info!("icount bench done");
         semihosting::process::exit(0)
-    }
-}
-
-/// `pil-rtt`: the RTT up channel as `probe-rs run` leaves it, block-if-full,
-/// with no reader (QEMU has none), and full before the first period. With
-/// today's defmt-rtt defaults the next frame would spin in a critical section
-/// for ever; with the boards' features it is dropped and counted.
-#[cfg(feature = "pil-rtt")]
-pub mod rtt {
-    use core::sync::atomic::{AtomicU32, Ordering};
-
-    extern "C" {
-        /// defmt-rtt's control block (SEGGER layout: 16-byte id, two u32
-        /// channel counts, then the up channel: name, buffer, size, write,
-        /// read, flags, each 32 bits).
-        static _SEGGER_RTT: [u32; 12];
-    }
-    const WRITE_WORD: usize = 9;
-    const FLAGS_WORD: usize = 11;
-    /// SEGGER_RTT_MODE_BLOCK_IF_FIFO_FULL, what probe-rs writes.
-    const BLOCK_IF_FULL: u32 = 2;
-
-    /// Log frames the logger dropped (the write cursor did not move), read
-    /// by the host test from this symbol.
-    #[no_mangle]
-    pub static MRE_LOG_FRAMES_DROPPED: AtomicU32 = AtomicU32::new(0);
-
-    fn word(index: usize) -> *mut u32 {
-        // SAFETY: only the address is taken; the block has 12 words.
-        unsafe { core::ptr::addr_of!(_SEGGER_RTT).cast::<u32>().cast_mut().add(index) }
-    }
-
-    fn write_cursor() -> u32 {
-        // SAFETY: an aligned word of the control block; the logger updates it.
-        unsafe { word(WRITE_WORD).read_volatile() }
-    }
-
-    /// Logs through `log` and counts the frame if the logger dropped it.
-    pub fn counted(log: impl FnOnce()) {
-        let before = write_cursor();
-        log();
-        if write_cursor() == before {
-            MRE_LOG_FRAMES_DROPPED.fetch_add(1, Ordering::Relaxed);
-        }
-    }
-
-    pub fn block_if_full_and_fill() {
-        // The control block is set up by the logger's first frame.
-        defmt::info!("PIL with the RTT logger: up channel set to block-if-full, no reader");
-        // SAFETY: the flags word, written once here as a probe would.
-        unsafe { word(FLAGS_WORD).write_volatile(BLOCK_IF_FULL) };
-        // 1 KiB buffer, ~10 bytes a frame: 400 frames fill it with room to spare.
-        for k in 0..400u32 {
-            counted(|| defmt::info!("filling the RTT buffer: frame {=u32}", k));
-        }
     }
 }

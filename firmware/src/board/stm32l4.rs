@@ -385,6 +385,11 @@ impl Io {
         // CC4E: the channel 4 compare output enabled (RM0351 §31.4.11,
         // TIMx_CCER), so OC4REF's edge reaches the ADC as TIM3_CH4. CH4 has
         // no pin mapped to AF2 here, so nothing is driven.
+        // The RM0351 section numbers in this function and in `coil_current`
+        // were written from memory; RM0351 itself could not be consulted
+        // here, so they are unverified. The bit positions are checked:
+        // CC4E and JEOC are fields of the stm32 PAC, JQDIS is bit 31 of
+        // ADC_CFGR in ST's CMSIS device headers (ADC_CFGR_JQDIS_Pos).
         pac::TIM3.ccer().modify(|w| w.set_cce(3, true));
         // JQDIS = 1: the injected queue disabled (RM0351 §18.7.4, ADC_CFGR
         // bit 31; §18.4.21, "Queue of context for injected conversions"):

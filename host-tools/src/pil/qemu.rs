@@ -42,16 +42,42 @@ pub fn default_elf() -> PathBuf {
 /// Builds the PIL image (`cargo fw-pil`, its own target dir, so it never
 /// waits on the lock of a running `cargo test`). Returns its path.
 pub fn build_firmware() -> Result<PathBuf> {
+    build_variant("fw-pil", "target/pil")
+}
+
+/// Builds the PIL image with the boards' RTT logger, its buffer full and
+/// block-if-full (`cargo fw-pil-rtt`). Returns its path.
+pub fn build_firmware_rtt() -> Result<PathBuf> {
+    build_variant("fw-pil-rtt", "target/pil-rtt")
+}
+
+/// Runs the cargo alias `alias` (.cargo/config.toml), whose target dir is `target_dir`.
+fn build_variant(alias: &str, target_dir: &str) -> Result<PathBuf> {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let status = Command::new(cargo)
         .current_dir(workspace_root())
-        .args(["fw-pil", "--quiet"])
+        .args([alias, "--quiet"])
         .status()
-        .context("running cargo fw-pil")?;
+        .with_context(|| format!("running cargo {alias}"))?;
     if !status.success() {
-        bail!("cargo fw-pil failed: {status}");
+        bail!("cargo {alias} failed: {status}");
     }
-    Ok(workspace_root().join("target/pil/thumbv7em-none-eabihf/release/mre-firmware"))
+    Ok(workspace_root()
+        .join(target_dir)
+        .join("thumbv7em-none-eabihf/release/mre-firmware"))
+}
+
+/// The address of the firmware's symbol `name` (a `#[no_mangle]` static),
+/// from the image's ELF symbol table.
+pub fn symbol_address(elf: &Path, name: &str) -> Result<u32> {
+    use object::{Object, ObjectSymbol};
+    let bytes = std::fs::read(elf).with_context(|| format!("reading {}", elf.display()))?;
+    let file = object::File::parse(&*bytes).with_context(|| format!("{} is not an ELF image", elf.display()))?;
+    let symbol = file
+        .symbols()
+        .find(|s| s.name() == Ok(name))
+        .with_context(|| format!("the firmware image {} has no symbol {name}", elf.display()))?;
+    u32::try_from(symbol.address()).with_context(|| format!("{name} lies outside the 32-bit address space"))
 }
 
 /// A running QEMU with the firmware; killed on drop.

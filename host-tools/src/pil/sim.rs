@@ -45,9 +45,33 @@ impl Agreement {
     }
 }
 
+/// The firmware's own log counters at the end of the drop, read by symbol
+/// through QEMU's monitor (`None` over a serial port).
+#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq)]
+pub struct FirmwareCounters {
+    /// defmt frames the RTT logger dropped (full buffer or contention);
+    /// always 0 with the `pil` image's semihosting logger.
+    pub log_frames_dropped: u32,
+    /// Control-task events that did not fit the log channel.
+    pub log_events_dropped: u32,
+}
+
+impl FirmwareCounters {
+    /// Reads both counters from the running firmware `elf` in `qemu`.
+    pub fn read(qemu: &Qemu, elf: &Path) -> Result<Self> {
+        let word = |name| -> Result<u32> { qemu.read_word(super::qemu::symbol_address(elf, name)?) };
+        Ok(Self {
+            log_frames_dropped: word("MRE_LOG_FRAMES_DROPPED")?,
+            log_events_dropped: word("MRE_LOG_EVENTS_DROPPED")?,
+        })
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct PilOutcome {
     pub comparison: Comparison,
+    /// The firmware's log counters after the drop (QEMU only).
+    pub counters: Option<FirmwareCounters>,
     /// Firmware (QEMU) vs the same `Controller` in process.
     pub agreement: Agreement,
     /// Firmware vs `mre sim --controlled` (the core's `ImpactLaw` in process).
@@ -106,16 +130,18 @@ pub const SERIAL_HELLO_TIMEOUT: Duration = Duration::from_secs(30);
 
 /// The controlled drop with the firmware in QEMU in the loop.
 pub fn run_firmware(setup: &SimSetup, table: &Table, cfg: &ControlConfig, elf: &Path) -> Result<(Trajectory, u64)> {
-    run_firmware_on(setup, table, cfg, FirmwareLink::Qemu { elf })
+    let (trajectory, frames, _) = run_firmware_on(setup, table, cfg, FirmwareLink::Qemu { elf })?;
+    Ok((trajectory, frames))
 }
 
-/// The controlled drop with the firmware on `target` in the loop.
+/// The controlled drop with the firmware on `target` in the loop: the
+/// trajectory, the frames exchanged, and (QEMU) the firmware's log counters.
 pub fn run_firmware_on(
     setup: &SimSetup,
     table: &Table,
     cfg: &ControlConfig,
     target: FirmwareLink<'_>,
-) -> Result<(Trajectory, u64)> {
+) -> Result<(Trajectory, u64, Option<FirmwareCounters>)> {
     let (qemu, mut link) = match target {
         FirmwareLink::Qemu { elf } => {
             let qemu_bin = qemu_binary().ok_or_else(|| anyhow!("qemu-system-arm not found: {INSTALL_HINT}"))?;
@@ -157,6 +183,10 @@ pub fn run_firmware_on(
         return Err(e.context("PIL link failed during the drop"));
     }
     let frames = link.frames();
+    let counters = match (&qemu, target) {
+        (Some(qemu), FirmwareLink::Qemu { elf }) => Some(FirmwareCounters::read(qemu, elf)?),
+        _ => None,
+    };
     link.end_of_run()?;
     if let Some(qemu) = qemu {
         let status = qemu.wait(Duration::from_secs(20))?;
@@ -164,7 +194,7 @@ pub fn run_firmware_on(
             bail!("firmware ended the run with {status}");
         }
     }
-    Ok((trajectory, frames))
+    Ok((trajectory, frames, counters))
 }
 
 pub fn compare(a: &Trajectory, b: &Trajectory, frames: u64) -> Agreement {
@@ -214,7 +244,7 @@ pub fn run_pil_on(sim: &SimRequest, target: FirmwareLink<'_>, report_dir: &Path)
     let table = crate::control_bench::diagnosed_table(&setup.plant, setup.impact.noise_seed)?;
     let cfg = control_config(&setup)?;
 
-    let (firmware, frames) = run_firmware_on(&setup, &table, &cfg, target)?;
+    let (firmware, frames, counters) = run_firmware_on(&setup, &table, &cfg, target)?;
     let host = run_in_process(&setup, &table, &cfg)?;
     let sim = crate::plant::closed_loop::run_controlled(&setup, &table)?;
     let agreement = compare(&firmware, &host, frames);
@@ -230,7 +260,11 @@ pub fn run_pil_on(sim: &SimRequest, target: FirmwareLink<'_>, report_dir: &Path)
     }
     let comparison = Comparison::from_runs(runs);
     crate::plant::sim_report::write_sim_report(&comparison, report_dir)?;
-    let json = serde_json::json!({ "firmware_vs_in_process": agreement, "firmware_vs_mre_sim": agreement_with_sim });
+    let json = serde_json::json!({
+        "firmware_vs_in_process": agreement,
+        "firmware_vs_mre_sim": agreement_with_sim,
+        "firmware_counters": counters,
+    });
     crate::atomic_write::write_atomic_with(&report_dir.join("pil.json"), |buf| {
         serde_json::to_writer_pretty(&mut *buf, &json)?;
         Ok(())
@@ -241,6 +275,7 @@ pub fn run_pil_on(sim: &SimRequest, target: FirmwareLink<'_>, report_dir: &Path)
         .write(&report_dir.join("index.html"))?;
     Ok(PilOutcome {
         comparison,
+        counters,
         agreement,
         agreement_with_sim,
     })

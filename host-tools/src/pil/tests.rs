@@ -1,7 +1,8 @@
 //! PIL against QEMU. These tests fail (not skip) when `CI` is set and QEMU is
 //! missing; elsewhere they skip with the install hint.
 use super::link::PilLink;
-use super::qemu::{build_firmware, qemu_binary, Qemu, INSTALL_HINT};
+use super::qemu::{build_firmware, build_firmware_rtt, qemu_binary, symbol_address, Qemu, INSTALL_HINT};
+use super::sim::FirmwareCounters;
 use super::*;
 use std::path::PathBuf;
 use std::sync::OnceLock;
@@ -540,4 +541,106 @@ fn firmware_latches_over_current_from_the_measured_coil_current() {
     assert!(later.flags.contains(Flags::OVER_CURRENT | Flags::FAIL_SAFE));
     assert_eq!(later.current_a, 0.0);
     finish(qemu, link);
+}
+
+// ---- Logging with a full RTT buffer (issue 25) ------------------------------
+
+fn firmware_rtt() -> PathBuf {
+    static ELF: OnceLock<PathBuf> = OnceLock::new();
+    ELF.get_or_init(|| build_firmware_rtt().expect("building the PIL firmware image with RTT (cargo fw-pil-rtt)"))
+        .clone()
+}
+
+/// defmt-rtt's up channel (SEGGER layout, 32-bit words after the 16-byte id
+/// and the two channel counts): buffer size, write and read cursor, flags.
+struct RttUpChannel {
+    size: u32,
+    write: u32,
+    read: u32,
+    flags: u32,
+}
+
+fn rtt_up_channel(qemu: &Qemu, elf: &std::path::Path) -> RttUpChannel {
+    let block = symbol_address(elf, "_SEGGER_RTT").unwrap();
+    let word = |k: u32| qemu.read_word(block + 4 * k).unwrap();
+    RttUpChannel {
+        size: word(8),
+        write: word(9),
+        read: word(10),
+        flags: word(11),
+    }
+}
+
+#[test]
+fn pil_drop_with_a_full_blocking_rtt_buffer_matches_and_counts_drops() {
+    // The `pil-rtt` image logs through the boards' defmt-rtt. At boot it sets
+    // the up channel to block-if-full (flags 2, what `probe-rs run` writes)
+    // and fills it; QEMU never reads it. Every period then logs one frame
+    // before its answer. A logger that waits for a reader (defmt-rtt's
+    // default features, the configuration before issue 25) never answers;
+    // the boards' features drop each frame and count it.
+    let Some(qemu_bin) = qemu_or_skip() else { return };
+    let elf = firmware_rtt();
+    let (qemu, mut link) = Qemu::start(&qemu_bin, &elf, None).expect("starting QEMU with the pil-rtt image");
+
+    // The buffer as a probe would leave it with its reader gone: blocking
+    // mode, nothing read, and no room for a period's frame (at least 2 bytes
+    // of index, 8 of timestamp, 8 of arguments and a delimiter).
+    let rtt = rtt_up_channel(&qemu, &elf);
+    assert_eq!(rtt.flags & 0b11, 2, "up channel mode (flags {:#x})", rtt.flags);
+    assert_eq!(rtt.read, 0, "nobody reads the buffer");
+    let free = rtt.size - 1 - rtt.write;
+    assert!(free < 19, "{free} of {} bytes free: the buffer is not full", rtt.size);
+    let before = FirmwareCounters::read(&qemu, &elf).unwrap();
+
+    const PERIODS: u32 = 300;
+    let pil = run_lockstep(&mut StandInDrop::new(true), &mut link, PERIODS, PERIOD_S).unwrap();
+    let after = FirmwareCounters::read(&qemu, &elf).unwrap();
+    let rtt_after = rtt_up_channel(&qemu, &elf);
+    finish(qemu, link);
+
+    // Sample for sample what the same controller does in process, with no
+    // fault of the image's own (frames, overruns).
+    let host = run_lockstep(
+        &mut StandInDrop::new(true),
+        &mut InProcess::firmware_default().unwrap(),
+        PERIODS,
+        PERIOD_S,
+    )
+    .unwrap();
+    assert_eq!(first_mismatch(&pil, &host, 1.0e-6), None);
+    assert!(pil
+        .iter()
+        .all(|r| r.command.rejected == 0 && !r.command.flags.intersects(Flags::FRAME_FAULT | Flags::OVERRUN)));
+    assert!(pil.iter().any(|r| r.command.current_a >= 1.0), "a real impact");
+    // Frames logged during the run: one a period, plus one for each change
+    // of the latched faults (the log task's "fault latched" line; the drop's
+    // rebound leaves the sensor range), counted on the same controller in
+    // process. None of them fitted: each dropped and counted, and nothing
+    // was published.
+    let latch_changes = {
+        let mut ctl = Controller::new(
+            ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap(),
+            Table::from_image(&mre_core::generated_table::GENERATED_TABLE),
+        )
+        .unwrap();
+        let mut known = ctl.latched();
+        let mut changes = 0;
+        for r in &host {
+            ctl.step_sample(r.sample.x_mm, r.sample.v_m_s);
+            ctl.end_period(false);
+            if ctl.latched() != known {
+                known = ctl.latched();
+                changes += 1;
+            }
+        }
+        changes
+    };
+    eprintln!("{PERIODS} periods, {latch_changes} fault latch events");
+    assert_eq!(
+        after.log_frames_dropped - before.log_frames_dropped,
+        PERIODS + latch_changes
+    );
+    assert_eq!(rtt_after.write, rtt.write);
+    assert_eq!(rtt_after.flags & 0b11, 2);
 }
