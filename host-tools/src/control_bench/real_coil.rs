@@ -1,5 +1,8 @@
 //! Real coils (τ 10–20 ms, #29): controller (c) armed before contact.
 //!
+//! Each with two tables: (c) as diagnosed (its τ included), and (c) with τ set
+//! to the coil's own L/R (`mre diagnose`'s τ grid ends near 5.4 ms: a slower
+//! coil's τ must come from its data sheet or a step test).
 //! - **with a prediction**: the drop starts [`APPROACH_MM`] before contact and
 //!   the law's displacement range includes the approach, so the law predicts
 //!   the impact velocity from its approach samples (`mre_core::law`); the
@@ -10,8 +13,8 @@
 //! - **best fixed current**: the passive drop with the lowest peak within the
 //!   stroke (currents 0–2 A in 0.01 A steps);
 //! - **driver**: the lowest supply (over [`SUPPLIES_V`]) with which (c) with
-//!   a prediction meets [`DRIVER_TARGET_RATIO`] at the paper's drop, and the
-//!   peak coil current it draws (the driver's current rating).
+//!   τ = L/R and a prediction meets [`DRIVER_TARGET_RATIO`] at the paper's
+//!   drop, and the peak coil current it draws (the driver's current rating).
 use super::limit::{physical_limit, Limit};
 use super::{CaseOutcome, RunOutcome};
 use crate::plant::closed_loop::{law_config, run_passive, SimSetup};
@@ -101,13 +104,52 @@ fn fixed_currents(setup: &SimSetup) -> Result<Vec<(f64, ImpactSummary)>> {
         .collect()
 }
 
+/// (c) armed four ways on one table.
+#[derive(Clone, Debug, Serialize)]
+pub struct ArmedRuns {
+    /// Which τ the table carries, e.g. "diagnosed τ 5.38 ms".
+    pub table: String,
+    pub prediction: RunOutcome,
+    pub high: RunOutcome,
+    pub low: RunOutcome,
+    pub without: RunOutcome,
+}
+
+impl ArmedRuns {
+    fn run(setup: &SimSetup, table: &Table, label: &str, limit: &Limit) -> Result<Self> {
+        let stroke = setup.usable_stroke_mm;
+        let one = |name: &str, prediction: Prediction| -> Result<RunOutcome> {
+            let t = run_armed(setup, table, prediction, None)?;
+            Ok(RunOutcome::new(&format!("(c) {label}, {name}"), &t.summary, limit, stroke))
+        };
+        let with = |scale: f64| Prediction::FromApproach { velocity_scale: scale };
+        Ok(ArmedRuns {
+            table: label.to_owned(),
+            prediction: one("prediction", with(1.0))?,
+            high: one("prediction 10 % high", with(1.0 + PREDICTION_ERROR))?,
+            low: one("prediction 10 % low", with(1.0 - PREDICTION_ERROR))?,
+            without: one("no prediction", Prediction::None)?,
+        })
+    }
+
+    fn all(&self) -> [&RunOutcome; 4] {
+        [&self.prediction, &self.high, &self.low, &self.without]
+    }
+
+    /// The largest rise a 10 % wrong prediction makes (× the limit).
+    pub fn error_cost(&self) -> f64 {
+        let p = self.prediction.over_limit;
+        (self.high.over_limit - p).max(self.low.over_limit - p).max(0.0)
+    }
+}
+
 /// One impact velocity of the range check.
 #[derive(Clone, Debug, Serialize)]
 pub struct RangeRow {
     pub velocity_m_s: f64,
     pub limit_n: f64,
-    /// (c) without a prediction.
-    pub without: RunOutcome,
+    /// (c) without a prediction: diagnosed τ, τ = L/R.
+    pub without: [RunOutcome; 2],
     /// The fixed current with the best worst case over the range.
     pub fixed: RunOutcome,
 }
@@ -126,51 +168,41 @@ pub struct DriverRow {
 pub struct RealCoilOutcome {
     pub tau_ms: f64,
     pub prediction_target: f64,
-    /// (c) with a prediction, 10 % high, 10 % low, (c) with the true τ and a
-    /// prediction, and the best fixed current.
-    pub runs: Vec<RunOutcome>,
+    /// (c) as diagnosed, and with τ = L/R.
+    pub armed: [ArmedRuns; 2],
     pub best_fixed_a: f64,
-    /// (c) without a prediction at the paper's drop, × the limit.
-    pub without_over_limit: f64,
-    pub without_within_stroke: bool,
+    pub best_fixed: RunOutcome,
     pub range: Vec<RangeRow>,
     pub range_fixed_a: f64,
     pub driver: Vec<DriverRow>,
 }
 
 impl RealCoilOutcome {
-    fn prediction(&self) -> &RunOutcome {
-        &self.runs[0]
+    /// Every run, for the case's main table.
+    pub fn runs(&self) -> Vec<RunOutcome> {
+        let mut runs: Vec<RunOutcome> = self.armed.iter().flat_map(|a| a.all().map(Clone::clone)).collect();
+        runs.push(self.best_fixed.clone());
+        runs
     }
 
-    /// The largest change a 10 % wrong prediction makes (× the limit).
-    pub fn error_cost(&self) -> f64 {
-        let p = self.prediction().over_limit;
-        self.runs[1..3]
-            .iter()
-            .map(|r| (r.over_limit - p).max(0.0))
-            .fold(0.0, f64::max)
+    /// Worst × limit over the range: (without, for table `k`; best fixed).
+    pub fn range_worst(&self, k: usize) -> (f64, f64) {
+        let worst_without = self.range.iter().map(|r| r.without[k].over_limit).fold(0.0, f64::max);
+        let worst_fixed = self.range.iter().map(|r| r.fixed.over_limit).fold(0.0, f64::max);
+        (worst_without, worst_fixed)
     }
 
-    /// Worst × limit over the range: (without, best fixed).
-    pub fn range_worst(&self) -> (f64, f64) {
-        let worst = |f: fn(&RangeRow) -> &RunOutcome| self.range.iter().map(|r| f(r).over_limit).fold(0.0, f64::max);
-        (worst(|r| &r.without), worst(|r| &r.fixed))
-    }
-
-    /// Every target of #29: with a prediction within the target and the
-    /// stroke; 10 % wrong costs at most [`ERROR_COST_MAX`] and stays within
-    /// the stroke; without one, within the stroke over the whole range and
-    /// its worst case no worse than the best fixed current's.
-    pub fn targets_met(&self) -> bool {
-        let p = self.prediction();
-        let (without_worst, fixed_worst) = self.range_worst();
-        !p.bottomed_out
-            && p.over_limit <= self.prediction_target
-            && self.runs[1..3].iter().all(|r| !r.bottomed_out)
-            && self.error_cost() <= ERROR_COST_MAX
-            && self.without_within_stroke
-            && self.range.iter().all(|r| !r.without.bottomed_out)
+    /// Every target of #29 for table `k` (0: diagnosed, 1: τ = L/R): with a
+    /// prediction within the target; 10 % wrong costs at most
+    /// [`ERROR_COST_MAX`]; without one, its worst case over the range no
+    /// worse than the best fixed current's; every run within the stroke.
+    pub fn targets_met(&self, k: usize) -> bool {
+        let a = &self.armed[k];
+        let (without_worst, fixed_worst) = self.range_worst(k);
+        a.all().iter().all(|r| !r.bottomed_out)
+            && self.range.iter().all(|r| !r.without[k].bottomed_out)
+            && a.prediction.over_limit <= self.prediction_target
+            && a.error_cost() <= ERROR_COST_MAX
             && without_worst <= fixed_worst
     }
 
@@ -185,36 +217,32 @@ impl RealCoilOutcome {
 /// The real-coil runs for a case whose drop is `setup`, (c)'s table `table`.
 pub fn run_real_coil(tau_ms: f64, setup: &SimSetup, table: &Table, limit: &Limit) -> Result<RealCoilOutcome> {
     let stroke = setup.usable_stroke_mm;
-    let outcome = |name: &str, s: &ImpactSummary, limit: &Limit| RunOutcome::new(name, s, limit, stroke);
-    let mut runs = Vec::new();
-    for (name, scale) in [
-        ("(c) + prediction", 1.0),
-        ("(c) + prediction 10 % high", 1.0 + PREDICTION_ERROR),
-        ("(c) + prediction 10 % low", 1.0 - PREDICTION_ERROR),
-    ] {
-        let t = run_armed(setup, table, Prediction::FromApproach { velocity_scale: scale }, None)?;
-        runs.push(outcome(name, &t.summary, limit));
-    }
-    // The same law and model with the plant's true τ: what arming does when
-    // the identification of τ is right (diagnose's τ grid ends near 5.4 ms).
-    let true_tau = Table::with_terms(
+    let coil_tau = Table::with_terms(
         table.entries(),
         mre_core::table::ModelTerms {
             coil_tau_s: (tau_ms * 1e-3) as f32,
             ..*table.terms()
         },
     )
-    .map_err(|e| anyhow!("(c) with the true τ: {e}"))?;
-    let t = run_armed(setup, &true_tau, Prediction::FromApproach { velocity_scale: 1.0 }, None)?;
-    runs.push(outcome("(c) true τ + prediction", &t.summary, limit));
+    .map_err(|e| anyhow!("(c) with τ = L/R: {e}"))?;
+    let tables = [
+        (
+            table,
+            format!("diagnosed τ {:.2} ms", f64::from(table.terms().coil_tau_s) * 1e3),
+        ),
+        (&coil_tau, format!("τ = L/R {tau_ms} ms")),
+    ];
+    let armed = [
+        ArmedRuns::run(setup, tables[0].0, &tables[0].1, limit)?,
+        ArmedRuns::run(setup, tables[1].0, &tables[1].1, limit)?,
+    ];
     let fixed = fixed_currents(setup)?;
     let (best_fixed_a, best) = fixed
         .iter()
         .filter(|(_, s)| s.max_stroke_mm <= stroke)
         .min_by(|a, b| a.1.peak_force_n.total_cmp(&b.1.peak_force_n))
         .ok_or_else(|| anyhow!("no fixed current stops the drop within the stroke"))?;
-    runs.push(outcome(&format!("best fixed current ({best_fixed_a:.2} A)"), best, limit));
-    let without = run_armed(setup, table, Prediction::None, None)?.summary;
+    let best_fixed = RunOutcome::new(&format!("best fixed current ({best_fixed_a:.2} A)"), best, limit, stroke);
 
     // The installation's range: (c) without a prediction against the fixed
     // current whose worst case over the range (× each velocity's limit) is lowest.
@@ -234,7 +262,10 @@ pub fn run_real_coil(tau_ms: f64, setup: &SimSetup, table: &Table, limit: &Limit
                 ..setup.clone()
             };
             let limit = physical_limit(&s.plant, &s.impact, (0.0, 2.0), stroke)?;
-            let without = run_armed(&s, table, Prediction::None, None)?.summary;
+            let without = [
+                run_armed(&s, tables[0].0, Prediction::None, None)?.summary,
+                run_armed(&s, tables[1].0, Prediction::None, None)?.summary,
+            ];
             Ok((v, limit, without, fixed_currents(&s)?))
         })
         .collect::<Result<Vec<_>>>()?;
@@ -260,8 +291,15 @@ pub fn run_real_coil(tau_ms: f64, setup: &SimSetup, table: &Table, limit: &Limit
         .map(|(v, limit, without, fixed)| RangeRow {
             velocity_m_s: *v,
             limit_n: limit.envelope_n,
-            without: outcome("(c) without prediction", without, limit),
-            fixed: outcome(&format!("fixed {range_fixed_a:.2} A"), &fixed[k_best].1, limit),
+            without: [0, 1].map(|k| {
+                RunOutcome::new(
+                    &format!("(c) {}, no prediction", tables[k].1),
+                    &without[k],
+                    limit,
+                    stroke,
+                )
+            }),
+            fixed: RunOutcome::new(&format!("fixed {range_fixed_a:.2} A"), &fixed[k_best].1, limit, stroke),
         })
         .collect();
 
@@ -270,14 +308,19 @@ pub fn run_real_coil(tau_ms: f64, setup: &SimSetup, table: &Table, limit: &Limit
         .map(|&supply_v| {
             let t = run_armed(
                 setup,
-                table,
+                &coil_tau,
                 Prediction::FromApproach { velocity_scale: 1.0 },
                 Some(supply_v),
             )?;
             let peak_current_a = t.samples.iter().map(|s| s.current_a.abs()).fold(0.0, f64::max);
             Ok(DriverRow {
                 supply_v,
-                run: outcome(&format!("(c) + prediction, {supply_v} V"), &t.summary, limit),
+                run: RunOutcome::new(
+                    &format!("(c) τ = L/R + prediction, {supply_v} V"),
+                    &t.summary,
+                    limit,
+                    stroke,
+                ),
                 peak_current_a,
             })
         })
@@ -285,10 +328,9 @@ pub fn run_real_coil(tau_ms: f64, setup: &SimSetup, table: &Table, limit: &Limit
     Ok(RealCoilOutcome {
         tau_ms,
         prediction_target: prediction_target(tau_ms),
-        runs,
+        armed,
         best_fixed_a: *best_fixed_a,
-        without_over_limit: without.peak_force_n / limit.envelope_n,
-        without_within_stroke: without.max_stroke_mm <= stroke,
+        best_fixed,
         range,
         range_fixed_a,
         driver,
@@ -306,54 +348,54 @@ pub fn markdown(outcomes: &[CaseOutcome]) -> String {
     }
     let mut s = format!(
         "\n### Real coils (prediction from {APPROACH_MM} mm of approach; 10 % wrong: the approach velocity read ×1.1 and ×0.9)\n\n\
-         | case | identified τ (ms) | with prediction (× limit) | target | 10 % high | 10 % low | cost of 10 % (≤ {ERROR_COST_MAX}) | without prediction | best fixed current | met | true τ + prediction |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|\n"
+         | case | (c) table | with prediction (× limit) | target | 10 % high | 10 % low | cost of 10 % (≤ {ERROR_COST_MAX}) | without prediction | best fixed current | met |\n\
+         |---|---|---|---|---|---|---|---|---|---|\n"
     );
     for (o, r) in &real {
-        s.push_str(&format!(
-            "| {} | {:.2} | {:.2} | ≤ {:.2} | {:.2} | {:.2} | {:.2} | {:.2}{} | {:.2} ({:.2} A) | {} | {:.2} |\n",
-            o.label,
-            f64::from(o.identified_coil_tau_s) * 1e3,
-            r.runs[0].over_limit,
-            r.prediction_target,
-            r.runs[1].over_limit,
-            r.runs[2].over_limit,
-            r.error_cost(),
-            r.without_over_limit,
-            if r.without_within_stroke { "" } else { " (bottomed)" },
-            r.runs[4].over_limit,
-            r.best_fixed_a,
-            if r.targets_met() { "yes" } else { "**no**" },
-            r.runs[3].over_limit
-        ));
+        for (k, a) in r.armed.iter().enumerate() {
+            s.push_str(&format!(
+                "| {} | {} | {:.2} | ≤ {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} ({:.2} A) | {} |\n",
+                o.label,
+                a.table,
+                a.prediction.over_limit,
+                r.prediction_target,
+                a.high.over_limit,
+                a.low.over_limit,
+                a.error_cost(),
+                a.without.over_limit,
+                r.best_fixed.over_limit,
+                r.best_fixed_a,
+                if r.targets_met(k) { "yes" } else { "**no**" }
+            ));
+        }
     }
     s.push_str(
         "\n#### Without a prediction, over the installation's impact range (× each velocity's limit)\n\n\
-         | case | v (m/s) | limit (N) | (c) without prediction | stroke (mm) | best fixed over the range | stroke (mm) |\n\
-         |---|---|---|---|---|---|---|\n",
+         | case | v (m/s) | limit (N) | (c) diagnosed τ | stroke (mm) | (c) τ = L/R | stroke (mm) | best fixed over the range | stroke (mm) |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
     );
     for (o, r) in &real {
         for row in &r.range {
             s.push_str(&format!(
-                "| {} | {:.2} | {:.0} | {:.2} | {:.2} | {:.2} ({:.2} A) | {:.2} |\n",
+                "| {} | {:.2} | {:.0} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} ({:.2} A) | {:.2} |\n",
                 o.label,
                 row.velocity_m_s,
                 row.limit_n,
-                row.without.over_limit,
-                row.without.max_stroke_mm,
+                row.without[0].over_limit,
+                row.without[0].max_stroke_mm,
+                row.without[1].over_limit,
+                row.without[1].max_stroke_mm,
                 row.fixed.over_limit,
                 r.range_fixed_a,
                 row.fixed.max_stroke_mm
             ));
         }
-        let (w, f) = r.range_worst();
-        s.push_str(&format!(
-            "| {} | worst | | {w:.2} | | {f:.2} | |\n",
-            o.label
-        ));
+        let (w0, f) = r.range_worst(0);
+        let (w1, _) = r.range_worst(1);
+        s.push_str(&format!("| {} | worst | | {w0:.2} | | {w1:.2} | | {f:.2} | |\n", o.label));
     }
     s.push_str(&format!(
-        "\n#### Driver for ≤ {DRIVER_TARGET_RATIO}× the limit at the paper's drop ((c) with a prediction, {} Ω coil, half bridge)\n\n\
+        "\n#### Driver for ≤ {DRIVER_TARGET_RATIO}× the limit at the paper's drop ((c) τ = L/R with a prediction, {} Ω coil, half bridge)\n\n\
          | case | supply (V) | × limit | stroke (mm) | peak coil current (A) | answer |\n|---|---|---|---|---|---|\n",
         DEFAULT_INSTALLATION.coil_resistance_ohm
     ));
@@ -367,7 +409,11 @@ pub fn markdown(outcomes: &[CaseOutcome]) -> String {
                 d.run.over_limit,
                 d.run.max_stroke_mm,
                 d.peak_current_a,
-                if answer == Some(d.supply_v) { "**lowest that meets it**" } else { "" }
+                if answer == Some(d.supply_v) {
+                    "**lowest that meets it**"
+                } else {
+                    ""
+                }
             ));
         }
         if answer.is_none() {
