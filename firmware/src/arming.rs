@@ -57,9 +57,7 @@ impl Arming {
     pub fn new(table: &Table, mass_kg: f32, gravity_m_s2: f32, stroke_mm: f32, v_max_m_s: f32) -> Arming {
         let mut a = Arming::NONE;
         for (k, e) in table.entries().iter().enumerate() {
-            if let (Some(w), Some(knot), Some(i)) =
-                (a.work_j.get_mut(k), a.knots.get_mut(k), a.currents_a.get_mut(k))
-            {
+            if let (Some(w), Some(knot), Some(i)) = (a.work_j.get_mut(k), a.knots.get_mut(k), a.currents_a.get_mut(k)) {
                 *w = compression_work_j(e, stroke_mm);
                 *knot = table.knot(k);
                 *i = e.current_a;

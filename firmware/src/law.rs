@@ -491,9 +491,6 @@ impl ImpactLaw {
             (x_mm, v_m_s)
         };
         let branch = self.selector.update(v_m_s);
-        // Before contact, moving in, with a coil too slow to set the current
-        // during the impact: arm for the predicted impact.
-        let approaching = self.coil_tau_s > 0.0 && x_mm < -CONTACT_MM && v_m_s > 0.0;
         // Re-armed between impacts: what the last impact taught the observer
         // says nothing about the next one.
         if branch == Branch::Extension && x_mm <= CONTACT_MM {
@@ -504,14 +501,10 @@ impl ImpactLaw {
         let mut expected_n = 0.0;
 
         let wanted_a = match branch {
-            Branch::Compression if approaching => {
-                // Free fall over the gap: v_c² = v² + 2·g·|x|.
-                let gap_m = -x_mm * 1.0e-3;
-                let impact_m_s = math::sqrt_precise(v_m_s * v_m_s + 2.0 * cfg.gravity_m_s2 * gap_m);
-                // No plan: the look-ahead's trend starts at contact.
-                self.planned_last = false;
-                self.arming.stop_current_a(impact_m_s)
-            }
+            // Before contact, moving in, with a coil too slow to set the
+            // current during the impact: arm for the predicted impact. In
+            // contact (the usual period) the first comparison settles it.
+            Branch::Compression if x_mm < -CONTACT_MM && self.coil_tau_s > 0.0 => self.approach_current_a(x_mm, v_m_s),
             Branch::Compression => {
                 // The last TERMINAL_MM are planned as if that much were left:
                 // a slow arrival there (noise, model error) must not ask
@@ -552,9 +545,7 @@ impl ImpactLaw {
                 wanted_a
             }
             // Idle between impacts with a lagging coil: pre-energise.
-            Branch::Extension if self.coil_tau_s > 0.0 && x_mm <= CONTACT_MM => {
-                Self::idle_armed_a(&cfg, &self.arming)
-            }
+            Branch::Extension if self.coil_tau_s > 0.0 && x_mm <= CONTACT_MM => Self::idle_armed_a(&cfg, &self.arming),
             Branch::Extension => {
                 flags |= Flags::REBOUND;
                 match cfg.rebound {
@@ -603,7 +594,8 @@ impl ImpactLaw {
         };
 
         self.last_current_a = current_a;
-        if branch == Branch::Compression && !approaching {
+        if branch == Branch::Compression {
+            // (On the approach too: the rebound's `Hold` comes after the stroke.)
             self.last_compression_current_a = current_a;
         } else {
             // No plan this period: the look-ahead's trend starts afresh.
@@ -619,25 +611,41 @@ impl ImpactLaw {
         }
     }
 
+    /// The current to arm at on the approach (x < 0, moving in): the one
+    /// that stops the predicted impact within the stroke. Out of line: the
+    /// control periods in contact do not pay for it.
+    #[inline(never)]
+    #[cold]
+    fn approach_current_a(&mut self, x_mm: f32, v_m_s: f32) -> f32 {
+        // Free fall over the gap: v_c² = v² + 2·g·|x|.
+        let gap_m = -x_mm * 1.0e-3;
+        let impact_m_s = math::sqrt_precise(v_m_s * v_m_s + 2.0 * self.cfg.gravity_m_s2 * gap_m);
+        // No plan: the look-ahead's trend starts at contact.
+        self.planned_last = false;
+        self.arming.stop_current_a(impact_m_s)
+    }
+
     /// Derives what the law needs from `table`'s terms, unless it already
     /// has. [`ImpactLaw::step`] does it when the table changes; the
     /// controller does it when it gets its table, so that no control period
     /// pays for it.
     #[inline]
     pub fn prepare(&mut self, table: &Table) {
+        // The CRC covers the entries and the terms: one comparison a period.
+        if !self.armed || table.crc32() != self.arming_crc {
+            self.prepare_for(table);
+        }
+    }
+
+    /// Derives the coil model's factors and the arming currents of `table`.
+    /// The first table finds the coil settled at its idle current (as
+    /// [`ImpactLaw::new`] assumes).
+    #[inline(never)]
+    fn prepare_for(&mut self, table: &Table) {
         let coil_tau_s = table.terms().coil_tau_s;
         if coil_tau_s != self.coil_tau_s {
             self.set_coil_tau(coil_tau_s);
         }
-        if !self.armed || table.crc32() != self.arming_crc {
-            self.set_arming(table);
-        }
-    }
-
-    /// Derives the arming currents of `table`. The first table finds the
-    /// coil settled at its idle current (as [`ImpactLaw::new`] assumes).
-    #[inline(never)]
-    fn set_arming(&mut self, table: &Table) {
         self.arming = self.arming_for(table);
         self.arming_crc = table.crc32();
         if !self.armed && self.coil_tau_s > 0.0 {

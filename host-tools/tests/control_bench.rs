@@ -200,13 +200,26 @@ fn the_approach_falls_freely_and_reaches_contact_at_the_impact_velocity() {
     };
     let t = simulate(&Plant::nominal(), &cfg, CurrentSource::Constant(2.0)).unwrap();
     let first = t.samples[0];
-    assert!((first.x_mm + 30.0).abs() < 0.01 && (first.v_m_s - 2.1051).abs() < 0.002, "{first:?}");
+    assert!(
+        (first.x_mm + 30.0).abs() < 0.01 && (first.v_m_s - 2.1051).abs() < 0.002,
+        "{first:?}"
+    );
     let contact = t.samples.iter().find(|s| s.x_mm >= 0.0).unwrap();
     assert!((contact.v_m_s - 2.24).abs() < 0.005, "{contact:?}");
     // The impact itself is the one that starts at contact.
-    let at_contact = simulate(&Plant::nominal(), &ImpactConfig::default(), CurrentSource::Constant(2.0)).unwrap();
+    let at_contact = simulate(
+        &Plant::nominal(),
+        &ImpactConfig::default(),
+        CurrentSource::Constant(2.0),
+    )
+    .unwrap();
     let rel = (t.summary.max_stroke_mm / at_contact.summary.max_stroke_mm - 1.0).abs();
-    assert!(rel < 1e-3, "{} vs {}", t.summary.max_stroke_mm, at_contact.summary.max_stroke_mm);
+    assert!(
+        rel < 1e-3,
+        "{} vs {}",
+        t.summary.max_stroke_mm,
+        at_contact.summary.max_stroke_mm
+    );
 }
 
 #[test]
@@ -218,7 +231,10 @@ fn real_coil_time_constants_run_and_out_of_range_ones_get_a_sentence() {
     };
     assert!(simulate(&plant, &cfg, CurrentSource::Constant(1.0)).is_ok());
     let too_slow = Plant::nominal().with_effect(ConcealedEffect::CoilLag { time_constant_s: 0.2 });
-    let e = format!("{:#}", simulate(&too_slow, &cfg, CurrentSource::Constant(1.0)).unwrap_err());
+    let e = format!(
+        "{:#}",
+        simulate(&too_slow, &cfg, CurrentSource::Constant(1.0)).unwrap_err()
+    );
     assert!(e.contains("at most 100 ms") && !e.contains('{'), "{e}");
     let e = format!(
         "{:#}",
@@ -233,4 +249,44 @@ fn real_coil_time_constants_run_and_out_of_range_ones_get_a_sentence() {
         .unwrap_err()
     );
     assert!(e.contains("at most 100 ms") && !e.contains('{'), "{e}");
+}
+
+#[test]
+fn a_20_ms_coil_armed_before_contact_stops_softer_than_any_fixed_current() {
+    use mre_host::control_bench::real_coil::{run_armed, Prediction};
+    use mre_host::plant::closed_loop::{run_passive, SimSetup};
+    // The bundled fit of the nominal plant (what `cargo fw` flies), with the
+    // coil's L/R of 20 ms, on the nominal plant with that coil.
+    let tau_s = 0.020;
+    let table = mre_core::Table::with_terms(
+        &mre_core::generated_table::GENERATED_ENTRIES,
+        mre_core::table::ModelTerms {
+            coil_tau_s: tau_s as f32,
+            ..mre_core::table::ModelTerms::NONE
+        },
+    )
+    .unwrap();
+    let setup = SimSetup {
+        plant: Plant::nominal().with_effect(ConcealedEffect::CoilLag { time_constant_s: tau_s }),
+        impact: ImpactConfig {
+            coil_lag_s: Some(tau_s),
+            ..ImpactConfig::default()
+        },
+        usable_stroke_mm: 12.0,
+    };
+    // The peer: the passive drop with the lowest peak within the stroke.
+    let best_fixed_n = (0..=100)
+        .map(|k| run_passive(&setup, f64::from(k) * 0.02).unwrap().summary)
+        .filter(|s| s.max_stroke_mm <= 12.0)
+        .map(|s| s.peak_force_n)
+        .fold(f64::INFINITY, f64::min);
+    for prediction in [Prediction::FromApproach { velocity_scale: 1.0 }, Prediction::None] {
+        let s = run_armed(&setup, &table, prediction, None).unwrap().summary;
+        println!(
+            "{prediction:?}: {:.0} N, {:.2} mm; best fixed {best_fixed_n:.0} N",
+            s.peak_force_n, s.max_stroke_mm
+        );
+        assert!(s.max_stroke_mm <= 12.0, "{prediction:?}: {} mm", s.max_stroke_mm);
+        assert!(s.peak_force_n < best_fixed_n, "{prediction:?}: {} N", s.peak_force_n);
+    }
 }

@@ -47,7 +47,11 @@ fn idle_holds_the_current_that_stops_the_fastest_expected_impact() {
     for _ in 0..100 {
         law.step(&table, 0.0, 0.0);
     }
-    assert!((law.coil_estimate_a() - ROBUST_A).abs() < 1e-4, "{}", law.coil_estimate_a());
+    assert!(
+        (law.coil_estimate_a() - ROBUST_A).abs() < 1e-4,
+        "{}",
+        law.coil_estimate_a()
+    );
 }
 
 #[test]

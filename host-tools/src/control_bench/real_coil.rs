@@ -120,7 +120,12 @@ impl ArmedRuns {
         let stroke = setup.usable_stroke_mm;
         let one = |name: &str, prediction: Prediction| -> Result<RunOutcome> {
             let t = run_armed(setup, table, prediction, None)?;
-            Ok(RunOutcome::new(&format!("(c) {label}, {name}"), &t.summary, limit, stroke))
+            Ok(RunOutcome::new(
+                &format!("(c) {label}, {name}"),
+                &t.summary,
+                limit,
+                stroke,
+            ))
         };
         let with = |scale: f64| Prediction::FromApproach { velocity_scale: scale };
         Ok(ArmedRuns {
@@ -242,7 +247,12 @@ pub fn run_real_coil(tau_ms: f64, setup: &SimSetup, table: &Table, limit: &Limit
         .filter(|(_, s)| s.max_stroke_mm <= stroke)
         .min_by(|a, b| a.1.peak_force_n.total_cmp(&b.1.peak_force_n))
         .ok_or_else(|| anyhow!("no fixed current stops the drop within the stroke"))?;
-    let best_fixed = RunOutcome::new(&format!("best fixed current ({best_fixed_a:.2} A)"), best, limit, stroke);
+    let best_fixed = RunOutcome::new(
+        &format!("best fixed current ({best_fixed_a:.2} A)"),
+        best,
+        limit,
+        stroke,
+    );
 
     // The installation's range: (c) without a prediction against the fixed
     // current whose worst case over the range (× each velocity's limit) is lowest.
@@ -392,7 +402,10 @@ pub fn markdown(outcomes: &[CaseOutcome]) -> String {
         }
         let (w0, f) = r.range_worst(0);
         let (w1, _) = r.range_worst(1);
-        s.push_str(&format!("| {} | worst | | {w0:.2} | | {w1:.2} | | {f:.2} | |\n", o.label));
+        s.push_str(&format!(
+            "| {} | worst | | {w0:.2} | | {w1:.2} | | {f:.2} | |\n",
+            o.label
+        ));
     }
     s.push_str(&format!(
         "\n#### Driver for ≤ {DRIVER_TARGET_RATIO}× the limit at the paper's drop ((c) τ = L/R with a prediction, {} Ω coil, half bridge)\n\n\

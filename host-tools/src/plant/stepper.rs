@@ -284,8 +284,7 @@ impl PlantStepper {
             "a switch-off time constant needs a coil time constant (`coil_lag_s`) too"
         );
         ensure!(
-            cfg.approach_mm >= 0.0
-                && cfg.impact_velocity_m_s.powi(2) > 2.0 * cfg.gravity_m_s2 * cfg.approach_mm * 1e-3,
+            cfg.approach_mm >= 0.0 && cfg.impact_velocity_m_s.powi(2) > 2.0 * cfg.gravity_m_s2 * cfg.approach_mm * 1e-3,
             "the approach ({} mm) must be at least 0 and shorter than the free fall that reaches {} m/s",
             cfg.approach_mm,
             cfg.impact_velocity_m_s
