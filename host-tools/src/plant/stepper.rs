@@ -1,6 +1,7 @@
 //! The drop test: `m·ẍ = m·g − F(x, ẋ, I)` integrated by fixed-step RK4
-//! from first contact (x = 0, ẋ = impact velocity) until the mass leaves the
-//! damper (x back below 0 while moving out).
+//! from first contact (x = 0, ẋ = impact velocity), or from
+//! [`ImpactConfig::approach_mm`] before it in free fall, until the mass leaves
+//! the damper (x back below 0 while moving out).
 //!
 //! [`PlantStepper`] advances one control period at a time with the coil
 //! command held (zero-order hold), so a controller — in process, or the real
