@@ -22,9 +22,18 @@
 //!   that, decaying at the driver's limit, it can still meet what the plan
 //!   wants 0.1 τ ahead (predictive command), that current extrapolated from
 //!   the plan's change over the last period: no second model evaluation.
-//!   Between impacts
-//!   (extension branch with x at contact) it pre-energises the coil to
-//!   [`LawConfig::armed_current_a`].
+//!
+//! **Arming** a lagging coil before contact (`crate::arming`):
+//! - between impacts (extension branch, x at contact) the law holds the
+//!   robust current: the lowest the model says stops the fastest impact the
+//!   installation expects ([`LawConfig::impact_v_max_m_s`]) within the
+//!   usable stroke (or [`LawConfig::armed_current_a`] when no range is set);
+//! - on the approach (x < −[`CONTACT_MM`], moving in: the displacement sensor
+//!   sees the mass before contact) it predicts the impact velocity from the
+//!   sample, `v_c = √(v² + 2·g·|x|)` (free fall over the gap), and drives the
+//!   coil to the current the model says stops a `v_c` impact within the
+//!   stroke, from the first approach sample on. A board whose sensor does
+//!   not see the approach has no prediction and stays at the robust current.
 //!
 //! A **force observer** closes the loop on the model itself: over each period
 //! whose command the model says gives a force F (inverse inside the table,
@@ -40,6 +49,7 @@
 //! ±[`FORCE_ERROR_LIMIT_N`] and starts from 0 at every re-arm between impacts
 //! (extension branch at contact) and every fail-safe period: no bias learned
 //! in one impact is applied to the next.
+use crate::arming::Arming;
 use crate::flags::Flags;
 use crate::math;
 use crate::model::{Branch, BranchSelector};
@@ -86,13 +96,17 @@ pub struct LawConfig {
     /// the voltage (half bridge). Board constants, not uploaded in PIL.
     pub drive_min_a: f32,
     pub drive_max_a: f32,
-    /// Coil current held between impacts when the coil lags (pre-energising).
-    /// Moderate on purpose: at contact the force is zero whatever the field,
+    /// Coil current held between impacts when the coil lags and no impact
+    /// range is set (`impact_v_max_m_s` = 0). Moderate on purpose: at contact the force is zero whatever the field,
     /// and a coil that starts high must then decay (at most at V_s/L) while
     /// the plan asks for less. Measured when it was chosen (drop test,
     /// τ = 5 ms, the look-ahead on): 0–1 A all within 1.13–1.21× of the
     /// issue's 1242 N, 2 A 2.98×.
     pub armed_current_a: f32,
+    /// The fastest impact the installation expects (m/s): between impacts a
+    /// lagging coil is held at the current the model says stops it within
+    /// the stroke (`crate::arming`). 0 = hold `armed_current_a` instead.
+    pub impact_v_max_m_s: f32,
     /// Weight of each new observation in the force observer (0 = off, 1 =
     /// the last period's error alone; see the module docs). 0.05 averages
     /// the velocity sensor's noise (one period's Δv at 2 mm/s noise is
@@ -140,6 +154,7 @@ impl Default for LawConfig {
             drive_min_a: -3.0,
             drive_max_a: 3.0,
             armed_current_a: 0.5,
+            impact_v_max_m_s: crate::installation::DEFAULT_INSTALLATION.impact_v_max_m_s,
             observer_gain: 0.05,
         }
     }
@@ -173,6 +188,7 @@ impl LawConfig {
             self.drive_min_a,
             self.drive_max_a,
             self.armed_current_a,
+            self.impact_v_max_m_s,
             self.observer_gain,
         ];
         if all.iter().any(|v| !v.is_finite()) {
@@ -190,7 +206,11 @@ impl LawConfig {
             self.v_valid_max_m_s,
             self.period_s,
         ];
-        if positive.iter().any(|&v| v <= 0.0) || self.gravity_m_s2 < 0.0 || self.branch_band_m_s < 0.0 {
+        if positive.iter().any(|&v| v <= 0.0)
+            || self.gravity_m_s2 < 0.0
+            || self.branch_band_m_s < 0.0
+            || self.impact_v_max_m_s < 0.0
+        {
             return Err(ConfigError::NonPositive);
         }
         if self.current_min_a > self.current_max_a
@@ -286,6 +306,11 @@ pub struct ImpactLaw {
     planned_last: bool,
     /// The look-ahead `LEAD_TAU·τ` in control periods.
     lead_periods: f32,
+    /// The arming currents of the table with CRC `arming_crc` (valid once
+    /// `armed` is set).
+    arming: Arming,
+    arming_crc: u32,
+    armed: bool,
 }
 
 /// How far ahead the law looks for a lagging coil, in units of τ: the
@@ -319,6 +344,9 @@ impl ImpactLaw {
             last_plan_a: 0.0,
             planned_last: false,
             lead_periods: 0.0,
+            arming: Arming::NONE,
+            arming_crc: 0,
+            armed: false,
         })
     }
 
@@ -327,10 +355,36 @@ impl ImpactLaw {
     /// A simulation that starts at contact starts the coil there.
     pub fn idle_current_a(&self, table: &Table) -> f32 {
         if table.terms().coil_tau_s > 0.0 {
-            self.cfg.armed_current_a
+            Self::idle_armed_a(&self.cfg, &self.arming_for(table))
         } else {
             self.cfg.current_min_a
         }
+    }
+
+    /// The arming currents for `table` with this configuration.
+    fn arming_for(&self, table: &Table) -> Arming {
+        let cfg = &self.cfg;
+        Arming::new(
+            table,
+            cfg.mass_kg,
+            cfg.gravity_m_s2,
+            cfg.stroke_max_mm,
+            cfg.impact_v_max_m_s,
+        )
+    }
+
+    /// The current a lagging coil is held at between impacts.
+    fn idle_armed_a(cfg: &LawConfig, arming: &Arming) -> f32 {
+        if cfg.impact_v_max_m_s > 0.0 {
+            math::clamp(arming.robust_current_a(), cfg.current_min_a, cfg.current_max_a)
+        } else {
+            cfg.armed_current_a
+        }
+    }
+
+    /// The arming currents in use (for reports and tests).
+    pub fn arming(&self) -> &Arming {
+        &self.arming
     }
 
     /// The law's model of the coil current (A).
@@ -447,6 +501,10 @@ impl ImpactLaw {
         let mut expected_n = 0.0;
 
         let wanted_a = match branch {
+            // Before contact, moving in, with a coil too slow to set the
+            // current during the impact: arm for the predicted impact. In
+            // contact (the usual period) the first comparison settles it.
+            Branch::Compression if x_mm < -CONTACT_MM && self.coil_tau_s > 0.0 => self.approach_current_a(x_mm, v_m_s),
             Branch::Compression => {
                 // The last TERMINAL_MM are planned as if that much were left:
                 // a slow arrival there (noise, model error) must not ask
@@ -487,7 +545,7 @@ impl ImpactLaw {
                 wanted_a
             }
             // Idle between impacts with a lagging coil: pre-energise.
-            Branch::Extension if self.coil_tau_s > 0.0 && x_mm <= CONTACT_MM => cfg.armed_current_a,
+            Branch::Extension if self.coil_tau_s > 0.0 && x_mm <= CONTACT_MM => Self::idle_armed_a(&cfg, &self.arming),
             Branch::Extension => {
                 flags |= Flags::REBOUND;
                 match cfg.rebound {
@@ -537,6 +595,7 @@ impl ImpactLaw {
 
         self.last_current_a = current_a;
         if branch == Branch::Compression {
+            // (On the approach too: the rebound's `Hold` comes after the stroke.)
             self.last_compression_current_a = current_a;
         } else {
             // No plan this period: the look-ahead's trend starts afresh.
@@ -552,16 +611,47 @@ impl ImpactLaw {
         }
     }
 
+    /// The current to arm at on the approach (x < 0, moving in): the one
+    /// that stops the predicted impact within the stroke. Out of line: the
+    /// control periods in contact do not pay for it.
+    #[inline(never)]
+    #[cold]
+    fn approach_current_a(&mut self, x_mm: f32, v_m_s: f32) -> f32 {
+        // Free fall over the gap: v_c² = v² + 2·g·|x|.
+        let gap_m = -x_mm * 1.0e-3;
+        let impact_m_s = math::sqrt_precise(v_m_s * v_m_s + 2.0 * self.cfg.gravity_m_s2 * gap_m);
+        // No plan: the look-ahead's trend starts at contact.
+        self.planned_last = false;
+        self.arming.stop_current_a(impact_m_s)
+    }
+
     /// Derives what the law needs from `table`'s terms, unless it already
     /// has. [`ImpactLaw::step`] does it when the table changes; the
     /// controller does it when it gets its table, so that no control period
     /// pays for it.
     #[inline]
     pub fn prepare(&mut self, table: &Table) {
+        // The CRC covers the entries and the terms: one comparison a period.
+        if !self.armed || table.crc32() != self.arming_crc {
+            self.prepare_for(table);
+        }
+    }
+
+    /// Derives the coil model's factors and the arming currents of `table`.
+    /// The first table finds the coil settled at its idle current (as
+    /// [`ImpactLaw::new`] assumes).
+    #[inline(never)]
+    fn prepare_for(&mut self, table: &Table) {
         let coil_tau_s = table.terms().coil_tau_s;
         if coil_tau_s != self.coil_tau_s {
             self.set_coil_tau(coil_tau_s);
         }
+        self.arming = self.arming_for(table);
+        self.arming_crc = table.crc32();
+        if !self.armed && self.coil_tau_s > 0.0 {
+            self.coil_a = Self::idle_armed_a(&self.cfg, &self.arming);
+        }
+        self.armed = true;
     }
 
     #[inline(never)]

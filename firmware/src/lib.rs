@@ -15,6 +15,7 @@
 // Float arithmetic is not linted (IEEE: no panics).
 #![deny(clippy::arithmetic_side_effects)]
 
+pub mod arming;
 pub mod boot;
 pub mod calibration;
 pub mod control;

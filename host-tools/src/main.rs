@@ -176,6 +176,9 @@ enum Command {
         /// Folder for report.md and report.json.
         #[arg(long, default_value = "out/bench-control")]
         out: PathBuf,
+        /// Only the real coils (τ 10–20 ms: arming, impact range, driver sizing).
+        #[arg(long)]
+        real_coils: bool,
     },
     /// Blind benchmark of `diagnose` on `mre synth --effect random` cases.
     BenchDiagnose {
@@ -596,8 +599,12 @@ fn run(cli: Cli) -> Result<()> {
             println!("report: {}", report.join("report.md").display());
             println!("page: {}", report.join("index.html").display());
         }
-        Command::BenchControl { out } => {
-            let outcomes = mre_host::control_bench::run_to_files(&mre_host::control_bench::default_cases(), &out)?;
+        Command::BenchControl { out, real_coils } => {
+            let mut cases = mre_host::control_bench::default_cases();
+            if real_coils {
+                cases.retain(mre_host::control_bench::Case::is_real_coil);
+            }
+            let outcomes = mre_host::control_bench::run_to_files(&cases, &out)?;
             print!("{}", mre_host::control_bench::markdown(&outcomes));
             println!("\nreport: {}", out.join("report.md").display());
             println!("page: {}", out.join("index.html").display());

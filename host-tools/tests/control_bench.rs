@@ -138,3 +138,162 @@ fn controller_c_holds_its_target_when_the_coil_time_constant_is_20_percent_off()
         );
     }
 }
+
+// ---- real coils (#29): the simulator's coil and approach ----
+
+use mre_host::plant::{simulate, ConcealedEffect, CurrentSource};
+
+/// The coil current at each sample of a drop whose command is `command_a`
+/// until `switch_s`, then 0 A, on the default 12 V / 4 Ω half bridge.
+fn coil_currents(cfg: &ImpactConfig, command_a: f64, switch_s: f64) -> Vec<(f64, f64)> {
+    let t = simulate(
+        &Plant::nominal(),
+        cfg,
+        CurrentSource::Function(Box::new(move |t| if t < switch_s { command_a } else { 0.0 })),
+    )
+    .unwrap();
+    t.samples.iter().map(|s| (s.time_s, s.current_a)).collect()
+}
+
+#[test]
+fn a_coil_switches_off_with_its_own_slower_time_constant() {
+    // From 1 A held, the command drops to 0 A at t = 0: the current decays as
+    // e^{−t/τ}. After 3 ms (within the impact) it is e^{−0.15} = 0.8607 A
+    // with τ_off = 20 ms, and e^{−0.3} = 0.7408 A with τ_off = τ_on = 10 ms.
+    let base = ImpactConfig {
+        coil_lag_s: Some(0.010),
+        initial_current_a: 1.0,
+        ..ImpactConfig::default()
+    };
+    let at_3_ms = |cfg: &ImpactConfig| {
+        coil_currents(cfg, 0.0, 0.0)
+            .into_iter()
+            .find(|(t, _)| *t >= 0.003 - 1e-9)
+            .unwrap()
+            .1
+    };
+    let slow_off = ImpactConfig {
+        coil_lag_off_s: Some(0.020),
+        ..base.clone()
+    };
+    assert!((at_3_ms(&slow_off) - 0.8607).abs() < 1e-3, "{}", at_3_ms(&slow_off));
+    assert!((at_3_ms(&base) - 0.7408).abs() < 1e-3, "{}", at_3_ms(&base));
+    // Switching on still follows τ_on: from 0 A towards 1 A, 1 − e^{−0.3} = 0.2592 A after 3 ms.
+    let on = ImpactConfig {
+        initial_current_a: 0.0,
+        ..slow_off
+    };
+    let (_, i) = coil_currents(&on, 1.0, 1.0)
+        .into_iter()
+        .find(|(t, _)| *t >= 0.003 - 1e-9)
+        .unwrap();
+    assert!((i - 0.2592).abs() < 1e-3, "{i}");
+}
+
+#[test]
+fn the_approach_falls_freely_and_reaches_contact_at_the_impact_velocity() {
+    // 30 mm before a 2.24 m/s contact the mass falls at √(2.24² − 2·9.81·0.03)
+    // = 2.1051 m/s; at contact (x crossing 0) it moves at 2.24 m/s.
+    let cfg = ImpactConfig {
+        approach_mm: 30.0,
+        ..ImpactConfig::default()
+    };
+    let t = simulate(&Plant::nominal(), &cfg, CurrentSource::Constant(2.0)).unwrap();
+    let first = t.samples[0];
+    assert!(
+        (first.x_mm + 30.0).abs() < 0.01 && (first.v_m_s - 2.1051).abs() < 0.002,
+        "{first:?}"
+    );
+    let contact = t.samples.iter().find(|s| s.x_mm >= 0.0).unwrap();
+    assert!((contact.v_m_s - 2.24).abs() < 0.005, "{contact:?}");
+    // The impact itself is the one that starts at contact.
+    let at_contact = simulate(
+        &Plant::nominal(),
+        &ImpactConfig::default(),
+        CurrentSource::Constant(2.0),
+    )
+    .unwrap();
+    let rel = (t.summary.max_stroke_mm / at_contact.summary.max_stroke_mm - 1.0).abs();
+    assert!(
+        rel < 1e-3,
+        "{} vs {}",
+        t.summary.max_stroke_mm,
+        at_contact.summary.max_stroke_mm
+    );
+}
+
+#[test]
+fn real_coil_time_constants_run_and_out_of_range_ones_get_a_sentence() {
+    let plant = Plant::nominal().with_effect(ConcealedEffect::CoilLag { time_constant_s: 0.020 });
+    let cfg = ImpactConfig {
+        coil_lag_s: Some(0.020),
+        ..ImpactConfig::default()
+    };
+    assert!(simulate(&plant, &cfg, CurrentSource::Constant(1.0)).is_ok());
+    let too_slow = Plant::nominal().with_effect(ConcealedEffect::CoilLag { time_constant_s: 0.2 });
+    let e = format!(
+        "{:#}",
+        simulate(&too_slow, &cfg, CurrentSource::Constant(1.0)).unwrap_err()
+    );
+    assert!(e.contains("at most 100 ms") && !e.contains('{'), "{e}");
+    let e = format!(
+        "{:#}",
+        simulate(
+            &Plant::nominal(),
+            &ImpactConfig {
+                coil_lag_s: Some(0.2),
+                ..ImpactConfig::default()
+            },
+            CurrentSource::Constant(1.0)
+        )
+        .unwrap_err()
+    );
+    assert!(e.contains("at most 100 ms") && !e.contains('{'), "{e}");
+}
+
+#[test]
+fn a_20_ms_coil_armed_before_contact_stops_softer_than_any_fixed_current() {
+    use mre_host::control_bench::real_coil::{run_armed, Prediction};
+    use mre_host::plant::closed_loop::{run_passive, SimSetup};
+    // The bundled fit of the nominal plant (what `cargo fw` flies), with the
+    // coil's L/R of 20 ms, on the nominal plant with that coil.
+    let tau_s = 0.020;
+    let table = mre_core::Table::with_terms(
+        &mre_core::generated_table::GENERATED_ENTRIES,
+        mre_core::table::ModelTerms {
+            coil_tau_s: tau_s as f32,
+            ..mre_core::table::ModelTerms::NONE
+        },
+    )
+    .unwrap();
+    let setup = SimSetup {
+        plant: Plant::nominal().with_effect(ConcealedEffect::CoilLag { time_constant_s: tau_s }),
+        impact: ImpactConfig {
+            coil_lag_s: Some(tau_s),
+            ..ImpactConfig::default()
+        },
+        usable_stroke_mm: 12.0,
+    };
+    // The peer: the passive drop with the lowest peak within the stroke.
+    let best_fixed_n = (0..=100)
+        .map(|k| run_passive(&setup, f64::from(k) * 0.02).unwrap().summary)
+        .filter(|s| s.max_stroke_mm <= 12.0)
+        .map(|s| s.peak_force_n)
+        .fold(f64::INFINITY, f64::min);
+    // And within #29's target for a 20 ms coil: 1.5× the physical limit.
+    // (Idling at the old fixed 0.5 A instead of the robust current, the run
+    // without a prediction peaked at 1.75× here.)
+    let limit_n = physical_limit(&setup.plant, &setup.impact, (0.0, 2.0), 12.0)
+        .unwrap()
+        .envelope_n;
+    for prediction in [Prediction::FromApproach { velocity_scale: 1.0 }, Prediction::None] {
+        let s = run_armed(&setup, &table, prediction, None).unwrap().summary;
+        println!(
+            "{prediction:?}: {:.0} N, {:.2} mm; best fixed {best_fixed_n:.0} N, limit {limit_n:.0} N",
+            s.peak_force_n, s.max_stroke_mm
+        );
+        assert!(s.max_stroke_mm <= 12.0, "{prediction:?}: {} mm", s.max_stroke_mm);
+        assert!(s.peak_force_n < best_fixed_n, "{prediction:?}: {} N", s.peak_force_n);
+        assert!(s.peak_force_n <= 1.5 * limit_n, "{prediction:?}: {} N", s.peak_force_n);
+    }
+}

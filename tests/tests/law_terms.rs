@@ -9,9 +9,12 @@ fn with_terms(terms: ModelTerms) -> Table {
     Table::with_terms(&mre_core::generated_table::GENERATED_ENTRIES, terms).unwrap()
 }
 
+/// No impact range: idle at the fixed `armed_current_a` (arming from the
+/// range is `law_arming.rs`'s).
 fn fast() -> LawConfig {
     LawConfig {
         slew_a_per_s: 1.0e9,
+        impact_v_max_m_s: 0.0,
         ..LawConfig::default()
     }
 }

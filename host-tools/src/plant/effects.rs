@@ -177,7 +177,9 @@ impl ConcealedEffect {
             ConcealedEffect::StressSoftening { depth, tests_n0 } => (0.0..1.0).contains(&depth) && tests_n0 > 0.0,
             ConcealedEffect::EndStop { x_e_mm, k_e_n_per_mm2 } => x_e_mm >= 0.0 && k_e_n_per_mm2 >= 0.0,
             ConcealedEffect::MagneticSaturation { i_s_a } => i_s_a > 0.0,
-            ConcealedEffect::CoilLag { time_constant_s } => time_constant_s > 0.0 && time_constant_s < 0.01,
+            ConcealedEffect::CoilLag { time_constant_s } => {
+                time_constant_s > 0.0 && time_constant_s <= super::stepper::MAX_COIL_TAU_S
+            }
             ConcealedEffect::Inertia { m_s_kg } => m_s_kg >= 0.0,
         };
         let finite = serde_json::to_value(self)
@@ -186,9 +188,48 @@ impl ConcealedEffect {
             .and_then(|p| p.as_object().cloned())
             .is_none_or(|p| p.values().all(|v| v.as_f64().is_some_and(f64::is_finite)));
         if !ok || !finite {
-            bail!("effect parameters out of range: {self:?}");
+            bail!(
+                "the {} effect's parameters are out of range: {} (expected {})",
+                self.name(),
+                self.parameters_text(),
+                self.expected_range()
+            );
         }
         Ok(())
+    }
+
+    /// The parameters as `name = value` pairs, for messages.
+    fn parameters_text(&self) -> String {
+        let params = serde_json::to_value(self)
+            .ok()
+            .and_then(|v| v.get("parameters").cloned())
+            .and_then(|p| p.as_object().cloned())
+            .unwrap_or_default();
+        if params.is_empty() {
+            return "none".to_owned();
+        }
+        params
+            .iter()
+            .map(|(name, value)| format!("{name} = {value}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
+    /// The physical range [`ConcealedEffect::validate`] accepts, in words.
+    fn expected_range(&self) -> String {
+        match self {
+            ConcealedEffect::None => "no parameters".to_owned(),
+            ConcealedEffect::ViscousDamping { .. } => "c0_n_s_per_m ≥ 0 and a finite increase_per_a ≥ 0".to_owned(),
+            ConcealedEffect::SensorDelay { .. } => "delay_s from 0 up to 10 ms".to_owned(),
+            ConcealedEffect::StressSoftening { .. } => "depth from 0 up to 1 and tests_n0 > 0".to_owned(),
+            ConcealedEffect::EndStop { .. } => "x_e_mm ≥ 0 and k_e_n_per_mm2 ≥ 0".to_owned(),
+            ConcealedEffect::MagneticSaturation { .. } => "i_s_a > 0".to_owned(),
+            ConcealedEffect::CoilLag { .. } => format!(
+                "a time constant above 0 and at most {} ms",
+                super::stepper::MAX_COIL_TAU_S * 1e3
+            ),
+            ConcealedEffect::Inertia { .. } => "m_s_kg ≥ 0".to_owned(),
+        }
     }
 }
 

@@ -1,6 +1,7 @@
 //! The drop test: `m·ẍ = m·g − F(x, ẋ, I)` integrated by fixed-step RK4
-//! from first contact (x = 0, ẋ = impact velocity) until the mass leaves the
-//! damper (x back below 0 while moving out).
+//! from first contact (x = 0, ẋ = impact velocity), or from
+//! [`ImpactConfig::approach_mm`] before it in free fall, until the mass leaves
+//! the damper (x back below 0 while moving out).
 //!
 //! [`PlantStepper`] advances one control period at a time with the coil
 //! command held (zero-order hold), so a controller — in process, or the real
@@ -77,6 +78,13 @@ pub struct ImpactConfig {
     pub max_duration_s: f64,
     /// First-order coil time constant L/R (s); `None` = the current follows the command at once.
     pub coil_lag_s: Option<f64>,
+    /// Time constant while the coil current falls (s), when switching off is
+    /// slower than switching on (eddy currents in the core); `None` = `coil_lag_s`.
+    pub coil_lag_off_s: Option<f64>,
+    /// The drop starts this far before contact (mm), the mass falling freely,
+    /// so a controller sees its approach (x < 0); it still reaches the
+    /// contact at `impact_velocity_m_s`. 0 = start at contact.
+    pub approach_mm: f64,
     /// The coil driver: with a coil lag the command (A) is the driver's
     /// voltage over R, limited by its supply.
     pub driver: CoilDriver,
@@ -99,6 +107,8 @@ impl Default for ImpactConfig {
             control_period_s: 1.0e-4,
             max_duration_s: 0.5,
             coil_lag_s: None,
+            coil_lag_off_s: None,
+            approach_mm: 0.0,
             driver: CoilDriver::default(),
             initial_current_a: 0.0,
             sequence: 1,
@@ -106,6 +116,11 @@ impl Default for ImpactConfig {
         }
     }
 }
+
+/// Longest coil time constant the simulator takes (s): real MR dampers
+/// measure 5–20 ms; beyond 100 ms it is a unit mistake (as `mre_core`'s
+/// `MAX_TERM_TIME_S`).
+pub const MAX_COIL_TAU_S: f64 = 0.1;
 
 /// A voltage-source coil driver: `L·di/dt = V − R·i` with `V = R·command`
 /// limited to the supply, so with `τ = L/R` the current follows the command
@@ -241,6 +256,7 @@ impl PlantStepper {
             cfg.control_period_s,
             cfg.max_duration_s,
             cfg.initial_current_a,
+            cfg.approach_mm,
         ];
         ensure!(
             finite.iter().all(|v| v.is_finite()),
@@ -256,9 +272,24 @@ impl PlantStepper {
             "RK4 step must be in (0, 1 µs]"
         );
         ensure!(cfg.max_duration_s > 0.0, "max duration must be positive");
-        if let Some(tau) = cfg.coil_lag_s {
-            ensure!(tau.is_finite() && tau > 0.0, "coil lag must be positive");
+        for tau_s in [cfg.coil_lag_s, cfg.coil_lag_off_s].into_iter().flatten() {
+            ensure!(
+                tau_s.is_finite() && tau_s > 0.0 && tau_s <= MAX_COIL_TAU_S,
+                "the coil time constant must be more than 0 and at most {} ms (it was {} ms)",
+                MAX_COIL_TAU_S * 1e3,
+                tau_s * 1e3
+            );
         }
+        ensure!(
+            cfg.coil_lag_off_s.is_none() || cfg.coil_lag_s.is_some(),
+            "a switch-off time constant needs a coil time constant (`coil_lag_s`) too"
+        );
+        ensure!(
+            cfg.approach_mm >= 0.0 && cfg.impact_velocity_m_s.powi(2) > 2.0 * cfg.gravity_m_s2 * cfg.approach_mm * 1e-3,
+            "the approach ({} mm) must be at least 0 and shorter than the free fall that reaches {} m/s",
+            cfg.approach_mm,
+            cfg.impact_velocity_m_s
+        );
         let d = &cfg.driver;
         ensure!(
             d.resistance_ohm.is_finite() && d.resistance_ohm > 0.0 && d.supply_v.is_finite() && d.supply_v > 0.0,
@@ -277,9 +308,14 @@ impl PlantStepper {
             steps_per_sample,
             step: 0,
             next_sample_step: 0,
+            // Free fall over the approach: v² = v_c² − 2·g·a.
             state: State {
-                x_m: 0.0,
-                v_m_s: cfg.impact_velocity_m_s,
+                x_m: -cfg.approach_mm * 1e-3,
+                v_m_s: if cfg.approach_mm > 0.0 {
+                    (cfg.impact_velocity_m_s.powi(2) - 2.0 * cfg.gravity_m_s2 * cfg.approach_mm * 1e-3).sqrt()
+                } else {
+                    cfg.impact_velocity_m_s
+                },
             },
             command_a: cfg.initial_current_a,
             current_a: cfg.initial_current_a,
@@ -356,11 +392,17 @@ impl PlantStepper {
 
     fn update_coil(&mut self) {
         self.current_a = match self.cfg.coil_lag_s {
-            Some(tau) => {
+            Some(tau_on_s) => {
                 // The voltage the supply can give, over R: the current's target.
                 let (lo, hi) = self.cfg.driver.command_range_a();
                 let drive_a = self.command_a.clamp(lo, hi);
-                self.current_a + (drive_a - self.current_a) * (1.0 - (-self.cfg.step_s / tau).exp())
+                // Falling towards zero: the switch-off time constant.
+                let falling = drive_a.abs() < self.current_a.abs();
+                let tau_s = match self.cfg.coil_lag_off_s {
+                    Some(tau_off_s) if falling => tau_off_s,
+                    _ => tau_on_s,
+                };
+                self.current_a + (drive_a - self.current_a) * (1.0 - (-self.cfg.step_s / tau_s).exp())
             }
             None => self.command_a,
         };
