@@ -11,14 +11,15 @@ squares, scipy's BVLS: the reference, since the unconstrained optimum may lie
 outside), mre's GSA result (from the model file) and niapy's GSA with the
 same N, N*T evaluations and box on the moment-form objective (the same 5x5
 quadratic form mre evaluates); each one's gap = its RMSE / the box optimum.
-Speed-up in two parts, data box, every branch: niapy per-sample numpy
-objective against niapy moment form (what the objective buys), niapy moment
-form against mre on one thread (what the search costs). WEIGHTS_CSV (from
+Speed-up in two parts, data box: niapy per-sample numpy objective against
+niapy moment form, back to back per branch (what the objective buys), niapy
+moment form against mre on one thread (what the search costs). WEIGHTS_CSV (from
 `cargo bench --bench gsa_weights`) adds mre's per-agent against per-dimension
 random weights, several seeds, as gaps to the same box optima.
 
 Environment: BRANCHES=K keeps the first K branches; PER_SAMPLE=0 skips the
-per-sample niapy runs; NIAPY_CACHE=FILE stores each niapy result (value,
+speed-up runs, PER_SAMPLE_BRANCHES=K times them on the first K branches
+(default all; never cached); NIAPY_CACHE=FILE stores each niapy result (value,
 seconds, UTC time, load) and reuses those whose inputs match, so the tables
 can be rebuilt without the ~1 min per niapy run (the cached times are from
 when they were measured: printed).
@@ -38,6 +39,7 @@ from niapy.algorithms.basic import GravitationalSearchAlgorithm
 from niapy.problems import Problem
 from niapy.task import Task
 from scipy.optimize import lsq_linear
+from scipy.stats import binomtest
 
 sys.path.insert(0, str(Path(__file__).parent))
 from gsa_peer import Rmse, branches  # noqa: E402  (per-sample objective, branch split as mre's)
@@ -147,26 +149,7 @@ def main():
               f"| {peer_sum / opt_sum:.3g} | {spread(peer_gaps)} | {wins} / {len(data)} | {mre_s[box]:.3f} "
               f"| {peer_s:.1f} | {peer_s / mre_s[box]:.0f}x |")
     if os.environ.get("PER_SAMPLE", "1") != "0":
-        # What the objective buys: niapy's GSA, same seeds and data box, per-sample against moment form.
-        model = tomllib.loads(models["data"].read_text())
-        n, t, seed = model["model"]["agents"], model["model"]["iters"], model["model"]["seed"]
-        per_sample_s = moment_s = 0.0
-        same = 0
-        for i, (c, b, x, f) in enumerate(data):
-            meta = next(e for e in model["current"] if e["current_a"] == c)["fit"][b]
-            lo, hi = np.array(meta["gsa_lower"]), np.array(meta["gsa_upper"])
-            slow = niapy.run("per-sample", x, f, lo, hi, n, t, seed + i)
-            fast = niapy.run("moment", x, f, lo, hi, n, t, seed + i)
-            runs.append(slow)
-            per_sample_s += slow["seconds"]
-            moment_s += fast["seconds"]
-            same += abs(slow["value"] - fast["value"]) <= 1e-6 * fast["value"]
-        print(f"\nspeed-up, part 1 (the objective), niapy GSA, data box, {len(data)} branches: per-sample numpy "
-              f"{per_sample_s:.1f} s, moment form {moment_s:.1f} s: {per_sample_s / moment_s:.2f}x "
-              f"(same final RMSE to 1e-6 on {same} / {len(data)} branches)")
-        print(f"speed-up, part 2 (the search), moment form, data box: niapy {moment_s:.1f} s, mre on one thread "
-              f"{mre_s['data']:.3f} s: {moment_s / mre_s['data']:.0f}x; "
-              f"together {per_sample_s / mre_s['data']:.0f}x")
+        speed_split(data, models["data"], mre_s["data"], int(os.environ.get("PER_SAMPLE_BRANCHES", len(data))))
     when = sorted({r["utc"] for r in runs})
     loads = [r["load"] for r in runs]
     print(f"niapy runs: {when[0]} to {when[-1]} UTC, load {min(loads):.1f}–{max(loads):.1f}")
@@ -174,13 +157,54 @@ def main():
         weights_table(weights_csv, optimum)
 
 
+def speed_split(data, model_path, mre_s, k):
+    """The speed-up in two parts, timed now (never from the cache), data box.
+
+    Per branch, niapy's GSA on the moment form and on the per-sample objective
+    back to back (alternating which goes first), so that a changing load hits
+    both alike; and the cost of one evaluation of each objective alone.
+    """
+    model = tomllib.loads(model_path.read_text())
+    n, t, seed = model["model"]["agents"], model["model"]["iters"], model["model"]["seed"]
+    runs = {"moment": 0.0, "per-sample": 0.0}
+    eval_us = {"moment": 0.0, "per-sample": 0.0}
+    same = 0
+    rng = np.random.default_rng(0)
+    for i, (c, b, x, f) in enumerate(data[:k]):
+        meta = next(e for e in model["current"] if e["current_a"] == c)["fit"][b]
+        lo, hi = np.array(meta["gsa_lower"]), np.array(meta["gsa_upper"])
+        values = {}
+        for kind in (("moment", "per-sample") if i % 2 == 0 else ("per-sample", "moment")):
+            r = Niapy(None).run(kind, x, f, lo, hi, n, t, seed + i)
+            runs[kind] += r["seconds"]
+            values[kind] = r["value"]
+            problem = (MomentRmse if kind == "moment" else Rmse)(x, f, lo, hi)
+            points = lo + (hi - lo) * rng.random((2000, 5))
+            start = time.perf_counter()
+            for p in points:
+                problem._evaluate(p)
+            eval_us[kind] += (time.perf_counter() - start) / len(points) * 1e6 / k
+        same += abs(values["moment"] - values["per-sample"]) <= 1e-6 * values["moment"]
+    per_branch_mre = mre_s / len(data)
+    print(f"\nspeed-up, timed {time.strftime('%Y-%m-%d %H:%M', time.gmtime())} UTC, load "
+          f"{os.getloadavg()[0]:.1f}, data box, niapy on {k} branches (same final RMSE on {same} / {k}):")
+    print(f"- one evaluation: per-sample numpy {eval_us['per-sample']:.1f} µs, moment form "
+          f"{eval_us['moment']:.1f} µs ({eval_us['per-sample'] / eval_us['moment']:.1f}x)")
+    print(f"- part 1, what the objective buys niapy: per-sample {runs['per-sample']:.1f} s, moment form "
+          f"{runs['moment']:.1f} s: {runs['per-sample'] / runs['moment']:.2f}x")
+    print(f"- part 2, what the search costs (moment form, per branch): niapy {runs['moment'] / k:.2f} s, "
+          f"mre on one thread {per_branch_mre * 1e3:.2f} ms: {runs['moment'] / k / per_branch_mre:.0f}x; "
+          f"niapy per-sample against mre: {runs['per-sample'] / k / per_branch_mre:.0f}x")
+
+
 def weights_table(path, optimum):
     """mre's per-agent against per-dimension random weights, gaps to the same box optima."""
     rows = list(csv.DictReader(path.open()))
     print(f"\n### mre GSA random weights ({path.name}: {len({r['seed'] for r in rows})} seeds per branch)\n")
     print("| box | per-agent gap, summed: median over seeds (min–max) | per-dimension | "
-          "per-dimension lower on (seed, branch) | median per-branch ratio per-dimension / per-agent |")
-    print("|---|---|---|---|---:|")
+          "per-dimension lower on (seed, branch) | sign test p (two-sided) "
+          "| median per-branch ratio per-dimension / per-agent |")
+    print("|---|---|---|---|---:|---:|")
     for box in BOXES:
         by = {}
         for r in rows:
@@ -194,9 +218,11 @@ def weights_table(path, optimum):
         summed = {w: [sum(v for k, v in by[w].items() if k[0] == s) / opt_sum for s in seeds] for w in by}
         pairs = [(by["per-agent"][k], by["per-dimension"][k]) for k in by["per-agent"] if k in by["per-dimension"]]
         lower = sum(d < a for a, d in pairs)
+        untied = sum(d != a for a, d in pairs)
+        p_value = binomtest(lower, untied).pvalue if untied else 1.0
         ratio = statistics.median(d / a for a, d in pairs)
         print(f"| {box} | {spread(summed['per-agent'])} | {spread(summed['per-dimension'])} "
-              f"| {lower} / {len(pairs)} | {ratio:.3f} |")
+              f"| {lower} / {len(pairs)} | {p_value:.2g} | {ratio:.3f} |")
 
 
 if __name__ == "__main__":
