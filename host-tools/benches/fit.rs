@@ -16,7 +16,9 @@ use rayon::prelude::*;
 use std::hint::black_box;
 
 fn bundled(name: &str) -> Vec<BranchProblem> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../data").join(name);
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../data")
+        .join(name);
     branch_problems(&Dataset::load(&dir).expect("bundled data loads")).expect("bundled data has fit branches")
 }
 

@@ -20,7 +20,9 @@ fn main() -> Result<()> {
     // `cargo bench` passes `--bench`; no other arguments are taken.
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
     let dataset = std::env::var("DATASET").map_or_else(|_| root.join("data/drop-none"), PathBuf::from);
-    let seeds: u64 = std::env::var("SEEDS").map_or(Ok(10), |s| s.parse()).context("SEEDS is not a number")?;
+    let seeds: u64 = std::env::var("SEEDS")
+        .map_or(Ok(10), |s| s.parse())
+        .context("SEEDS is not a number")?;
     let csv = std::env::var("CSV").map_or_else(|_| root.join("out/bench/gsa_weights.csv"), PathBuf::from);
     let problems = branch_problems(&Dataset::load(&dataset)?)?;
     let mut out = String::from("box,weights,seed,current_a,branch,rmse_n\n");
