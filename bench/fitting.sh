@@ -45,6 +45,7 @@ python3 bench/gsa_peer.py "$DATA" "$tmp/both.toml" "$(python3 -c "print($median_
 echo "== 2. two boxes on $BOX_DATA"
 data_ms="$(RAYON_NUM_THREADS=1 gsa_ms "$BOX_DATA" --bounds data)"
 paper_ms="$(RAYON_NUM_THREADS=1 gsa_ms "$BOX_DATA" --bounds paper)"
+echo "mre GSA on one thread, all branches: data box ${data_ms} ms, paper box ${paper_ms} ms (median of ${RUNS:-7})"
 DATASET="$PWD/$BOX_DATA" CSV="$tmp/weights.csv" cargo bench -q -p host-tools --bench gsa_weights
 "$MRE" fit "$BOX_DATA" --method both --bounds data --out "$tmp/box-data.toml" > /dev/null
 "$MRE" fit "$BOX_DATA" --method both --bounds paper --out "$tmp/box-paper.toml" > /dev/null

@@ -101,7 +101,7 @@ def spread(gaps):
 def main():
     dataset = Path(sys.argv[1])
     models = {"data": Path(sys.argv[2]), "paper": Path(sys.argv[3])}
-    mre_s = {"data": float(sys.argv[4]), "paper": float(sys.argv[5])}
+    mre_data_s = float(sys.argv[4])  # sys.argv[5], the paper box's time, is printed by fitting.sh
     weights_csv = Path(sys.argv[6]) if len(sys.argv) > 6 else None
     niapy = Niapy(os.environ.get("NIAPY_CACHE"))
     data = list(branches(dataset))[: int(os.environ.get("BRANCHES", "1000"))]
@@ -117,7 +117,7 @@ def main():
         print("| current (A) | branch | samples | lsq optimum inside | box optimum (N) | mre GSA gap "
               "| niapy GSA gap | niapy time (s) |")
         print("|---:|---|---:|---|---:|---:|---:|---:|")
-        inside, opt_sum, ours_sum, peer_sum, peer_s, ours_gaps, peer_gaps, wins = 0, 0.0, 0.0, 0.0, 0.0, [], [], 0
+        inside, opt_sum, ours_sum, peer_sum, ours_gaps, peer_gaps, wins = 0, 0.0, 0.0, 0.0, [], [], 0
         for i, (c, b, x, f) in enumerate(data):
             cur = next(e for e in model["current"] if e["current_a"] == c)
             meta = cur["fit"][b]
@@ -136,20 +136,18 @@ def main():
             opt_sum += opt
             ours_sum += meta["gsa_rmse_n"]
             peer_sum += peer["value"]
-            peer_s += peer["seconds"]
             print(f"| {c:g} | {b} | {len(x)} | {'yes' if is_inside else 'no'} | {opt:.2f} | {ours:.3g} "
                   f"| {theirs:.3g} | {peer['seconds']:.1f} |")
-        summary.append((box, inside, opt_sum, ours_sum, peer_sum, ours_gaps, peer_gaps, wins, peer_s))
+        summary.append((box, inside, opt_sum, ours_sum, peer_sum, ours_gaps, peer_gaps, wins))
     print("\n### Summary (gap: summed RMSE / summed box optimum; per branch: median (min–max))\n")
     print("| box | lsq optimum inside | box optimum (N, summed) | mre GSA gap | per branch | niapy GSA gap "
-          "| per branch | mre below niapy | mre time, 1 thread (s) | niapy time (s) | niapy / mre time |")
-    print("|---|---|---:|---:|---|---:|---|---|---:|---:|---:|")
-    for box, inside, opt_sum, ours_sum, peer_sum, ours_gaps, peer_gaps, wins, peer_s in summary:
+          "| per branch | mre below niapy |")
+    print("|---|---|---:|---:|---|---:|---|---|")
+    for box, inside, opt_sum, ours_sum, peer_sum, ours_gaps, peer_gaps, wins in summary:
         print(f"| {box} | {inside} / {len(data)} | {opt_sum:.1f} | {ours_sum / opt_sum:.3g} | {spread(ours_gaps)} "
-              f"| {peer_sum / opt_sum:.3g} | {spread(peer_gaps)} | {wins} / {len(data)} | {mre_s[box]:.3f} "
-              f"| {peer_s:.1f} | {peer_s / mre_s[box]:.0f}x |")
+              f"| {peer_sum / opt_sum:.3g} | {spread(peer_gaps)} | {wins} / {len(data)} |")
     if os.environ.get("PER_SAMPLE", "1") != "0":
-        speed_split(data, models["data"], mre_s["data"], int(os.environ.get("PER_SAMPLE_BRANCHES", len(data))))
+        speed_split(data, models["data"], mre_data_s, int(os.environ.get("PER_SAMPLE_BRANCHES", len(data))))
     when = sorted({r["utc"] for r in runs})
     loads = [r["load"] for r in runs]
     print(f"niapy runs: {when[0]} to {when[-1]} UTC, load {min(loads):.1f}–{max(loads):.1f}")
