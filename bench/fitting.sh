@@ -3,12 +3,15 @@
 #  1. mre's GSA against niapy's GSA on DATASET (default data/mr-damper-mts):
 #     same objective values, N, T, evaluation count and search box (data box);
 #  2. the two-box benchmark on BOX_DATASET (default data/drop-none, the
-#     paper's scale): GSA on the data box and on the paper's Table 3 box, each
-#     against the least-squares optimum inside the box and against niapy's GSA
-#     on the same moment-form objective; and the speed-up split in two (the
-#     objective: niapy per-sample vs moment form; the search: mre vs niapy on
-#     the moment form).
+#     paper's scale), every branch: GSA on the data box and on the paper's
+#     Table 3 box, each against the least-squares optimum inside the box and
+#     against niapy's GSA on the same moment-form objective; the speed-up split
+#     in two (the objective: niapy per-sample vs moment form; the search: mre
+#     on one thread vs niapy on the moment form); mre's per-agent against
+#     per-dimension random weights over 10 seeds (`cargo bench --bench gsa_weights`).
+# About 40 min on an idle 2-core machine (niapy: ~1 min per branch and run).
 # Installs niapy and scipy if missing. MRE=path uses that binary (no build).
+# NIAPY_CACHE=FILE reuses niapy results (bench/gsa_boxes.py).
 # Usage: bench/fitting.sh [DATASET [BOX_DATASET]]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -40,9 +43,11 @@ echo "mre fit --method gsa: median ${median_ms} ms"
 python3 bench/gsa_peer.py "$DATA" "$tmp/both.toml" "$(python3 -c "print($median_ms / 1000)")"
 
 echo "== 2. two boxes on $BOX_DATA"
-data_ms="$(gsa_ms "$BOX_DATA" --bounds data)"
-paper_ms="$(gsa_ms "$BOX_DATA" --bounds paper)"
+data_ms="$(RAYON_NUM_THREADS=1 gsa_ms "$BOX_DATA" --bounds data)"
+paper_ms="$(RAYON_NUM_THREADS=1 gsa_ms "$BOX_DATA" --bounds paper)"
+echo "mre GSA on one thread, all branches: data box ${data_ms} ms, paper box ${paper_ms} ms (median of ${RUNS:-7})"
+DATASET="$PWD/$BOX_DATA" CSV="$tmp/weights.csv" cargo bench -q -p host-tools --bench gsa_weights
 "$MRE" fit "$BOX_DATA" --method both --bounds data --out "$tmp/box-data.toml" > /dev/null
 "$MRE" fit "$BOX_DATA" --method both --bounds paper --out "$tmp/box-paper.toml" > /dev/null
 python3 bench/gsa_boxes.py "$BOX_DATA" "$tmp/box-data.toml" "$tmp/box-paper.toml" \
-    "$(python3 -c "print($data_ms / 1000)")" "$(python3 -c "print($paper_ms / 1000)")" "${PER_SAMPLE_BRANCHES:-2}"
+    "$(python3 -c "print($data_ms / 1000)")" "$(python3 -c "print($paper_ms / 1000)")" "$tmp/weights.csv"

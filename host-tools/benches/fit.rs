@@ -1,7 +1,9 @@
 //! `cargo bench -p host-tools --bench fit`: the full GSA fit at N = T = 100
 //! (moment-form objective vs sample-by-sample), and least squares, on the
-//! bundled MTS data (6 branches) and on a 10-branch synthetic set (the
-//! paper's 5 currents × 2 branches, 2000 samples each).
+//! bundled MTS data (6 branches), on the simulated drop campaign
+//! `data/drop-none` (the paper's 5 currents × 2 branches, 7819 samples: the
+//! data set of the two-box benchmark) and on a 10-branch synthetic set (the
+//! paper's Table 4 loops, 2000 samples each).
 use criterion::{criterion_group, criterion_main, Criterion};
 use mre_core::model::Branch;
 use mre_host::dataset::{BranchSamples, Dataset};
@@ -13,8 +15,10 @@ use mre_host::fit::{branch_rng, branch_stream, fit_branches, FitOptions, Method}
 use rayon::prelude::*;
 use std::hint::black_box;
 
-fn bundled() -> Vec<BranchProblem> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/mr-damper-mts");
+fn bundled(name: &str) -> Vec<BranchProblem> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../data")
+        .join(name);
     branch_problems(&Dataset::load(&dir).expect("bundled data loads")).expect("bundled data has fit branches")
 }
 
@@ -69,7 +73,8 @@ fn bench(c: &mut Criterion) {
         ..Default::default()
     };
     for (name, problems) in [
-        ("mts_6_branches", bundled()),
+        ("mts_6_branches", bundled("mr-damper-mts")),
+        ("drop_none_10_branches", bundled("drop-none")),
         ("paper_10_branches", paper_ten_branches()),
     ] {
         let mut g = c.benchmark_group(name);
