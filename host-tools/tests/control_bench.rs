@@ -12,7 +12,7 @@ fn root() -> &'static Path {
 }
 
 /// Whether the diagnosed coil τ lies close enough to the true one. The
-/// estimator refines τ on a grid of 2^(1/16) steps (diagnose/candidates.rs),
+/// estimator refines τ on a grid of 2^(1/16) steps (diagnose/terms/coil_lag.rs),
 /// so the nearest grid point is within 2^(1/32) − 1 = 2.2 %; the held-out
 /// error is flat within a step under the recordings' noise, so the
 /// neighbouring point is as likely: one more step, 2^(3/32) − 1 = 6.7 %.

@@ -371,8 +371,12 @@ pub fn markdown(outcomes: &[CaseOutcome]) -> String {
             ));
         }
     }
-    s.push_str("\n| case | target for (c) | (c) × limit | met |\n|---|---|---|---|\n");
-    for o in outcomes.iter().filter(|o| o.real_coil.is_none()) {
+    let today: Vec<&CaseOutcome> = outcomes.iter().filter(|o| o.real_coil.is_none()).collect();
+    // `--real-coils` runs none of today's cases: no empty table.
+    if !today.is_empty() {
+        s.push_str("\n| case | target for (c) | (c) × limit | met |\n|---|---|---|---|\n");
+    }
+    for o in today {
         s.push_str(&format!(
             "| {} | ≤ {:.2}× and ≤ (a) | {:.2} | {} |\n",
             o.label,

@@ -1,8 +1,7 @@
 //! Real coils (τ 10–20 ms, #29): controller (c) armed before contact.
 //!
 //! Each with two tables: (c) as diagnosed (its τ included), and (c) with τ set
-//! to the coil's own L/R (`mre diagnose`'s τ grid ends near 5.4 ms: a slower
-//! coil's τ must come from its data sheet or a step test).
+//! to the coil's own L/R (what a data sheet or a step test gives).
 //! - **with a prediction**: the drop starts [`APPROACH_MM`] before contact and
 //!   the law's displacement range includes the approach, so the law predicts
 //!   the impact velocity from its approach samples (`mre_core::law`); the
