@@ -2,7 +2,7 @@
 //! `mre tables` generates from the committed model (`models/drop-full-stroke.toml`),
 //! and that model must be what `mre fit` makes of the bundled drop tests.
 use mre_core::table::Table;
-use mre_host::table_file::{read_dataset_sha256, read_table_file};
+use mre_host::table_file::{read_dataset_sha256, read_flash_table, read_table_file};
 use mre_host::tables::generate_table_source;
 use std::path::Path;
 
@@ -15,9 +15,9 @@ fn root() -> &'static Path {
 
 #[test]
 fn committed_generated_table_matches_the_committed_model() {
-    let table = read_table_file(&root().join(MODEL)).unwrap();
+    let (table, source) = read_flash_table(&root().join(MODEL)).unwrap();
     let sha = read_dataset_sha256(&root().join(MODEL)).unwrap();
-    let generated = generate_table_source(MODEL, &table, sha.as_deref());
+    let generated = generate_table_source(MODEL, &table, sha.as_deref(), Some(source));
     let committed = include_str!("../../firmware/src/generated_table.rs");
     assert!(
         generated == committed,
@@ -28,8 +28,12 @@ fn committed_generated_table_matches_the_committed_model() {
 #[test]
 fn generated_image_validates_and_equals_the_model() {
     let from_flash = Table::from_image(&mre_core::generated_table::GENERATED_TABLE).unwrap();
-    let from_model = read_table_file(&root().join(MODEL)).unwrap();
+    let (from_model, _) = read_flash_table(&root().join(MODEL)).unwrap();
     assert_eq!(from_flash, from_model);
+    // The model's entries and terms, carried in format 3 with its installation.
+    let fitted = read_table_file(&root().join(MODEL)).unwrap();
+    assert_eq!((from_flash.entries(), from_flash.terms()), (fitted.entries(), fitted.terms()));
+    assert_eq!(from_flash.version(), 3);
     // The drop tests' five fit currents, 0–2 A.
     assert_eq!(from_flash.current_range_a(), (0.0, 2.0));
     assert_eq!(from_flash.entries().len(), 5);
@@ -86,7 +90,7 @@ fn paper_table_generates_source_with_its_known_crc() {
     // The paper table's CRC is computed by the core at compile time; the
     // generator must print the same value.
     let paper = Table::paper().unwrap();
-    let src = generate_table_source("paper", &paper, None);
+    let src = generate_table_source("paper", &paper, None, None);
     assert!(src.contains(&format!("crc32: {:#010x},", mre_core::table::PAPER_TABLE4.crc32)));
     assert!(src.contains("current_a: 2.0,"));
     assert!(src.contains("compression: Quartic::new([-6619.6, 19772.0, -24021.0, 19016.0, -105.53]),"));
