@@ -444,8 +444,8 @@ fn blob_words(version: u16, count: usize) -> Option<usize> {
 const CONTROL_WORDS: usize = 7;
 
 use crate::control::ControlConfig;
-use crate::law::{LawConfig, ReboundPolicy};
 use crate::installation::{Installation, DEFAULT_INSTALLATION};
+use crate::law::{LawConfig, ReboundPolicy};
 use crate::table::{CurrentEntry, ModelTerms, Quartic, Table, TableImage, MAX_CURRENTS};
 
 /// One received piece of the configuration blob.

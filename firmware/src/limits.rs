@@ -304,7 +304,10 @@ pub struct InstallationLimit(pub u8);
 
 impl InstallationLimit {
     pub fn name(&self) -> &'static str {
-        Installation::FIELD_NAMES.get(usize::from(self.0)).copied().unwrap_or("?")
+        Installation::FIELD_NAMES
+            .get(usize::from(self.0))
+            .copied()
+            .unwrap_or("?")
     }
 
     pub fn range(&self, limits: &BoardLimits) -> Range {
@@ -316,7 +319,11 @@ impl InstallationLimit {
     }
 
     pub fn value(&self, installation: &Installation) -> f32 {
-        installation.to_array().get(usize::from(self.0)).copied().unwrap_or(f32::NAN)
+        installation
+            .to_array()
+            .get(usize::from(self.0))
+            .copied()
+            .unwrap_or(f32::NAN)
     }
 
     /// Why the board holds this limit (one clause, for the host).

@@ -222,7 +222,9 @@ pub fn check_installation_limits(installation: &Installation) -> Result<()> {
 }
 
 pub fn parse_table_toml(text: &str) -> Result<Table> {
-    use mre_core::table::{ModelTerms, FORMAT_VERSION, FORMAT_VERSION_1, FORMAT_VERSION_2, FORMAT_VERSION_3, MAX_CURRENTS};
+    use mre_core::table::{
+        ModelTerms, FORMAT_VERSION, FORMAT_VERSION_1, FORMAT_VERSION_2, FORMAT_VERSION_3, MAX_CURRENTS,
+    };
     let doc: TableToml = toml::from_str(text)?;
     let declared = doc.format_version.unwrap_or(FORMAT_VERSION_1);
     if !(FORMAT_VERSION_1..=FORMAT_VERSION).contains(&declared) {

@@ -33,10 +33,7 @@ pub fn generate_table_source(
         s,
         "//! A host test (`host-tools/tests/tables.rs`) fails if this file drifts from the model."
     );
-    let _ = writeln!(
-        s,
-        "use crate::installation::{{Installation, DEFAULT_INSTALLATION}};"
-    );
+    let _ = writeln!(s, "use crate::installation::{{Installation, DEFAULT_INSTALLATION}};");
     let _ = writeln!(
         s,
         "use crate::table::{{CurrentEntry, ModelTerms, Quartic, TableImage}};"
@@ -70,9 +67,15 @@ pub fn generate_table_source(
         Some(source) => source.describe(),
         None => "none carried (format 1 or 2): the defaults",
     };
-    let _ = writeln!(s, "/// The installation the board derives its law and fault configuration from: {from}.");
+    let _ = writeln!(
+        s,
+        "/// The installation the board derives its law and fault configuration from: {from}."
+    );
     if *i == mre_core::installation::DEFAULT_INSTALLATION {
-        let _ = writeln!(s, "pub const GENERATED_INSTALLATION: Installation = DEFAULT_INSTALLATION;");
+        let _ = writeln!(
+            s,
+            "pub const GENERATED_INSTALLATION: Installation = DEFAULT_INSTALLATION;"
+        );
     } else {
         let _ = writeln!(s, "pub const GENERATED_INSTALLATION: Installation = Installation {{");
         for (name, v) in Installation::FIELD_NAMES.iter().zip(i.to_array()) {

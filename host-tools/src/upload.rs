@@ -169,11 +169,17 @@ mod tests {
         // A stroke past the displacement sensor is named before anything is sent.
         let bad = dir.path().join("bad.toml");
         std::fs::write(&bad, format!("{base}\n[installation]\nusable_stroke_mm = 30.0\n")).unwrap();
-        let (_, cfg) = upload_payload(&bad, DEFAULT_RATE_HZ).unwrap();
-        let msg = check_board_limits(&cfg).unwrap_err().to_string();
+        let msg = format!("{:#}", upload_payload(&bad, DEFAULT_RATE_HZ).unwrap_err());
         assert!(
-            msg.starts_with("stroke_max_mm = 30 is outside the board's limits 1 to 25"),
+            msg.contains("[installation] usable_stroke_mm = 30 is outside the board's limits 1 to 25"),
             "{msg}"
+        );
+        // The table carries the installation (format 3) under its CRC.
+        let (table, _) = upload_payload(&with, DEFAULT_RATE_HZ).unwrap();
+        assert_eq!(table.version(), 3);
+        assert_eq!(
+            (table.installation().mass_kg, table.installation().usable_stroke_mm),
+            (3.0, 9.0)
         );
     }
 

@@ -32,7 +32,10 @@ fn generated_image_validates_and_equals_the_model() {
     assert_eq!(from_flash, from_model);
     // The model's entries and terms, carried in format 3 with its installation.
     let fitted = read_table_file(&root().join(MODEL)).unwrap();
-    assert_eq!((from_flash.entries(), from_flash.terms()), (fitted.entries(), fitted.terms()));
+    assert_eq!(
+        (from_flash.entries(), from_flash.terms()),
+        (fitted.entries(), fitted.terms())
+    );
     assert_eq!(from_flash.version(), 3);
     // The drop tests' five fit currents, 0–2 A.
     assert_eq!(from_flash.current_range_a(), (0.0, 2.0));

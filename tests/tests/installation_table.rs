@@ -114,11 +114,29 @@ fn older_formats_load_with_the_default_installation_and_may_not_claim_another() 
 fn an_impossible_installation_is_refused_by_name() {
     let cases = [
         ("mass_kg", Installation { mass_kg: 0.0, ..LAB }),
-        ("usable_stroke_mm", Installation { usable_stroke_mm: f32::NAN, ..LAB }),
+        (
+            "usable_stroke_mm",
+            Installation {
+                usable_stroke_mm: f32::NAN,
+                ..LAB
+            },
+        ),
         ("supply_v", Installation { supply_v: -12.0, ..LAB }),
-        ("impact_v_max_m_s", Installation { impact_v_max_m_s: f32::INFINITY, ..LAB }),
+        (
+            "impact_v_max_m_s",
+            Installation {
+                impact_v_max_m_s: f32::INFINITY,
+                ..LAB
+            },
+        ),
         // Slowest above fastest.
-        ("impact_v_min_m_s", Installation { impact_v_min_m_s: 3.5, ..LAB }),
+        (
+            "impact_v_min_m_s",
+            Installation {
+                impact_v_min_m_s: 3.5,
+                ..LAB
+            },
+        ),
     ];
     for (field, bad) in cases {
         assert_eq!(
@@ -159,9 +177,21 @@ fn an_installation_outside_the_board_s_limits_is_refused_by_name() {
     // 24 V supply the PWM scaling was not compiled for; a 30 mm stroke past
     // the 25 mm sensor; a 0.05 kg mass.
     let cases = [
-        ("coil_rating_a", Installation { coil_rating_a: 3.0, ..LAB }),
+        (
+            "coil_rating_a",
+            Installation {
+                coil_rating_a: 3.0,
+                ..LAB
+            },
+        ),
         ("supply_v", Installation { supply_v: 24.0, ..LAB }),
-        ("usable_stroke_mm", Installation { usable_stroke_mm: 30.0, ..LAB }),
+        (
+            "usable_stroke_mm",
+            Installation {
+                usable_stroke_mm: 30.0,
+                ..LAB
+            },
+        ),
         ("mass_kg", Installation { mass_kg: 0.05, ..LAB }),
     ];
     assert_eq!(check_installation(&LAB, &BOARD), Ok(()));

@@ -3,13 +3,12 @@
 //! Expected forces were computed independently with `numpy.polyval` in float64
 //! from the coefficients printed in the paper (x in mm, F in N); at x = 1 mm a
 //! quartic is just the sum of its coefficients, which is checked by hand too.
+use mre_core::installation::DEFAULT_INSTALLATION;
 use mre_core::model::Branch;
 use mre_core::table::{
     content_crc, CurrentEntry, ModelTerms, Quartic, Table, TableError, TableImage, FORMAT_VERSION, FORMAT_VERSION_1,
-    FORMAT_VERSION_2, FORMAT_VERSION_3,
-    PAPER_TABLE4_ENTRIES,
+    FORMAT_VERSION_2, FORMAT_VERSION_3, PAPER_TABLE4_ENTRIES,
 };
-use mre_core::installation::DEFAULT_INSTALLATION;
 use mre_tests::crc32_reference;
 
 const CURRENTS_A: [f32; 5] = [0.0, 0.5, 1.0, 1.5, 2.0];
@@ -289,10 +288,15 @@ fn crc_is_the_standard_crc32_of_the_documented_byte_layout() {
         impact_v_max_m_s: 3.0,
     };
     let mut bytes = layout(FORMAT_VERSION_3);
-    for v in [0.75f32, 2.0e-4, 3.0e-3, 120.0, 240.0, 3.0, 9.0, 1.5, 4.0, 12.0, 25.0, 5.0, 1.0, 3.0] {
+    for v in [
+        0.75f32, 2.0e-4, 3.0e-3, 120.0, 240.0, 3.0, 9.0, 1.5, 4.0, 12.0, 25.0, 5.0, 1.0, 3.0,
+    ] {
         bytes.extend_from_slice(&v.to_le_bytes());
     }
-    assert_eq!(content_crc(FORMAT_VERSION_3, &entries, &terms, &lab), crc32_reference(&bytes));
+    assert_eq!(
+        content_crc(FORMAT_VERSION_3, &entries, &terms, &lab),
+        crc32_reference(&bytes)
+    );
 }
 
 #[test]

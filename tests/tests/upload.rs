@@ -280,7 +280,11 @@ fn the_largest_table_with_every_term_uploads_and_flies_at_boot() {
     let flown_cfg = boot.config.unwrap();
     assert_eq!(flown_cfg, cfg);
     assert_eq!(
-        (flown_cfg.law.mass_kg, flown_cfg.law.stroke_max_mm, flown_cfg.law.current_max_a),
+        (
+            flown_cfg.law.mass_kg,
+            flown_cfg.law.stroke_max_mm,
+            flown_cfg.law.current_max_a
+        ),
         (3.0, 9.0, 1.5)
     );
     // Booted at another rate, the page keeps its table and its installation.
