@@ -144,3 +144,56 @@ x_max_mm = 4.0
     );
     assert!(err.contains("coil_tau_s"), "{err}");
 }
+
+#[test]
+fn mre_tables_carries_a_model_s_installation_and_refuses_one_outside_the_limits() {
+    use mre_host::table_file::{table_to_toml, InstallationSource};
+    use mre_host::tables::run_tables_stated;
+    let dir = tempfile::tempdir().unwrap();
+    let base = std::fs::read_to_string(root().join(MODEL)).unwrap();
+    let lab = dir.path().join("lab.toml");
+    std::fs::write(
+        &lab,
+        format!("{base}\n[installation]\nmass_kg = 3.0\nusable_stroke_mm = 9\ncoil_rating_a = 1.5\n"),
+    )
+    .unwrap();
+    let out = dir.path().join("generated_table.rs");
+    let (table, source) = run_tables_stated(&lab, &out).unwrap();
+    assert_eq!(source, InstallationSource::ModelFile);
+    assert_eq!(table.version(), 3);
+    let i = table.installation();
+    assert_eq!((i.mass_kg, i.usable_stroke_mm, i.coil_rating_a), (3.0, 9.0, 1.5));
+    // Keys the file does not give keep the defaults (12 V, 4 Ω).
+    assert_eq!((i.supply_v, i.coil_resistance_ohm), (12.0, 4.0));
+    let src = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        src.contains("    mass_kg: 3.0,\n    usable_stroke_mm: 9.0,\n    coil_rating_a: 1.5,"),
+        "{src}"
+    );
+    assert!(src.contains(&format!("crc32: {:#010x},", table.crc32())));
+    // The table file round-trips with its installation.
+    let again = mre_host::table_file::parse_table_toml(&table_to_toml(&table)).unwrap();
+    assert_eq!(again, table);
+
+    // Without the section: the defaults, and the source says so.
+    let (_, source) = run_tables_stated(&root().join(MODEL), &out).unwrap();
+    assert_eq!(source, InstallationSource::Defaults);
+    assert!(std::fs::read_to_string(&out)
+        .unwrap()
+        .contains("DEFAULT_INSTALLATION, as the model file has no [installation]"));
+
+    // A 3 A coil on the 2 A board: refused by name, nothing written.
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, format!("{base}\n[installation]\ncoil_rating_a = 3.0\n")).unwrap();
+    let bad_out = dir.path().join("bad_table.rs");
+    let err = format!("{:#}", run_tables_stated(&bad, &bad_out).unwrap_err());
+    assert!(
+        err.contains("[installation] coil_rating_a = 3 is outside the board's limits 1 to 2"),
+        "{err}"
+    );
+    assert!(!bad_out.exists());
+    // An unknown key is an error, not ignored.
+    std::fs::write(&bad, format!("{base}\n[installation]\nmass_lb = 3.0\n")).unwrap();
+    let err = format!("{:#}", run_tables_stated(&bad, &bad_out).unwrap_err());
+    assert!(err.contains("unknown key `mass_lb`"), "{err}");
+}
