@@ -406,15 +406,27 @@ impl SampleReceiver {
 // invalid, a named value out of the board's limits, not at rest, page failed).
 
 pub const KIND_CONFIG: u8 = 3;
-/// Header (2) + 13 per table entry + law (13) + control (7).
-pub const CONFIG_MAX_WORDS: usize = 2 + 13 * MAX_CURRENTS + TERMS_MAX_WORDS + LAW_WORDS + CONTROL_WORDS;
+/// Header (2) + 13 per table entry + terms + installation + law (13) +
+/// control (7).
+pub const CONFIG_MAX_WORDS: usize =
+    2 + 13 * MAX_CURRENTS + TERMS_MAX_WORDS + INSTALLATION_WORDS + LAW_WORDS + CONTROL_WORDS;
 /// Version 2 tables append their terms: saturation current, sensor delay,
 /// coil τ, then one viscous coefficient per entry.
 const TERMS_MAX_WORDS: usize = 3 + MAX_CURRENTS;
 
 fn terms_words(version: u16, count: usize) -> usize {
-    if version >= crate::table::FORMAT_VERSION {
+    if version >= crate::table::FORMAT_VERSION_2 {
         count.saturating_add(3)
+    } else {
+        0
+    }
+}
+/// Version 3 tables then append their installation, one word per value.
+const INSTALLATION_WORDS: usize = crate::installation::FIELD_COUNT;
+
+fn installation_words(version: u16) -> usize {
+    if version >= crate::table::FORMAT_VERSION_3 {
+        INSTALLATION_WORDS
     } else {
         0
     }
@@ -426,11 +438,13 @@ fn blob_words(version: u16, count: usize) -> Option<usize> {
     count
         .checked_mul(13)?
         .checked_add(terms_words(version, count))?
+        .checked_add(installation_words(version))?
         .checked_add(2 + LAW_WORDS + CONTROL_WORDS)
 }
 const CONTROL_WORDS: usize = 7;
 
 use crate::control::ControlConfig;
+use crate::installation::{Installation, DEFAULT_INSTALLATION};
 use crate::law::{LawConfig, ReboundPolicy};
 use crate::table::{CurrentEntry, ModelTerms, Quartic, Table, TableImage, MAX_CURRENTS};
 
@@ -512,12 +526,19 @@ pub enum ConfigBlobError {
     BadRebound,
     /// Consistent, but outside what the board's hardware takes (`limits`).
     OutOfLimits(crate::limits::Limit),
+    /// The table's installation (format 3) is outside the board's limits.
+    InstallationOutOfLimits(crate::limits::InstallationLimit),
+    /// The configuration's mass, stroke, coil or sensor values are not the
+    /// ones the table's installation (format 3) sets (`Installation::apply`).
+    InstallationMismatch,
 }
 
 /// Appends the blob for `table` and `cfg` to `out` (returns the word count):
 /// word 0 = format version | entry count << 16, word 1 = table CRC-32, then
 /// per entry current, x_min, x_max, compression c0..c4, extension c0..c4;
-/// then the law (mass, stroke, g, current min/max, slew, fail-safe, rebound
+/// format 2 on: saturation current, sensor delay, coil τ, one viscous
+/// coefficient per entry; format 3 on: the installation's values
+/// (`Installation::FIELD_NAMES`' order); then the law (mass, stroke, g, current min/max, slew, fail-safe, rebound
 /// kind (0 minimum, 1 fixed, 2 hold), rebound current, branch band, x valid
 /// min/max, v valid max) and the control settings (rate, α, range samples,
 /// stuck samples, stuck speed, overrun limit, overrun window). f32 as bits.
@@ -548,6 +569,11 @@ pub fn encode_config(table: &Table, cfg: &ControlConfig, out: &mut [u32; CONFIG_
         }
         for c in t.viscous_n_s_per_m.iter().take(entries.len()) {
             push(c.to_bits());
+        }
+    }
+    if installation_words(table.version()) > 0 {
+        for v in table.installation().to_array() {
+            push(v.to_bits());
         }
     }
     let law = &cfg.law;
@@ -625,10 +651,17 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
             *c = f32::from_bits(next()?);
         }
     }
+    let mut installation = DEFAULT_INSTALLATION.to_array();
+    if installation_words(version) > 0 {
+        for v in installation.iter_mut() {
+            *v = f32::from_bits(next()?);
+        }
+    }
     let image = TableImage {
         version,
         entries: entries.get(..count).unwrap_or(&[]),
         terms,
+        installation: Installation::from_array(installation),
         crc32,
     };
     let table = Table::from_image(&image).map_err(ConfigBlobError::Table)?;
@@ -654,7 +687,7 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
     let overrun_limit = small(f()?.to_bits())?;
     let overrun_window = small(f()?.to_bits())?;
     let period_s = if rate_hz > 0 { 1.0 / rate_hz as f32 } else { 0.0 };
-    let cfg = ControlConfig {
+    let mut cfg = ControlConfig {
         rate_hz,
         law: LawConfig {
             mass_kg,
@@ -684,6 +717,23 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
         disagree_m_s: crate::control::DISAGREE_M_S,
         disagree_samples: crate::control::DISAGREE_SAMPLES,
     };
+    if table.version() >= crate::table::FORMAT_VERSION_3 {
+        // The installation sets the board's wiring (not uploaded) and must
+        // agree with the uploaded law values it determines.
+        let installation = table.installation();
+        crate::limits::check_installation_board(installation).map_err(ConfigBlobError::InstallationOutOfLimits)?;
+        let mut uploaded = cfg;
+        installation.apply(&mut cfg);
+        // What is not uploaded (the drive range, the armed current, the
+        // velocity sensor's scale) is the installation's; the rest must agree.
+        uploaded.law.drive_min_a = cfg.law.drive_min_a;
+        uploaded.law.drive_max_a = cfg.law.drive_max_a;
+        uploaded.law.armed_current_a = cfg.law.armed_current_a;
+        uploaded.v_sensor_full_scale_m_s = cfg.v_sensor_full_scale_m_s;
+        if uploaded != cfg {
+            return Err(ConfigBlobError::InstallationMismatch);
+        }
+    }
     cfg.validate().map_err(ConfigBlobError::Control)?;
     crate::limits::check_board(&cfg).map_err(ConfigBlobError::OutOfLimits)?;
     Ok((table, cfg))

@@ -2,35 +2,76 @@
 //! for the board's defaults (`LawConfig::default`) and the host's simulation
 //! (`mre sim`, `mre pil`, `mre bench-control`, the demo), so the image and the
 //! simulation cannot drift apart (`host-tools/tests/installation.rs`).
-//! A model file's `[installation]` section overrides it for `mre upload`.
+//!
+//! A model file's `[installation]` section overrides it; `mre tables` and
+//! `mre upload` carry it in the flash table (format 3, under the table's
+//! CRC), and the board derives its law and fault configuration from it
+//! ([`Installation::apply`]) within its hard limits (`limits`).
+use crate::control::ControlConfig;
 
-/// One installation's physical values.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Installation {
+/// Declares [`Installation`] once: each field is one line here, and the
+/// table's CRC, the upload blob, the limits check and the host's TOML reader
+/// and writers walk [`Installation::FIELD_NAMES`] and
+/// [`Installation::to_array`] instead of naming fields.
+macro_rules! installation {
+    ($($(#[$doc:meta])* $field:ident,)+) => {
+        /// One installation's physical values.
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct Installation {
+            $($(#[$doc])* pub $field: f32,)+
+        }
+
+        impl Installation {
+            /// The fields' names, in [`Self::to_array`]'s order (the order
+            /// the flash table and the upload blob store them in).
+            pub const FIELD_NAMES: [&'static str; FIELD_COUNT] = [$(stringify!($field)),+];
+
+            pub const fn to_array(&self) -> [f32; FIELD_COUNT] {
+                [$(self.$field),+]
+            }
+
+            #[allow(clippy::indexing_slicing)] // the macro counts the fields: every index exists
+            pub const fn from_array(values: [f32; FIELD_COUNT]) -> Self {
+                let mut _k = 0usize;
+                $(
+                    let $field = values[_k];
+                    _k = _k.wrapping_add(1);
+                )+
+                Self { $($field),+ }
+            }
+        }
+
+        /// How many values an installation holds.
+        pub const FIELD_COUNT: usize = [$(stringify!($field)),+].len();
+    };
+}
+
+installation! {
     /// The drop or striker mass that hits the damper.
-    pub mass_kg: f32,
+    mass_kg,
     /// Stroke the damper may use from first contact: the elastomer's rated
     /// compression. The bundled full-stroke data cover 0–15 mm so that this
     /// stroke lies inside every entry's fitted range (firmware/README.md).
-    pub usable_stroke_mm: f32,
+    usable_stroke_mm,
     /// The coil's continuous current rating.
-    pub coil_rating_a: f32,
-    pub coil_resistance_ohm: f32,
+    coil_rating_a,
+    coil_resistance_ohm,
     /// The coil driver's supply.
-    pub supply_v: f32,
+    supply_v,
     /// The displacement sensor's range (0 to this).
-    pub x_sensor_range_mm: f32,
+    x_sensor_range_mm,
     /// The velocity sensor's rated full scale (±).
-    pub v_sensor_full_scale_m_s: f32,
+    v_sensor_full_scale_m_s,
     /// The slowest and fastest impact the installation expects. Without a
     /// predicted impact velocity the law arms for this whole range (#29).
-    pub impact_v_min_m_s: f32,
-    pub impact_v_max_m_s: f32,
+    impact_v_min_m_s,
+    impact_v_max_m_s,
 }
 
 /// The paper's drop test on the bundled wiring: 5.5 kg, 12 mm usable stroke,
 /// a 2 A, 4 Ω coil on a 12 V driver, a 0–25 mm and a ±5 m/s sensor, and
 /// impacts from 1.5 to 2.5 m/s around the paper's 2.24 m/s (115–320 mm drops).
+/// Tables of format 1 and 2 (which carry no installation) load with it.
 pub const DEFAULT_INSTALLATION: Installation = Installation {
     mass_kg: 5.5,
     usable_stroke_mm: 12.0,
@@ -47,5 +88,35 @@ impl Installation {
     /// The largest drive (A equivalent, V / R) the supply gives.
     pub fn drive_max_a(&self) -> f32 {
         self.supply_v / self.coil_resistance_ohm
+    }
+
+    /// The first field that is not a finite positive value, or an impact
+    /// range with its minimum above its maximum: a value no installation
+    /// has, whatever the board (`limits` then bounds it by the board's).
+    pub fn invalid_field(&self) -> Option<&'static str> {
+        let bad = self.to_array().iter().position(|v| !(v.is_finite() && *v > 0.0));
+        match bad {
+            Some(k) => Self::FIELD_NAMES.get(k).copied(),
+            None if self.impact_v_min_m_s > self.impact_v_max_m_s => Some("impact_v_min_m_s"),
+            None => None,
+        }
+    }
+
+    /// Sets the law and fault configuration this installation determines:
+    /// the law's mass and usable stroke, the output clamp at the coil's
+    /// rating (the fail-safe and armed currents kept within it), the drive
+    /// range of the half bridge (±supply / resistance), the displacement
+    /// check's top at the sensor's range, and the velocity sensor's scale.
+    pub fn apply(&self, cfg: &mut ControlConfig) {
+        let law = &mut cfg.law;
+        law.mass_kg = self.mass_kg;
+        law.stroke_max_mm = self.usable_stroke_mm;
+        law.current_max_a = self.coil_rating_a;
+        law.failsafe_current_a = law.failsafe_current_a.min(self.coil_rating_a);
+        law.armed_current_a = law.armed_current_a.min(self.coil_rating_a);
+        law.drive_max_a = self.drive_max_a();
+        law.drive_min_a = -self.drive_max_a();
+        law.x_valid_max_mm = self.x_sensor_range_mm;
+        cfg.v_sensor_full_scale_m_s = self.v_sensor_full_scale_m_s;
     }
 }

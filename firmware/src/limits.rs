@@ -8,6 +8,7 @@
 //! a 0–25 mm displacement sensor on 0.3–3.0 V, a ±5 m/s velocity sensor. A
 //! board with other hardware gets its own [`BoardLimits`] constant.
 use crate::control::ControlConfig;
+use crate::installation::{Installation, FIELD_COUNT};
 use crate::law::ReboundPolicy;
 
 /// A closed range `min..=max` (NaN is outside every range).
@@ -44,6 +45,12 @@ pub struct BoardLimits {
     pub stuck_samples: Range,
     pub overrun_limit: Range,
     pub overrun_window: Range,
+    /// A format 3 table's installation, value by value (`installation_min`
+    /// ≤ value ≤ `installation_max`). The board's ADC and PWM scaling are
+    /// compiled for its wiring, so the driver supply, the coil resistance
+    /// and the sensors' ranges are pinned to it.
+    pub installation_min: Installation,
+    pub installation_max: Installation,
 }
 
 /// The coil's continuous rating (A): `overcurrent::COIL_RATING_A`.
@@ -56,6 +63,12 @@ pub const X_RAIL_HIGH_MM: f32 = 27.8;
 /// Margin kept inside each rail reading (about 40 ADC codes), so a rail is
 /// always outside the valid range.
 pub const X_RAIL_MARGIN_MM: f32 = 0.3;
+/// The coil drive the board's open-loop duty (I / 3 A) is compiled for:
+/// a 12 V half bridge into a 4 Ω coil.
+pub const DRIVER_SUPPLY_V: f32 = 12.0;
+pub const COIL_RESISTANCE_OHM: f32 = 4.0;
+/// The velocity sensor's full scale the board's ADC scaling assumes.
+pub const V_SENSOR_FULL_SCALE_M_S: f32 = crate::control::V_SENSOR_FULL_SCALE_M_S;
 
 /// The STM32L4 boards' wiring (B-L475E-IOT01A, NUCLEO-L476RG, PIL).
 pub const STM32L4_BOARD: BoardLimits = BoardLimits {
@@ -88,6 +101,28 @@ pub const STM32L4_BOARD: BoardLimits = BoardLimits {
     overrun_window: Range {
         min: 1.0,
         max: 10_000.0,
+    },
+    installation_min: Installation {
+        mass_kg: 0.1,
+        usable_stroke_mm: 1.0,
+        coil_rating_a: 0.5 * COIL_RATING_A,
+        coil_resistance_ohm: COIL_RESISTANCE_OHM,
+        supply_v: DRIVER_SUPPLY_V,
+        x_sensor_range_mm: X_SENSOR_MAX_MM,
+        v_sensor_full_scale_m_s: V_SENSOR_FULL_SCALE_M_S,
+        impact_v_min_m_s: 0.1,
+        impact_v_max_m_s: 0.1,
+    },
+    installation_max: Installation {
+        mass_kg: 100.0,
+        usable_stroke_mm: X_SENSOR_MAX_MM,
+        coil_rating_a: COIL_RATING_A,
+        coil_resistance_ohm: COIL_RESISTANCE_OHM,
+        supply_v: DRIVER_SUPPLY_V,
+        x_sensor_range_mm: X_SENSOR_MAX_MM,
+        v_sensor_full_scale_m_s: V_SENSOR_FULL_SCALE_M_S,
+        impact_v_min_m_s: 20.0,
+        impact_v_max_m_s: 20.0,
     },
 };
 
@@ -260,4 +295,66 @@ fn check_ranges(cfg: &ControlConfig, ranges: &[Range; 14]) -> Result<(), Limit> 
         Some(l) => Err(*l),
         None => Ok(()),
     }
+}
+
+/// A format 3 table's installation value outside the board's limits: its
+/// index in `Installation::FIELD_NAMES`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct InstallationLimit(pub u8);
+
+impl InstallationLimit {
+    pub fn name(&self) -> &'static str {
+        Installation::FIELD_NAMES
+            .get(usize::from(self.0))
+            .copied()
+            .unwrap_or("?")
+    }
+
+    pub fn range(&self, limits: &BoardLimits) -> Range {
+        let at = |i: &Installation| i.to_array().get(usize::from(self.0)).copied().unwrap_or(f32::NAN);
+        Range {
+            min: at(&limits.installation_min),
+            max: at(&limits.installation_max),
+        }
+    }
+
+    pub fn value(&self, installation: &Installation) -> f32 {
+        installation
+            .to_array()
+            .get(usize::from(self.0))
+            .copied()
+            .unwrap_or(f32::NAN)
+    }
+
+    /// Why the board holds this limit (one clause, for the host).
+    pub fn why(&self) -> &'static str {
+        match self.name() {
+            "mass_kg" => "the law's plan needs a plausible moving mass",
+            "usable_stroke_mm" => "the law cannot plan beyond the displacement sensor's 25 mm range",
+            "coil_rating_a" => {
+                "the over-current fault is compiled for the board's 2 A coil, and the fail-safe needs at least 1 A"
+            }
+            "impact_v_min_m_s" | "impact_v_max_m_s" => "an impact beyond 20 m/s (a 20 m fall) is a sensor fault",
+            _ => "the board's ADC and PWM scaling are compiled for its wiring (12 V, 4 Ω, 0–25 mm, ±5 m/s)",
+        }
+    }
+}
+
+/// The first value of `installation` outside `limits`, if any.
+pub fn check_installation(installation: &Installation, limits: &BoardLimits) -> Result<(), InstallationLimit> {
+    let (lo, hi) = (limits.installation_min.to_array(), limits.installation_max.to_array());
+    let values = installation.to_array();
+    let outside = (0..FIELD_COUNT).position(|k| match (values.get(k), lo.get(k), hi.get(k)) {
+        (Some(v), Some(min), Some(max)) => !(v >= min && v <= max),
+        _ => true,
+    });
+    match outside {
+        Some(k) => Err(InstallationLimit(u8::try_from(k).unwrap_or(u8::MAX))),
+        None => Ok(()),
+    }
+}
+
+/// [`check_installation`] against this build's [`BOARD`].
+pub fn check_installation_board(installation: &Installation) -> Result<(), InstallationLimit> {
+    check_installation(installation, &BOARD)
 }

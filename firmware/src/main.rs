@@ -190,6 +190,15 @@ mod fw {
                 RATE_HZ
             );
         }
+        if let Ok(t) = &boot.table {
+            let i = t.installation();
+            defmt::info!(
+                "installation ({=str}): mass {=f32} kg, stroke {=f32} mm, coil {=f32} A {=f32} ohm, supply {=f32} V, x sensor {=f32} mm, v sensor {=f32} m/s, impacts {=f32}..{=f32} m/s",
+                if t.version() >= 3 { "from the table" } else { "format 1/2 table carries none: the defaults" },
+                i.mass_kg, i.usable_stroke_mm, i.coil_rating_a, i.coil_resistance_ohm, i.supply_v,
+                i.x_sensor_range_mm, i.v_sensor_full_scale_m_s, i.impact_v_min_m_s, i.impact_v_max_m_s
+            );
+        }
         let table = boot.table;
         let cfg = match boot.config {
             Ok(cfg) => cfg,
@@ -261,6 +270,7 @@ mod fw {
             E::CrcMismatch { .. } => "CRC mismatch",
             E::TooLarge { .. } => "value too large",
             E::BadTerm { term } => term,
+            E::BadInstallation { field } => field,
         }
     }
 

@@ -7,6 +7,7 @@
 //! Tables are stored in flash as a [`TableImage`] (version + entries + CRC-32)
 //! and only become a usable [`Table`] through a validating constructor, so a
 //! corrupt or inconsistent table is never evaluated.
+use crate::installation::{Installation, DEFAULT_INSTALLATION, FIELD_COUNT as INSTALLATION_WORDS};
 use crate::model::Branch;
 use crate::order::OrderFacts;
 use crate::saturation::SegmentMap;
@@ -14,13 +15,18 @@ use crc::{Crc, CRC_32_ISO_HDLC};
 
 /// Most currents one table can hold (fixed size: no heap on the board).
 pub const MAX_CURRENTS: usize = 8;
-/// The newest format version, written by [`Table::with_terms`]: version 2
-/// adds [`ModelTerms`]. Version 1 images (quartics only, as the paper) still
-/// load, and [`Table::new`] still seals version 1. The version is covered by
-/// the CRC.
-pub const FORMAT_VERSION: u16 = 2;
+/// The newest format version, written by [`Table::with_installation`]:
+/// version 3 adds the [`Installation`] (what `mre tables` and `mre upload`
+/// write). Version 2 ([`Table::with_terms`]) added [`ModelTerms`]; version 1
+/// is the paper's quartics only ([`Table::new`]). Versions 1 and 2 still
+/// load, with [`DEFAULT_INSTALLATION`]. The version is covered by the CRC.
+pub const FORMAT_VERSION: u16 = FORMAT_VERSION_3;
 /// The paper's format: per-current quartics and their strokes only.
 pub const FORMAT_VERSION_1: u16 = 1;
+/// Adds [`ModelTerms`].
+pub const FORMAT_VERSION_2: u16 = 2;
+/// Adds the [`Installation`].
+pub const FORMAT_VERSION_3: u16 = 3;
 /// Longest delay or time constant a table may carry (s): beyond it the value
 /// is a unit mistake, not a damper.
 pub const MAX_TERM_TIME_S: f32 = 0.1;
@@ -31,7 +37,10 @@ const ENTRY_BYTES: usize = 13 * 4;
 /// Version 2 appends, as f32: saturation current, sensor delay, coil time
 /// constant and one viscous coefficient per entry.
 const TERMS_BYTES: usize = (3 + MAX_CURRENTS) * 4;
-const IMAGE_BYTES: usize = 3 + MAX_CURRENTS * ENTRY_BYTES + TERMS_BYTES;
+/// Version 3 appends the installation's values, as f32, in
+/// [`Installation::FIELD_NAMES`]' order.
+const INSTALLATION_BYTES: usize = INSTALLATION_WORDS * 4;
+const IMAGE_BYTES: usize = 3 + MAX_CURRENTS * ENTRY_BYTES + TERMS_BYTES + INSTALLATION_BYTES;
 
 /// What format version 2 adds to the paper's model: the terms `mre diagnose`
 /// identifies that matter to control. All zero = the paper's model.
@@ -175,6 +184,8 @@ pub struct TableImage<'a> {
     pub entries: &'a [CurrentEntry],
     /// Version 1 images must carry [`ModelTerms::NONE`].
     pub terms: ModelTerms,
+    /// Version 1 and 2 images must carry [`DEFAULT_INSTALLATION`].
+    pub installation: Installation,
     pub crc32: u32,
 }
 
@@ -211,6 +222,12 @@ pub enum TableError {
     /// carries terms).
     BadTerm {
         term: &'static str,
+    },
+    /// A version 3 installation value is not a finite positive value (or
+    /// its impact range is reversed), or a version 1 or 2 image carries an
+    /// installation other than the default.
+    BadInstallation {
+        field: &'static str,
     },
 }
 
@@ -249,6 +266,12 @@ impl core::fmt::Display for TableError {
             TableError::BadTerm { term } => {
                 write!(f, "model term {term} is non-finite or out of range")
             }
+            TableError::BadInstallation { field } => {
+                write!(
+                    f,
+                    "installation value {field} is not a finite positive value (or the impact range is reversed)"
+                )
+            }
         }
     }
 }
@@ -262,6 +285,7 @@ pub struct Table {
     entries: [CurrentEntry; MAX_CURRENTS],
     crc32: u32,
     terms: ModelTerms,
+    installation: Installation,
     /// Each entry's interpolation knot: its current, or `tanh(I/I_s)` under
     /// saturation (computed once here, not per period).
     knots: [f32; MAX_CURRENTS],
@@ -302,15 +326,30 @@ impl Table {
     /// Validates `entries` and seals them as a version 1 table (the paper's
     /// model, no extra terms).
     pub fn new(entries: &[CurrentEntry]) -> Result<Self, TableError> {
-        Self::build(FORMAT_VERSION_1, entries, ModelTerms::NONE)
+        Self::build(FORMAT_VERSION_1, entries, ModelTerms::NONE, DEFAULT_INSTALLATION)
     }
 
     /// Validates `entries` and `terms` and seals them as a version 2 table.
     pub fn with_terms(entries: &[CurrentEntry], terms: ModelTerms) -> Result<Self, TableError> {
-        Self::build(FORMAT_VERSION, entries, terms)
+        Self::build(FORMAT_VERSION_2, entries, terms, DEFAULT_INSTALLATION)
     }
 
-    fn build(version: u16, entries: &[CurrentEntry], terms: ModelTerms) -> Result<Self, TableError> {
+    /// Validates `entries`, `terms` and `installation` and seals them as a
+    /// version 3 table.
+    pub fn with_installation(
+        entries: &[CurrentEntry],
+        terms: ModelTerms,
+        installation: Installation,
+    ) -> Result<Self, TableError> {
+        Self::build(FORMAT_VERSION_3, entries, terms, installation)
+    }
+
+    fn build(
+        version: u16,
+        entries: &[CurrentEntry],
+        terms: ModelTerms,
+        installation: Installation,
+    ) -> Result<Self, TableError> {
         validate_entries(entries)?;
         terms.validate()?;
         if version == FORMAT_VERSION_1 && !terms.is_none() {
@@ -318,12 +357,21 @@ impl Table {
                 term: "terms in a version 1 table",
             });
         }
+        if let Some(field) = installation.invalid_field() {
+            return Err(TableError::BadInstallation { field });
+        }
+        if version < FORMAT_VERSION_3 && installation != DEFAULT_INSTALLATION {
+            return Err(TableError::BadInstallation {
+                field: "installation in a version 1 or 2 table",
+            });
+        }
         let mut table = Table {
             version,
             len: entries.len(),
             entries: [CurrentEntry::ZERO; MAX_CURRENTS],
-            crc32: content_crc(version, entries, &terms),
+            crc32: content_crc(version, entries, &terms, &installation),
             terms,
+            installation,
             knots: [0.0; MAX_CURRENTS],
             saturated: terms.saturation_current_a > 0.0,
             segment_maps: [SegmentMap::EXACT; MAX_CURRENTS],
@@ -402,10 +450,10 @@ impl Table {
 
     /// Validates a stored image, including its version and CRC.
     pub fn from_image(image: &TableImage<'_>) -> Result<Self, TableError> {
-        if image.version != FORMAT_VERSION && image.version != FORMAT_VERSION_1 {
+        if !(FORMAT_VERSION_1..=FORMAT_VERSION).contains(&image.version) {
             return Err(TableError::UnsupportedVersion { version: image.version });
         }
-        let table = Self::build(image.version, image.entries, image.terms)?;
+        let table = Self::build(image.version, image.entries, image.terms, image.installation)?;
         if table.crc32 != image.crc32 {
             return Err(TableError::CrcMismatch {
                 stored: image.crc32,
@@ -449,6 +497,30 @@ impl Table {
     #[inline]
     pub fn terms(&self) -> &ModelTerms {
         &self.terms
+    }
+
+    /// The installation the table carries (version 3), or
+    /// [`DEFAULT_INSTALLATION`] for a version 1 or 2 table.
+    #[inline]
+    pub fn installation(&self) -> &Installation {
+        &self.installation
+    }
+
+    /// The same entries and terms sealed as a version 3 table carrying
+    /// `installation`.
+    pub fn carrying(&self, installation: Installation) -> Result<Table, TableError> {
+        Self::with_installation(self.entries(), self.terms, installation)
+    }
+
+    /// The table as a flash image (what `Table::from_image` reads back).
+    pub fn image(&self) -> TableImage<'_> {
+        TableImage {
+            version: self.version,
+            entries: self.entries(),
+            terms: self.terms,
+            installation: self.installation,
+            crc32: self.crc32,
+        }
     }
 
     /// Entry `index`'s interpolation knot (its current, or `tanh(I/I_s)`).
@@ -646,13 +718,20 @@ fn validate_entries(entries: &[CurrentEntry]) -> Result<(), TableError> {
 /// and every entry's f32 fields in little-endian order: current, x_min, x_max,
 /// compression c0..c4, extension c0..c4; from version 2 on, then the terms:
 /// saturation current, sensor delay, coil τ and the entries' viscous
-/// coefficients (version 1 images hash exactly as before version 2 existed).
+/// coefficients; from version 3 on, then the installation's values in
+/// [`Installation::FIELD_NAMES`]' order (each version hashes exactly as
+/// before the next existed).
 /// `const`, so flash images carry a CRC
 /// computed by the compiler; the host's table generator writes the same value.
 // Indexing is bounded by construction (count ≤ MAX_CURRENTS, so `at` ≤
 // IMAGE_BYTES); iterators are not available in `const fn`.
 #[allow(clippy::indexing_slicing)]
-pub const fn content_crc(version: u16, entries: &[CurrentEntry], terms: &ModelTerms) -> u32 {
+pub const fn content_crc(
+    version: u16,
+    entries: &[CurrentEntry],
+    terms: &ModelTerms,
+    installation: &Installation,
+) -> u32 {
     let mut buf = [0u8; IMAGE_BYTES];
     let count = if entries.len() > MAX_CURRENTS {
         MAX_CURRENTS
@@ -680,7 +759,7 @@ pub const fn content_crc(version: u16, entries: &[CurrentEntry], terms: &ModelTe
         at = push_le(&mut buf, at, &fields, 13);
         i = i.wrapping_add(1);
     }
-    if version >= FORMAT_VERSION {
+    if version >= FORMAT_VERSION_2 {
         let mut fields = [0f32; 3 + MAX_CURRENTS];
         fields[0] = terms.saturation_current_a;
         fields[1] = terms.sensor_delay_s;
@@ -691,6 +770,9 @@ pub const fn content_crc(version: u16, entries: &[CurrentEntry], terms: &ModelTe
             k = k.wrapping_add(1);
         }
         at = push_le(&mut buf, at, &fields, count.wrapping_add(3));
+    }
+    if version >= FORMAT_VERSION_3 {
+        at = push_le(&mut buf, at, &installation.to_array(), INSTALLATION_WORDS);
     }
     let (used, _) = buf.split_at(at);
     CRC32.checksum(used)
@@ -767,5 +849,11 @@ pub static PAPER_TABLE4: TableImage<'static> = TableImage {
     version: FORMAT_VERSION_1,
     entries: &PAPER_TABLE4_ENTRIES,
     terms: ModelTerms::NONE,
-    crc32: content_crc(FORMAT_VERSION_1, &PAPER_TABLE4_ENTRIES, &ModelTerms::NONE),
+    installation: DEFAULT_INSTALLATION,
+    crc32: content_crc(
+        FORMAT_VERSION_1,
+        &PAPER_TABLE4_ENTRIES,
+        &ModelTerms::NONE,
+        &DEFAULT_INSTALLATION,
+    ),
 };

@@ -43,7 +43,12 @@ impl UploadError {
     pub fn as_str(&self) -> &'static str {
         match self {
             UploadError::Refused(ConfigBlobError::Incomplete) => "incomplete (a frame was lost or corrupt)",
-            UploadError::Refused(ConfigBlobError::OutOfLimits(_)) => "a value out of the board's limits",
+            UploadError::Refused(ConfigBlobError::OutOfLimits(_) | ConfigBlobError::InstallationOutOfLimits(_)) => {
+                "a value out of the board's limits"
+            }
+            UploadError::Refused(ConfigBlobError::InstallationMismatch) => {
+                "configuration disagrees with the table's installation"
+            }
             UploadError::Refused(_) => "table or configuration refused",
             UploadError::NotAtRest => "not at rest (retry when still)",
             UploadError::Page(e) => e.as_str(),
@@ -239,6 +244,8 @@ pub enum CommitAnswer {
     Invalid,
     /// A value is outside the board's hard limits.
     OutOfLimits(crate::limits::Limit),
+    /// A table's installation value is outside the board's hard limits.
+    InstallationOutOfLimits(crate::limits::InstallationLimit),
     /// Valid, but the damper was not at rest: retry when it is still.
     NotAtRest,
     /// The flash page could not be written or read back.
@@ -252,6 +259,9 @@ const CODE_NOT_AT_REST: u16 = 3;
 const CODE_PAGE_FAILED: u16 = 4;
 /// Out of limits: this plus the limit's index in `Limit::ALL`.
 const CODE_OUT_OF_LIMITS: u16 = 0x100;
+/// Installation out of limits: this plus the value's index in
+/// `Installation::FIELD_NAMES`.
+const CODE_INSTALLATION_OUT_OF_LIMITS: u16 = 0x200;
 
 impl CommitAnswer {
     pub fn of(result: &UploadResult) -> Self {
@@ -259,6 +269,9 @@ impl CommitAnswer {
             Ok(_) => CommitAnswer::Stored,
             Err(UploadError::Refused(ConfigBlobError::Incomplete)) => CommitAnswer::Incomplete,
             Err(UploadError::Refused(ConfigBlobError::OutOfLimits(l))) => CommitAnswer::OutOfLimits(*l),
+            Err(UploadError::Refused(ConfigBlobError::InstallationOutOfLimits(l))) => {
+                CommitAnswer::InstallationOutOfLimits(*l)
+            }
             Err(UploadError::Refused(_)) => CommitAnswer::Invalid,
             Err(UploadError::NotAtRest) => CommitAnswer::NotAtRest,
             Err(UploadError::Page(_)) => CommitAnswer::PageFailed,
@@ -274,6 +287,7 @@ impl CommitAnswer {
             CommitAnswer::PageFailed => CODE_PAGE_FAILED,
             // `Limit` is fieldless: its discriminant is its index in `Limit::ALL`.
             CommitAnswer::OutOfLimits(l) => CODE_OUT_OF_LIMITS.saturating_add(*l as u16),
+            CommitAnswer::InstallationOutOfLimits(l) => CODE_INSTALLATION_OUT_OF_LIMITS.saturating_add(u16::from(l.0)),
         }
     }
 
@@ -286,6 +300,13 @@ impl CommitAnswer {
             CODE_INVALID => Some(CommitAnswer::Invalid),
             CODE_NOT_AT_REST => Some(CommitAnswer::NotAtRest),
             CODE_PAGE_FAILED => Some(CommitAnswer::PageFailed),
+            CODE_INSTALLATION_OUT_OF_LIMITS.. => {
+                let k = code.checked_sub(CODE_INSTALLATION_OUT_OF_LIMITS)?;
+                u8::try_from(k)
+                    .ok()
+                    .filter(|k| usize::from(*k) < crate::installation::FIELD_COUNT)
+                    .map(|k| CommitAnswer::InstallationOutOfLimits(crate::limits::InstallationLimit(k)))
+            }
             _ => crate::limits::Limit::ALL
                 .get(usize::from(code.checked_sub(CODE_OUT_OF_LIMITS)?))
                 .map(|l| CommitAnswer::OutOfLimits(*l)),
@@ -313,8 +334,9 @@ pub struct BootTable {
 }
 
 /// Prefers a valid uploaded page; otherwise the built-in image at the
-/// image's `rate_hz` defaults. An uploaded configuration for another control
-/// rate than the image's ticker keeps only its table.
+/// image's `rate_hz` defaults with the built-in table's installation
+/// ([`installed_config`]). An uploaded configuration for another control
+/// rate than the image's ticker keeps only its table (and its installation).
 pub fn choose_boot_table<P: TablePage + ?Sized>(page: &mut P, built_in: &TableImage<'_>, rate_hz: u32) -> BootTable {
     match load(page) {
         Ok((table, cfg)) if cfg.rate_hz == rate_hz => BootTable {
@@ -324,16 +346,38 @@ pub fn choose_boot_table<P: TablePage + ?Sized>(page: &mut P, built_in: &TableIm
             uploaded_rate_ignored_hz: None,
         },
         Ok((table, cfg)) => BootTable {
+            config: installed_config(&table, rate_hz),
             table: Ok(table),
-            config: ControlConfig::at_rate(rate_hz),
             source: TableSource::Uploaded,
             uploaded_rate_ignored_hz: Some(cfg.rate_hz),
         },
-        Err(e) => BootTable {
-            table: Table::from_image(built_in),
-            config: ControlConfig::at_rate(rate_hz),
-            source: TableSource::BuiltIn(e),
-            uploaded_rate_ignored_hz: None,
-        },
+        Err(e) => {
+            // A built-in installation outside the board's limits is refused
+            // like a corrupt table: fail-safe current, TABLE_FAULT latched.
+            let table = Table::from_image(built_in).and_then(|t| {
+                crate::limits::check_installation_board(t.installation())
+                    .map(|()| t)
+                    .map_err(|l| TableError::BadInstallation { field: l.name() })
+            });
+            BootTable {
+                config: match &table {
+                    Ok(t) => installed_config(t, rate_hz),
+                    Err(_) => ControlConfig::at_rate(rate_hz),
+                },
+                table,
+                source: TableSource::BuiltIn(e),
+                uploaded_rate_ignored_hz: None,
+            }
+        }
     }
+}
+
+/// The defaults at `rate_hz` with `table`'s installation applied (a format
+/// 1 or 2 table's is [`crate::installation::DEFAULT_INSTALLATION`], which
+/// the defaults already are).
+pub fn installed_config(table: &Table, rate_hz: u32) -> Result<ControlConfig, ControlConfigError> {
+    let mut cfg = ControlConfig::at_rate(rate_hz)?;
+    table.installation().apply(&mut cfg);
+    cfg.validate()?;
+    Ok(cfg)
 }

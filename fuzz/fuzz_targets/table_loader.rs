@@ -21,6 +21,10 @@ fuzz_target!(|data: &[u8]| {
             }
         }
     }
+    // Its installation (format 3; the defaults before) is one a board can
+    // have, and the image it seals reads back under its CRC.
+    assert_eq!(table.installation().invalid_field(), None);
+    assert_eq!(mre_core::Table::from_image(&table.image()).as_ref(), Ok(&table));
     // What the loader accepts, `mre tables` can turn into flash source.
-    let _ = mre_host::tables::generate_table_source("fuzz", &table, None);
+    let _ = mre_host::tables::generate_table_source("fuzz", &table, None, None);
 });

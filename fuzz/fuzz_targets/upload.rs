@@ -35,6 +35,21 @@ fuzz_target!(|data: &[u8]| {
         assert_eq!(mre_core::limits::check(cfg, &mre_core::limits::BOARD), Ok(()));
     }
     if let Ok((table, cfg)) = &direct {
+        // A table's installation (format 3) is within the wiring's limits,
+        // and the configuration is the one it sets.
+        let i = table.installation();
+        assert!((0.1..=100.0).contains(&i.mass_kg) && (1.0..=25.0).contains(&i.usable_stroke_mm));
+        assert!((1.0..=2.0).contains(&i.coil_rating_a) && i.coil_resistance_ohm == 4.0 && i.supply_v == 12.0);
+        assert!(i.x_sensor_range_mm == 25.0 && i.v_sensor_full_scale_m_s == 5.0);
+        assert!((0.1..=20.0).contains(&i.impact_v_min_m_s) && i.impact_v_min_m_s <= i.impact_v_max_m_s);
+        assert!(i.impact_v_max_m_s <= 20.0);
+        if table.version() >= mre_core::table::FORMAT_VERSION_3 {
+            let mut installed = *cfg;
+            i.apply(&mut installed);
+            assert_eq!(&installed, cfg);
+        }
+    }
+    if let Ok((table, cfg)) = &direct {
         let mut out = [0u32; CONFIG_MAX_WORDS];
         let n = encode_config(table, cfg, &mut out);
         let again = decode_config(&out[..n]).expect("what was accepted re-encodes to a valid blob");

@@ -512,12 +512,18 @@ fn run(cli: Cli) -> Result<()> {
             println!("wrote {}/sweep.csv and the Fig. 13/14 plots", out.display());
         }
         Command::Tables { model, out } => {
-            let table = mre_host::tables::run_tables(&model, &out)?;
+            let (table, installation) = mre_host::tables::run_tables_stated(&model, &out)?;
             println!(
                 "wrote {} entries (CRC-32 {:#010x}) to {}",
                 table.entries().len(),
                 table.crc32(),
                 out.display()
+            );
+            println!(
+                "installation (format {}) from {}: {}",
+                table.version(),
+                installation.describe(),
+                mre_host::table_file::installation_summary(table.installation())
             );
         }
         Command::Synth {

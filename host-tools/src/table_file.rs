@@ -1,7 +1,7 @@
 //! The table file format (TOML) that host tools read and write.
 //!
 //! ```toml
-//! format_version = 2            # optional; 1 (default, the paper's model) or 2
+//! format_version = 2            # optional; 1 (default, the paper's model), 2 or 3
 //! [terms]                       # version 2 only; every key optional, 0 = absent
 //! saturation_current_a = 0.8    # interpolate in tanh(I/I_s) instead of I
 //! sensor_delay_s = 0.0002       # the controller's x/v samples lag the motion
@@ -12,8 +12,13 @@
 //! extension   = [a1, a2, a3, a4, a5]   # x in mm, F in N
 //! x_min_mm = 0.0                # fitted stroke (optional, see below)
 //! x_max_mm = 1.1531
-//! viscous_n_s_per_m = 0.0       # version 2 only: + c(I)·v, interpolated like the quartics
+//! viscous_n_s_per_m = 0.0       # version 2 on: + c(I)·v, interpolated like the quartics
+//! [installation]                # version 3: see [`read_installation`]
 //! ```
+//!
+//! An `[installation]` section makes the table format 3 (the installation is
+//! carried in flash under the CRC); format 3 without one carries
+//! `DEFAULT_INSTALLATION`.
 //!
 //! If `x_min_mm`/`x_max_mm` are absent (as in the paper's `table4.toml`), the
 //! stroke defaults to `[0, first crossing of the two branches above 0]`:
@@ -21,6 +26,7 @@
 //! `[fit]` or the paper's `[[table5]]`) are ignored by this reader; unknown
 //! keys inside a `[[current]]` entry are an error.
 use anyhow::{bail, Context, Result};
+use mre_core::installation::{Installation, DEFAULT_INSTALLATION};
 use mre_core::table::{CurrentEntry, Quartic, Table};
 use serde::Deserialize;
 use std::path::Path;
@@ -29,6 +35,7 @@ use std::path::Path;
 struct TableToml {
     format_version: Option<u16>,
     terms: Option<TermsToml>,
+    installation: Option<toml::Table>,
     current: Vec<CurrentToml>,
 }
 
@@ -97,7 +104,8 @@ pub fn read_dataset_sha256(path: &Path) -> Result<Option<String>> {
 }
 
 /// A model file's `[installation]` (every key optional; absent keys keep
-/// `mre_core::installation::DEFAULT_INSTALLATION`'s value):
+/// `mre_core::installation::DEFAULT_INSTALLATION`'s value; the keys are
+/// `Installation::FIELD_NAMES`, docs/dataset-format.md lists them):
 ///
 /// ```toml
 /// [installation]
@@ -107,52 +115,131 @@ pub fn read_dataset_sha256(path: &Path) -> Result<Option<String>> {
 /// ```
 ///
 /// `None` when the file has no such section.
-pub fn read_installation(path: &Path) -> Result<Option<mre_core::installation::Installation>> {
+pub fn read_installation(path: &Path) -> Result<Option<Installation>> {
     #[derive(Deserialize)]
     struct Doc {
-        installation: Option<InstallationToml>,
-    }
-    #[derive(Deserialize)]
-    #[serde(deny_unknown_fields)]
-    struct InstallationToml {
-        mass_kg: Option<f32>,
-        usable_stroke_mm: Option<f32>,
-        coil_rating_a: Option<f32>,
-        coil_resistance_ohm: Option<f32>,
-        supply_v: Option<f32>,
-        x_sensor_range_mm: Option<f32>,
-        v_sensor_full_scale_m_s: Option<f32>,
-        impact_v_min_m_s: Option<f32>,
-        impact_v_max_m_s: Option<f32>,
+        installation: Option<toml::Table>,
     }
     let text = std::fs::read_to_string(path).with_context(|| format!("cannot read table file {}", path.display()))?;
     let doc: Doc = toml::from_str(&text).with_context(|| format!("in table file {}", path.display()))?;
-    let Some(t) = doc.installation else { return Ok(None) };
-    let d = mre_core::installation::DEFAULT_INSTALLATION;
-    Ok(Some(mre_core::installation::Installation {
-        mass_kg: t.mass_kg.unwrap_or(d.mass_kg),
-        usable_stroke_mm: t.usable_stroke_mm.unwrap_or(d.usable_stroke_mm),
-        coil_rating_a: t.coil_rating_a.unwrap_or(d.coil_rating_a),
-        coil_resistance_ohm: t.coil_resistance_ohm.unwrap_or(d.coil_resistance_ohm),
-        supply_v: t.supply_v.unwrap_or(d.supply_v),
-        x_sensor_range_mm: t.x_sensor_range_mm.unwrap_or(d.x_sensor_range_mm),
-        v_sensor_full_scale_m_s: t.v_sensor_full_scale_m_s.unwrap_or(d.v_sensor_full_scale_m_s),
-        impact_v_min_m_s: t.impact_v_min_m_s.unwrap_or(d.impact_v_min_m_s),
-        impact_v_max_m_s: t.impact_v_max_m_s.unwrap_or(d.impact_v_max_m_s),
-    }))
+    doc.installation
+        .map(|t| installation_from_toml(&t))
+        .transpose()
+        .with_context(|| format!("in table file {}", path.display()))
+}
+
+/// An `[installation]` section's values over the defaults: unknown keys and
+/// non-numbers are errors.
+pub fn installation_from_toml(section: &toml::Table) -> Result<Installation> {
+    let mut values = DEFAULT_INSTALLATION.to_array();
+    for (key, value) in section {
+        let Some(k) = Installation::FIELD_NAMES.iter().position(|n| n == key) else {
+            bail!(
+                "[installation] has an unknown key `{key}` (known: {})",
+                Installation::FIELD_NAMES.join(", ")
+            );
+        };
+        let v = match value {
+            toml::Value::Float(f) => *f,
+            toml::Value::Integer(i) => *i as f64,
+            _ => bail!("[installation] {key} must be a number"),
+        };
+        values[k] = v as f32;
+    }
+    Ok(Installation::from_array(values))
+}
+
+/// The `[installation]` section for `installation`, every key written.
+pub fn installation_to_toml(installation: &Installation) -> String {
+    let mut s = String::from("[installation]\n");
+    for (name, v) in Installation::FIELD_NAMES.iter().zip(installation.to_array()) {
+        s.push_str(&format!("{name} = {v:?}\n"));
+    }
+    s
+}
+
+/// `mass_kg = 5.5, usable_stroke_mm = 12, …`: every value, for people.
+pub fn installation_summary(installation: &Installation) -> String {
+    let values = Installation::FIELD_NAMES.iter().zip(installation.to_array());
+    values.map(|(n, v)| format!("{n} = {v}")).collect::<Vec<_>>().join(", ")
+}
+
+/// Where a flash table's installation came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InstallationSource {
+    /// The model file's `[installation]`.
+    ModelFile,
+    /// The model file has none: `DEFAULT_INSTALLATION`.
+    Defaults,
+}
+
+impl InstallationSource {
+    pub fn describe(&self) -> &'static str {
+        match self {
+            InstallationSource::ModelFile => "the model file's [installation]",
+            InstallationSource::Defaults => "DEFAULT_INSTALLATION, as the model file has no [installation]",
+        }
+    }
+}
+
+/// A model file's table as the board flies it: format 3, carrying the
+/// file's installation (or the defaults, said so), checked against the
+/// board's hard limits (`mre_core::limits::BOARD`), which the board would
+/// otherwise refuse it by.
+pub fn read_flash_table(path: &Path) -> Result<(Table, InstallationSource)> {
+    let table = read_table_file(path)?;
+    let source = if read_installation(path)?.is_some() {
+        InstallationSource::ModelFile
+    } else {
+        InstallationSource::Defaults
+    };
+    let table = if table.version() >= mre_core::table::FORMAT_VERSION_3 {
+        table
+    } else {
+        table
+            .carrying(DEFAULT_INSTALLATION)
+            .map_err(|e| anyhow::anyhow!("invalid table: {e}"))?
+    };
+    check_installation_limits(table.installation()).with_context(|| format!("in table file {}", path.display()))?;
+    Ok((table, source))
+}
+
+/// The board's hard limits on an installation, as a sentence naming the value.
+pub fn check_installation_limits(installation: &Installation) -> Result<()> {
+    use mre_core::limits::{check_installation, BOARD};
+    if let Err(limit) = check_installation(installation, &BOARD) {
+        let range = limit.range(&BOARD);
+        bail!(
+            "[installation] {} = {} is outside the board's limits {} to {} ({})",
+            limit.name(),
+            limit.value(installation),
+            range.min,
+            range.max,
+            limit.why()
+        );
+    }
+    Ok(())
 }
 
 pub fn parse_table_toml(text: &str) -> Result<Table> {
-    use mre_core::table::{ModelTerms, FORMAT_VERSION, FORMAT_VERSION_1, MAX_CURRENTS};
+    use mre_core::table::{
+        ModelTerms, FORMAT_VERSION, FORMAT_VERSION_1, FORMAT_VERSION_2, FORMAT_VERSION_3, MAX_CURRENTS,
+    };
     let doc: TableToml = toml::from_str(text)?;
-    let version = doc.format_version.unwrap_or(FORMAT_VERSION_1);
-    if version != FORMAT_VERSION_1 && version != FORMAT_VERSION {
-        bail!("format_version = {version} is not supported (expected {FORMAT_VERSION_1} or {FORMAT_VERSION})");
+    let declared = doc.format_version.unwrap_or(FORMAT_VERSION_1);
+    if !(FORMAT_VERSION_1..=FORMAT_VERSION).contains(&declared) {
+        bail!("format_version = {declared} is not supported (expected {FORMAT_VERSION_1} to {FORMAT_VERSION})");
     }
     let has_viscous = doc.current.iter().any(|c| c.viscous_n_s_per_m.is_some());
-    if version == FORMAT_VERSION_1 && (doc.terms.is_some() || has_viscous) {
-        bail!("[terms] and viscous_n_s_per_m need format_version = {FORMAT_VERSION}");
+    if declared == FORMAT_VERSION_1 && (doc.terms.is_some() || has_viscous) {
+        bail!("[terms] and viscous_n_s_per_m need format_version = {FORMAT_VERSION_2}");
     }
+    let installation = doc.installation.as_ref().map(installation_from_toml).transpose()?;
+    let version = if installation.is_some() {
+        FORMAT_VERSION_3
+    } else {
+        declared
+    };
     if doc.current.len() > MAX_CURRENTS {
         bail!("{} [[current]] entries, at most {MAX_CURRENTS} fit", doc.current.len());
     }
@@ -183,7 +270,7 @@ pub fn parse_table_toml(text: &str) -> Result<Table> {
             x_max_mm: x_max_mm as f32,
         });
     }
-    let table = if version == FORMAT_VERSION_1 {
+    let table = if declared == FORMAT_VERSION_1 && version == FORMAT_VERSION_1 {
         Table::new(&entries)
     } else {
         let t = doc.terms.unwrap_or_default();
@@ -196,7 +283,11 @@ pub fn parse_table_toml(text: &str) -> Result<Table> {
         for (slot, c) in terms.viscous_n_s_per_m.iter_mut().zip(&doc.current) {
             *slot = c.viscous_n_s_per_m.unwrap_or(0.0) as f32;
         }
-        Table::with_terms(&entries, terms)
+        if version >= FORMAT_VERSION_3 {
+            Table::with_installation(&entries, terms, installation.unwrap_or(DEFAULT_INSTALLATION))
+        } else {
+            Table::with_terms(&entries, terms)
+        }
     };
     table.map_err(|e| anyhow::anyhow!("invalid table: {e}"))
 }
@@ -204,7 +295,7 @@ pub fn parse_table_toml(text: &str) -> Result<Table> {
 /// Renders a table in this format (round-trips through [`parse_table_toml`]).
 pub fn table_to_toml(table: &Table) -> String {
     let mut s = format!("format_version = {}\n", table.version());
-    let v2 = table.version() >= mre_core::table::FORMAT_VERSION;
+    let v2 = table.version() >= mre_core::table::FORMAT_VERSION_2;
     let t = table.terms();
     if v2 {
         s.push_str(&format!(
@@ -220,6 +311,10 @@ pub fn table_to_toml(table: &Table) -> String {
         if v2 {
             s.push_str(&format!("viscous_n_s_per_m = {c:?}\n"));
         }
+    }
+    if table.version() >= mre_core::table::FORMAT_VERSION_3 {
+        s.push('\n');
+        s.push_str(&installation_to_toml(table.installation()));
     }
     s
 }

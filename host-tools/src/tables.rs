@@ -1,8 +1,11 @@
 //! `mre tables MODEL`: the firmware's flash table as Rust source, generated
 //! into the firmware crate (`firmware/src/generated_table.rs`), with the CRC
-//! the core computes (`mre_core::table::content_crc`).
-use crate::table_file::{read_dataset_sha256, read_table_file};
+//! the core computes (`mre_core::table::content_crc`). The table is format 3:
+//! it carries the model file's `[installation]`, or the defaults (stated in
+//! the source and by `mre tables`), under its CRC.
+use crate::table_file::{read_dataset_sha256, read_flash_table, InstallationSource};
 use anyhow::Result;
+use mre_core::installation::Installation;
 use mre_core::table::Table;
 use std::fmt::Write;
 use std::path::Path;
@@ -12,8 +15,14 @@ pub const DEFAULT_OUT: &str = "firmware/src/generated_table.rs";
 
 /// The Rust source of a `TableImage` static holding `table`. `source` names
 /// the model file in the header comment (keep it a stable relative path so the
-/// output is reproducible).
-pub fn generate_table_source(source: &str, table: &Table, dataset_sha256: Option<&str>) -> String {
+/// output is reproducible); `installation` says where the table's
+/// installation came from (`None`: a table without one, format 1 or 2).
+pub fn generate_table_source(
+    source: &str,
+    table: &Table,
+    dataset_sha256: Option<&str>,
+    installation: Option<InstallationSource>,
+) -> String {
     let entries = table.entries();
     let mut s = String::new();
     let _ = writeln!(
@@ -24,6 +33,7 @@ pub fn generate_table_source(source: &str, table: &Table, dataset_sha256: Option
         s,
         "//! A host test (`host-tools/tests/tables.rs`) fails if this file drifts from the model."
     );
+    let _ = writeln!(s, "use crate::installation::{{Installation, DEFAULT_INSTALLATION}};");
     let _ = writeln!(
         s,
         "use crate::table::{{CurrentEntry, ModelTerms, Quartic, TableImage}};"
@@ -52,9 +62,31 @@ pub fn generate_table_source(source: &str, table: &Table, dataset_sha256: Option
         dataset_sha256.unwrap_or("")
     );
     let _ = writeln!(s);
+    let i = table.installation();
+    let from = match installation {
+        Some(source) => source.describe(),
+        None => "none carried (format 1 or 2): the defaults",
+    };
     let _ = writeln!(
         s,
-        "/// The table image; `Table::from_image` checks this CRC-32 against the entries."
+        "/// The installation the board derives its law and fault configuration from: {from}."
+    );
+    if *i == mre_core::installation::DEFAULT_INSTALLATION {
+        let _ = writeln!(
+            s,
+            "pub const GENERATED_INSTALLATION: Installation = DEFAULT_INSTALLATION;"
+        );
+    } else {
+        let _ = writeln!(s, "pub const GENERATED_INSTALLATION: Installation = Installation {{");
+        for (name, v) in Installation::FIELD_NAMES.iter().zip(i.to_array()) {
+            let _ = writeln!(s, "    {name}: {v:?},");
+        }
+        let _ = writeln!(s, "}};");
+    }
+    let _ = writeln!(s);
+    let _ = writeln!(
+        s,
+        "/// The table image; `Table::from_image` checks this CRC-32 against the entries, terms and installation."
     );
     let _ = writeln!(s, "pub static GENERATED_TABLE: TableImage<'static> = TableImage {{");
     let _ = writeln!(s, "    version: {},", table.version());
@@ -70,16 +102,25 @@ pub fn generate_table_source(source: &str, table: &Table, dataset_sha256: Option
         let _ = writeln!(s, "        coil_tau_s: {:?},", t.coil_tau_s);
         let _ = writeln!(s, "    }},");
     }
+    let _ = writeln!(s, "    installation: GENERATED_INSTALLATION,");
     let _ = writeln!(s, "    crc32: {:#010x},", table.crc32());
     let _ = writeln!(s, "}};");
     s
 }
 
-/// Reads a model (or any table) file and writes the generated source atomically.
+/// Reads a model (or any table) file and writes the generated source
+/// atomically: a format 3 table carrying the file's installation (or the
+/// defaults, as the returned source says), refused by name when it lies
+/// outside the board's hard limits.
 pub fn run_tables(model: &Path, out: &Path) -> Result<Table> {
-    let table = read_table_file(model)?;
+    run_tables_stated(model, out).map(|(table, _)| table)
+}
+
+/// [`run_tables`], also saying where the installation came from.
+pub fn run_tables_stated(model: &Path, out: &Path) -> Result<(Table, InstallationSource)> {
+    let (table, installation) = read_flash_table(model)?;
     let sha = read_dataset_sha256(model)?;
-    let source = generate_table_source(&model.display().to_string(), &table, sha.as_deref());
+    let source = generate_table_source(&model.display().to_string(), &table, sha.as_deref(), Some(installation));
     crate::atomic_write::write_atomic(out, source.as_bytes())?;
-    Ok(table)
+    Ok((table, installation))
 }

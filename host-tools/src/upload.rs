@@ -9,11 +9,10 @@
 //! the firmware's receiver (`mre_core::upload`) is the code the host tests
 //! and the fuzz target (`fuzz/fuzz_targets/upload.rs`) exercise.
 use crate::pil::link::PilLink;
-use crate::table_file::{read_installation, read_table_file};
+use crate::table_file::read_flash_table;
 use anyhow::{anyhow, bail, Context, Result};
 use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
 use mre_core::frame::{encode_config, CONFIG_MAX_WORDS};
-use mre_core::installation::Installation;
 use mre_core::table::Table;
 use mre_core::Flags;
 use std::path::Path;
@@ -33,27 +32,18 @@ pub struct Uploaded {
     pub words: usize,
 }
 
-/// The table of a model (or table) file with the board's default
-/// configuration at `rate_hz`, and the file's `[installation]` if it has one
-/// (mass, usable stroke, coil rating): what `mre upload` sends.
+/// What `mre upload` sends: the model (or table) file's table as format 3,
+/// carrying the file's `[installation]` (or the defaults), and the board's
+/// default configuration at `rate_hz` with that installation applied
+/// (`Installation::apply`: mass, usable stroke, the coil's rating, the drive
+/// range, the sensors). The board refuses a configuration that disagrees
+/// with the table's installation. Fails, naming the value, when the
+/// installation is outside the board's hard limits.
 pub fn upload_payload(model: &Path, rate_hz: u32) -> Result<(Table, ControlConfig)> {
-    let table = read_table_file(model)?;
+    let (table, _) = read_flash_table(model)?;
     let mut cfg = ControlConfig::at_rate(rate_hz).map_err(|e| anyhow!("control rate {rate_hz} Hz: {e:?}"))?;
-    if let Some(installation) = read_installation(model)? {
-        apply_installation(&mut cfg, &installation);
-    }
+    table.installation().apply(&mut cfg);
     Ok((table, cfg))
-}
-
-/// The law's installation values: mass, usable stroke, and the output
-/// clamp and fail-safe within the coil's rating. The drive range, the
-/// sensors' scaling and the velocity check are the board's wiring, compiled
-/// into its image, and are not uploaded.
-pub fn apply_installation(cfg: &mut ControlConfig, installation: &Installation) {
-    cfg.law.mass_kg = installation.mass_kg;
-    cfg.law.stroke_max_mm = installation.usable_stroke_mm;
-    cfg.law.current_max_a = installation.coil_rating_a;
-    cfg.law.failsafe_current_a = cfg.law.failsafe_current_a.min(installation.coil_rating_a);
 }
 
 /// The board's hard limits (`mre_core::limits::BOARD`), checked before
@@ -92,6 +82,16 @@ pub fn refusal(code: u16) -> String {
                 limit.why()
             )
         }
+        Some(CommitAnswer::InstallationOutOfLimits(limit)) => {
+            let range = limit.range(&BOARD);
+            format!(
+                "the board refused the upload: the table's installation value {} is outside its limits {} to {} ({})",
+                limit.name(),
+                range.min,
+                range.max,
+                limit.why()
+            )
+        }
         Some(CommitAnswer::Incomplete) => "the board received the upload incomplete (a frame was lost or corrupt)".into(),
         Some(CommitAnswer::Invalid) => "the board refused the table or configuration as invalid (its log says why)".into(),
         Some(CommitAnswer::PageFailed) => "the board could not write or read back its flash page".into(),
@@ -104,6 +104,7 @@ pub fn refusal(code: u16) -> String {
 /// and when the board refuses or could not store them.
 pub fn upload_over(link: &mut PilLink, table: &Table, cfg: &ControlConfig) -> Result<Uploaded> {
     check_board_limits(cfg)?;
+    crate::table_file::check_installation_limits(table.installation()).context("nothing was sent")?;
     let mut words = [0u32; CONFIG_MAX_WORDS];
     let n = encode_config(table, cfg, &mut words);
     let answer = link.send_config_words(&words[..n])?;
@@ -168,11 +169,17 @@ mod tests {
         // A stroke past the displacement sensor is named before anything is sent.
         let bad = dir.path().join("bad.toml");
         std::fs::write(&bad, format!("{base}\n[installation]\nusable_stroke_mm = 30.0\n")).unwrap();
-        let (_, cfg) = upload_payload(&bad, DEFAULT_RATE_HZ).unwrap();
-        let msg = check_board_limits(&cfg).unwrap_err().to_string();
+        let msg = format!("{:#}", upload_payload(&bad, DEFAULT_RATE_HZ).unwrap_err());
         assert!(
-            msg.starts_with("stroke_max_mm = 30 is outside the board's limits 1 to 25"),
+            msg.contains("[installation] usable_stroke_mm = 30 is outside the board's limits 1 to 25"),
             "{msg}"
+        );
+        // The table carries the installation (format 3) under its CRC.
+        let (table, _) = upload_payload(&with, DEFAULT_RATE_HZ).unwrap();
+        assert_eq!(table.version(), 3);
+        assert_eq!(
+            (table.installation().mass_kg, table.installation().usable_stroke_mm),
+            (3.0, 9.0)
         );
     }
 

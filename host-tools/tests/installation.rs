@@ -59,6 +59,12 @@ fn the_default_image_and_the_default_simulation_share_one_installation() {
 
     // The flown table covers the usable stroke in every entry.
     let table = Table::from_image(&GENERATED_TABLE).unwrap();
+    // The image derives its configuration from the table's installation:
+    // the same configuration, value for value.
+    assert_eq!(
+        mre_core::upload::installed_config(&table, DEFAULT_RATE_HZ).unwrap(),
+        image
+    );
     for e in table.entries() {
         assert!(
             e.x_max_mm >= I.usable_stroke_mm,

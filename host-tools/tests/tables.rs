@@ -2,7 +2,7 @@
 //! `mre tables` generates from the committed model (`models/drop-full-stroke.toml`),
 //! and that model must be what `mre fit` makes of the bundled drop tests.
 use mre_core::table::Table;
-use mre_host::table_file::{read_dataset_sha256, read_table_file};
+use mre_host::table_file::{read_dataset_sha256, read_flash_table, read_table_file};
 use mre_host::tables::generate_table_source;
 use std::path::Path;
 
@@ -15,9 +15,9 @@ fn root() -> &'static Path {
 
 #[test]
 fn committed_generated_table_matches_the_committed_model() {
-    let table = read_table_file(&root().join(MODEL)).unwrap();
+    let (table, source) = read_flash_table(&root().join(MODEL)).unwrap();
     let sha = read_dataset_sha256(&root().join(MODEL)).unwrap();
-    let generated = generate_table_source(MODEL, &table, sha.as_deref());
+    let generated = generate_table_source(MODEL, &table, sha.as_deref(), Some(source));
     let committed = include_str!("../../firmware/src/generated_table.rs");
     assert!(
         generated == committed,
@@ -28,8 +28,15 @@ fn committed_generated_table_matches_the_committed_model() {
 #[test]
 fn generated_image_validates_and_equals_the_model() {
     let from_flash = Table::from_image(&mre_core::generated_table::GENERATED_TABLE).unwrap();
-    let from_model = read_table_file(&root().join(MODEL)).unwrap();
+    let (from_model, _) = read_flash_table(&root().join(MODEL)).unwrap();
     assert_eq!(from_flash, from_model);
+    // The model's entries and terms, carried in format 3 with its installation.
+    let fitted = read_table_file(&root().join(MODEL)).unwrap();
+    assert_eq!(
+        (from_flash.entries(), from_flash.terms()),
+        (fitted.entries(), fitted.terms())
+    );
+    assert_eq!(from_flash.version(), 3);
     // The drop tests' five fit currents, 0–2 A.
     assert_eq!(from_flash.current_range_a(), (0.0, 2.0));
     assert_eq!(from_flash.entries().len(), 5);
@@ -86,7 +93,7 @@ fn paper_table_generates_source_with_its_known_crc() {
     // The paper table's CRC is computed by the core at compile time; the
     // generator must print the same value.
     let paper = Table::paper().unwrap();
-    let src = generate_table_source("paper", &paper, None);
+    let src = generate_table_source("paper", &paper, None, None);
     assert!(src.contains(&format!("crc32: {:#010x},", mre_core::table::PAPER_TABLE4.crc32)));
     assert!(src.contains("current_a: 2.0,"));
     assert!(src.contains("compression: Quartic::new([-6619.6, 19772.0, -24021.0, 19016.0, -105.53]),"));
@@ -136,4 +143,57 @@ x_max_mm = 4.0
         parse_table_toml(&v2_text.replace("0.002", "-0.002")).unwrap_err()
     );
     assert!(err.contains("coil_tau_s"), "{err}");
+}
+
+#[test]
+fn mre_tables_carries_a_model_s_installation_and_refuses_one_outside_the_limits() {
+    use mre_host::table_file::{table_to_toml, InstallationSource};
+    use mre_host::tables::run_tables_stated;
+    let dir = tempfile::tempdir().unwrap();
+    let base = std::fs::read_to_string(root().join(MODEL)).unwrap();
+    let lab = dir.path().join("lab.toml");
+    std::fs::write(
+        &lab,
+        format!("{base}\n[installation]\nmass_kg = 3.0\nusable_stroke_mm = 9\ncoil_rating_a = 1.5\n"),
+    )
+    .unwrap();
+    let out = dir.path().join("generated_table.rs");
+    let (table, source) = run_tables_stated(&lab, &out).unwrap();
+    assert_eq!(source, InstallationSource::ModelFile);
+    assert_eq!(table.version(), 3);
+    let i = table.installation();
+    assert_eq!((i.mass_kg, i.usable_stroke_mm, i.coil_rating_a), (3.0, 9.0, 1.5));
+    // Keys the file does not give keep the defaults (12 V, 4 Ω).
+    assert_eq!((i.supply_v, i.coil_resistance_ohm), (12.0, 4.0));
+    let src = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        src.contains("    mass_kg: 3.0,\n    usable_stroke_mm: 9.0,\n    coil_rating_a: 1.5,"),
+        "{src}"
+    );
+    assert!(src.contains(&format!("crc32: {:#010x},", table.crc32())));
+    // The table file round-trips with its installation.
+    let again = mre_host::table_file::parse_table_toml(&table_to_toml(&table)).unwrap();
+    assert_eq!(again, table);
+
+    // Without the section: the defaults, and the source says so.
+    let (_, source) = run_tables_stated(&root().join(MODEL), &out).unwrap();
+    assert_eq!(source, InstallationSource::Defaults);
+    assert!(std::fs::read_to_string(&out)
+        .unwrap()
+        .contains("DEFAULT_INSTALLATION, as the model file has no [installation]"));
+
+    // A 3 A coil on the 2 A board: refused by name, nothing written.
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, format!("{base}\n[installation]\ncoil_rating_a = 3.0\n")).unwrap();
+    let bad_out = dir.path().join("bad_table.rs");
+    let err = format!("{:#}", run_tables_stated(&bad, &bad_out).unwrap_err());
+    assert!(
+        err.contains("[installation] coil_rating_a = 3 is outside the board's limits 1 to 2"),
+        "{err}"
+    );
+    assert!(!bad_out.exists());
+    // An unknown key is an error, not ignored.
+    std::fs::write(&bad, format!("{base}\n[installation]\nmass_lb = 3.0\n")).unwrap();
+    let err = format!("{:#}", run_tables_stated(&bad, &bad_out).unwrap_err());
+    assert!(err.contains("unknown key `mass_lb`"), "{err}");
 }

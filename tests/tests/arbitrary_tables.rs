@@ -141,7 +141,7 @@ proptest! {
     /// the stored CRC is caught.
     #[test]
     fn the_image_round_trips_and_a_wrong_crc_is_refused(t in table(), bit in 0u32..32) {
-        let image = TableImage { version: t.version(), entries: t.entries(), terms: *t.terms(), crc32: t.crc32() };
+        let image = t.image();
         let back = Table::from_image(&image).expect("its own image");
         prop_assert_eq!(back.entries(), t.entries());
         let bad = TableImage { crc32: t.crc32() ^ (1 << bit), ..image };

@@ -3,10 +3,11 @@
 //! Expected forces were computed independently with `numpy.polyval` in float64
 //! from the coefficients printed in the paper (x in mm, F in N); at x = 1 mm a
 //! quartic is just the sum of its coefficients, which is checked by hand too.
+use mre_core::installation::DEFAULT_INSTALLATION;
 use mre_core::model::Branch;
 use mre_core::table::{
     content_crc, CurrentEntry, ModelTerms, Quartic, Table, TableError, TableImage, FORMAT_VERSION, FORMAT_VERSION_1,
-    PAPER_TABLE4_ENTRIES,
+    FORMAT_VERSION_2, FORMAT_VERSION_3, PAPER_TABLE4_ENTRIES,
 };
 use mre_tests::crc32_reference;
 
@@ -197,7 +198,13 @@ fn a_flipped_bit_in_a_stored_table_fails_its_crc() {
         version: FORMAT_VERSION_1,
         entries: &PAPER_TABLE4_ENTRIES,
         terms: ModelTerms::NONE,
-        crc32: content_crc(FORMAT_VERSION_1, &PAPER_TABLE4_ENTRIES, &ModelTerms::NONE),
+        installation: DEFAULT_INSTALLATION,
+        crc32: content_crc(
+            FORMAT_VERSION_1,
+            &PAPER_TABLE4_ENTRIES,
+            &ModelTerms::NONE,
+            &DEFAULT_INSTALLATION,
+        ),
     };
     assert!(Table::from_image(&good).is_ok());
     let mut corrupt = PAPER_TABLE4_ENTRIES;
@@ -245,7 +252,7 @@ fn crc_is_the_standard_crc32_of_the_documented_byte_layout() {
     };
     let none = ModelTerms::NONE;
     assert_eq!(
-        content_crc(FORMAT_VERSION_1, &entries, &none),
+        content_crc(FORMAT_VERSION_1, &entries, &none, &DEFAULT_INSTALLATION),
         crc32_reference(&layout(FORMAT_VERSION_1))
     );
     // Version 2 appends I_s, sensor delay, coil τ and one viscous term per entry.
@@ -258,11 +265,38 @@ fn crc_is_the_standard_crc32_of_the_documented_byte_layout() {
     terms.viscous_n_s_per_m[0] = 120.0;
     terms.viscous_n_s_per_m[1] = 240.0;
     terms.viscous_n_s_per_m[5] = 99.0; // past the entries: not hashed
-    let mut bytes = layout(FORMAT_VERSION);
+    let mut bytes = layout(FORMAT_VERSION_2);
     for v in [0.75f32, 2.0e-4, 3.0e-3, 120.0, 240.0] {
         bytes.extend_from_slice(&v.to_le_bytes());
     }
-    assert_eq!(content_crc(FORMAT_VERSION, &entries, &terms), crc32_reference(&bytes));
+    assert_eq!(
+        content_crc(FORMAT_VERSION_2, &entries, &terms, &DEFAULT_INSTALLATION),
+        crc32_reference(&bytes)
+    );
+    // Version 3 appends the installation: mass, usable stroke, coil rating,
+    // coil resistance, supply, x sensor range, v sensor full scale, impact
+    // v min, impact v max (the order documented in `content_crc`).
+    let lab = mre_core::installation::Installation {
+        mass_kg: 3.0,
+        usable_stroke_mm: 9.0,
+        coil_rating_a: 1.5,
+        coil_resistance_ohm: 4.0,
+        supply_v: 12.0,
+        x_sensor_range_mm: 25.0,
+        v_sensor_full_scale_m_s: 5.0,
+        impact_v_min_m_s: 1.0,
+        impact_v_max_m_s: 3.0,
+    };
+    let mut bytes = layout(FORMAT_VERSION_3);
+    for v in [
+        0.75f32, 2.0e-4, 3.0e-3, 120.0, 240.0, 3.0, 9.0, 1.5, 4.0, 12.0, 25.0, 5.0, 1.0, 3.0,
+    ] {
+        bytes.extend_from_slice(&v.to_le_bytes());
+    }
+    assert_eq!(
+        content_crc(FORMAT_VERSION_3, &entries, &terms, &lab),
+        crc32_reference(&bytes)
+    );
 }
 
 #[test]
@@ -274,11 +308,12 @@ fn version_2_images_carry_their_terms_and_version_1_images_may_not() {
     };
     terms.viscous_n_s_per_m[1] = 50.0;
     let v2 = Table::with_terms(&entries, terms).unwrap();
-    assert_eq!(v2.version(), FORMAT_VERSION);
+    assert_eq!(v2.version(), FORMAT_VERSION_2);
     let image = TableImage {
-        version: FORMAT_VERSION,
+        version: FORMAT_VERSION_2,
         entries: &entries,
         terms,
+        installation: DEFAULT_INSTALLATION,
         crc32: v2.crc32(),
     };
     assert_eq!(Table::from_image(&image), Ok(v2));
@@ -297,7 +332,7 @@ fn version_2_images_carry_their_terms_and_version_1_images_may_not() {
     // Terms in a version 1 image are refused, whatever its CRC.
     let v1_with_terms = TableImage {
         version: FORMAT_VERSION_1,
-        crc32: content_crc(FORMAT_VERSION_1, &entries, &terms),
+        crc32: content_crc(FORMAT_VERSION_1, &entries, &terms, &DEFAULT_INSTALLATION),
         ..image
     };
     assert!(matches!(

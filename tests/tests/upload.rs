@@ -219,9 +219,25 @@ fn a_ping_is_answered_with_a_hello_and_never_stored() {
     assert!(page.bytes.iter().all(|&b| b == 0xFF));
 }
 
-/// The largest table the format holds: `MAX_CURRENTS` entries, format 2 with
-/// every term (a viscous coefficient on each entry), so the blob is
-/// `CONFIG_MAX_WORDS` long and its last words lie past bit 127.
+/// A lab's installation within the board's limits: a 3 kg striker, 9 mm of
+/// stroke, a 1.5 A coil.
+const LAB: mre_core::installation::Installation = mre_core::installation::Installation {
+    mass_kg: 3.0,
+    usable_stroke_mm: 9.0,
+    coil_rating_a: 1.5,
+    ..mre_core::installation::DEFAULT_INSTALLATION
+};
+
+/// The configuration `mre upload` sends with a table carrying `LAB`.
+fn lab_config() -> ControlConfig {
+    let mut cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+    LAB.apply(&mut cfg);
+    cfg
+}
+
+/// The largest table the format holds: `MAX_CURRENTS` entries, format 3 with
+/// every term (a viscous coefficient on each entry) and an installation, so
+/// the blob is `CONFIG_MAX_WORDS` long and its last words lie past bit 127.
 fn largest_table() -> Table {
     use mre_core::table::{CurrentEntry, ModelTerms, Quartic, FORMAT_VERSION, MAX_CURRENTS};
     let entries: Vec<CurrentEntry> = (0..MAX_CURRENTS)
@@ -237,7 +253,7 @@ fn largest_table() -> Table {
     for (k, c) in terms.viscous_n_s_per_m.iter_mut().enumerate() {
         *c = 5.0 * (k + 1) as f32;
     }
-    let table = Table::with_terms(&entries, terms).unwrap();
+    let table = Table::with_installation(&entries, terms, LAB).unwrap();
     assert_eq!(table.version(), FORMAT_VERSION);
     table
 }
@@ -245,10 +261,11 @@ fn largest_table() -> Table {
 #[test]
 fn the_largest_table_with_every_term_uploads_and_flies_at_boot() {
     let table = largest_table();
-    let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+    let cfg = lab_config();
     let words = blob(&table, &cfg);
-    // 2 header + 13 per entry + 3 terms + 1 viscous per entry + 13 law + 7 control.
-    assert_eq!(words.len(), 2 + 8 * 13 + 3 + 8 + 13 + 7);
+    // 2 header + 13 per entry + 3 terms + 1 viscous per entry + 9
+    // installation values + 13 law + 7 control.
+    assert_eq!(words.len(), 2 + 8 * 13 + 3 + 8 + 9 + 13 + 7);
     assert_eq!(words.len(), CONFIG_MAX_WORDS);
     let (mut port, mut page) = (UploadPort::new(), RamPage::erased());
     let answers = send(&mut port, &mut page, &frames(&words));
@@ -259,12 +276,26 @@ fn the_largest_table_with_every_term_uploads_and_flies_at_boot() {
     let flown = boot.table.unwrap();
     assert_eq!(flown.entries(), table.entries());
     assert_eq!(flown.terms(), table.terms());
-    assert_eq!(boot.config.unwrap(), cfg);
+    assert_eq!(flown.installation(), &LAB);
+    let flown_cfg = boot.config.unwrap();
+    assert_eq!(flown_cfg, cfg);
+    assert_eq!(
+        (
+            flown_cfg.law.mass_kg,
+            flown_cfg.law.stroke_max_mm,
+            flown_cfg.law.current_max_a
+        ),
+        (3.0, 9.0, 1.5)
+    );
+    // Booted at another rate, the page keeps its table and its installation.
+    let other_rate = choose_boot_table(&mut page, &GENERATED_TABLE, DEFAULT_RATE_HZ / 2);
+    assert_eq!(other_rate.uploaded_rate_ignored_hz, Some(DEFAULT_RATE_HZ));
+    assert_eq!(other_rate.config.unwrap().law.mass_kg, 3.0);
 }
 
 #[test]
 fn a_word_missing_past_bit_127_is_noticed() {
-    let words = blob(&largest_table(), &ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap());
+    let words = blob(&largest_table(), &lab_config());
     // The frame that carries words 129..132 is lost: the commit must see the gap.
     let mut fr = frames(&words);
     fr.remove(129 / 3);

@@ -129,7 +129,7 @@ pub fn build(
     }
     let g = &options.gsa;
     Ok(ModelFile {
-        format_version: mre_core::table::FORMAT_VERSION,
+        format_version: mre_core::table::FORMAT_VERSION_2,
         model: ModelMeta {
             dataset: dataset.to_string(),
             input_sha256: input_sha256.to_string(),

@@ -412,7 +412,7 @@ fn largest_table() -> Table {
     for (k, c) in terms.viscous_n_s_per_m.iter_mut().enumerate() {
         *c = 5.0 * (k + 1) as f32;
     }
-    Table::with_terms(&entries, terms).unwrap()
+    Table::with_installation(&entries, terms, mre_core::installation::DEFAULT_INSTALLATION).unwrap()
 }
 
 #[test]
