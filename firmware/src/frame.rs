@@ -725,10 +725,12 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
         let mut uploaded = cfg;
         installation.apply(&mut cfg);
         // What is not uploaded (the drive range, the armed current, the
-        // velocity sensor's scale) is the installation's; the rest must agree.
+        // fastest expected impact, the velocity sensor's scale) is the
+        // installation's; the rest must agree.
         uploaded.law.drive_min_a = cfg.law.drive_min_a;
         uploaded.law.drive_max_a = cfg.law.drive_max_a;
         uploaded.law.armed_current_a = cfg.law.armed_current_a;
+        uploaded.law.impact_v_max_m_s = cfg.law.impact_v_max_m_s;
         uploaded.v_sensor_full_scale_m_s = cfg.v_sensor_full_scale_m_s;
         if uploaded != cfg {
             return Err(ConfigBlobError::InstallationMismatch);

@@ -117,6 +117,8 @@ impl Installation {
         law.drive_max_a = self.drive_max_a();
         law.drive_min_a = -self.drive_max_a();
         law.x_valid_max_mm = self.x_sensor_range_mm;
+        // Without a predicted impact the coil idles armed for the fastest one.
+        law.impact_v_max_m_s = self.impact_v_max_m_s;
         cfg.v_sensor_full_scale_m_s = self.v_sensor_full_scale_m_s;
     }
 }

@@ -162,6 +162,8 @@ fn the_built_in_installation_sets_the_board_s_law_and_fault_configuration() {
     assert_eq!((cfg.law.drive_min_a, cfg.law.drive_max_a), (-3.0, 3.0));
     assert_eq!(cfg.law.x_valid_max_mm, 25.0);
     assert_eq!(cfg.v_sensor_full_scale_m_s, 5.0);
+    // The coil idles armed for LAB's fastest impact, 3 m/s.
+    assert_eq!(cfg.law.impact_v_max_m_s, 3.0);
     // The defaults' installation changes nothing: the default image is today's.
     let default = Table::with_installation(&entries(), ModelTerms::NONE, DEFAULT_INSTALLATION).unwrap();
     assert_eq!(
