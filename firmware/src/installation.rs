@@ -106,7 +106,9 @@ impl Installation {
     /// the law's mass and usable stroke, the output clamp at the coil's
     /// rating (the fail-safe and armed currents kept within it), the drive
     /// range of the half bridge (±supply / resistance), the displacement
-    /// check's top at the sensor's range, and the velocity sensor's scale.
+    /// check's top at the sensor's range, the fastest impact the law arms
+    /// for without a prediction (`impact_v_max_m_s`), and the velocity
+    /// sensor's scale.
     pub fn apply(&self, cfg: &mut ControlConfig) {
         let law = &mut cfg.law;
         law.mass_kg = self.mass_kg;

@@ -10,7 +10,9 @@
 //! 3. A blind diagnosis of the bundled drop tests with a concealed effect,
 //!    and a diagnosis of the real MR damper data (whole amplitude–frequency
 //!    pairs held out, 0.5 A predicted).
-//! 4. The closed-loop drop test: passive 0 A, passive 2 A, controlled by the core.
+//! 4. The closed-loop drop test: passive 0 A, passive 2 A, controlled by the
+//!    core, in the installation of step 2's model file (`drop-none/model.toml`:
+//!    the data set's mass, the defaults for the rest).
 //!    Then the chain from recordings to flash on `data/drop-coil_lag`
 //!    (`control_bench::demo_step`), and its model as `damper.fmu` and
 //!    `controller.fmu` (`mre fmu`).
@@ -91,12 +93,20 @@ fn fit_validate_plot(dataset: &Path, out: &Path, seed: u64, hold_out_a: &[f64], 
     })
 }
 
+/// The drop the closed-loop steps fly: step 2's model file's installation.
+fn drop_request(out: &Path, seed: u64) -> Result<crate::plant::closed_loop::SimRequest> {
+    let model = out.join("drop-none").join("model.toml");
+    let stated = crate::installation::StatedInstallation::from_model_file(&model)?;
+    Ok(crate::plant::closed_loop::SimRequest {
+        seed,
+        installation: stated.installation,
+        ..Default::default()
+    })
+}
+
 fn closed_loop(out: &Path, seed: u64) -> Result<DemoStep> {
     let _progress = crate::progress::spinner("closed-loop drop test (host)");
-    let request = crate::plant::closed_loop::SimRequest {
-        seed,
-        ..Default::default()
-    };
+    let request = drop_request(out, seed)?;
     let dir = out.join("sim");
     let cmp = crate::plant::closed_loop::run_sim(&request, &dir)?;
     let headline = match &cmp.controlled_vs_passive {
@@ -248,10 +258,7 @@ fn processor_in_the_loop(out: &Path, seed: u64) -> Result<DemoStep> {
     let _progress = crate::progress::spinner("building the PIL firmware and running it in QEMU");
     let dir = out.join("pil");
     let request = crate::pil::sim::PilRequest {
-        sim: crate::plant::closed_loop::SimRequest {
-            seed,
-            ..Default::default()
-        },
+        sim: drop_request(out, seed)?,
         elf: None,
     };
     let run = crate::pil::sim::run_pil(&request, &dir)?;

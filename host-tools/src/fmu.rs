@@ -17,7 +17,6 @@
 use crate::atomic_write::write_atomic_with;
 use anyhow::{anyhow, bail, Context, Result};
 use mre_core::control::ControlConfig;
-use mre_core::law::LawConfig;
 use mre_core::Table;
 use mre_fmu::describe::{Describe, Kind};
 use std::io::Write as _;
@@ -36,23 +35,16 @@ pub struct FmuRequest {
     pub controller: bool,
 }
 
-/// The installation the controller plans for and the control rate: today
-/// `mre sim`'s drop (5.5 kg, 9.81 m/s², 10 kHz) and usable stroke
-/// (`closed_loop::USABLE_STROKE_MM`), the law's other settings at their
-/// defaults. The one place to read them from the model file when it carries
-/// them (issue #31).
-pub fn installation(_table: &Table) -> Result<ControlConfig> {
-    let setup = crate::plant::closed_loop::SimSetup::default();
-    let law = crate::plant::closed_loop::law_config(&setup);
-    let rate_hz = (1.0 / setup.impact.control_period_s).round() as u32;
-    let mut cfg = ControlConfig::at_rate(rate_hz).map_err(|e| anyhow!("control rate {rate_hz} Hz: {e:?}"))?;
-    cfg.law = LawConfig {
-        period_s: cfg.law.period_s,
-        ..law
-    };
-    cfg.validate()
-        .map_err(|e| anyhow!("the installation's control configuration is invalid: {e:?}"))?;
-    Ok(cfg)
+/// The controller's configuration: `mre sim`'s and `mre pil`'s for the
+/// model file's installation (the table's: its `[installation]`, else the
+/// defaults), at `mre sim`'s control rate (10 kHz).
+pub fn installation(table: &Table) -> Result<ControlConfig> {
+    let setup = crate::plant::closed_loop::SimSetup::for_installation(
+        crate::plant::stepper::Plant::nominal(),
+        *table.installation(),
+    );
+    crate::pil::sim::control_config(&setup)
+        .map_err(|e| anyhow!("the installation's control configuration is invalid: {e:#}"))
 }
 
 /// The path of controller.fmu for damper.fmu at `out`.

@@ -10,6 +10,7 @@ pub mod diagnose_bench;
 pub mod fit;
 pub mod fmu;
 pub mod html;
+pub mod installation;
 pub mod linalg;
 pub mod loops;
 pub mod pil;

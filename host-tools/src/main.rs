@@ -60,6 +60,8 @@ enum Command {
         /// Model file to write (TOML; also a table file for --table).
         #[arg(long)]
         out: PathBuf,
+        #[command(flatten)]
+        installation: InstallationOptions,
     },
     /// Compare a model with every recording of a data set; write report.md and report.json.
     Validate {
@@ -163,9 +165,11 @@ enum Command {
         validate_current: Vec<f64>,
         #[arg(long, default_value_t = 1)]
         seed: u64,
-        /// Also write the final model (format 2 table file) for `mre tables`.
+        /// Also write the final model (a table file with its [installation]) for `mre tables`.
         #[arg(long)]
         model_out: Option<PathBuf>,
+        #[command(flatten)]
+        installation: InstallationOptions,
         /// Change a decision rule, NAME=VALUE (repeatable; the rules and their frozen
         /// defaults: host-tools/DIAGNOSE.md, "Rules").
         #[arg(long = "set")]
@@ -179,6 +183,8 @@ enum Command {
         /// Only the real coils (τ 10–20 ms: arming, impact range, driver sizing).
         #[arg(long)]
         real_coils: bool,
+        #[command(flatten)]
+        installation: SimInstallationArgs,
     },
     /// Blind benchmark of `diagnose` on `mre synth --effect random` cases.
     BenchDiagnose {
@@ -272,6 +278,9 @@ enum Command {
         /// Coil time constant L/R (ms); default: the current follows the command at once.
         #[arg(long)]
         coil_lag_ms: Option<f64>,
+        /// Coil time constant while the current falls (ms), when switching off is slower (eddy currents); needs --coil-lag-ms.
+        #[arg(long)]
+        coil_lag_off_ms: Option<f64>,
         /// Folder for CSV, summary and plots.
         #[arg(long)]
         report: PathBuf,
@@ -371,6 +380,45 @@ impl GsaArgs {
     }
 }
 
+/// Installation values a model file is written with (`fit`, `diagnose --model-out`).
+#[derive(clap::Args)]
+struct InstallationOptions {
+    /// Installation value KEY=VALUE over the data set's metadata and the defaults (repeatable;
+    /// keys as a model file's [installation], e.g. mass_kg=3, usable_stroke_mm=9).
+    #[arg(long = "installation", value_name = "KEY=VALUE")]
+    values: Vec<String>,
+}
+
+/// The installation a simulation runs in (`sim`, `pil`, `bench-control`).
+#[derive(clap::Args)]
+struct SimInstallationArgs {
+    /// Model file whose [installation] (mass, usable stroke, coil, sensors) the drop and the
+    /// controller use; default: DEFAULT_INSTALLATION. The output says where each value came from.
+    #[arg(long)]
+    model: Option<PathBuf>,
+    /// Installation value KEY=VALUE over the model file's (repeatable, e.g. usable_stroke_mm=9).
+    #[arg(long = "installation", value_name = "KEY=VALUE")]
+    values: Vec<String>,
+}
+
+impl SimInstallationArgs {
+    /// The installation, stated (printed: which values came from where).
+    fn resolve(&self, mass_kg: Option<f64>) -> Result<mre_host::installation::StatedInstallation> {
+        use mre_host::installation::StatedInstallation;
+        let from_file = match &self.model {
+            Some(path) => StatedInstallation::from_model_file(path)?,
+            None => StatedInstallation::default(),
+        };
+        let mut values = self.values.clone();
+        if let Some(kg) = mass_kg {
+            values.push(format!("mass_kg={kg}"));
+        }
+        let stated = from_file.with_options(&values)?;
+        println!("{}", stated.describe());
+        Ok(stated)
+    }
+}
+
 /// The simulated drop test, shared by `sim` and `pil`.
 #[derive(clap::Args)]
 struct DropArgs {
@@ -385,9 +433,11 @@ struct DropArgs {
     /// Impact velocity (m/s).
     #[arg(long, default_value_t = 2.24)]
     velocity: f64,
-    /// Drop mass (kg).
-    #[arg(long, default_value_t = 5.5)]
-    mass: f64,
+    /// Drop mass (kg), over the installation's (same as --installation mass_kg=KG).
+    #[arg(long)]
+    mass: Option<f64>,
+    #[command(flatten)]
+    installation: SimInstallationArgs,
 }
 
 impl DropArgs {
@@ -402,8 +452,9 @@ impl DropArgs {
             effect: self.effect,
             seed: self.seed,
             impact_velocity_m_s: self.velocity,
-            mass_kg: self.mass,
+            installation: self.installation.resolve(self.mass)?.installation,
             coil_lag_s,
+            coil_lag_off_s: None,
         })
     }
 }
@@ -461,9 +512,19 @@ fn run(cli: Cli) -> Result<()> {
             gsa,
             hold_out_current,
             out,
+            installation,
         } => {
             let options = gsa.options(method, mre_host::progress::enabled());
-            let run = mre_host::fit::run_fit(&dataset, &options, &hold_out_current, &out)?;
+            let run = mre_host::fit::run_fit_with_installation(
+                &dataset,
+                &options,
+                &hold_out_current,
+                &installation.values,
+                &out,
+            )?;
+            if let Some(stated) = &run.model.installation {
+                println!("{}", stated.describe());
+            }
             print!("{}", mre_host::fit::summary_markdown(&run.fits));
             println!(
                 "fitted {} branches in {:.3} ms; wrote {}",
@@ -586,6 +647,7 @@ fn run(cli: Cli) -> Result<()> {
             seed,
             model_out,
             rules,
+            installation,
         } => {
             let mut opts =
                 mre_host::diagnose::options_from_cli(model.as_deref(), folds_by, folds, validate_current, seed)?;
@@ -594,8 +656,17 @@ fn run(cli: Cli) -> Result<()> {
             let out = match &model_out {
                 Some(path) => {
                     use mre_host::diagnose::model_out::run_to_files_with_model;
-                    let (out, _) = run_to_files_with_model(&dataset, &opts, &report, &json, &predictions, path)?;
+                    let (out, _, stated) = run_to_files_with_model(
+                        &dataset,
+                        &opts,
+                        &report,
+                        &json,
+                        &predictions,
+                        path,
+                        &installation.values,
+                    )?;
                     println!("final model: {}", path.display());
+                    println!("{}", stated.describe());
                     out
                 }
                 None => mre_host::diagnose::run_to_files(&dataset, &opts, &report, &json, &predictions)?,
@@ -605,12 +676,17 @@ fn run(cli: Cli) -> Result<()> {
             println!("report: {}", report.join("report.md").display());
             println!("page: {}", report.join("index.html").display());
         }
-        Command::BenchControl { out, real_coils } => {
+        Command::BenchControl {
+            out,
+            real_coils,
+            installation,
+        } => {
+            let installation = installation.resolve(None)?.installation;
             let mut cases = mre_host::control_bench::default_cases();
             if real_coils {
                 cases.retain(mre_host::control_bench::Case::is_real_coil);
             }
-            let outcomes = mre_host::control_bench::run_to_files(&cases, &out)?;
+            let outcomes = mre_host::control_bench::run_to_files(&cases, &installation, &out)?;
             print!("{}", mre_host::control_bench::markdown(&outcomes));
             println!("\nreport: {}", out.join("report.md").display());
             println!("page: {}", out.join("index.html").display());
@@ -764,10 +840,12 @@ fn run(cli: Cli) -> Result<()> {
             drop,
             controlled,
             coil_lag_ms,
+            coil_lag_off_ms,
             report,
         } => {
             use mre_host::plant::closed_loop::{run_sim, RunSpec, DEFAULT_RUNS};
             let mut request = drop.request(coil_lag_ms.map(|ms| ms * 1e-3))?;
+            request.coil_lag_off_s = coil_lag_off_ms.map(|ms| ms * 1e-3);
             if controlled && !request.runs.is_empty() && !request.runs.contains(&RunSpec::Controlled) {
                 request.runs.push(RunSpec::Controlled);
             }

@@ -1,5 +1,6 @@
 //! From recordings to flash: `mre diagnose --model-out`, the physical limit
 //! of `mre bench-control`, and one bench case end to end.
+use mre_core::installation::DEFAULT_INSTALLATION;
 use mre_host::control_bench::limit::physical_limit;
 use mre_host::control_bench::{controllers_for, drop_setup, record_campaign, run_case, Case};
 use mre_host::plant::closed_loop::run_controlled;
@@ -25,7 +26,7 @@ fn tau_within_tolerance(tau_s: f64, true_tau_s: f64) -> bool {
 fn model_out_carries_the_coil_lag_the_answer_key_holds() {
     let dir = tempfile::tempdir().unwrap();
     let model = dir.path().join("final.toml");
-    let (_, table) = mre_host::diagnose::model_out::run_to_files_with_model(
+    let (_, table, stated) = mre_host::diagnose::model_out::run_to_files_with_model(
         &root().join("data/drop-coil_lag"),
         // The lag shows only in the controlled impacts (validate recordings):
         // diagnose judges it there only when asked to.
@@ -34,6 +35,7 @@ fn model_out_carries_the_coil_lag_the_answer_key_holds() {
         &dir.path().join("report.json"),
         &dir.path().join("predictions"),
         &model,
+        &[],
     )
     .unwrap();
     let key: serde_json::Value =
@@ -46,7 +48,15 @@ fn model_out_carries_the_coil_lag_the_answer_key_holds() {
         true_tau_s * 1e3
     );
     assert!(tau_within_tolerance(tau_s, true_tau_s), "{tau_s} vs {true_tau_s}");
-    assert_eq!(table.version(), 2);
+    // The model file carries the installation (format 3): the campaign's
+    // 5.5 kg drop mass, from its metadata; the rest the defaults.
+    assert_eq!(table.version(), 3);
+    assert_eq!(*table.installation(), mre_core::installation::DEFAULT_INSTALLATION);
+    assert!(
+        stated.describe().contains("mass_kg = 5.5 from the data set's metadata"),
+        "{}",
+        stated.describe()
+    );
     // The file is what `mre tables` flashes: it reads back as the same table,
     // and the generated source carries τ and the data set's hash.
     let read = mre_host::table_file::read_table_file(&model).unwrap();
@@ -54,8 +64,7 @@ fn model_out_carries_the_coil_lag_the_answer_key_holds() {
     let source = dir.path().join("generated_table.rs");
     mre_host::tables::run_tables(&model, &source).unwrap();
     let text = std::fs::read_to_string(&source).unwrap();
-    // The model file stays format 2; the flash table is format 3, which
-    // carries the installation under its CRC (issue 31).
+    // The flash table is format 3 too: the installation under its CRC (issue 31).
     assert!(text.contains("coil_tau_s: ") && text.contains("version: 3,"));
     let sha = mre_host::table_file::read_dataset_sha256(&model).unwrap().unwrap();
     assert!(text.contains(&sha));
@@ -84,7 +93,7 @@ fn without_a_floor_and_with_a_stiff_coil_the_limit_is_the_constant_stopping_forc
 
 #[test]
 fn controller_c_meets_its_target_on_a_2_ms_coil_and_beats_the_paper_table() {
-    let out = run_case(&Case::CoilTau { tau_ms: 2.0, seed: 203 }).unwrap();
+    let out = run_case(&Case::CoilTau { tau_ms: 2.0, seed: 203 }, &DEFAULT_INSTALLATION).unwrap();
     let (a, b, c) = (&out.runs[0], &out.runs[1], &out.runs[2]);
     // diagnose finds the lag from the campaign's controlled impacts.
     assert_eq!(out.diagnosed, vec!["coil_lag".to_owned()]);
@@ -99,10 +108,13 @@ fn controller_c_meets_its_target_on_a_2_ms_coil_and_beats_the_paper_table() {
 fn controller_c_meets_the_nominal_target() {
     // Issue 11: on a plant without a concealed effect, (c) peaks at most
     // 1.10× the limit, within the stroke, and no higher than (a).
-    let out = run_case(&Case::Effect {
-        name: mre_host::vocabulary::Effect::None,
-        seed: 101,
-    })
+    let out = run_case(
+        &Case::Effect {
+            name: mre_host::vocabulary::Effect::None,
+            seed: 101,
+        },
+        &DEFAULT_INSTALLATION,
+    )
     .unwrap();
     let (a, c) = (&out.runs[0], &out.runs[2]);
     assert!(out.diagnosed.is_empty(), "{:?}", out.diagnosed);
@@ -123,8 +135,8 @@ fn controller_c_holds_its_target_when_the_coil_time_constant_is_20_percent_off()
     let plant = case.plant(&SynthPlan::default()).unwrap();
     let (_dir, campaign) = record_campaign(&plant, case.seed()).unwrap();
     let diagnosed = controllers_for(&campaign).unwrap().diagnosed;
-    let setup = drop_setup(&plant, campaign.recordings.len(), case.seed());
-    let limit = physical_limit(&plant, &setup.impact, (0.0, 2.0), setup.usable_stroke_mm).unwrap();
+    let setup = drop_setup(&plant, campaign.recordings.len(), case.seed(), &DEFAULT_INSTALLATION);
+    let limit = physical_limit(&plant, &setup.impact, (0.0, 2.0), setup.usable_stroke_mm()).unwrap();
     for tau_s in [1.6e-3f32, 2.4e-3] {
         let terms = mre_core::table::ModelTerms {
             coil_tau_s: tau_s,
@@ -134,7 +146,7 @@ fn controller_c_holds_its_target_when_the_coil_time_constant_is_20_percent_off()
         let s = run_controlled(&setup, &table).unwrap().summary;
         let ratio = s.peak_force_n / limit.envelope_n;
         assert!(
-            s.max_stroke_mm <= setup.usable_stroke_mm && ratio <= 1.25,
+            s.max_stroke_mm <= setup.usable_stroke_mm() && ratio <= 1.25,
             "τ {tau_s}: {ratio:.3}× the limit, stroke {:.2} mm",
             s.max_stroke_mm
         );
@@ -274,7 +286,7 @@ fn a_20_ms_coil_armed_before_contact_stops_softer_than_any_fixed_current() {
             coil_lag_s: Some(tau_s),
             ..ImpactConfig::default()
         },
-        usable_stroke_mm: 12.0,
+        installation: DEFAULT_INSTALLATION,
     };
     // The peer: the passive drop with the lowest peak within the stroke.
     let best_fixed_n = (0..=100)

@@ -26,8 +26,8 @@ fn the_default_image_and_the_default_simulation_share_one_installation() {
         image.law.stroke_max_mm, sim_law.stroke_max_mm,
         "stroke: image vs simulation"
     );
-    assert_eq!(f64::from(image.law.stroke_max_mm), sim.usable_stroke_mm);
-    assert_eq!(SimSetup::default().usable_stroke_mm, sim.usable_stroke_mm);
+    assert_eq!(f64::from(image.law.stroke_max_mm), sim.usable_stroke_mm());
+    assert_eq!(SimSetup::default().usable_stroke_mm(), sim.usable_stroke_mm());
     assert_eq!(
         (image.law.mass_kg, image.law.stroke_max_mm),
         (I.mass_kg, I.usable_stroke_mm)

@@ -33,7 +33,8 @@ fn controlled_impact_stays_in_stroke_with_a_lower_peak_than_passive() {
     assert_eq!(reference, "passive 2 A");
     eprintln!("controlled peak is {reduction:.1} % below {reference}");
     // The ideal constant force over the usable stroke is a floor no controller beats.
-    let ideal = setup.impact.mass_kg * setup.impact.impact_velocity_m_s.powi(2) / (2.0 * setup.usable_stroke_mm * 1e-3)
+    let ideal = setup.impact.mass_kg * setup.impact.impact_velocity_m_s.powi(2)
+        / (2.0 * setup.usable_stroke_mm() * 1e-3)
         + setup.impact.mass_kg * setup.impact.gravity_m_s2;
     assert!(controlled.summary.peak_force_n > ideal);
 }

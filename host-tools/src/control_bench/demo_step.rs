@@ -20,20 +20,22 @@ pub fn recordings_to_flash(data: &Path, out: &Path) -> Result<DemoStep> {
     let diag_dir = dir.join("diagnose");
     let model = dir.join("final.toml");
     let opts = crate::diagnose::DiagnoseOptions::with_validate_evidence();
-    let (found, _) = crate::diagnose::model_out::run_to_files_with_model(
+    let (found, _, _) = crate::diagnose::model_out::run_to_files_with_model(
         &data.join(SET),
         &opts,
         &diag_dir,
         &diag_dir.join("report.json"),
         &diag_dir.join("predictions"),
         &model,
+        &[],
     )?;
     // What the board would fly: the table read back from the model file.
     let flashed = crate::tables::run_tables(&model, &dir.join("generated_table.rs"))?;
 
     let plant = draw_plant("coil_lag", SEED, &SynthPlan::default())?;
-    let setup = drop_setup(&plant, 60, SEED);
-    let limit = physical_limit(&plant, &setup.impact, (0.0, 2.0), setup.usable_stroke_mm)?;
+    // The drop in the model file's installation (what the table carries).
+    let setup = drop_setup(&plant, 60, SEED, flashed.installation());
+    let limit = physical_limit(&plant, &setup.impact, (0.0, 2.0), setup.usable_stroke_mm())?;
     let paper = Table::paper().map_err(|e| anyhow!("{e}"))?;
     let runs = [("(a) paper Table 4", &paper), ("(c) diagnose --model-out", &flashed)]
         .into_iter()
@@ -44,7 +46,7 @@ pub fn recordings_to_flash(data: &Path, out: &Path) -> Result<DemoStep> {
         .collect::<Result<Vec<_>>>()?;
     let outcomes: Vec<RunOutcome> = runs
         .iter()
-        .map(|r| RunOutcome::new(&r.label, &r.summary, &limit, setup.usable_stroke_mm))
+        .map(|r| RunOutcome::new(&r.label, &r.summary, &limit, setup.usable_stroke_mm()))
         .collect();
     let cmp = Comparison::from_runs(runs);
     let png = dir.join("force-displacement.png");
@@ -55,12 +57,14 @@ pub fn recordings_to_flash(data: &Path, out: &Path) -> Result<DemoStep> {
     let mut md = format!(
         "# From recordings to flash: {SET}\n\n{}\n\nIdentified coil τ {tau_ms:.3} ms (the plant's: {true_tau_ms:.3} ms), \
          written to `final.toml` (format {}) and `generated_table.rs` (CRC {:#010x}).\n\n\
-         Drop: 5.5 kg at 2.24 m/s, usable stroke {} mm, physical limit {:.0} N.\n\n\
+         Drop: {} kg at {} m/s, usable stroke {} mm, physical limit {:.0} N.\n\n\
          | controller | peak (N) | × limit | stroke (mm) | peak decel (g) | rebound (m/s) |\n|---|---|---|---|---|---|\n",
         crate::diagnose::summary_line(&found),
         flashed.version(),
         flashed.crc32(),
-        setup.usable_stroke_mm,
+        setup.impact.mass_kg,
+        setup.impact.impact_velocity_m_s,
+        setup.usable_stroke_mm(),
         limit.envelope_n
     );
     for o in &outcomes {

@@ -2,7 +2,8 @@
 //! concealed effect and with coil lags, judged against the physical limit.
 //!
 //! Per case: the plant records the standard campaign (`mre synth`'s plan);
-//! then, on the paper's drop (5.5 kg at 2.24 m/s, 12 mm usable stroke):
+//! then, on the paper's drop (2.24 m/s) in the installation (`--model FILE`'s
+//! `[installation]`; default 5.5 kg, 12 mm usable stroke):
 //! - (a) the law with the paper's Table 4;
 //! - (b) the law with the table `mre fit` (least squares) makes of the campaign;
 //! - (c) the law with the model and terms `mre diagnose` finds on it
@@ -22,12 +23,13 @@ pub mod real_coil;
 
 use crate::dataset::write::{write_dataset, WriteOptions};
 use crate::dataset::Dataset;
-use crate::plant::closed_loop::{law_config, run_controlled, SimSetup, USABLE_STROKE_MM};
+use crate::plant::closed_loop::{law_config, run_controlled, SimSetup};
 use crate::plant::effects::{ConcealedEffect, Effect, DROP_EFFECTS};
 use crate::plant::stepper::{simulate, CurrentSource, ImpactConfig, ImpactSummary, Plant};
 use crate::plant::synth::{draw_base_plant, draw_plant, synthesize_plant, SynthPlan, SYNTH_PRECISION};
 use anyhow::{anyhow, Context, Result};
 use limit::{physical_limit, Limit};
+use mre_core::installation::Installation;
 use mre_core::law::stopping_force_n;
 use mre_core::model::Branch;
 use mre_core::Table;
@@ -196,19 +198,18 @@ pub fn controllers_for(campaign: &Dataset) -> Result<Controllers> {
     })
 }
 
-/// The drop every controller of a case flies: the paper's test, right after
-/// the campaign (so a softening plant is as the campaign left it).
-pub fn drop_setup(plant: &Plant, campaign_len: usize, seed: u64) -> SimSetup {
-    SimSetup {
-        plant: plant.clone(),
-        impact: ImpactConfig {
-            coil_lag_s: plant.effect.coil_lag_s(),
-            sequence: campaign_len as u32 + 1,
-            noise_seed: seed,
-            ..ImpactConfig::default()
-        },
-        usable_stroke_mm: USABLE_STROKE_MM,
-    }
+/// The drop every controller of a case flies: the paper's test in
+/// `installation` (its mass, stroke, coil), right after the campaign (so a
+/// softening plant is as the campaign left it).
+pub fn drop_setup(plant: &Plant, campaign_len: usize, seed: u64, installation: &Installation) -> SimSetup {
+    let mut setup = SimSetup::for_installation(plant.clone(), *installation);
+    setup.impact = ImpactConfig {
+        coil_lag_s: plant.effect.coil_lag_s(),
+        sequence: campaign_len as u32 + 1,
+        noise_seed: seed,
+        ..setup.impact
+    };
+    setup
 }
 
 /// The anchor: the force that stops the mass at a constant deceleration
@@ -277,14 +278,14 @@ pub fn diagnosed_model_file(plant: &Plant, seed: u64) -> Result<String> {
     Ok(text)
 }
 
-/// Runs one case end to end.
-pub fn run_case(case: &Case) -> Result<CaseOutcome> {
+/// Runs one case end to end, its drop in `installation`.
+pub fn run_case(case: &Case, installation: &Installation) -> Result<CaseOutcome> {
     let plant = case.plant(&SynthPlan::default())?;
     let (_dir, campaign) = record_campaign(&plant, case.seed())?;
     let ctl = controllers_for(&campaign)?;
-    let setup = drop_setup(&plant, campaign.recordings.len(), case.seed());
-    let limit = physical_limit(&plant, &setup.impact, (0.0, 2.0), setup.usable_stroke_mm)?;
-    let stroke = setup.usable_stroke_mm;
+    let setup = drop_setup(&plant, campaign.recordings.len(), case.seed(), installation);
+    let limit = physical_limit(&plant, &setup.impact, (0.0, 2.0), setup.usable_stroke_mm())?;
+    let stroke = setup.usable_stroke_mm();
     let mut runs = Vec::new();
     for (name, table) in [
         ("(a) paper", &ctl.paper),
@@ -328,10 +329,10 @@ pub fn run_case(case: &Case) -> Result<CaseOutcome> {
 }
 
 /// Every case (in parallel), in order.
-pub fn run_bench(cases: &[Case]) -> Result<Vec<CaseOutcome>> {
+pub fn run_bench(cases: &[Case], installation: &Installation) -> Result<Vec<CaseOutcome>> {
     cases
         .par_iter()
-        .map(|c| run_case(c).with_context(|| c.label()))
+        .map(|c| run_case(c, installation).with_context(|| c.label()))
         .collect()
 }
 
@@ -391,8 +392,8 @@ pub fn markdown(outcomes: &[CaseOutcome]) -> String {
 
 /// `mre bench-control --out DIR`: runs the cases, writes `report.md` and
 /// `report.json` (atomically, after every case succeeded).
-pub fn run_to_files(cases: &[Case], out: &std::path::Path) -> Result<Vec<CaseOutcome>> {
-    let outcomes = run_bench(cases)?;
+pub fn run_to_files(cases: &[Case], installation: &Installation, out: &std::path::Path) -> Result<Vec<CaseOutcome>> {
+    let outcomes = run_bench(cases, installation)?;
     let md = markdown(&outcomes);
     let json = serde_json::to_string_pretty(&outcomes)?;
     crate::atomic_write::write_atomic(&out.join("report.json"), json.as_bytes())?;

@@ -19,7 +19,6 @@ use super::{CaseOutcome, RunOutcome};
 use crate::plant::closed_loop::{law_config, run_passive, SimSetup};
 use crate::plant::stepper::{simulate, CurrentSource, ImpactConfig, ImpactSummary, Trajectory};
 use anyhow::{anyhow, Result};
-use mre_core::installation::DEFAULT_INSTALLATION;
 use mre_core::law::ImpactLaw;
 use mre_core::Table;
 use rayon::prelude::*;
@@ -116,7 +115,7 @@ pub struct ArmedRuns {
 
 impl ArmedRuns {
     fn run(setup: &SimSetup, table: &Table, label: &str, limit: &Limit) -> Result<Self> {
-        let stroke = setup.usable_stroke_mm;
+        let stroke = setup.usable_stroke_mm();
         let one = |name: &str, prediction: Prediction| -> Result<RunOutcome> {
             let t = run_armed(setup, table, prediction, None)?;
             Ok(RunOutcome::new(
@@ -179,6 +178,8 @@ pub struct RealCoilOutcome {
     pub range: Vec<RangeRow>,
     pub range_fixed_a: f64,
     pub driver: Vec<DriverRow>,
+    /// The installation's coil, which the driver sizing drives.
+    pub coil_resistance_ohm: f32,
 }
 
 impl RealCoilOutcome {
@@ -220,7 +221,7 @@ impl RealCoilOutcome {
 
 /// The real-coil runs for a case whose drop is `setup`, (c)'s table `table`.
 pub fn run_real_coil(tau_ms: f64, setup: &SimSetup, table: &Table, limit: &Limit) -> Result<RealCoilOutcome> {
-    let stroke = setup.usable_stroke_mm;
+    let stroke = setup.usable_stroke_mm();
     let coil_tau = Table::with_terms(
         table.entries(),
         mre_core::table::ModelTerms {
@@ -256,9 +257,9 @@ pub fn run_real_coil(tau_ms: f64, setup: &SimSetup, table: &Table, limit: &Limit
     // The installation's range: (c) without a prediction against the fixed
     // current whose worst case over the range (× each velocity's limit) is lowest.
     let velocities = [
-        f64::from(DEFAULT_INSTALLATION.impact_v_min_m_s),
+        f64::from(setup.installation.impact_v_min_m_s),
         setup.impact.impact_velocity_m_s,
-        f64::from(DEFAULT_INSTALLATION.impact_v_max_m_s),
+        f64::from(setup.installation.impact_v_max_m_s),
     ];
     let per_velocity = velocities
         .par_iter()
@@ -343,6 +344,7 @@ pub fn run_real_coil(tau_ms: f64, setup: &SimSetup, table: &Table, limit: &Limit
         range,
         range_fixed_a,
         driver,
+        coil_resistance_ohm: setup.installation.coil_resistance_ohm,
     })
 }
 
@@ -409,7 +411,7 @@ pub fn markdown(outcomes: &[CaseOutcome]) -> String {
     s.push_str(&format!(
         "\n#### Driver for ≤ {DRIVER_TARGET_RATIO}× the limit at the paper's drop ((c) τ = L/R with a prediction, {} Ω coil, half bridge)\n\n\
          | case | supply (V) | × limit | stroke (mm) | peak coil current (A) | answer |\n|---|---|---|---|---|---|\n",
-        DEFAULT_INSTALLATION.coil_resistance_ohm
+        real.first().map_or(0.0, |(_, r)| r.coil_resistance_ohm)
     ));
     for (o, r) in &real {
         let answer = r.driver_answer().map(|d| d.supply_v);

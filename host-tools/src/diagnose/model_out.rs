@@ -1,5 +1,7 @@
 //! `mre diagnose … --model-out final.toml`: the diagnosis's final model as a
-//! format version 2 model file, which `mre tables` turns into flash.
+//! model file, which `mre tables` turns into flash. It carries the
+//! installation (format 3): the data set's metadata and `--installation`
+//! options over the defaults (`crate::installation`).
 //!
 //! What the v2 table holds, from the final model's terms:
 //! - the per-current branch quartics (fitted with every accepted term);
@@ -24,13 +26,14 @@ use super::design::{end_stop_shape, Layout, Viscous, QUARTIC_TERMS};
 use super::report::{write_all, ReportJson};
 use super::{diagnose, DiagnoseOptions, Diagnosis};
 use crate::dataset::Dataset;
+use crate::installation::StatedInstallation;
 use crate::linalg::solve;
 use anyhow::{anyhow, Result};
 use mre_core::table::{CurrentEntry, ModelTerms, Quartic, Table, MAX_CURRENTS};
 use nalgebra::{DMatrix, DVector};
 use std::path::Path;
 
-/// The final model as a version 2 table.
+/// The final model as a version 2 table (without its installation).
 pub fn final_table(d: &Diagnosis) -> Result<Table> {
     let prep = &d.prep;
     let model = &d.selection.final_model;
@@ -157,10 +160,17 @@ pub fn model_file_text(d: &Diagnosis, table: &Table, dataset_name: &str, input_s
     format!("{version_line}{s}{tables}")
 }
 
-/// The model file's text for a diagnosed data set, checked to read back as
-/// its table.
+/// The model file's text for a diagnosed data set, in the installation its
+/// metadata gives, checked to read back as its table.
 pub fn model_file(d: &Diagnosis, ds: &Dataset) -> Result<(Table, String)> {
-    let table = final_table(d)?;
+    model_file_in(d, ds, &StatedInstallation::from_dataset(ds))
+}
+
+/// [`model_file`] carrying `installation`.
+pub fn model_file_in(d: &Diagnosis, ds: &Dataset, installation: &StatedInstallation) -> Result<(Table, String)> {
+    let table = final_table(d)?
+        .carrying(installation.installation)
+        .map_err(|e| anyhow!("the final model with its installation: {e:?}"))?;
     let sha = crate::dataset::hash::input_sha256(ds)?;
     let text = model_file_text(d, &table, &ds.name, &sha);
     if crate::table_file::parse_table_toml(&text)? != table {
@@ -169,8 +179,9 @@ pub fn model_file(d: &Diagnosis, ds: &Dataset) -> Result<(Table, String)> {
     Ok((table, text))
 }
 
-/// `mre diagnose … --model-out PATH`: [`super::run_to_files`]'s outputs plus
-/// the final model file. The model is built before anything is written.
+/// `mre diagnose … --model-out PATH [--installation KEY=VALUE]…`:
+/// [`super::run_to_files`]'s outputs plus the final model file, and the
+/// installation it carries. The model is built before anything is written.
 pub fn run_to_files_with_model(
     dataset_dir: &Path,
     opts: &DiagnoseOptions,
@@ -178,11 +189,13 @@ pub fn run_to_files_with_model(
     json_path: &Path,
     predictions_dir: &Path,
     model_out: &Path,
-) -> Result<(ReportJson, Table)> {
+    installation_options: &[String],
+) -> Result<(ReportJson, Table, StatedInstallation)> {
     let ds = Dataset::load(dataset_dir)?;
+    let installation = StatedInstallation::from_dataset(&ds).with_options(installation_options)?;
     let d = diagnose(&ds, opts)?;
-    let (table, text) = model_file(&d, &ds)?;
+    let (table, text) = model_file_in(&d, &ds, &installation)?;
     let report = write_all(&d, report_dir, json_path, predictions_dir)?;
     crate::atomic_write::write_atomic(model_out, text.as_bytes())?;
-    Ok((report, table))
+    Ok((report, table, installation))
 }

@@ -257,7 +257,8 @@ pub fn fit_dataset(ds: &crate::dataset::Dataset, options: &FitOptions) -> Result
     let fit_seconds = start.elapsed().as_secs_f64();
     let hash = crate::dataset::hash::input_sha256(ds)?;
     let velocity_estimated = ds.recordings.iter().any(|r| r.velocity_estimated);
-    let model = model_file::build(&ds.name, &hash, velocity_estimated, &fits, options)?;
+    let model = model_file::build(&ds.name, &hash, velocity_estimated, &fits, options)?
+        .with_installation(crate::installation::StatedInstallation::from_dataset(ds));
     Ok(FitRun {
         fits,
         model,
@@ -273,9 +274,24 @@ pub fn run_fit(
     hold_out_a: &[f64],
     out: &std::path::Path,
 ) -> Result<FitRun> {
+    run_fit_with_installation(dataset_dir, options, hold_out_a, &[], out)
+}
+
+/// [`run_fit`] with `--installation KEY=VALUE` options over what the data
+/// set's metadata says (`crate::installation`); the model file's
+/// `[installation]` is the result.
+pub fn run_fit_with_installation(
+    dataset_dir: &std::path::Path,
+    options: &FitOptions,
+    hold_out_a: &[f64],
+    installation_options: &[String],
+    out: &std::path::Path,
+) -> Result<FitRun> {
     let mut ds = crate::dataset::Dataset::load(dataset_dir)?;
     problems::hold_out(&mut ds, hold_out_a);
-    let run = fit_dataset(&ds, options)?;
+    let stated = crate::installation::StatedInstallation::from_dataset(&ds).with_options(installation_options)?;
+    let mut run = fit_dataset(&ds, options)?;
+    run.model = run.model.with_installation(stated);
     model_file::write(out, &run.model)?;
     Ok(run)
 }

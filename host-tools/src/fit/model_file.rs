@@ -3,6 +3,7 @@
 //! reader) and a `fit` sub-table in each `[[current]]`, so `--table model.toml`
 //! works in every command.
 use super::{branch_name, BranchFit, FitOptions, Method};
+use crate::installation::StatedInstallation;
 use anyhow::{bail, Context, Result};
 use mre_core::model::Branch;
 use serde::{Deserialize, Serialize};
@@ -13,6 +14,22 @@ pub struct ModelFile {
     pub format_version: u16,
     pub model: ModelMeta,
     pub current: Vec<CurrentModel>,
+    /// The rig the model is for, written as `[installation]` (format 3):
+    /// from the data set's metadata and `--installation` options, the
+    /// defaults for the rest ([`StatedInstallation`] says which).
+    #[serde(skip)]
+    pub installation: Option<StatedInstallation>,
+}
+
+impl ModelFile {
+    /// The model carrying `installation` (format 3).
+    pub fn with_installation(self, installation: StatedInstallation) -> Self {
+        Self {
+            format_version: mre_core::table::FORMAT_VERSION_3,
+            installation: Some(installation),
+            ..self
+        }
+    }
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -146,12 +163,17 @@ pub fn build(
             velocity_estimated,
         },
         current,
+        installation: None,
     })
 }
 
 /// TOML text, checked to load as a table before it is returned.
 pub fn to_toml(model: &ModelFile) -> Result<String> {
-    let text = toml::to_string(model).context("cannot render the model file")?;
+    let mut text = toml::to_string(model).context("cannot render the model file")?;
+    if let Some(stated) = &model.installation {
+        text.push('\n');
+        text.push_str(&crate::table_file::installation_to_toml(&stated.installation));
+    }
     crate::table_file::parse_table_toml(&text).context("the fitted model is not a valid table")?;
     Ok(format!(
         "# Written by `mre fit`. A table file: `--table` reads [[current]]; [model] and `fit` are metadata.\n\

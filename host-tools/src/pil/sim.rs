@@ -78,11 +78,13 @@ pub struct PilOutcome {
     pub agreement_with_sim: Agreement,
 }
 
-/// The firmware's configuration for this drop: the law `mre sim` runs, at
-/// the drop's control rate.
+/// The firmware's configuration for this drop: the board's at the drop's
+/// control rate with the setup's installation applied (as the board applies
+/// a format 3 table's), and the law `mre sim` runs.
 pub fn control_config(setup: &SimSetup) -> Result<ControlConfig> {
     let rate_hz = (1.0 / setup.impact.control_period_s).round() as u32;
     let mut cfg = ControlConfig::at_rate(rate_hz).map_err(|e| anyhow!("control rate {rate_hz} Hz: {e:?}"))?;
+    setup.installation.apply(&mut cfg);
     cfg.law = LawConfig {
         period_s: cfg.law.period_s,
         ..law_config(setup)
@@ -241,7 +243,11 @@ pub fn run_pil_on(sim: &SimRequest, target: FirmwareLink<'_>, report_dir: &Path)
     if !specs.contains(&RunSpec::Controlled) {
         specs.push(RunSpec::Controlled);
     }
-    let table = crate::control_bench::diagnosed_table(&setup.plant, setup.impact.noise_seed)?;
+    // The uploaded table carries the installation (format 3), so the
+    // firmware flies the one the host plant simulates.
+    let table = crate::control_bench::diagnosed_table(&setup.plant, setup.impact.noise_seed)?
+        .carrying(setup.installation)
+        .map_err(|e| anyhow!("the table with the installation: {e:?}"))?;
     let cfg = control_config(&setup)?;
 
     let (firmware, frames, counters) = run_firmware_on(&setup, &table, &cfg, target)?;

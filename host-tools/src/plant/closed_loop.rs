@@ -5,18 +5,19 @@
 //! controller (c) of `mre bench-control` — the plant's recorded campaign,
 //! `mre diagnose --model-out`, its model file
 //! ([`crate::control_bench::diagnosed_table`]).
-use super::stepper::{simulate, CurrentSource, ImpactConfig, ImpactSummary, Plant, Trajectory};
+//!
+//! The drop's mass, the usable stroke, the coil driver and the law's limits
+//! are one [`Installation`]: a model file's `[installation]`
+//! (`mre sim --model FILE`), else `DEFAULT_INSTALLATION` (the image's). On
+//! the default one the passive 0 A drop at 2.24 m/s needs about 16 mm, more
+//! than the 12 mm usable stroke, which is why a soft passive setting is not
+//! an option.
+use super::stepper::{simulate, CoilDriver, CurrentSource, ImpactConfig, ImpactSummary, Plant, Trajectory};
 use anyhow::{bail, Context, Result};
+use mre_core::installation::{Installation, DEFAULT_INSTALLATION};
 use mre_core::law::{ImpactLaw, LawConfig};
 use mre_core::Table;
 use serde::Serialize;
-
-/// Stroke the damper may use (mm): the installation's (the board's default,
-/// `mre_core::installation`). The passive 0 A drop at 2.24 m/s needs about
-/// 16 mm, more than this, which is why a soft passive setting is not an option.
-pub const USABLE_STROKE_MM: f64 = mre_core::installation::DEFAULT_INSTALLATION.usable_stroke_mm as f64;
-/// The drop's mass (kg): the installation's.
-pub const MASS_KG: f64 = mre_core::installation::DEFAULT_INSTALLATION.mass_kg as f64;
 
 /// Which current a run uses.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -65,16 +66,47 @@ impl RunSpec {
 #[derive(Clone, Debug)]
 pub struct SimSetup {
     pub plant: Plant,
+    /// The drop: its mass and coil driver are the installation's
+    /// ([`ImpactConfig::for_installation`]).
     pub impact: ImpactConfig,
-    pub usable_stroke_mm: f64,
+    /// What the law plans with: usable stroke, coil rating, drive range, sensors.
+    pub installation: Installation,
 }
 
 impl Default for SimSetup {
     fn default() -> Self {
+        Self::for_installation(Plant::nominal(), DEFAULT_INSTALLATION)
+    }
+}
+
+impl SimSetup {
+    /// The paper's drop on `plant` in `installation`.
+    pub fn for_installation(plant: Plant, installation: Installation) -> Self {
         Self {
-            plant: Plant::nominal(),
-            impact: ImpactConfig::default(),
-            usable_stroke_mm: USABLE_STROKE_MM,
+            plant,
+            impact: ImpactConfig::for_installation(&installation),
+            installation,
+        }
+    }
+
+    /// Stroke the damper may use (mm): the installation's.
+    pub fn usable_stroke_mm(&self) -> f64 {
+        f64::from(self.installation.usable_stroke_mm)
+    }
+}
+
+impl ImpactConfig {
+    /// The paper's drop (2.24 m/s, 10 kHz) with the installation's mass and
+    /// coil driver (its resistance and supply).
+    pub fn for_installation(installation: &Installation) -> Self {
+        Self {
+            mass_kg: f64::from(installation.mass_kg),
+            driver: CoilDriver {
+                resistance_ohm: f64::from(installation.coil_resistance_ohm),
+                supply_v: f64::from(installation.supply_v),
+                ..CoilDriver::default()
+            },
+            ..ImpactConfig::default()
         }
     }
 }
@@ -100,14 +132,25 @@ pub struct Comparison {
     pub controlled_vs_passive: Option<(String, f64)>,
 }
 
-/// The core law's settings for this plant and drop.
+/// The core law's settings for this plant and drop: the board's defaults
+/// with the installation applied (`Installation::apply`, as the board does),
+/// the drop's mass, gravity and control period.
 pub fn law_config(setup: &SimSetup) -> LawConfig {
+    let mut cfg = mre_core::control::ControlConfig::at_rate(mre_core::control::DEFAULT_RATE_HZ);
+    let law = match &mut cfg {
+        Ok(cfg) => {
+            setup.installation.apply(cfg);
+            cfg.law
+        }
+        // The default rate is always valid; the law's defaults otherwise.
+        Err(_) => LawConfig::default(),
+    };
     LawConfig {
         mass_kg: setup.impact.mass_kg as f32,
-        stroke_max_mm: setup.usable_stroke_mm as f32,
+        stroke_max_mm: setup.installation.usable_stroke_mm,
         gravity_m_s2: setup.impact.gravity_m_s2 as f32,
         period_s: setup.impact.control_period_s as f32,
-        ..LawConfig::default()
+        ..law
     }
 }
 
@@ -170,8 +213,8 @@ impl RunResult {
             spec,
             label,
             summary,
-            usable_stroke_mm: setup.usable_stroke_mm,
-            within_stroke: summary.max_stroke_mm <= setup.usable_stroke_mm,
+            usable_stroke_mm: setup.usable_stroke_mm(),
+            within_stroke: summary.max_stroke_mm <= setup.usable_stroke_mm(),
             trajectory,
         }
     }
@@ -210,8 +253,12 @@ pub struct SimRequest {
     /// Seeds the effect's parameters and the measurement noise.
     pub seed: u64,
     pub impact_velocity_m_s: f64,
-    pub mass_kg: f64,
+    /// The drop's mass, usable stroke, coil driver and law limits (a model
+    /// file's `[installation]`, or the defaults).
+    pub installation: Installation,
     pub coil_lag_s: Option<f64>,
+    /// The coil's time constant while its current falls (`--coil-lag-off-ms`).
+    pub coil_lag_off_s: Option<f64>,
 }
 
 impl Default for SimRequest {
@@ -221,8 +268,9 @@ impl Default for SimRequest {
             effect: "none".to_owned(),
             seed: 0,
             impact_velocity_m_s: 2.24,
-            mass_kg: MASS_KG,
+            installation: DEFAULT_INSTALLATION,
             coil_lag_s: None,
+            coil_lag_off_s: None,
         }
     }
 }
@@ -247,19 +295,20 @@ pub fn setup_for(request: &SimRequest) -> Result<SimSetup> {
     if let (Some(tau_s), ConcealedEffect::None) = (request.coil_lag_s, &plant.effect) {
         plant = plant.with_effect(ConcealedEffect::CoilLag { time_constant_s: tau_s });
     }
-    let impact = ImpactConfig {
-        mass_kg: request.mass_kg,
+    let coil_lag_s = request.coil_lag_s.or(plant.effect.coil_lag_s());
+    if request.coil_lag_off_s.is_some() && coil_lag_s.is_none() {
+        bail!("--coil-lag-off-ms needs a coil time constant too (--coil-lag-ms, or a coil_lag effect)");
+    }
+    let mut setup = SimSetup::for_installation(plant, request.installation);
+    setup.impact = ImpactConfig {
         impact_velocity_m_s: request.impact_velocity_m_s,
         // `--coil-lag-ms` wins over a `coil_lag` effect's drawn τ.
-        coil_lag_s: request.coil_lag_s.or(plant.effect.coil_lag_s()),
+        coil_lag_s,
+        coil_lag_off_s: request.coil_lag_off_s,
         noise_seed: request.seed,
-        ..ImpactConfig::default()
+        ..setup.impact
     };
-    Ok(SimSetup {
-        plant,
-        impact,
-        usable_stroke_mm: USABLE_STROKE_MM,
-    })
+    Ok(setup)
 }
 
 /// `mre sim`: runs the comparison and writes the report into `report_dir`.

@@ -97,10 +97,12 @@ pub struct ImpactConfig {
 }
 
 impl Default for ImpactConfig {
-    /// The paper's drop test (Table 2): 5.5 kg at 2.24 m/s; 10 kHz control.
+    /// The paper's drop test (Table 2): 5.5 kg at 2.24 m/s; 10 kHz control,
+    /// in the default installation (a model file's is
+    /// [`ImpactConfig::for_installation`]).
     fn default() -> Self {
         Self {
-            mass_kg: super::closed_loop::MASS_KG,
+            mass_kg: f64::from(mre_core::installation::DEFAULT_INSTALLATION.mass_kg),
             impact_velocity_m_s: 2.24,
             gravity_m_s2: 9.81,
             step_s: 1.0e-6,
