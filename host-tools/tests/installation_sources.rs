@@ -313,3 +313,30 @@ fn the_controller_of_sim_pil_fmu_and_bench_control_plans_with_the_files_installa
     assert_eq!((drop.impact.mass_kg, drop.usable_stroke_mm()), (3.0, 9.0));
     assert_eq!(drop.impact.sequence, 61);
 }
+
+#[test]
+fn mre_pil_flies_a_3_kg_9_mm_installation_sample_for_sample() {
+    use mre_host::pil::qemu::{build_firmware, qemu_binary};
+    use mre_host::pil::sim::{run_pil, PilRequest};
+    use mre_host::plant::closed_loop::{RunSpec, SimRequest};
+    if qemu_binary().is_none() {
+        eprintln!("skipped: qemu-system-arm is not installed");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let request = PilRequest {
+        sim: SimRequest {
+            installation: LAB,
+            runs: vec![RunSpec::Controlled],
+            ..SimRequest::default()
+        },
+        elf: Some(build_firmware().unwrap()),
+    };
+    let out = run_pil(&request, dir.path()).unwrap();
+    // The firmware planned with the uploaded 3 kg / 9 mm installation: its
+    // commands match the host's, which plans with the same, bit for bit.
+    assert!(out.agreement.agrees(), "{:?}", out.agreement);
+    assert_eq!(out.agreement.bit_identical_commands, out.agreement.samples);
+    assert!(out.agreement_with_sim.agrees(), "{:?}", out.agreement_with_sim);
+    assert_eq!(out.comparison.runs[0].usable_stroke_mm, 9.0);
+}
