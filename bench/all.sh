@@ -22,16 +22,32 @@ for s in "${sections[@]}"; do
     fitting)
         bash bench/fitting.sh
         cargo bench -q -p host-tools --bench fit -- --noplot
+        cargo test -q -p host-tools --test dataset_motion drift -- --nocapture
+        cargo test -q -p host-tools --test dataset_motion fit_from -- --nocapture
         ;;
     firmware)
         bash firmware/bench/budgets.sh
+        bash firmware/bench/reset_icount.sh
+        "$MRE" pil --report "$out/pil" | tail -3
+        cargo test -q -p host-tools pil_drop_with_a_full_blocking_rtt_buffer -- --nocapture
         ;;
     control)
         "$MRE" bench-control --out "$out/control" >/dev/null
         cat "$out/control/report.md"
+        "$MRE" bench-control --real-coils --out "$out/real-coils" >/dev/null
+        cat "$out/real-coils/report.md"
+        "$MRE" fmu models/drop-full-stroke.toml --out "$out/damper.fmu"
+        CARGO_TARGET_DIR=target/fmu cargo run -q --release --config profile.release.lto=false \
+            -p mre-fmu --example step_cost -- "$out/damper.fmu"
+        cargo test -q -p host-tools --test fmu_fmpy -- --nocapture
         ;;
     diagnosis)
         "$MRE" bench-diagnose --cases 60 --seed 1 --mts-cases 10 --json "$out/sim1.json"
+        "$MRE" bench-diagnose --cases 0 --mts-cases 0 --instrumented-cases 40 --seed 2 --json "$out/instr2.json"
+        "$MRE" bench-diagnose --cases 0 --mts-cases 30 --instrumented-cases 0 --seed 1 --json "$out/mts30.json"
+        "$MRE" bench-diagnose --calibration 100 --seed 1000 --json "$out/calibration.json"
+        "$MRE" bench-diagnose --real data/mr-damper-mts --cases 10 --seed 3 \
+            --folds-by frequency_hz --validate-current 0.5 --json "$out/real_3_10.json"
         for seed in ${DIAG_SEEDS:-3}; do
             "$MRE" bench-diagnose --real data/mr-damper-mts --cases 30 --seed "$seed" \
                 --folds-by frequency_hz --validate-current 0.5 --json "$out/real_$seed.json"
@@ -39,7 +55,7 @@ for s in "${sections[@]}"; do
         "$MRE" diagnose data/mr-damper-mts --folds-by frequency_hz --validate-current 0.5 \
             --report "$out/diagnose-mts" | tail -5
         RUNS=3 MRE="$MRE" bash bench/diagnose_real.sh
-        RUNS=5 MRE="$MRE" bash bench/diagnose.sh
+        RUNS=3 MRE="$MRE" bash bench/diagnose.sh
         ;;
     families)
         bash bench/compare.sh

@@ -1,6 +1,8 @@
 //! Host tests of the control core live in `tests/`. This crate holds only
 //! what several of them share: reference implementations written
-//! independently of the core.
+//! independently of the core, and model tables built by hand.
+
+use mre_core::table::{CurrentEntry, Quartic};
 
 /// Bitwise CRC-32 (reflected, poly 0xEDB88320, init and xorout !0): the zlib
 /// CRC, written out here independently of the `crc` crate the core uses.
@@ -17,4 +19,17 @@ pub fn crc32_reference(bytes: &[u8]) -> u32 {
         }
     }
     !crc
+}
+
+/// A table entry whose force on both branches is `a1_n_per_mm·x + a0_n`
+/// (x in mm) over 0–20 mm: forces a test can work out by hand.
+pub fn linear_entry(current_a: f32, a1_n_per_mm: f32, a0_n: f32) -> CurrentEntry {
+    let q = Quartic::new([0.0, 0.0, 0.0, a1_n_per_mm, a0_n]);
+    CurrentEntry {
+        current_a,
+        compression: q,
+        extension: q,
+        x_min_mm: 0.0,
+        x_max_mm: 20.0,
+    }
 }

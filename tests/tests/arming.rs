@@ -1,22 +1,12 @@
 //! The arming currents (`mre_core::arming`): expected values by hand, from
 //! energy balance, and one by an independent time integration.
 use mre_core::arming::{compression_work_j, lead_time_s, Arming};
-use mre_core::table::{CurrentEntry, ModelTerms, Quartic, Table};
+use mre_core::table::{ModelTerms, Table};
+// `linear(I, a1, a0)`: an entry whose force is `a1·x + a0` (x in mm) over 0–20 mm.
+use mre_tests::linear_entry as linear;
 
 const M_KG: f32 = 5.5;
 const G: f32 = 9.81;
-
-/// An entry whose compression force is `a1·x + a0` (x in mm) over 0–20 mm.
-fn linear(current_a: f32, a1: f32, a0: f32) -> CurrentEntry {
-    let q = Quartic::new([0.0, 0.0, 0.0, a1, a0]);
-    CurrentEntry {
-        current_a,
-        compression: q,
-        extension: q,
-        x_min_mm: 0.0,
-        x_max_mm: 20.0,
-    }
-}
 
 #[test]
 fn constant_forces_arm_at_the_force_that_stops_the_mass_at_the_stroke_end() {

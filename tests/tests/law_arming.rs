@@ -2,26 +2,17 @@
 //! and on the approach at the current for the predicted impact. Expected
 //! currents by hand (energy balance), on a model of constant forces.
 use mre_core::law::{ImpactLaw, LawConfig};
-use mre_core::table::{CurrentEntry, ModelTerms, Quartic};
+use mre_core::table::ModelTerms;
 use mre_core::Table;
+use mre_tests::linear_entry;
 
 /// 500 N at 0 A and 2500 N at 2 A, at any x in 0–20 mm, a coil of τ = 10 ms.
 fn constant_forces() -> Table {
-    let entry = |current_a: f32, force_n: f32| {
-        let q = Quartic::new([0.0, 0.0, 0.0, 0.0, force_n]);
-        CurrentEntry {
-            current_a,
-            compression: q,
-            extension: q,
-            x_min_mm: 0.0,
-            x_max_mm: 20.0,
-        }
-    };
     let terms = ModelTerms {
         coil_tau_s: 0.01,
         ..ModelTerms::NONE
     };
-    Table::with_terms(&[entry(0.0, 500.0), entry(2.0, 2500.0)], terms).unwrap()
+    Table::with_terms(&[linear_entry(0.0, 0.0, 500.0), linear_entry(2.0, 0.0, 2500.0)], terms).unwrap()
 }
 
 /// The board's defaults (5.5 kg, 12 mm, impacts up to 2.5 m/s), with a

@@ -94,23 +94,12 @@ fn split(line: &str, delimiter: char) -> Vec<String> {
 
 fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
     let dpath = path.display().to_string();
-    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF".as_slice()).unwrap_or(bytes);
-    let text = std::str::from_utf8(bytes).map_err(|e| DatasetError::BadRecord {
-        path: dpath.clone(),
-        line: bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1,
-        message: "not text (an MTS Specimen.dat is ANSI text)".to_string(),
-    })?;
+    let text = super::vendor::text(path, bytes, "an MTS Specimen.dat is ANSI text")?;
     let bad = |line: usize, message: String| DatasetError::BadRecord {
         path: dpath.clone(),
         line,
         message,
     };
-    if !text.ends_with('\n') {
-        return Err(bad(
-            text.lines().count().max(1),
-            "the last line has no line end: the file is cut short".to_string(),
-        ));
-    }
     let mut channels: Option<(Vec<String>, usize)> = None;
     let mut rows = Vec::new();
     let mut format: Option<(char, char)> = None;

@@ -107,3 +107,29 @@ pub fn cell(text: &str, decimal: char) -> Cell {
         }
     }
 }
+
+/// The text of a vendor text export: a UTF-8 byte-order mark is dropped,
+/// bytes that are not UTF-8 are refused at their line (`what` says what the
+/// file should be, e.g. "an .lvm file is ASCII text"), and so is a file whose
+/// last line has no line end (a copy cut short).
+pub fn text<'a>(path: &Path, bytes: &'a [u8], what: &str) -> Result<&'a str, DatasetError> {
+    let bad = |line: usize, message: String| DatasetError::BadRecord {
+        path: path.display().to_string(),
+        line,
+        message,
+    };
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF".as_slice()).unwrap_or(bytes);
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        bad(
+            bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1,
+            format!("not text ({what})"),
+        )
+    })?;
+    if !text.ends_with('\n') {
+        return Err(bad(
+            text.lines().count().max(1),
+            "the last line has no line end: the file is cut short".to_string(),
+        ));
+    }
+    Ok(text)
+}
