@@ -126,7 +126,12 @@ mod coil_after_a_fault {
 
     #[test]
     fn a_running_drive_holds_the_failsafe_current() {
-        for latched in [Flags::NONE, Flags::SENSOR_STUCK, Flags::CURRENT_SENSE, Flags::TABLE_FAULT] {
+        for latched in [
+            Flags::NONE,
+            Flags::SENSOR_STUCK,
+            Flags::CURRENT_SENSE,
+            Flags::TABLE_FAULT,
+        ] {
             assert_eq!(
                 coil_after_fault(true, latched, FAILSAFE_A),
                 CoilAfterFault::FailSafe { current_a: 2.0 },

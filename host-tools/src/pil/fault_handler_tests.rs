@@ -74,7 +74,10 @@ fn fault_at_rest_holds_the_failsafe(seq: u32) {
     let report = inject(&mut link, seq);
     assert_eq!(report.current_a, FAILSAFE_A, "{report:?}");
     assert!(report.flags.contains(Flags::FAIL_SAFE), "{report:?}");
-    assert!(pb4_level(&qemu), "PB4 high after the fault (fail-safe current commanded)");
+    assert!(
+        pb4_level(&qemu),
+        "PB4 high after the fault (fail-safe current commanded)"
+    );
     assert_halted(qemu);
 }
 
