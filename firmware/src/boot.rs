@@ -1,5 +1,6 @@
 //! Boot facts decoded from raw register values, so the decoding is tested on
-//! the host: why the chip reset (STM32L4 `RCC_CSR`, RM0351 §6.4.29), and what
+//! the host: why the chip reset (STM32L4 `RCC_CSR`, RM0351 §6.4.29, section
+//! unverified; flag bits 24..31 as in ST's CMSIS `stm32l475xx.h`), and what
 //! the board does first about it ([`BootPlan`], firmware/README.md "Reset
 //! paths").
 
@@ -117,5 +118,31 @@ impl ResetCause {
                 calibration: CalibrationTime::DeferredUntilAtRest,
             },
         }
+    }
+}
+
+/// The coil command a panic or HardFault handler sets before it halts
+/// (firmware/README.md, "Panic and HardFault"). One decision for every board;
+/// the register writes are the board's (`board::coil_safe_from_a_fault`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CoilAfterFault {
+    /// The fail-safe current (stiffest damper) through the running drive.
+    FailSafe { current_a: f32 },
+    /// Drive removed: the pin at its reset-safe low level (0 A).
+    Off,
+}
+
+/// The safe coil command after a fault. `drive_running`: the coil drive (TIM3
+/// PWM on the pin) had been started by `init`; before that only the pin's low
+/// level exists. `latched`: the faults the control task had latched. A
+/// latched over-current keeps the drive removed, as in the loop
+/// (`crate::overcurrent`); otherwise a running drive holds the fail-safe.
+pub fn coil_after_fault(drive_running: bool, latched: crate::Flags, failsafe_current_a: f32) -> CoilAfterFault {
+    if drive_running && !latched.contains(crate::Flags::OVER_CURRENT) {
+        CoilAfterFault::FailSafe {
+            current_a: failsafe_current_a,
+        }
+    } else {
+        CoilAfterFault::Off
     }
 }

@@ -32,6 +32,12 @@ pub const KIND_COMMAND: u8 = 2;
 /// A sample with this sequence number ends a PIL run: the firmware logs its
 /// link statistics and exits QEMU (semihosting) with status 0.
 pub const END_OF_RUN_SEQ: u32 = u32::MAX;
+/// PIL images only: a sample with this sequence number makes the firmware
+/// panic in the control task (fault injection; its handler answers with
+/// the coil's safe command, firmware/README.md "Panic and HardFault").
+pub const INJECT_PANIC_SEQ: u32 = u32::MAX - 1;
+/// PIL images only: the same with a HardFault (an undefined instruction).
+pub const INJECT_HARDFAULT_SEQ: u32 = u32::MAX - 2;
 /// The firmware's first command frame carries this sequence number: the
 /// link is up and samples may be sent (samples start at 1).
 pub const HELLO_SEQ: u32 = 0;

@@ -65,8 +65,8 @@ mod fw {
     /// Events the channel had no room for; `mre pil` reads it by symbol.
     #[no_mangle]
     static MRE_LOG_EVENTS_DROPPED: AtomicU32 = AtomicU32::new(0);
-    /// Latched faults for the status LED (written by the control task).
-    static LATCHED: AtomicU32 = AtomicU32::new(0);
+    /// Latched faults (written by the control task): the status LED, the fault handlers.
+    use board::LATCHED_FAULTS as LATCHED;
     /// Set by a press of B1, taken by the control task.
     static CLEAR_REQUEST: AtomicBool = AtomicBool::new(false);
 

@@ -112,3 +112,44 @@ mod deferred_sense_zero {
         assert!(matches!(z.push(true, 0.0, 0.2), Some(Err(CalError::OutOfRange(_)))));
     }
 }
+
+/// The panic/HardFault decision (firmware/README.md, "Panic and HardFault"):
+/// a running drive holds the 2 A fail-safe (the stiffest damper, the paper's
+/// highest table current), a drive not yet started stays off (the pin low
+/// is all a bare GPIO holds), and a latched over-current keeps the drive
+/// removed whatever else is latched.
+mod coil_after_a_fault {
+    use mre_core::boot::{coil_after_fault, CoilAfterFault};
+    use mre_core::Flags;
+
+    const FAILSAFE_A: f32 = 2.0;
+
+    #[test]
+    fn a_running_drive_holds_the_failsafe_current() {
+        for latched in [
+            Flags::NONE,
+            Flags::SENSOR_STUCK,
+            Flags::CURRENT_SENSE,
+            Flags::TABLE_FAULT,
+        ] {
+            assert_eq!(
+                coil_after_fault(true, latched, FAILSAFE_A),
+                CoilAfterFault::FailSafe { current_a: 2.0 },
+                "{latched:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn before_the_drive_runs_the_coil_stays_off() {
+        assert_eq!(coil_after_fault(false, Flags::NONE, FAILSAFE_A), CoilAfterFault::Off);
+    }
+
+    #[test]
+    fn a_latched_over_current_keeps_the_drive_removed() {
+        for latched in [Flags::OVER_CURRENT, Flags::OVER_CURRENT | Flags::SENSOR_STUCK] {
+            assert_eq!(coil_after_fault(true, latched, FAILSAFE_A), CoilAfterFault::Off);
+            assert_eq!(coil_after_fault(false, latched, FAILSAFE_A), CoilAfterFault::Off);
+        }
+    }
+}

@@ -91,7 +91,9 @@ pub trait StatusIo {
 // pull-down, so the pin never drives high. Off (0 A) is the only state a
 // bare GPIO can hold; `init` then starts the fail-safe duty as the reset
 // cause decides (`mre_core::boot::BootPlan`). RM0351 §6.4.17 (RCC_AHB2ENR),
-// §8.4 (GPIO registers). Instructions from the reset vector to here:
+// §8.4 (GPIO registers), section numbers unverified; the addresses and bits
+// match ST's CMSIS `stm32l475xx.h` V1.3.1: RCC 0x4002_1000 + AHB2ENR 0x4C,
+// GPIOBEN bit 1, GPIOB 0x4800_0400, PUPDR 0x0C, BSRR 0x18. Instructions from the reset vector to here:
 // `firmware/bench/reset_icount.sh`.
 core::arch::global_asm!(
     ".section .text.__pre_init,\"ax\",%progbits",
@@ -121,6 +123,40 @@ core::arch::global_asm!(
     ".ltorg",
     ".size __pre_init, . - __pre_init",
 );
+
+/// Faults the control task had latched at the end of its last period: the
+/// status LED's blink code and the fault handlers' over-current check.
+pub static LATCHED_FAULTS: core::sync::atomic::AtomicU32 = core::sync::atomic::AtomicU32::new(0);
+
+/// A board's coil as the panic and HardFault handlers drive it: registers
+/// only (the PAC), no driver state the fault may have left half-written.
+pub trait FaultCoil {
+    /// `init` started the coil drive (TIM3's PWM on the pin; PIL: `init` ran).
+    fn drive_running(&self) -> bool;
+    /// `current_a` through the running drive.
+    fn hold_current_a(&mut self, current_a: f32);
+    /// The drive removed: the pin at its low level (0 A).
+    fn off(&mut self);
+}
+
+/// The coil to its safe state from a panic or a HardFault, on every board:
+/// the decision is `mre_core::boot::coil_after_fault` (fail-safe current
+/// through a running drive; off before the drive runs or after a latched
+/// over-current), the register writes are the board's `FaultCoil`.
+pub fn coil_safe_from_a_fault(coil: &mut impl FaultCoil) -> mre_core::boot::CoilAfterFault {
+    use mre_core::boot::{coil_after_fault, CoilAfterFault};
+    let latched = mre_core::Flags(LATCHED_FAULTS.load(core::sync::atomic::Ordering::Relaxed));
+    let command = coil_after_fault(
+        coil.drive_running(),
+        latched,
+        mre_core::law::LawConfig::default().failsafe_current_a,
+    );
+    match command {
+        CoilAfterFault::FailSafe { current_a } => coil.hold_current_a(current_a),
+        CoilAfterFault::Off => coil.off(),
+    }
+    command
+}
 
 /// The coil pin low through the PAC (a panic or fault before TIM3 runs).
 #[cfg(feature = "hw")]

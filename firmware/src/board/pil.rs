@@ -8,6 +8,7 @@
 //! the I/O below differs: each sample frame from the host is one control
 //! period, and each period answers with one command frame (`mre_core::frame`).
 use core::cell::{Cell, RefCell};
+use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use core::task::Waker;
 
 use cortex_m::peripheral::syst::SystClkSource;
@@ -24,7 +25,8 @@ use embassy_time_queue_utils::Queue;
 use mre_core::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
 use mre_core::flash_table::RamPage;
 use mre_core::frame::{
-    CommandFrame, FrameError, Incoming, LinkStats, SampleFrame, SampleReceiver, END_OF_RUN_SEQ, FRAME_LEN, PING_SEQ,
+    CommandFrame, FrameError, Incoming, LinkStats, SampleFrame, SampleReceiver, END_OF_RUN_SEQ, FRAME_LEN,
+    INJECT_HARDFAULT_SEQ, INJECT_PANIC_SEQ, PING_SEQ,
 };
 use mre_core::law::Command;
 use mre_core::overcurrent::Sense;
@@ -182,6 +184,9 @@ pub fn init(_rate_hz: u32) -> (Board, Status) {
     syst.enable_interrupt();
     syst.enable_counter();
     usart_init();
+    // The stand-in for `init` starting TIM3 on hardware: from here a fault
+    // handler holds the fail-safe current instead of leaving the coil off.
+    DRIVE_RUNNING.store(true, Ordering::Relaxed);
     #[cfg(feature = "pil-rtt")]
     super::log_drops::rtt::block_if_full_and_fill();
     (
@@ -291,7 +296,19 @@ impl super::BoardIo for Io {
                     Some(Ok(Incoming::Sample(sample))) if sample.seq == END_OF_RUN_SEQ => end_of_run(self.rx.stats()),
                     // The host connected after the boot hello (a serial port).
                     Some(Ok(Incoming::Sample(sample))) if sample.seq == PING_SEQ => send_hello(Flags::NONE),
+                    // Fault injection (`pil::fault_handler_tests`): a panic or
+                    // a HardFault (an undefined instruction, escalated: the
+                    // UsageFault handler is not enabled) in the control task.
+                    Some(Ok(Incoming::Sample(sample))) if sample.seq == INJECT_PANIC_SEQ => {
+                        LAST_SEQ.store(sample.seq, Ordering::Relaxed);
+                        inject_panic()
+                    }
+                    Some(Ok(Incoming::Sample(sample))) if sample.seq == INJECT_HARDFAULT_SEQ => {
+                        LAST_SEQ.store(sample.seq, Ordering::Relaxed);
+                        cortex_m::asm::udf()
+                    }
                     Some(Ok(Incoming::Sample(sample))) => {
+                        LAST_SEQ.store(sample.seq, Ordering::Relaxed);
                         self.sample = sample;
                         return 0;
                     }
@@ -379,13 +396,88 @@ impl VelocitySensor for Io {
 impl Coil for Io {
     fn set_current_a(&mut self, current_a: f32) {
         self.current_a = current_a;
+        mirror_coil_on_pb4(current_a);
     }
 }
 
+// ---- Panic and HardFault ----------------------------------------------------
+
+/// `init` ran (the stand-in for TIM3 running on hardware).
+static DRIVE_RUNNING: AtomicBool = AtomicBool::new(false);
+/// The last sample's sequence number: the fault report answers it.
+static LAST_SEQ: AtomicU32 = AtomicU32::new(0);
+
+/// The coil command mirrored on PB4 (the coil pin, an output low since
+/// `__pre_init`), which QEMU's GPIO model holds for the host to read: high
+/// while a current above 0 A is commanded. QEMU models no TIM3, so the
+/// duty itself is not visible; the command frame carries the value.
+fn mirror_coil_on_pb4(current_a: f32) {
+    let on = current_a > 0.0;
+    pac::GPIOB.bsrr().write(|w| {
+        w.set_bs(4, on);
+        w.set_br(4, !on);
+    });
+}
+
+/// The PIL coil from a fault handler: the PB4 mirror, then one command
+/// frame answering the last sample with the commanded current (flag
+/// `FAIL_SAFE`), through the PAC as on hardware.
+struct PilCoil;
+
+impl PilCoil {
+    fn report(current_a: f32) {
+        mirror_coil_on_pb4(current_a);
+        usart_write(
+            &CommandFrame {
+                seq: LAST_SEQ.load(Ordering::Relaxed),
+                current_a,
+                target_force_n: 0.0,
+                flags: Flags::FAIL_SAFE,
+                rejected: 0,
+            }
+            .encode(),
+        );
+    }
+}
+
+impl super::FaultCoil for PilCoil {
+    fn drive_running(&self) -> bool {
+        DRIVE_RUNNING.load(Ordering::Relaxed)
+    }
+
+    fn hold_current_a(&mut self, current_a: f32) {
+        Self::report(current_a);
+    }
+
+    fn off(&mut self) {
+        Self::report(0.0);
+    }
+}
+
+#[allow(clippy::panic)]
+fn inject_panic() -> ! {
+    panic!("injected by the host (INJECT_PANIC_SEQ)")
+}
+
+/// As on hardware: the coil safe first, then the log, then a halt (QEMU has
+/// no watchdog to reset it; the host stops QEMU).
 #[panic_handler]
 fn panic(info: &core::panic::PanicInfo) -> ! {
-    defmt::error!("panic: {}", defmt::Display2Format(info));
-    semihosting::process::exit(101)
+    super::coil_safe_from_a_fault(&mut PilCoil);
+    defmt::error!("panic: {}; coil at its safe state, halted", defmt::Display2Format(info));
+    halt()
+}
+
+#[cortex_m_rt::exception]
+unsafe fn HardFault(_frame: &cortex_m_rt::ExceptionFrame) -> ! {
+    super::coil_safe_from_a_fault(&mut PilCoil);
+    halt()
+}
+
+fn halt() -> ! {
+    loop {
+        cortex_m::asm::nop();
+    }
 }
 
 /// `pil` + `bench`: executed-instruction counts of the model step and the

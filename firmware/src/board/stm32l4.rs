@@ -98,7 +98,8 @@ const SAMPLE_TIME: SampleTime = SampleTime::CYCLES24_5;
 const I_SENSE_V_PER_A: f32 = 1.0;
 const I_SENSE_CHANNEL: u8 = 2;
 /// ADC injected trigger JEXT4 = TIM3_CH4 (RM0351, "ADC1/2/3 external
-/// triggers for injected channels").
+/// triggers for injected channels"; ST's LL driver: `LL_ADC_INJ_TRIG_EXT_TIM3_CH4`
+/// = `ADC_JSQR_JEXTSEL_2`, i.e. 4).
 const JEXTSEL_TIM3_CH4: u8 = 4;
 const JEXTEN_RISING: u8 = 1;
 
@@ -386,10 +387,11 @@ impl Io {
         // TIMx_CCER), so OC4REF's edge reaches the ADC as TIM3_CH4. CH4 has
         // no pin mapped to AF2 here, so nothing is driven.
         // The RM0351 section numbers in this function and in `coil_current`
-        // were written from memory; RM0351 itself could not be consulted
-        // here, so they are unverified. The bit positions are checked:
-        // CC4E and JEOC are fields of the stm32 PAC, JQDIS is bit 31 of
-        // ADC_CFGR in ST's CMSIS device headers (ADC_CFGR_JQDIS_Pos).
+        // are unverified (RM0351 could not be consulted here). The bits are
+        // checked against ST's CMSIS `stm32l475xx.h` V1.3.1 and LL ADC driver
+        // (vendored in github.com/nickfox-taterli/stm32l4_disco_test,
+        // 21e0a73): TIM_CCER_CC4E bit 12, ADC_CFGR_JQDIS bit 31, ADC_ISR_JEOC
+        // bit 5, LL_ADC_INJ_TRIG_EXT_TIM3_CH4 = JEXTSEL 4 (firmware/README.md).
         pac::TIM3.ccer().modify(|w| w.set_cce(3, true));
         // JQDIS = 1: the injected queue disabled (RM0351 §18.7.4, ADC_CFGR
         // bit 31; §18.4.21, "Queue of context for injected conversions"):
@@ -558,28 +560,44 @@ pub fn bench_model_step(table: Option<&mre_core::Table>) {
     );
 }
 
-/// The coil to its safe state from a panic or a HardFault, through the PAC
-/// only (nothing here trusts the state the fault left): when TIM3 drives
-/// the pin (PB4 in alternate function), CCR1 gets the fail-safe duty of the
-/// current ARR; before that, the pin is driven low (the reset state's safe
-/// level). Then the watchdog is started (a no-op if it runs) and never
-/// fed: the chip resets into the reset path of `BootPlan` (watchdog: the
-/// fail-safe at once).
-fn coil_safe_from_a_fault() {
-    use embassy_stm32::pac;
-    use embassy_stm32::pac::gpio::vals::Moder;
-    let tim3_runs = pac::RCC.apb1enr1().read().tim3en() && pac::TIM3.cr1().read().cen();
-    if tim3_runs && pac::GPIOB.moder().read().moder(4) == Moder::ALTERNATE {
+/// The coil as the fault handlers drive it, through the PAC only: TIM3's
+/// CCR1 when TIM3 drives the pin (PB4 in alternate function), else the pin
+/// low (the reset state's safe level).
+struct Tim3Coil;
+
+impl super::FaultCoil for Tim3Coil {
+    fn drive_running(&self) -> bool {
+        use embassy_stm32::pac;
+        pac::RCC.apb1enr1().read().tim3en()
+            && pac::TIM3.cr1().read().cen()
+            && pac::GPIOB.moder().read().moder(4) == pac::gpio::vals::Moder::ALTERNATE
+    }
+
+    fn hold_current_a(&mut self, current_a: f32) {
+        use embassy_stm32::pac;
         let arr = pac::TIM3.arr().read().arr();
-        let compare = (fail_safe_duty() * (arr as f32 + 1.0)) as u32;
+        let compare = (open_loop_duty(current_a, COIL_FULL_SCALE_A) * (arr as f32 + 1.0)) as u32;
         pac::TIM3
             .ccr(0)
             .write(|w| w.set_ccr(compare.min(u32::from(u16::MAX)) as u16));
-    } else {
+    }
+
+    fn off(&mut self) {
         super::coil_pin_low();
     }
-    // IWDG_KR = 0xCCCC starts the watchdog (RM0351 §32.4.1, §32.7.1).
-    pac::IWDG.kr().write(|w| w.set_key(pac::iwdg::vals::Key::START));
+}
+
+/// The coil to its safe state from a panic or a HardFault
+/// (`super::coil_safe_from_a_fault`), then the watchdog started (a no-op if
+/// it runs) and never fed: the chip resets into the reset path of
+/// `BootPlan` (watchdog: the fail-safe at once).
+fn coil_safe_from_a_fault() {
+    super::coil_safe_from_a_fault(&mut Tim3Coil);
+    // IWDG_KR = 0xCCCC starts the watchdog (RM0351 §32.4.1, §32.7.1, section
+    // numbers unverified; the key is ST's LL driver's LL_IWDG_KEY_ENABLE).
+    embassy_stm32::pac::IWDG
+        .kr()
+        .write(|w| w.set_key(embassy_stm32::pac::iwdg::vals::Key::START));
 }
 
 fn wait_for_the_watchdog() -> ! {

@@ -15,6 +15,8 @@ pub mod link;
 pub mod qemu;
 pub mod sim;
 #[cfg(test)]
+mod fault_handler_tests;
+#[cfg(test)]
 mod tests;
 
 use anyhow::{bail, Result};
