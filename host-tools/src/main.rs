@@ -702,11 +702,12 @@ fn run(cli: Cli) -> Result<()> {
             opts.thresholds = opts.thresholds.with_overrides(&rules)?;
             let summary = mre_host::diagnose_bench::calibration::run(n, seed, &opts, |c| {
                 eprintln!(
-                    "seed {}: truth {:<16} ({:.1} %) found {:?} ({:.1} s)",
+                    "seed {}: truth {:<16} ({:.1} %) found {:?} [{}] ({:.1} s)",
                     c.seed,
                     c.truth,
                     100.0 * c.strength,
                     c.found,
+                    c.accepted_by.join("; "),
                     c.seconds
                 )
             })?;

@@ -1,5 +1,31 @@
 //! Signal primitives shared by `fit` and `diagnose`: one white-noise
-//! estimate and one differentiator, so both commands read a channel alike.
+//! estimate and one differentiator, so both commands read a channel alike;
+//! and the branch rule `diagnose` fits and scores by (`fit` still keeps the
+//! samples inside the band: DIAGNOSE.md, "Known limits").
+use mre_core::model::Branch;
+
+/// A sample's branch counts as ambiguous when its speed is within this many
+/// standard deviations of the velocity noise (two-sided ≈ 95 %).
+pub const BRANCH_AMBIGUITY_SIGMAS: f64 = 2.0;
+
+/// |v| below this (m/s) leaves a recording's branch to chance: the paper's
+/// model switches branch on the sign of v, and the two branches differ by the
+/// whole hysteresis band, so the sample nearest v = 0 at a turn-around can
+/// carry an error of thousands of newtons that says nothing about the model.
+pub fn branch_band_m_s(v_m_s: &[f64]) -> f64 {
+    BRANCH_AMBIGUITY_SIGMAS * white_noise_sd(v_m_s)
+}
+
+/// The branch of a sample at speed `v_m_s` (v > 0 compression, else
+/// extension, as `Branch::from_velocity`), or `None` when |v| is below the
+/// recording's `band_m_s` ([`branch_band_m_s`]) and the branch is chance.
+pub fn clear_branch(v_m_s: f64, band_m_s: f64) -> Option<Branch> {
+    match (v_m_s.abs() >= band_m_s, v_m_s > 0.0) {
+        (false, _) => None,
+        (true, true) => Some(Branch::Compression),
+        (true, false) => Some(Branch::Extension),
+    }
+}
 
 /// White-noise standard deviation of a channel sampled fast enough that its
 /// signal is smooth: the second difference of white noise has σ·√6, that of a

@@ -41,6 +41,7 @@ fn outputs_follow_the_contract() {
         "rmse_n_after",
         "heldout_improvement",
         "heldout_improvement_nested",
+        "heldout_improvement_nested_ci95",
     ] {
         assert!(!e[k].is_null(), "missing {k}");
     }

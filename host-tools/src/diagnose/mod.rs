@@ -78,11 +78,18 @@ pub struct Finding {
     pub evidence: String,
     pub rmse_n_before: f64,
     pub rmse_n_after: f64,
+    /// Held-out RMSE ratio of the round's winner: carries the winner's
+    /// selection bias (the headline is `heldout_improvement_nested`).
     pub heldout_improvement: f64,
-    /// The same ratio with the choice between effects nested: each held-out
-    /// unit scored by the candidate chosen without it ([`select::nested_ratio`]).
+    /// The headline: the same ratio with the choice between effects nested,
+    /// each held-out unit scored by the candidate chosen without it
+    /// ([`select::nested_ratio`]).
     pub heldout_improvement_nested: f64,
+    /// 95 % bootstrap interval of `heldout_improvement_nested`, over the
+    /// same recordings (every recording, held out).
     pub ratio_ci95: [f64; 2],
+    /// The per-recording held-out SSEs both come from.
+    pub nested: select::HeldOutRatio,
     pub delta_bic: f64,
 }
 
@@ -130,7 +137,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
     let mut findings = Vec::new();
     let finding = |effect: Effect,
                    c: &select::Comparison,
-                   nested: f64,
+                   nested: select::HeldOutRatio,
                    before: &Scored,
                    after: &Scored,
                    variant_sse|
@@ -152,8 +159,9 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
             rmse_n_before: c.rmse_before_n,
             rmse_n_after: c.rmse_after_n,
             heldout_improvement: c.ratio,
-            heldout_improvement_nested: nested,
-            ratio_ci95: c.ratio_ci95,
+            heldout_improvement_nested: nested.ratio,
+            ratio_ci95: nested.ci95,
+            nested,
             delta_bic: c.delta_bic,
         })
     };
@@ -172,7 +180,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
             findings.push(finding(
                 effect,
                 c,
-                c.ratio,
+                select::HeldOutRatio::over_every_recording(c.sse_before.clone(), c.sse_after.clone(), &opts.thresholds),
                 &selection.baseline,
                 &selection.reference,
                 &first.scored.variant_sse,
@@ -184,7 +192,9 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
         let Some(k) = round.accepted else { break };
         let c = &round.tested[k];
         let Some(effect) = c.effect else { break };
-        let nested = round.nested_ratio.unwrap_or(c.ratio);
+        let nested = round.nested_ratio.clone().unwrap_or_else(|| {
+            select::HeldOutRatio::over_every_recording(c.sse_before.clone(), c.sse_after.clone(), &opts.thresholds)
+        });
         findings.push(finding(effect, c, nested, &before, &c.scored, &c.scored.variant_sse)?);
         before = c.scored.clone();
     }
@@ -253,11 +263,12 @@ fn evidence_for(
         .map(|(n, r)| format!("; residual correlates with {n} (r = {r:+.2})"))
         .unwrap_or_default();
     format!(
-        "held-out RMSE {:.3} → {:.3} N ({:.2}×, 95 % bootstrap over recordings {:.2}–{:.2}×), ΔBIC {:.0}; \
+        "held-out RMSE {:.3} → {:.3} N; {:.2}× over the recordings the decision reads (95 % bootstrap over \
+         those recordings {:.2}–{:.2}×), ΔBIC {:.0}; \
          residual before: {}{}; the added term acts most on {} and explains the residual with r = {:.2}",
         c.rmse_before_n,
         c.rmse_after_n,
-        c.ratio,
+        c.ratio_pool,
         c.ratio_ci95[0],
         c.ratio_ci95[1],
         c.delta_bic,

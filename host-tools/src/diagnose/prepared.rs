@@ -101,7 +101,7 @@ impl Rec {
                     Some(tau) => super::signals::sample_at(&self.time_s, &self.v_m_s, self.time_s[t] - tau, &mut hint),
                     None => self.v_m_s[t],
                 };
-                self.in_range[t] && v.abs() >= limit
+                self.in_range[t] && crate::signal::clear_branch(v, limit).is_some()
             })
             .collect()
     }
@@ -432,9 +432,7 @@ where
     values.into_iter().zip(mask).filter(|(_, m)| **m).map(|(v, _)| v)
 }
 
-/// A sample's branch counts as ambiguous when its speed is within this many
-/// standard deviations of the velocity noise (two-sided ≈ 95 %).
-pub const BRANCH_AMBIGUITY_SIGMAS: f64 = 2.0;
+pub use crate::signal::BRANCH_AMBIGUITY_SIGMAS;
 
 /// Velocity channel noise (m/s): [`crate::signal::white_noise_sd`].
 pub fn velocity_noise_m_s(v: &[f64]) -> f64 {

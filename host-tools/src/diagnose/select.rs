@@ -324,15 +324,18 @@ pub fn score_refined(
     if variants.is_empty() {
         bail!("no model variants to score");
     }
+    // A searched value the data cannot determine is left out of the search
+    // silently (it is a grid point, not a problem the user can act on); only
+    // when none can be fitted does the caller hear why.
+    let first_error: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
     let evaluate = |vs: &[Terms]| -> Vec<Option<VariantEval>> {
         vs.par_iter()
             .map(|t| {
                 eval_variant(prep, t)
                     .map_err(|e| {
-                        eprintln!(
-                            "warning: {} was left out of the search: {e:#}",
-                            super::terms::describe(t)
-                        )
+                        if let Ok(mut first) = first_error.lock() {
+                            first.get_or_insert_with(|| format!("{e:#}"));
+                        }
                     })
                     .ok()
             })
@@ -412,7 +415,8 @@ pub fn score_refined(
     evals.extend(evaluate(&extra));
     let ok: Vec<usize> = (0..evals.len()).filter(|&v| evals[v].is_some()).collect();
     if ok.is_empty() {
-        bail!("no variant could be fitted (too few recordings per current and branch?)");
+        let why = first_error.lock().ok().and_then(|f| f.clone()).unwrap_or_default();
+        bail!("none of its searched values could be fitted ({why}); too few recordings per current and branch?");
     }
     for a in &mut allowed {
         a.retain(|v| evals[*v].is_some());
@@ -515,7 +519,8 @@ pub struct Comparison {
     pub rmse_after_n: f64,
     /// `rmse_before / rmse_after` on held-out data.
     pub ratio: f64,
-    /// 95 % percentile bootstrap interval of the ratio, resampling recordings.
+    /// 95 % percentile bootstrap interval of `ratio_pool` (not of `ratio`),
+    /// resampling the decision pool's recordings.
     pub ratio_ci95: [f64; 2],
     pub delta_bic: f64,
     /// Scoring units ([`scoring_units`]) whose held-out SSE fell, of `n_units`.
@@ -857,7 +862,7 @@ fn judge_units(
 /// (validate ones, for a term fitted on fit recordings) keep the winner's.
 /// Each unit's own held-out errors come from fits without it, but the other
 /// units' do not exclude it: one level of nesting, not a full refit.
-pub fn nested_ratio(prep: &Prepared, tested: &[Comparison], winner: usize, th: &Thresholds) -> f64 {
+pub fn nested_ratio(prep: &Prepared, tested: &[Comparison], winner: usize, th: &Thresholds) -> HeldOutRatio {
     let w = &tested[winner];
     // Every held-out unit: each fit fold, and each validate recording.
     let units: Vec<Vec<usize>> = scoring_units(prep, false)
@@ -901,7 +906,34 @@ pub fn nested_ratio(prep: &Prepared, tested: &[Comparison], winner: usize, th: &
             }
         }
     }
-    (b.iter().sum::<f64>() / a.iter().sum::<f64>().max(1e-300)).sqrt()
+    HeldOutRatio::over_every_recording(b, a, th)
+}
+
+/// A held-out RMSE ratio and its 95 % bootstrap interval, both computed over
+/// the same recordings (every recording, each scored held out), so the
+/// interval printed beside the ratio is the doubt about that ratio.
+#[derive(Clone, Debug)]
+pub struct HeldOutRatio {
+    /// `sqrt(Σ sse_before / Σ sse_after)` over every recording.
+    pub ratio: f64,
+    /// Percentile bootstrap interval of the same ratio, resampling the same
+    /// recordings ([`bootstrap_ratio_ci95`]).
+    pub ci95: [f64; 2],
+    /// Per recording: held-out SSE before and after.
+    pub sse_before: Vec<f64>,
+    pub sse_after: Vec<f64>,
+}
+
+impl HeldOutRatio {
+    pub fn over_every_recording(sse_before: Vec<f64>, sse_after: Vec<f64>, th: &Thresholds) -> Self {
+        let all: Vec<usize> = (0..sse_before.len()).collect();
+        HeldOutRatio {
+            ratio: (sse_before.iter().sum::<f64>() / sse_after.iter().sum::<f64>().max(1e-300)).sqrt(),
+            ci95: bootstrap_ratio_ci95(&sse_before, &sse_after, &all, th),
+            sse_before,
+            sse_after,
+        }
+    }
 }
 
 /// The held-out units selection reads: each fit fold's recordings, or each
@@ -919,7 +951,7 @@ pub fn scoring_units(prep: &Prepared, on_validate: bool) -> Vec<Vec<usize>> {
 
 /// 95 % percentile bootstrap interval of `sqrt(Σ before / Σ after)` over
 /// the recordings `idx`, resampled with replacement.
-fn bootstrap_ratio_ci95(sse_before: &[f64], sse_after: &[f64], idx: &[usize], th: &Thresholds) -> [f64; 2] {
+pub fn bootstrap_ratio_ci95(sse_before: &[f64], sse_after: &[f64], idx: &[usize], th: &Thresholds) -> [f64; 2] {
     if idx.is_empty() || th.bootstrap_resamples == 0 {
         return [f64::NAN, f64::NAN];
     }
@@ -947,8 +979,8 @@ pub struct Round {
     /// Index into `tested` of the accepted candidate, if any.
     pub accepted: Option<usize>,
     /// The accepted candidate's held-out ratio with the choice between
-    /// candidates nested (see [`nested_ratio`]).
-    pub nested_ratio: Option<f64>,
+    /// candidates nested (see [`nested_ratio`]), and its interval.
+    pub nested_ratio: Option<HeldOutRatio>,
 }
 
 /// The result of forward selection.
@@ -978,7 +1010,11 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
     // show it (a structural limit of one quartic per branch, not missing
     // physics from the vocabulary). Candidates are tested against it.
     let memory = score(prep, &candidates::memory_variants(prep))
-        .map_err(|e| eprintln!("hysteresis_memory: {e:#}"))
+        .map_err(|e| {
+            eprintln!(
+                "note: turn-around memory was not tested, so candidates are tested against the paper's model alone: {e:#}"
+            )
+        })
         .ok()
         .map(|after| compare(prep, &baseline, after, Some(Effect::HysteresisMemory), th));
     let reference = match &memory {
@@ -989,6 +1025,7 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
     let mut rounds = Vec::new();
     let mut not_identifiable = Vec::new();
     let mut testable = Vec::new();
+    let mut untested: Vec<Effect> = Vec::new();
     for e in super::terms::candidates().map(|t| t.effect()) {
         match candidates::identifiable(prep, e, th) {
             Ok(()) => testable.push(e),
@@ -1018,8 +1055,14 @@ pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
         for e in todo {
             let variants = candidates::variants(prep, &current.terms, e);
             let refine = |best: &Terms| candidates::refinements(prep, best, e);
-            if let Ok(after) = score_refined(prep, variants, &refine) {
-                tested.push(compare(prep, &before, after, Some(e), th));
+            match score_refined(prep, variants, &refine) {
+                Ok(after) => tested.push(compare(prep, &before, after, Some(e), th)),
+                // Once per effect and run, as a sentence.
+                Err(why) if !untested.contains(&e) => {
+                    eprintln!("note: {} was not tested: {why:#}", e.name());
+                    untested.push(e);
+                }
+                Err(_) => {}
             }
         }
         let accepted = (0..tested.len())

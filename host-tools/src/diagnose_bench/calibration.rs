@@ -21,6 +21,10 @@ pub struct CalibrationOutcome {
     pub strength: f64,
     /// What was named, in order (`hysteresis_memory` included).
     pub found: Vec<&'static str>,
+    /// Each accepted vocabulary effect: the route that accepted it, its
+    /// held-out ratio over the decision pool and the units that improved
+    /// (what a false positive passed on).
+    pub accepted_by: Vec<String>,
     /// A `none` case with any effect other than `hysteresis_memory` named.
     pub false_positive: bool,
     /// An effect case whose first non-memory finding is the concealed one.
@@ -101,6 +105,22 @@ pub fn run(
             .copied()
             .filter(|n| *n != Effect::HysteresisMemory.name())
             .collect();
+        let accepted_by = d
+            .selection
+            .rounds
+            .iter()
+            .filter_map(|r| r.accepted.map(|k| &r.tested[k]))
+            .map(|t| {
+                format!(
+                    "{} by {} (pool {:.3}×, {}/{} units)",
+                    t.effect.map_or("memory", |e| e.name()),
+                    t.route.unwrap_or("?"),
+                    t.ratio_pool,
+                    t.units_improved,
+                    t.n_units
+                )
+            })
+            .collect();
         let truth = c.effect.kind().name();
         let is_none = c.effect.kind() == Effect::None;
         let out = CalibrationOutcome {
@@ -111,6 +131,7 @@ pub fn run(
             top1: !is_none && named.first() == Some(&truth),
             wrong_name: !is_none && named.iter().any(|n| *n != truth),
             found,
+            accepted_by,
             seconds: start.elapsed().as_secs_f64(),
         };
         progress(&out);

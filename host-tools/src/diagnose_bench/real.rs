@@ -49,7 +49,8 @@ pub struct RealCase {
     pub found_at_all: bool,
     /// `new_found` other than the injected effect.
     pub false_positives: Vec<Effect>,
-    /// Held-out RMSE ratio of the injected effect's term (absent when not found or `none`).
+    /// Held-out RMSE ratio of the injected effect's term, the choice between
+    /// effects nested (absent when not found or `none`).
     pub heldout_improvement: Option<f64>,
     /// Held-out ratio of the oracle (the reference model given the true
     /// injected force as a column with a free amplitude, [`oracle`]; for
@@ -448,7 +449,7 @@ pub fn run_real_bench(
                 .findings
                 .iter()
                 .find(|f| f.effect == truth)
-                .map(|f| f.heldout_improvement),
+                .map(|f| f.heldout_improvement_nested),
             tested: d
                 .selection
                 .rounds
@@ -458,14 +459,14 @@ pub fn run_real_bench(
                         .iter()
                         .map(|c| {
                             format!(
-                                "{} {:.3} [{:.3}, {:.3}] {}/{} units; pool {:.3}; support {:.3} share {:.3} {}/{} rec z {:.1}{}",
+                                "{} {:.3}; pool {:.3} [{:.3}, {:.3}] {}/{} units; support {:.3} share {:.3} {}/{} rec z {:.1}{}",
                                 c.effect.map_or("memory", |e| e.name()),
                                 c.ratio,
+                                c.ratio_pool,
                                 c.ratio_ci95[0],
                                 c.ratio_ci95[1],
                                 c.units_improved,
                                 c.n_units,
-                                c.ratio_pool,
                                 c.local.ratio,
                                 c.local.share,
                                 c.local.units_improved,

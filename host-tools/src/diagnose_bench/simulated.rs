@@ -24,7 +24,8 @@ pub struct BenchCase {
     pub found: Vec<Effect>,
     /// `none` when nothing was accepted.
     pub top1: Effect,
-    /// Held-out RMSE ratio of the true effect's term (1 when not found; absent for `none`).
+    /// Held-out RMSE ratio of the true effect's term, the choice between
+    /// effects nested (1 when not found; absent for `none`).
     pub heldout_improvement: Option<f64>,
     /// First-round held-out ratio of every candidate tested.
     pub first_round: Vec<(Effect, f64)>,
@@ -82,7 +83,7 @@ pub fn run_drop_case(effect: &str, seed: u64, plan: &SynthPlan, opts: &DiagnoseO
         d.findings
             .iter()
             .find(|f| f.effect == truth)
-            .map_or(1.0, |f| f.heldout_improvement)
+            .map_or(1.0, |f| f.heldout_improvement_nested)
     });
     let first_round = d
         .selection
@@ -178,7 +179,7 @@ pub fn run_mts_case(seed: u64) -> Result<BenchCase> {
             d.findings
                 .iter()
                 .find(|f| f.effect == truth)
-                .map_or(1.0, |f| f.heldout_improvement)
+                .map_or(1.0, |f| f.heldout_improvement_nested)
         }),
         first_round: Vec::new(),
         truth,
