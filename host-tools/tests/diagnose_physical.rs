@@ -115,6 +115,15 @@ fn a_prediction_beyond_the_fitted_stroke_stays_within_the_trained_force_range() 
                 "{} ({terms:?}): |F| up to {worst:.0} N predicted, bound {bound_n:.0} N",
                 rec.file
             );
+            // Without the bound (the stored design, covariates as recorded)
+            // the same fit extrapolates its quartic far outside.
+            let unbounded = designs.recs[i].predict(&sol.beta);
+            let unbounded_worst = unbounded.iter().fold(0.0f64, |m, p| m.max(p.abs()));
+            assert!(
+                unbounded_worst > 2.0 * bound_n,
+                "{}: unbounded only {unbounded_worst:.0} N",
+                rec.file
+            );
             // Not bounded by predicting nothing: the 10 mm test's force
             // (≈ F_s + f_y at its ends) is reached.
             assert!(worst > 0.8 * trained_max_n, "{}: at most {worst:.0} N", rec.file);
