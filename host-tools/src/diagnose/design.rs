@@ -354,6 +354,10 @@ pub struct Designs {
     pub terms: Terms,
     pub layout: Layout,
     pub recs: Vec<RecDesign>,
+    /// The relaxation length of a start from rest ([`START_SPAN_FRACTION`]).
+    pub start_mm: f64,
+    /// Each recording's covariate ranges (for [`Span`]).
+    pub ranges: Vec<Ranges>,
 }
 
 /// A least-squares solution over some training recordings.
@@ -363,6 +367,118 @@ pub struct Solution {
     /// Softening Δ (0 when the model has no softening).
     pub delta: f64,
     pub sse: f64,
+    /// The covariates its training recordings cover: a prediction holds each
+    /// covariate at this span's edge instead of extrapolating.
+    pub span: Span,
+    /// Sign-constrained columns ([`Term::nonnegative`]) held at their bound,
+    /// 0: their unconstrained value had the wrong sign.
+    pub at_bound: Vec<usize>,
+}
+
+/// The span of each covariate over a fit's training recordings: the
+/// model's physical range. Beyond it a polynomial in x (the quartics, the
+/// stop), a linear `c·v`, `m·a` or the memory's `x_r` would extrapolate
+/// without limit, so the design holds each covariate at the span's edge (the
+/// force of the nearest state the fit has seen). Bounded terms (the yield's
+/// tanh, the memory's decay, softening's factor, saturation's tanh, a
+/// lagged current) are not clamped.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Span {
+    /// Per tabulated current: x (mm) and v (m/s) of the training recordings
+    /// at that current (the whole training set's where it has none).
+    pub x_mm: Vec<(f64, f64)>,
+    pub v_m_s: Vec<(f64, f64)>,
+    /// x and a over all training recordings.
+    pub all_x_mm: (f64, f64),
+    pub a_m_s2: (f64, f64),
+}
+
+fn range_of<'a>(values: impl Iterator<Item = &'a f64>) -> (f64, f64) {
+    values.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)))
+}
+
+fn within(r: (f64, f64), outer: (f64, f64)) -> bool {
+    r.0 >= outer.0 && r.1 <= outer.1
+}
+
+/// One recording's covariate ranges.
+#[derive(Clone, Copy, Debug)]
+pub struct Ranges {
+    pub x_mm: (f64, f64),
+    pub v_m_s: (f64, f64),
+    pub a_m_s2: (f64, f64),
+}
+
+impl Ranges {
+    fn of(rec: &Rec) -> Ranges {
+        Ranges {
+            x_mm: range_of(rec.x_mm.iter()),
+            v_m_s: range_of(rec.v_m_s.iter()),
+            a_m_s2: range_of(rec.a_m_s2.iter()),
+        }
+    }
+}
+
+impl Span {
+    /// The span of `train`'s recordings (an unbounded span when empty).
+    pub fn of(prep: &Prepared, train: &[usize]) -> Span {
+        let ranges: Vec<Ranges> = prep.recs.iter().map(Ranges::of).collect();
+        Span::from_ranges(prep, &ranges, train)
+    }
+
+    /// As [`Span::of`], from each recording's precomputed [`Ranges`].
+    fn from_ranges(prep: &Prepared, ranges: &[Ranges], train: &[usize]) -> Span {
+        let everything = (f64::NEG_INFINITY, f64::INFINITY);
+        let or_all = |r: (f64, f64), all: (f64, f64)| if r.0 <= r.1 { r } else { all };
+        let union = |rs: &mut dyn Iterator<Item = (f64, f64)>| {
+            rs.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), r| (l.min(r.0), h.max(r.1)))
+        };
+        let all_x = or_all(union(&mut train.iter().map(|&i| ranges[i].x_mm)), everything);
+        let all_v = or_all(union(&mut train.iter().map(|&i| ranges[i].v_m_s)), everything);
+        let a = or_all(union(&mut train.iter().map(|&i| ranges[i].a_m_s2)), everything);
+        let at = |c: f64| train.iter().copied().filter(move |&i| prep.recs[i].current_a == c);
+        Span {
+            x_mm: prep
+                .currents_a
+                .iter()
+                .map(|&c| or_all(union(&mut at(c).map(|i| ranges[i].x_mm)), all_x))
+                .collect(),
+            v_m_s: prep
+                .currents_a
+                .iter()
+                .map(|&c| or_all(union(&mut at(c).map(|i| ranges[i].v_m_s)), all_v))
+                .collect(),
+            all_x_mm: all_x,
+            a_m_s2: a,
+        }
+    }
+
+    /// A recording with these ranges, at every current it touches, stays
+    /// inside the span.
+    fn covers(&self, r: &Ranges, touched: &[usize]) -> bool {
+        within(r.x_mm, self.all_x_mm)
+            && within(r.a_m_s2, self.a_m_s2)
+            && touched
+                .iter()
+                .all(|&k| within(r.x_mm, self.x_mm[k]) && within(r.v_m_s, self.v_m_s[k]))
+    }
+
+    /// One sample's inputs held inside the span of current `k`.
+    fn clamp(&self, k: usize, s: &Sample) -> Sample {
+        Sample {
+            x_mm: s.x_mm.clamp(self.x_mm[k].0, self.x_mm[k].1),
+            v_m_s: s.v_m_s.clamp(self.v_m_s[k].0, self.v_m_s[k].1),
+            a_m_s2: s.a_m_s2.clamp(self.a_m_s2.0, self.a_m_s2.1),
+        }
+    }
+
+    fn clamp_global(&self, s: &Sample) -> Sample {
+        Sample {
+            x_mm: s.x_mm.clamp(self.all_x_mm.0, self.all_x_mm.1),
+            a_m_s2: s.a_m_s2.clamp(self.a_m_s2.0, self.a_m_s2.1),
+            ..*s
+        }
+    }
 }
 
 impl Designs {
@@ -377,12 +493,14 @@ impl Designs {
         let recs = prep
             .recs
             .iter()
-            .map(|r| design_for(prep, r, terms, &layout, start_mm))
+            .map(|r| design_for(prep, r, terms, &layout, start_mm, None))
             .collect();
         Designs {
             terms: *terms,
             layout,
             recs,
+            start_mm,
+            ranges: prep.recs.iter().map(Ranges::of).collect(),
         }
     }
 
@@ -410,36 +528,78 @@ impl Designs {
             }
             at += ra.nrows();
         }
-        let _ = prep;
         // Columns no training recording touches (e.g. an end stop nobody
         // reached) are left out and get a zero coefficient.
         let mut used: Vec<usize> = (0..p).filter(|&c| a.column(c).iter().any(|v| *v != 0.0)).collect();
-        // A term whose coefficients are physically ≥ 0 ([`Term::nonnegative`],
-        // an end stop): a current whose coefficient comes out negative is
-        // refitted without it.
-        let nonnegative: Vec<usize> = self
+        // Sign constraints ([`Term::nonnegative`]: a stop's stiffness, a
+        // damping coefficient, a yield force, a mass): least squares with
+        // those columns ≥ 0, by an active set over the handful of them
+        // (Lawson–Hanson's, with the other columns free). A column whose
+        // value comes out negative is held at 0; a held one whose gradient
+        // says it would come back positive is released.
+        let constrained: Vec<usize> = self
             .layout
             .blocks
             .iter()
-            .filter(|p| p.term.nonnegative() && p.block == Block::PerCurrent)
-            .flat_map(|p| p.at..p.at + self.layout.n_currents)
+            .filter(|p| p.term.nonnegative(&self.terms, p.index))
+            .flat_map(|p| {
+                let n = match p.block {
+                    Block::PerCurrent => self.layout.n_currents,
+                    Block::Global => 1,
+                    Block::MemoryBasis => 2 * MEMORY_TERMS * self.layout.n_currents,
+                };
+                p.at..p.at + n
+            })
+            .filter(|c| used.contains(c))
             .collect();
-        loop {
+        let mut held: Vec<usize> = Vec::new();
+        let mut last_feasible: Option<Solution> = None;
+        // Each pass holds or releases at least one column; the bound keeps a
+        // cycle finite (it then returns the last feasible solution).
+        for _ in 0..4 * constrained.len() + 4 {
+            used.retain(|c| !held.contains(c));
             let ls = linalg::solve(&a.select_columns(&used), &y)?;
             let mut beta = vec![0.0; p];
             for (k, &c) in used.iter().enumerate() {
                 beta[c] = ls.coeffs[k];
             }
-            let negative: Vec<usize> = nonnegative.iter().copied().filter(|&c| beta[c] < 0.0).collect();
-            if negative.is_empty() {
-                return Ok(Solution {
-                    beta,
-                    delta: 0.0,
-                    sse: ls.sse,
-                });
+            let negative: Vec<usize> = constrained.iter().copied().filter(|&c| beta[c] < 0.0).collect();
+            if !negative.is_empty() {
+                held.extend(negative);
+                continue;
             }
-            used.retain(|c| !negative.contains(c));
+            // Feasible. KKT: a held column whose residual correlation is
+            // positive would lower the SSE above 0.
+            let residual = &y - &a * DVector::from_column_slice(&beta);
+            let release = held
+                .iter()
+                .copied()
+                .map(|c| {
+                    (
+                        c,
+                        a.column(c).dot(&residual) / a.column(c).norm().max(f64::MIN_POSITIVE),
+                    )
+                })
+                .filter(|(_, g)| *g > 1e-9 * residual.norm().max(1.0))
+                .max_by(|l, r| l.1.total_cmp(&r.1));
+            let sol = Solution {
+                beta,
+                delta: 0.0,
+                sse: ls.sse,
+                span: Span::from_ranges(prep, &self.ranges, train),
+                at_bound: held.clone(),
+            };
+            match release {
+                Some((c, _)) => {
+                    held.retain(|&h| h != c);
+                    used.push(c);
+                    used.sort_unstable();
+                    last_feasible = Some(sol);
+                }
+                None => return Ok(sol),
+            }
         }
+        last_feasible.ok_or_else(|| anyhow::anyhow!("the sign-constrained least squares did not settle"))
     }
 
     /// Solves over `train`. With softening, `F = (1 − Δ·g_r)·Q(x)`: for a
@@ -491,20 +651,61 @@ impl Designs {
         Ok(if fa.sse < fb.sse { fa } else { fb })
     }
 
-    /// Predicted force of recording `i`.
+    /// Predicted force of recording `i`. A recording that leaves the span of
+    /// `sol`'s training recordings ([`Span`]) is predicted with its
+    /// covariates held at the span's edges.
     pub fn predict(&self, prep: &Prepared, i: usize, sol: &Solution) -> Vec<f64> {
         let s = match self.terms.softening {
             Some(law) => 1.0 - sol.delta * law.covariate(&prep.recs[i]),
             None => 1.0,
         };
-        let mut p = self.recs[i].predict(&sol.beta);
+        let stored = &self.recs[i];
+        let touched: Vec<usize> = (0..self.layout.n_currents)
+            .filter(|&k| {
+                stored.cols.contains(&self.layout.quartic_col(k, true, 0))
+                    || stored.cols.contains(&self.layout.quartic_col(k, false, 0))
+            })
+            .collect();
+        let mut p = if sol.span.covers(&self.ranges[i], &touched) {
+            stored.predict(&sol.beta)
+        } else {
+            let clamped = design_for(
+                prep,
+                &prep.recs[i],
+                &self.terms,
+                &self.layout,
+                self.start_mm,
+                Some(&sol.span),
+            );
+            // Columns the terms do not build (an oracle's extra column) are
+            // kept as stored.
+            let mut p = clamped.predict(&sol.beta);
+            let built = Layout::new(self.layout.n_currents, &self.terms).n_cols;
+            for (lc, &c) in stored.cols.iter().enumerate() {
+                if c >= built && clamped.cols.binary_search(&c).is_err() {
+                    for (t, v) in p.iter_mut().enumerate() {
+                        *v += stored.a[(t, lc)] * sol.beta[c];
+                    }
+                }
+            }
+            p
+        };
         p.iter_mut().for_each(|v| *v *= s);
         p
     }
 }
 
 /// `start_mm`: the relaxation length of a start from rest ([`START_SPAN_FRACTION`]).
-fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_mm: f64) -> RecDesign {
+/// `span`: hold the covariates inside it (a prediction beyond its fit's
+/// training recordings), or `None` (as recorded).
+fn design_for(
+    prep: &Prepared,
+    rec: &Rec,
+    terms: &Terms,
+    layout: &Layout,
+    start_mm: f64,
+    span: Option<&Span>,
+) -> RecDesign {
     // Interpolation weights per sample: one set for a held current, one per
     // sample when the recorded current changes during the test.
     // A delayed force channel shows the current of τ ago too.
@@ -589,13 +790,15 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
             if w == 0.0 {
                 continue;
             }
+            // The branch stays the recorded one; only the covariates are held.
+            let at_k = span.map_or(sample, |s| s.clamp(k, &sample));
             let mut xp = w;
             for p in 0..QUARTIC_TERMS {
                 a[(t, local(layout.quartic_col(k, comp, p)))] += xp;
-                xp *= x;
+                xp *= at_k.x_mm;
             }
             for p in &per_current {
-                a[(t, local(p.at + k))] += w * p.term.shape(terms, p.index, &sample);
+                a[(t, local(p.at + k))] += w * p.term.shape(terms, p.index, &at_k);
             }
         }
         if let (Some((m, dir)), Some(delta)) = (&memory, terms.memory_mm) {
@@ -620,7 +823,22 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
                     MEMORY_TERMS - 1
                 };
                 for &(k, w) in weights.iter().filter(|(_, w)| *w != 0.0) {
+                    // x_r^p beyond the span: held at its edge (x_r^0 and
+                    // the decay are bounded already).
+                    let held = span.map_or(1.0, |s| {
+                        let r = s.x_mm[k];
+                        if x_r == 0.0 || from_rest {
+                            1.0
+                        } else {
+                            x_r.clamp(r.0, r.1) / x_r
+                        }
+                    });
                     for &(j, value) in &basis[..used] {
+                        let value = if from_rest {
+                            value
+                        } else {
+                            value * held.powi((j % MEMORY_POWERS) as i32)
+                        };
                         if let Some(c) = layout.memory_col(dir[t], j, k) {
                             a[(t, local(c))] += w * value;
                         }
@@ -628,8 +846,9 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
                 }
             }
         }
+        let global_sample = span.map_or(sample, |s| s.clamp_global(&sample));
         for p in &global {
-            a[(t, local(p.at))] = p.term.shape(terms, p.index, &sample);
+            a[(t, local(p.at))] = p.term.shape(terms, p.index, &global_sample);
         }
     }
     // Keep only the columns this recording touches (e.g. no compression
