@@ -367,8 +367,8 @@ pub struct Solution {
     /// Softening Δ (0 when the model has no softening).
     pub delta: f64,
     pub sse: f64,
-    /// The covariates its training recordings cover: a prediction holds each
-    /// covariate at this span's edge instead of extrapolating.
+    /// The covariates its training recordings cover: a prediction beyond it
+    /// continues each column along its tangent ([`Span`]).
     pub span: Span,
     /// Sign-constrained columns ([`Term::nonnegative`]) held at their bound,
     /// 0: their unconstrained value had the wrong sign.
@@ -377,11 +377,11 @@ pub struct Solution {
 
 /// The span of each covariate over a fit's training recordings: the
 /// model's physical range. Beyond it a polynomial in x (the quartics, the
-/// stop), a linear `c·v`, `m·a` or the memory's `x_r` would extrapolate
-/// without limit, so the design holds each covariate at the span's edge (the
-/// force of the nearest state the fit has seen). Bounded terms (the yield's
-/// tanh, the memory's decay, softening's factor, saturation's tanh, a
-/// lagged current) are not clamped.
+/// stop's power) would grow as x⁴, so every column a prediction evaluates
+/// beyond the span continues along its tangent at the span's edge: the force
+/// grows no faster than the slope the fit saw at its edge (a spring's force
+/// continues, a saturated one stays flat). Linear columns (`c·v`, `m·a`) are
+/// their own tangent; bounded ones (a tanh, a decay) flatten.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Span {
     /// Per tabulated current: x (mm) and v (m/s) of the training recordings
@@ -463,22 +463,62 @@ impl Span {
                 .all(|&k| within(r.x_mm, self.x_mm[k]) && within(r.v_m_s, self.v_m_s[k]))
     }
 
-    /// One sample's inputs held inside the span of current `k`.
-    fn clamp(&self, k: usize, s: &Sample) -> Sample {
-        Sample {
-            x_mm: s.x_mm.clamp(self.x_mm[k].0, self.x_mm[k].1),
-            v_m_s: s.v_m_s.clamp(self.v_m_s[k].0, self.v_m_s[k].1),
-            a_m_s2: s.a_m_s2.clamp(self.a_m_s2.0, self.a_m_s2.1),
-        }
+    /// Where current `k`'s columns are evaluated for sample `s`
+    /// ([`tangent_points`]).
+    fn points(&self, k: usize, s: &Sample) -> [(f64, Sample); 2] {
+        tangent_points(s, [self.x_mm[k], self.v_m_s[k], self.a_m_s2])
     }
 
-    fn clamp_global(&self, s: &Sample) -> Sample {
-        Sample {
-            x_mm: s.x_mm.clamp(self.all_x_mm.0, self.all_x_mm.1),
-            a_m_s2: s.a_m_s2.clamp(self.a_m_s2.0, self.a_m_s2.1),
-            ..*s
+    /// As [`Span::points`] for the global columns (x over every current).
+    fn points_global(&self, s: &Sample) -> [(f64, Sample); 2] {
+        let everything = (f64::NEG_INFINITY, f64::INFINITY);
+        tangent_points(s, [self.all_x_mm, everything, self.a_m_s2])
+    }
+
+    /// `x_r^p` inside current `k`'s x span, continued along its tangent
+    /// beyond it.
+    fn power(&self, k: usize, x_r: f64, p: i32) -> f64 {
+        let (lo, hi) = self.x_mm[k];
+        let e = x_r.clamp(lo, hi);
+        if p == 0 {
+            1.0
+        } else {
+            e.powi(p) + f64::from(p) * e.powi(p - 1) * (x_r - e)
         }
     }
+}
+
+/// The one-sided step of [`tangent_points`], as a fraction of the span's width.
+const TANGENT_STEP: f64 = 0.02;
+
+/// The points, with weights, at which a column is evaluated so that its
+/// value beyond `bounds` (x, v, a) continues along its tangent at the edge:
+/// inside, `s` itself (weight 1, the second weight 0); outside, the edge
+/// point `e` and a point `e − η·d` inside (d = s − e), weighted `1 + 1/η`
+/// and `−1/η`, i.e. `f(e) + (f(e) − f(e − η·d))/η`, a one-sided difference
+/// over 2 % of the span's width. A span of zero width has no tangent: the
+/// column is held at its edge value.
+fn tangent_points(s: &Sample, bounds: [(f64, f64); 3]) -> [(f64, Sample); 2] {
+    let at = [s.x_mm, s.v_m_s, s.a_m_s2];
+    let edge = [0, 1, 2].map(|j| at[j].clamp(bounds[j].0, bounds[j].1));
+    let d = [0, 1, 2].map(|j| at[j] - edge[j]);
+    let sample = |c: [f64; 3]| Sample {
+        x_mm: c[0],
+        v_m_s: c[1],
+        a_m_s2: c[2],
+    };
+    if d.iter().all(|dj| *dj == 0.0) {
+        return [(1.0, *s), (0.0, *s)];
+    }
+    let eta = (0..3)
+        .filter(|&j| d[j] != 0.0)
+        .map(|j| TANGENT_STEP * (bounds[j].1 - bounds[j].0) / d[j].abs())
+        .fold(1.0f64, f64::min);
+    if eta <= 0.0 || !eta.is_finite() {
+        return [(1.0, sample(edge)), (0.0, sample(edge))];
+    }
+    let inner = [0, 1, 2].map(|j| edge[j] - eta * d[j]);
+    [(1.0 + 1.0 / eta, sample(edge)), (-1.0 / eta, sample(inner))]
 }
 
 impl Designs {
@@ -651,9 +691,9 @@ impl Designs {
         Ok(if fa.sse < fb.sse { fa } else { fb })
     }
 
-    /// Predicted force of recording `i`. A recording that leaves the span of
-    /// `sol`'s training recordings ([`Span`]) is predicted with its
-    /// covariates held at the span's edges.
+    /// Predicted force of recording `i`. Where a recording leaves the span of
+    /// `sol`'s training recordings, each column continues along its tangent
+    /// at the span's edge ([`Span`]).
     pub fn predict(&self, prep: &Prepared, i: usize, sol: &Solution) -> Vec<f64> {
         let s = match self.terms.softening {
             Some(law) => 1.0 - sol.delta * law.covariate(&prep.recs[i]),
@@ -669,7 +709,7 @@ impl Designs {
         let mut p = if sol.span.covers(&self.ranges[i], &touched) {
             stored.predict(&sol.beta)
         } else {
-            let clamped = design_for(
+            let continued = design_for(
                 prep,
                 &prep.recs[i],
                 &self.terms,
@@ -679,10 +719,10 @@ impl Designs {
             );
             // Columns the terms do not build (an oracle's extra column) are
             // kept as stored.
-            let mut p = clamped.predict(&sol.beta);
+            let mut p = continued.predict(&sol.beta);
             let built = Layout::new(self.layout.n_currents, &self.terms).n_cols;
             for (lc, &c) in stored.cols.iter().enumerate() {
-                if c >= built && clamped.cols.binary_search(&c).is_err() {
+                if c >= built && continued.cols.binary_search(&c).is_err() {
                     for (t, v) in p.iter_mut().enumerate() {
                         *v += stored.a[(t, lc)] * sol.beta[c];
                     }
@@ -696,8 +736,8 @@ impl Designs {
 }
 
 /// `start_mm`: the relaxation length of a start from rest ([`START_SPAN_FRACTION`]).
-/// `span`: hold the covariates inside it (a prediction beyond its fit's
-/// training recordings), or `None` (as recorded).
+/// `span`: continue each column along its tangent beyond it (a prediction
+/// beyond its fit's training recordings), or `None` (as recorded).
 fn design_for(
     prep: &Prepared,
     rec: &Rec,
@@ -790,15 +830,17 @@ fn design_for(
             if w == 0.0 {
                 continue;
             }
-            // The branch stays the recorded one; only the covariates are held.
-            let at_k = span.map_or(sample, |s| s.clamp(k, &sample));
-            let mut xp = w;
-            for p in 0..QUARTIC_TERMS {
-                a[(t, local(layout.quartic_col(k, comp, p)))] += xp;
-                xp *= at_k.x_mm;
-            }
-            for p in &per_current {
-                a[(t, local(p.at + k))] += w * p.term.shape(terms, p.index, &at_k);
+            // The branch stays the recorded one; only the covariates move.
+            let points = span.map_or([(1.0, sample), (0.0, sample)], |s| s.points(k, &sample));
+            for (weight, at_k) in points.into_iter().filter(|(weight, _)| *weight != 0.0) {
+                let mut xp = w * weight;
+                for p in 0..QUARTIC_TERMS {
+                    a[(t, local(layout.quartic_col(k, comp, p)))] += xp;
+                    xp *= at_k.x_mm;
+                }
+                for p in &per_current {
+                    a[(t, local(p.at + k))] += w * weight * p.term.shape(terms, p.index, &at_k);
+                }
             }
         }
         if let (Some((m, dir)), Some(delta)) = (&memory, terms.memory_mm) {
@@ -808,47 +850,39 @@ fn design_for(
                 from_rest,
             }) = m[t]
             {
-                // (column, basis value before the current weight), no allocation per sample
-                let mut basis = [(0usize, 0.0f64); MEMORY_TERMS];
+                // (column, decay, power of x_r), no allocation per sample
+                let mut basis = [(0usize, 0.0f64, 0i32); MEMORY_TERMS];
                 let used = if from_rest {
-                    basis[0] = (MEMORY_TERMS - 1, (-d / start_mm).exp());
+                    basis[0] = (MEMORY_TERMS - 1, (-d / start_mm).exp(), 0);
                     1
                 } else {
                     for (l, len) in MEMORY_LENGTHS.iter().enumerate() {
                         let e = (-d / (len * delta)).exp();
                         for p in 0..MEMORY_POWERS {
-                            basis[l * MEMORY_POWERS + p] = (l * MEMORY_POWERS + p, e * x_r.powi(p as i32));
+                            basis[l * MEMORY_POWERS + p] = (l * MEMORY_POWERS + p, e, p as i32);
                         }
                     }
                     MEMORY_TERMS - 1
                 };
                 for &(k, w) in weights.iter().filter(|(_, w)| *w != 0.0) {
-                    // x_r^p beyond the span: held at its edge (x_r^0 and
-                    // the decay are bounded already).
-                    let held = span.map_or(1.0, |s| {
-                        let r = s.x_mm[k];
-                        if x_r == 0.0 || from_rest {
-                            1.0
-                        } else {
-                            x_r.clamp(r.0, r.1) / x_r
-                        }
-                    });
-                    for &(j, value) in &basis[..used] {
-                        let value = if from_rest {
-                            value
-                        } else {
-                            value * held.powi((j % MEMORY_POWERS) as i32)
-                        };
+                    for &(j, decay, p) in &basis[..used] {
+                        // x_r^p beyond the span continues along its tangent
+                        // (the decay is bounded already).
+                        let x_r_p = span.map_or(x_r.powi(p), |s| s.power(k, x_r, p));
                         if let Some(c) = layout.memory_col(dir[t], j, k) {
-                            a[(t, local(c))] += w * value;
+                            a[(t, local(c))] += w * decay * x_r_p;
                         }
                     }
                 }
             }
         }
-        let global_sample = span.map_or(sample, |s| s.clamp_global(&sample));
+        let points = span.map_or([(1.0, sample), (0.0, sample)], |s| s.points_global(&sample));
         for p in &global {
-            a[(t, local(p.at))] = p.term.shape(terms, p.index, &global_sample);
+            a[(t, local(p.at))] = points
+                .iter()
+                .filter(|(weight, _)| *weight != 0.0)
+                .map(|(weight, at)| weight * p.term.shape(terms, p.index, at))
+                .sum();
         }
     }
     // Keep only the columns this recording touches (e.g. no compression

@@ -1,6 +1,6 @@
 //! Effect parameters with units and 95 % bootstrap intervals over recordings.
 use super::candidates::Effect;
-use super::design::{Designs, Layout, Solution, Terms};
+use super::design::{Designs, Layout, Solution, Span, Terms};
 use super::prepared::Prepared;
 use super::terms::Value;
 use anyhow::bail;
@@ -27,6 +27,21 @@ pub struct Param {
 pub fn extract(prep: &Prepared, effect: Effect, terms: &Terms, sol: &Solution) -> Vec<Value> {
     let layout = Layout::new(prep.currents_a.len(), terms);
     super::terms::of(effect).map_or_else(Vec::new, |t| t.parameters(prep, &layout, terms, sol))
+}
+
+/// A variant's parameter names and its searched and design values (the
+/// linear ones read as 0): each variant has its own layout, so the final
+/// model's solution cannot be read through it.
+fn values_of_variant(prep: &Prepared, effect: Effect, terms: &Terms) -> Vec<Value> {
+    let layout = Layout::new(prep.currents_a.len(), terms);
+    let zero = Solution {
+        beta: vec![0.0; layout.n_cols],
+        delta: 0.0,
+        sse: 0.0,
+        span: Span::of(prep, &[]),
+        at_bound: Vec::new(),
+    };
+    super::terms::of(effect).map_or_else(Vec::new, |t| t.parameters(prep, &layout, terms, &zero))
 }
 
 fn percentile(v: &mut [f64], p: f64) -> f64 {
@@ -116,7 +131,10 @@ pub fn with_intervals(
     } else {
         Vec::new()
     };
-    let variant_values: Vec<Vec<Value>> = variant_sse.iter().map(|(t, _)| extract(prep, effect, t, sol)).collect();
+    let variant_values: Vec<Vec<Value>> = variant_sse
+        .iter()
+        .map(|(t, _)| values_of_variant(prep, effect, t))
+        .collect();
     let keyed: Vec<&'static str> = term.map_or(Vec::new(), |t| {
         t.searched().iter().chain(t.set_by_design()).copied().collect()
     });
@@ -158,7 +176,7 @@ pub fn with_intervals(
             // pin it, so the interval is the whole searched range.
             let all: Vec<f64> = variant_sse
                 .iter()
-                .filter_map(|(t, _)| extract(prep, effect, t, sol).into_iter().find(|q| &q.0 == name))
+                .filter_map(|(t, _)| values_of_variant(prep, effect, t).into_iter().find(|q| &q.0 == name))
                 .map(|q| q.1)
                 .collect();
             [
