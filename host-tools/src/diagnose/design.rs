@@ -354,6 +354,10 @@ pub struct Designs {
     pub terms: Terms,
     pub layout: Layout,
     pub recs: Vec<RecDesign>,
+    /// The relaxation length of a start from rest ([`START_SPAN_FRACTION`]).
+    pub start_mm: f64,
+    /// Each recording's covariate ranges (for [`Span`]).
+    pub ranges: Vec<Ranges>,
 }
 
 /// A least-squares solution over some training recordings.
@@ -363,6 +367,158 @@ pub struct Solution {
     /// Softening Δ (0 when the model has no softening).
     pub delta: f64,
     pub sse: f64,
+    /// The covariates its training recordings cover: a prediction beyond it
+    /// continues each column along its tangent ([`Span`]).
+    pub span: Span,
+    /// Sign-constrained columns ([`Term::nonnegative`]) held at their bound,
+    /// 0: their unconstrained value had the wrong sign.
+    pub at_bound: Vec<usize>,
+}
+
+/// The span of each covariate over a fit's training recordings: the
+/// model's physical range. Beyond it a polynomial in x (the quartics, the
+/// stop's power) would grow as x⁴, so every column a prediction evaluates
+/// beyond the span continues along its tangent at the span's edge: the force
+/// grows no faster than the slope the fit saw at its edge (a spring's force
+/// continues, a saturated one stays flat). Linear columns (`c·v`, `m·a`) are
+/// their own tangent; bounded ones (a tanh, a decay) flatten.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Span {
+    /// Per tabulated current: x (mm) and v (m/s) of the training recordings
+    /// at that current (the whole training set's where it has none).
+    pub x_mm: Vec<(f64, f64)>,
+    pub v_m_s: Vec<(f64, f64)>,
+    /// x and a over all training recordings.
+    pub all_x_mm: (f64, f64),
+    pub a_m_s2: (f64, f64),
+}
+
+fn range_of<'a>(values: impl Iterator<Item = &'a f64>) -> (f64, f64) {
+    values.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)))
+}
+
+fn within(r: (f64, f64), outer: (f64, f64)) -> bool {
+    r.0 >= outer.0 && r.1 <= outer.1
+}
+
+/// One recording's covariate ranges.
+#[derive(Clone, Copy, Debug)]
+pub struct Ranges {
+    pub x_mm: (f64, f64),
+    pub v_m_s: (f64, f64),
+    pub a_m_s2: (f64, f64),
+}
+
+impl Ranges {
+    fn of(rec: &Rec) -> Ranges {
+        Ranges {
+            x_mm: range_of(rec.x_mm.iter()),
+            v_m_s: range_of(rec.v_m_s.iter()),
+            a_m_s2: range_of(rec.a_m_s2.iter()),
+        }
+    }
+}
+
+impl Span {
+    /// The span of `train`'s recordings (an unbounded span when empty).
+    pub fn of(prep: &Prepared, train: &[usize]) -> Span {
+        let ranges: Vec<Ranges> = prep.recs.iter().map(Ranges::of).collect();
+        Span::from_ranges(prep, &ranges, train)
+    }
+
+    /// As [`Span::of`], from each recording's precomputed [`Ranges`].
+    fn from_ranges(prep: &Prepared, ranges: &[Ranges], train: &[usize]) -> Span {
+        let everything = (f64::NEG_INFINITY, f64::INFINITY);
+        let or_all = |r: (f64, f64), all: (f64, f64)| if r.0 <= r.1 { r } else { all };
+        let union = |rs: &mut dyn Iterator<Item = (f64, f64)>| {
+            rs.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), r| (l.min(r.0), h.max(r.1)))
+        };
+        let all_x = or_all(union(&mut train.iter().map(|&i| ranges[i].x_mm)), everything);
+        let all_v = or_all(union(&mut train.iter().map(|&i| ranges[i].v_m_s)), everything);
+        let a = or_all(union(&mut train.iter().map(|&i| ranges[i].a_m_s2)), everything);
+        let at = |c: f64| train.iter().copied().filter(move |&i| prep.recs[i].current_a == c);
+        Span {
+            x_mm: prep
+                .currents_a
+                .iter()
+                .map(|&c| or_all(union(&mut at(c).map(|i| ranges[i].x_mm)), all_x))
+                .collect(),
+            v_m_s: prep
+                .currents_a
+                .iter()
+                .map(|&c| or_all(union(&mut at(c).map(|i| ranges[i].v_m_s)), all_v))
+                .collect(),
+            all_x_mm: all_x,
+            a_m_s2: a,
+        }
+    }
+
+    /// A recording with these ranges, at every current it touches, stays
+    /// inside the span.
+    fn covers(&self, r: &Ranges, touched: &[usize]) -> bool {
+        within(r.x_mm, self.all_x_mm)
+            && within(r.a_m_s2, self.a_m_s2)
+            && touched
+                .iter()
+                .all(|&k| within(r.x_mm, self.x_mm[k]) && within(r.v_m_s, self.v_m_s[k]))
+    }
+
+    /// Where current `k`'s columns are evaluated for sample `s`
+    /// ([`tangent_points`]).
+    fn points(&self, k: usize, s: &Sample) -> [(f64, Sample); 2] {
+        tangent_points(s, [self.x_mm[k], self.v_m_s[k], self.a_m_s2])
+    }
+
+    /// As [`Span::points`] for the global columns (x over every current).
+    fn points_global(&self, s: &Sample) -> [(f64, Sample); 2] {
+        let everything = (f64::NEG_INFINITY, f64::INFINITY);
+        tangent_points(s, [self.all_x_mm, everything, self.a_m_s2])
+    }
+
+    /// `x_r^p` inside current `k`'s x span, continued along its tangent
+    /// beyond it.
+    fn power(&self, k: usize, x_r: f64, p: i32) -> f64 {
+        let (lo, hi) = self.x_mm[k];
+        let e = x_r.clamp(lo, hi);
+        if p == 0 {
+            1.0
+        } else {
+            e.powi(p) + f64::from(p) * e.powi(p - 1) * (x_r - e)
+        }
+    }
+}
+
+/// The one-sided step of [`tangent_points`], as a fraction of the span's width.
+const TANGENT_STEP: f64 = 0.02;
+
+/// The points, with weights, at which a column is evaluated so that its
+/// value beyond `bounds` (x, v, a) continues along its tangent at the edge:
+/// inside, `s` itself (weight 1, the second weight 0); outside, the edge
+/// point `e` and a point `e − η·d` inside (d = s − e), weighted `1 + 1/η`
+/// and `−1/η`, i.e. `f(e) + (f(e) − f(e − η·d))/η`, a one-sided difference
+/// over 2 % of the span's width. A span of zero width has no tangent: the
+/// column is held at its edge value.
+fn tangent_points(s: &Sample, bounds: [(f64, f64); 3]) -> [(f64, Sample); 2] {
+    let at = [s.x_mm, s.v_m_s, s.a_m_s2];
+    let edge = [0, 1, 2].map(|j| at[j].clamp(bounds[j].0, bounds[j].1));
+    let d = [0, 1, 2].map(|j| at[j] - edge[j]);
+    let sample = |c: [f64; 3]| Sample {
+        x_mm: c[0],
+        v_m_s: c[1],
+        a_m_s2: c[2],
+    };
+    if d.iter().all(|dj| *dj == 0.0) {
+        return [(1.0, *s), (0.0, *s)];
+    }
+    let eta = (0..3)
+        .filter(|&j| d[j] != 0.0)
+        .map(|j| TANGENT_STEP * (bounds[j].1 - bounds[j].0) / d[j].abs())
+        .fold(1.0f64, f64::min);
+    if eta <= 0.0 || !eta.is_finite() {
+        return [(1.0, sample(edge)), (0.0, sample(edge))];
+    }
+    let inner = [0, 1, 2].map(|j| edge[j] - eta * d[j]);
+    [(1.0 + 1.0 / eta, sample(edge)), (-1.0 / eta, sample(inner))]
 }
 
 impl Designs {
@@ -377,12 +533,14 @@ impl Designs {
         let recs = prep
             .recs
             .iter()
-            .map(|r| design_for(prep, r, terms, &layout, start_mm))
+            .map(|r| design_for(prep, r, terms, &layout, start_mm, None))
             .collect();
         Designs {
             terms: *terms,
             layout,
             recs,
+            start_mm,
+            ranges: prep.recs.iter().map(Ranges::of).collect(),
         }
     }
 
@@ -410,36 +568,78 @@ impl Designs {
             }
             at += ra.nrows();
         }
-        let _ = prep;
         // Columns no training recording touches (e.g. an end stop nobody
         // reached) are left out and get a zero coefficient.
         let mut used: Vec<usize> = (0..p).filter(|&c| a.column(c).iter().any(|v| *v != 0.0)).collect();
-        // A term whose coefficients are physically ≥ 0 ([`Term::nonnegative`],
-        // an end stop): a current whose coefficient comes out negative is
-        // refitted without it.
-        let nonnegative: Vec<usize> = self
+        // Sign constraints ([`Term::nonnegative`]: a stop's stiffness, a
+        // damping coefficient, a yield force, a mass): least squares with
+        // those columns ≥ 0, by an active set over the handful of them
+        // (Lawson–Hanson's, with the other columns free). A column whose
+        // value comes out negative is held at 0; a held one whose gradient
+        // says it would come back positive is released.
+        let constrained: Vec<usize> = self
             .layout
             .blocks
             .iter()
-            .filter(|p| p.term.nonnegative() && p.block == Block::PerCurrent)
-            .flat_map(|p| p.at..p.at + self.layout.n_currents)
+            .filter(|p| p.term.nonnegative(&self.terms, p.index))
+            .flat_map(|p| {
+                let n = match p.block {
+                    Block::PerCurrent => self.layout.n_currents,
+                    Block::Global => 1,
+                    Block::MemoryBasis => 2 * MEMORY_TERMS * self.layout.n_currents,
+                };
+                p.at..p.at + n
+            })
+            .filter(|c| used.contains(c))
             .collect();
-        loop {
+        let mut held: Vec<usize> = Vec::new();
+        let mut last_feasible: Option<Solution> = None;
+        // Each pass holds or releases at least one column; the bound keeps a
+        // cycle finite (it then returns the last feasible solution).
+        for _ in 0..4 * constrained.len() + 4 {
+            used.retain(|c| !held.contains(c));
             let ls = linalg::solve(&a.select_columns(&used), &y)?;
             let mut beta = vec![0.0; p];
             for (k, &c) in used.iter().enumerate() {
                 beta[c] = ls.coeffs[k];
             }
-            let negative: Vec<usize> = nonnegative.iter().copied().filter(|&c| beta[c] < 0.0).collect();
-            if negative.is_empty() {
-                return Ok(Solution {
-                    beta,
-                    delta: 0.0,
-                    sse: ls.sse,
-                });
+            let negative: Vec<usize> = constrained.iter().copied().filter(|&c| beta[c] < 0.0).collect();
+            if !negative.is_empty() {
+                held.extend(negative);
+                continue;
             }
-            used.retain(|c| !negative.contains(c));
+            // Feasible. KKT: a held column whose residual correlation is
+            // positive would lower the SSE above 0.
+            let residual = &y - &a * DVector::from_column_slice(&beta);
+            let release = held
+                .iter()
+                .copied()
+                .map(|c| {
+                    (
+                        c,
+                        a.column(c).dot(&residual) / a.column(c).norm().max(f64::MIN_POSITIVE),
+                    )
+                })
+                .filter(|(_, g)| *g > 1e-9 * residual.norm().max(1.0))
+                .max_by(|l, r| l.1.total_cmp(&r.1));
+            let sol = Solution {
+                beta,
+                delta: 0.0,
+                sse: ls.sse,
+                span: Span::from_ranges(prep, &self.ranges, train),
+                at_bound: held.clone(),
+            };
+            match release {
+                Some((c, _)) => {
+                    held.retain(|&h| h != c);
+                    used.push(c);
+                    used.sort_unstable();
+                    last_feasible = Some(sol);
+                }
+                None => return Ok(sol),
+            }
         }
+        last_feasible.ok_or_else(|| anyhow::anyhow!("the sign-constrained least squares did not settle"))
     }
 
     /// Solves over `train`. With softening, `F = (1 − Δ·g_r)·Q(x)`: for a
@@ -491,20 +691,61 @@ impl Designs {
         Ok(if fa.sse < fb.sse { fa } else { fb })
     }
 
-    /// Predicted force of recording `i`.
+    /// Predicted force of recording `i`. Where a recording leaves the span of
+    /// `sol`'s training recordings, each column continues along its tangent
+    /// at the span's edge ([`Span`]).
     pub fn predict(&self, prep: &Prepared, i: usize, sol: &Solution) -> Vec<f64> {
         let s = match self.terms.softening {
             Some(law) => 1.0 - sol.delta * law.covariate(&prep.recs[i]),
             None => 1.0,
         };
-        let mut p = self.recs[i].predict(&sol.beta);
+        let stored = &self.recs[i];
+        let touched: Vec<usize> = (0..self.layout.n_currents)
+            .filter(|&k| {
+                stored.cols.contains(&self.layout.quartic_col(k, true, 0))
+                    || stored.cols.contains(&self.layout.quartic_col(k, false, 0))
+            })
+            .collect();
+        let mut p = if sol.span.covers(&self.ranges[i], &touched) {
+            stored.predict(&sol.beta)
+        } else {
+            let continued = design_for(
+                prep,
+                &prep.recs[i],
+                &self.terms,
+                &self.layout,
+                self.start_mm,
+                Some(&sol.span),
+            );
+            // Columns the terms do not build (an oracle's extra column) are
+            // kept as stored.
+            let mut p = continued.predict(&sol.beta);
+            let built = Layout::new(self.layout.n_currents, &self.terms).n_cols;
+            for (lc, &c) in stored.cols.iter().enumerate() {
+                if c >= built && continued.cols.binary_search(&c).is_err() {
+                    for (t, v) in p.iter_mut().enumerate() {
+                        *v += stored.a[(t, lc)] * sol.beta[c];
+                    }
+                }
+            }
+            p
+        };
         p.iter_mut().for_each(|v| *v *= s);
         p
     }
 }
 
 /// `start_mm`: the relaxation length of a start from rest ([`START_SPAN_FRACTION`]).
-fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_mm: f64) -> RecDesign {
+/// `span`: continue each column along its tangent beyond it (a prediction
+/// beyond its fit's training recordings), or `None` (as recorded).
+fn design_for(
+    prep: &Prepared,
+    rec: &Rec,
+    terms: &Terms,
+    layout: &Layout,
+    start_mm: f64,
+    span: Option<&Span>,
+) -> RecDesign {
     // Interpolation weights per sample: one set for a held current, one per
     // sample when the recorded current changes during the test.
     // A delayed force channel shows the current of τ ago too.
@@ -589,13 +830,17 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
             if w == 0.0 {
                 continue;
             }
-            let mut xp = w;
-            for p in 0..QUARTIC_TERMS {
-                a[(t, local(layout.quartic_col(k, comp, p)))] += xp;
-                xp *= x;
-            }
-            for p in &per_current {
-                a[(t, local(p.at + k))] += w * p.term.shape(terms, p.index, &sample);
+            // The branch stays the recorded one; only the covariates move.
+            let points = span.map_or([(1.0, sample), (0.0, sample)], |s| s.points(k, &sample));
+            for (weight, at_k) in points.into_iter().filter(|(weight, _)| *weight != 0.0) {
+                let mut xp = w * weight;
+                for p in 0..QUARTIC_TERMS {
+                    a[(t, local(layout.quartic_col(k, comp, p)))] += xp;
+                    xp *= at_k.x_mm;
+                }
+                for p in &per_current {
+                    a[(t, local(p.at + k))] += w * weight * p.term.shape(terms, p.index, &at_k);
+                }
             }
         }
         if let (Some((m, dir)), Some(delta)) = (&memory, terms.memory_mm) {
@@ -605,31 +850,39 @@ fn design_for(prep: &Prepared, rec: &Rec, terms: &Terms, layout: &Layout, start_
                 from_rest,
             }) = m[t]
             {
-                // (column, basis value before the current weight), no allocation per sample
-                let mut basis = [(0usize, 0.0f64); MEMORY_TERMS];
+                // (column, decay, power of x_r), no allocation per sample
+                let mut basis = [(0usize, 0.0f64, 0i32); MEMORY_TERMS];
                 let used = if from_rest {
-                    basis[0] = (MEMORY_TERMS - 1, (-d / start_mm).exp());
+                    basis[0] = (MEMORY_TERMS - 1, (-d / start_mm).exp(), 0);
                     1
                 } else {
                     for (l, len) in MEMORY_LENGTHS.iter().enumerate() {
                         let e = (-d / (len * delta)).exp();
                         for p in 0..MEMORY_POWERS {
-                            basis[l * MEMORY_POWERS + p] = (l * MEMORY_POWERS + p, e * x_r.powi(p as i32));
+                            basis[l * MEMORY_POWERS + p] = (l * MEMORY_POWERS + p, e, p as i32);
                         }
                     }
                     MEMORY_TERMS - 1
                 };
                 for &(k, w) in weights.iter().filter(|(_, w)| *w != 0.0) {
-                    for &(j, value) in &basis[..used] {
+                    for &(j, decay, p) in &basis[..used] {
+                        // x_r^p beyond the span continues along its tangent
+                        // (the decay is bounded already).
+                        let x_r_p = span.map_or(x_r.powi(p), |s| s.power(k, x_r, p));
                         if let Some(c) = layout.memory_col(dir[t], j, k) {
-                            a[(t, local(c))] += w * value;
+                            a[(t, local(c))] += w * decay * x_r_p;
                         }
                     }
                 }
             }
         }
+        let points = span.map_or([(1.0, sample), (0.0, sample)], |s| s.points_global(&sample));
         for p in &global {
-            a[(t, local(p.at))] = p.term.shape(terms, p.index, &sample);
+            a[(t, local(p.at))] = points
+                .iter()
+                .filter(|(weight, _)| *weight != 0.0)
+                .map(|(weight, at)| weight * p.term.shape(terms, p.index, at))
+                .sum();
         }
     }
     // Keep only the columns this recording touches (e.g. no compression

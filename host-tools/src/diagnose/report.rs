@@ -271,6 +271,10 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
             let warning = term
                 .and_then(|t| t.wrong_sign(n, p.value))
                 .map(|why| format!(" — **not physical**: {why}"))
+                .or_else(|| {
+                    p.at_bound
+                        .then(|| " — held at its physical bound 0 (its fit had the wrong sign)".into())
+                })
                 .unwrap_or_default();
             let _ = writeln!(
                 s,

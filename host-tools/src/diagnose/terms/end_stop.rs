@@ -64,7 +64,7 @@ impl Term for EndStop {
     /// A stop only pushes back (k_e ≥ 0 at every current). Unconstrained,
     /// the 1 A tests of the real MR damper fit k_e < 0 (their own misfit at
     /// the stroke ends), which made a true stop's prediction worse there.
-    fn nonnegative(&self) -> bool {
+    fn nonnegative(&self, _t: &Terms, _block: usize) -> bool {
         true
     }
     fn parameters(&self, prep: &Prepared, layout: &Layout, t: &Terms, sol: &Solution) -> Vec<Value> {

@@ -85,6 +85,11 @@ impl Term for HysteresisMemory {
     fn shape(&self, t: &Terms, _block: usize, s: &Sample) -> f64 {
         t.friction_v0_m_s.map_or(0.0, |v0| (s.v_m_s / v0).tanh())
     }
+    /// The yield force `f(I) ≥ 0` resists the motion; the memory basis is
+    /// free (it moves the force either way after a turn-around).
+    fn nonnegative(&self, t: &Terms, block: usize) -> bool {
+        self.blocks(t).get(block) == Some(&Block::PerCurrent)
+    }
     fn parameters(&self, prep: &Prepared, layout: &Layout, t: &Terms, sol: &Solution) -> Vec<Value> {
         let mut out = Vec::new();
         if let Some(delta) = t.memory_mm {

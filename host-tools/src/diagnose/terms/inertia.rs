@@ -51,6 +51,10 @@ impl Term for Inertia {
     fn shape(&self, _t: &Terms, _block: usize, s: &Sample) -> f64 {
         s.a_m_s2
     }
+    /// A mass is ≥ 0.
+    fn nonnegative(&self, _t: &Terms, _block: usize) -> bool {
+        true
+    }
     fn parameters(&self, _prep: &Prepared, layout: &Layout, _t: &Terms, sol: &Solution) -> Vec<Value> {
         layout
             .at(Effect::Inertia, 0)

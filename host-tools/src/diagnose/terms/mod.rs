@@ -108,9 +108,11 @@ pub trait Term: Sync {
     fn shape(&self, _t: &Terms, _block: usize, _s: &Sample) -> f64 {
         0.0
     }
-    /// Its coefficients are physically ≥ 0: a current whose coefficient
-    /// comes out negative is refitted without it.
-    fn nonnegative(&self) -> bool {
+    /// Its physical sign constraint: the coefficients of its block `block`
+    /// in the model `t` are ≥ 0. The fit holds a coefficient whose least-
+    /// squares value is negative at 0 (sign-constrained least squares,
+    /// [`super::design::Designs::solve`]), and the report says which.
+    fn nonnegative(&self, _t: &Terms, _block: usize) -> bool {
         false
     }
     /// The fitted term is physical (checked before it is accepted).

@@ -57,7 +57,12 @@ impl Term for ViscousDamping {
             None => 0.0,
         }
     }
-    /// A dissipative force: `c(I)·φ(v)` with c > 0. A fit whose coefficients
+    /// Each `c(I) ≥ 0`: damping only takes energy out.
+    fn nonnegative(&self, _t: &Terms, _block: usize) -> bool {
+        true
+    }
+    /// A dissipative force: `c(I)·φ(v)` with c > 0 (with every c held at
+    /// its bound the term is no term). A fit whose coefficients
     /// are negative on average over the tabulated currents is not damping
     /// but the model's misfit anti-correlated with velocity: on simulated
     /// drops after a true sensor delay, a rate-independent base law's
