@@ -178,7 +178,6 @@ pub struct Terms {
     /// back with negative force) instead of the compression end: on a shaker
     /// or MTS test the stroke is two-sided.
     pub end_stop_lower: bool,
-    pub inertia: bool,
     /// Law and its fitted Δ (Δ is solved, not searched).
     pub softening: Option<SofteningLaw>,
     pub saturation_i_a: Option<f64>,
@@ -192,6 +191,35 @@ pub struct Terms {
     /// changes sign at turn-around and is the same at every speed tested
     /// (rate-independent: part of `hysteresis_memory`, not viscous damping).
     pub friction_v0_m_s: Option<f64>,
+    /// The state of every other term, by its vocabulary word: a new term
+    /// keeps its searched value here and needs no field above.
+    pub settings: Settings,
+}
+
+/// Searched values of terms, one per vocabulary word (`inertia`'s presence,
+/// a new term's value), in a fixed-size `Copy` set so [`Terms`] stays `Copy`.
+/// Kept in vocabulary order, so two equal sets compare equal.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Settings([Option<(Effect, f64)>; Effect::VOCABULARY.len()]);
+
+impl Settings {
+    /// The value set for `effect`'s term, if it is in the model.
+    pub fn get(&self, effect: Effect) -> Option<f64> {
+        self.0.iter().flatten().find(|(e, _)| *e == effect).map(|(_, v)| *v)
+    }
+
+    /// The same set with `effect`'s term at `value`, or without it (`None`).
+    pub fn with(self, effect: Effect, value: Option<f64>) -> Settings {
+        let mut entries: Vec<(Effect, f64)> = self.0.iter().flatten().copied().filter(|(e, _)| *e != effect).collect();
+        entries.extend(value.map(|v| (effect, v)));
+        entries.sort_by_key(|(e, _)| *e);
+        let mut out = Settings::default();
+        // One entry per word at most, so the vocabulary's length always fits.
+        for (slot, entry) in out.0.iter_mut().zip(entries) {
+            *slot = Some(entry);
+        }
+        out
+    }
 }
 
 /// One term's block of columns in a [`Layout`].

@@ -8,15 +8,21 @@ use crate::vocabulary::Effect;
 
 pub struct Inertia;
 
+/// The setting that marks the term present (it has no searched value).
+const PRESENT: f64 = 1.0;
+
 impl Term for Inertia {
     fn effect(&self) -> Effect {
         Effect::Inertia
     }
     fn present_in(&self, t: &Terms) -> bool {
-        t.inertia
+        t.settings.get(Effect::Inertia).is_some()
     }
     fn removed_from(&self, t: &Terms) -> Terms {
-        Terms { inertia: false, ..*t }
+        Terms {
+            settings: t.settings.with(Effect::Inertia, None),
+            ..*t
+        }
     }
     /// A test on the data, not on a column's presence: an acceleration that
     /// is only the force again (a one-mass drop's striker accelerometer,
@@ -43,10 +49,14 @@ impl Term for Inertia {
         }
     }
     fn variants(&self, _prep: &Prepared, base: &Terms) -> Vec<Terms> {
-        vec![Terms { inertia: true, ..*base }]
+        // Nothing is searched: the setting only marks the term present.
+        vec![Terms {
+            settings: base.settings.with(Effect::Inertia, Some(PRESENT)),
+            ..*base
+        }]
     }
     fn blocks(&self, t: &Terms) -> Vec<Block> {
-        t.inertia.then_some(Block::Global).into_iter().collect()
+        self.present_in(t).then_some(Block::Global).into_iter().collect()
     }
     fn shape(&self, _t: &Terms, _block: usize, s: &Sample) -> f64 {
         s.a_m_s2
@@ -69,6 +79,6 @@ impl Term for Inertia {
         &["acceleration"]
     }
     fn describe(&self, t: &Terms) -> Option<String> {
-        t.inertia.then(|| "inertia".into())
+        self.present_in(t).then(|| "inertia".into())
     }
 }

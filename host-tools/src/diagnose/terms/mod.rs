@@ -5,9 +5,10 @@
 //! builds its columns, [`super::select`] checks its physical constraint and
 //! [`super::parameters`] reads its parameters.
 //!
-//! Adding an effect: a new file here implementing [`Term`], its line in
-//! [`REGISTRY`], its searched value as a field of [`Terms`] and its word in
-//! [`crate::vocabulary::Effect`] (DIAGNOSE.md, "Adding an effect").
+//! Adding an effect: a new file here implementing [`Term`] (its searched
+//! value lives in [`Terms::settings`], under its word), its line in
+//! [`REGISTRY`], and its word in [`crate::vocabulary::Effect`], the contract
+//! the data-set format and the plant share (DIAGNOSE.md, "Adding an effect").
 use super::design::{Layout, Solution, Terms};
 use super::prepared::Prepared;
 use super::select::Thresholds;
@@ -162,6 +163,27 @@ mod tests {
     use super::*;
 
     #[test]
+    fn settings_hold_one_value_per_word_whatever_the_order_they_were_set_in() {
+        use crate::diagnose::design::Settings;
+        let a = Settings::default()
+            .with(Effect::Inertia, Some(1.0))
+            .with(Effect::EndStop, Some(8.0));
+        let b = Settings::default()
+            .with(Effect::EndStop, Some(3.0))
+            .with(Effect::Inertia, Some(1.0))
+            .with(Effect::EndStop, Some(8.0));
+        assert_eq!(a, b);
+        assert_eq!(a.get(Effect::EndStop), Some(8.0));
+        assert_eq!(a.get(Effect::ViscousDamping), None);
+        let c = a.with(Effect::Inertia, None);
+        assert_eq!(c.get(Effect::Inertia), None);
+        assert_eq!(c, Settings::default().with(Effect::EndStop, Some(8.0)));
+        // Every word at once fits.
+        let all = Effect::VOCABULARY.iter().fold(Settings::default(), |s, &e| s.with(e, Some(2.0)));
+        assert!(Effect::VOCABULARY.iter().all(|&e| all.get(e) == Some(2.0)));
+    }
+
+    #[test]
     fn every_vocabulary_effect_but_none_has_exactly_one_term() {
         for e in Effect::VOCABULARY {
             let n = REGISTRY.iter().filter(|t| t.effect() == e).count();
@@ -176,7 +198,7 @@ mod tests {
         assert_eq!(describe(&Terms::default()), "the paper's model");
         let t = Terms {
             delay_s: Some(2.5e-3),
-            inertia: true,
+            settings: crate::diagnose::design::Settings::default().with(Effect::Inertia, Some(1.0)),
             ..Terms::default()
         };
         assert_eq!(
