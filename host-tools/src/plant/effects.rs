@@ -298,8 +298,10 @@ pub fn draw_effect(effect: Effect, rng: &mut impl Rng, scale: EffectScale) -> Re
         Effect::Inertia => ConcealedEffect::Inertia {
             m_s_kg: rng.random_range(INERTIA_MASS_RANGE_KG),
         },
-        Effect::HysteresisMemory => bail!(
-            "`mre synth` cannot conceal `hysteresis_memory`; expected one of {} or `random`",
+        // `hysteresis_memory` is part of the reference model, and a word
+        // added for a new diagnose term has no concealed form yet.
+        other => bail!(
+            "`mre synth` cannot conceal `{other}`; expected one of {} or `random`",
             crate::vocabulary::join_names(&INSTRUMENTED_EFFECTS)
         ),
     })
