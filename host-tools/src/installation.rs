@@ -5,7 +5,9 @@
 //! read it back from a model file. What neither gives keeps
 //! `DEFAULT_INSTALLATION`'s value, and the statement says so.
 use crate::dataset::Dataset;
-use crate::table_file::{check_installation_limits, installation_from_toml};
+use crate::table_file::{
+    check_installation_limits, installation_field_index, installation_from_toml, read_installation_section,
+};
 use anyhow::{bail, Context, Result};
 use mre_core::installation::{Installation, DEFAULT_INSTALLATION, FIELD_COUNT};
 use std::path::Path;
@@ -40,29 +42,18 @@ impl Default for StatedInstallation {
     }
 }
 
-fn field_index(name: &str) -> Option<usize> {
-    Installation::FIELD_NAMES.iter().position(|n| *n == name)
-}
-
 impl StatedInstallation {
     /// A model file's `[installation]`: the keys it has, the defaults for
     /// the rest (all of them when it has no such section).
     pub fn from_model_file(path: &Path) -> Result<Self> {
-        #[derive(serde::Deserialize)]
-        struct Doc {
-            installation: Option<toml::Table>,
-        }
-        let text =
-            std::fs::read_to_string(path).with_context(|| format!("cannot read model file {}", path.display()))?;
-        let doc: Doc = toml::from_str(&text).with_context(|| format!("in model file {}", path.display()))?;
         let mut stated = Self::default();
-        let Some(section) = doc.installation else {
+        let Some(section) = read_installation_section(path, "model file")? else {
             return Ok(stated);
         };
         stated.installation =
             installation_from_toml(&section).with_context(|| format!("in model file {}", path.display()))?;
         for key in section.keys() {
-            if let Some(k) = field_index(key) {
+            if let Some(k) = installation_field_index(key) {
                 stated.origins[k] = Origin::ModelFile(path.display().to_string());
             }
         }
@@ -78,7 +69,7 @@ impl StatedInstallation {
         let mut masses_kg: Vec<f64> = ds.recordings.iter().filter_map(|r| r.mass_kg).collect();
         masses_kg.sort_by(f64::total_cmp);
         masses_kg.dedup();
-        let k = field_index("mass_kg").unwrap_or(0);
+        let k = installation_field_index("mass_kg").unwrap_or(0);
         match masses_kg.as_slice() {
             [] => {}
             [one_kg] => {
@@ -111,7 +102,7 @@ impl StatedInstallation {
                 bail!("`--installation {option}`: expected KEY=VALUE, e.g. mass_kg=3");
             };
             let key = key.trim();
-            let Some(k) = field_index(key) else {
+            let Some(k) = installation_field_index(key) else {
                 bail!(
                     "`--installation {option}`: unknown key `{key}` (known: {})",
                     Installation::FIELD_NAMES.join(", ")

@@ -116,16 +116,28 @@ pub fn read_dataset_sha256(path: &Path) -> Result<Option<String>> {
 ///
 /// `None` when the file has no such section.
 pub fn read_installation(path: &Path) -> Result<Option<Installation>> {
+    read_installation_section(path, "table file")?
+        .map(|t| installation_from_toml(&t))
+        .transpose()
+        .with_context(|| format!("in table file {}", path.display()))
+}
+
+/// A file's `[installation]` section as written, `None` when it has none;
+/// `what` names the file in errors ("table file", "model file").
+pub fn read_installation_section(path: &Path, what: &str) -> Result<Option<toml::Table>> {
     #[derive(Deserialize)]
     struct Doc {
         installation: Option<toml::Table>,
     }
-    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read table file {}", path.display()))?;
-    let doc: Doc = toml::from_str(&text).with_context(|| format!("in table file {}", path.display()))?;
-    doc.installation
-        .map(|t| installation_from_toml(&t))
-        .transpose()
-        .with_context(|| format!("in table file {}", path.display()))
+    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {what} {}", path.display()))?;
+    let doc: Doc = toml::from_str(&text).with_context(|| format!("in {what} {}", path.display()))?;
+    Ok(doc.installation)
+}
+
+/// The position of an `[installation]` key in `Installation::FIELD_NAMES`
+/// (and in `Installation::to_array`), `None` for an unknown key.
+pub fn installation_field_index(key: &str) -> Option<usize> {
+    Installation::FIELD_NAMES.iter().position(|n| *n == key)
 }
 
 /// An `[installation]` section's values over the defaults: unknown keys and
@@ -133,7 +145,7 @@ pub fn read_installation(path: &Path) -> Result<Option<Installation>> {
 pub fn installation_from_toml(section: &toml::Table) -> Result<Installation> {
     let mut values = DEFAULT_INSTALLATION.to_array();
     for (key, value) in section {
-        let Some(k) = Installation::FIELD_NAMES.iter().position(|n| n == key) else {
+        let Some(k) = installation_field_index(key) else {
             bail!(
                 "[installation] has an unknown key `{key}` (known: {})",
                 Installation::FIELD_NAMES.join(", ")

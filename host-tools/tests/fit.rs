@@ -120,8 +120,11 @@ fn gsa_at_paper_scale_comes_near_the_optimum() {
     // for), so it must improve on its initial agents, never beat the exact
     // optimum, beat a random search with the same number of evaluations on
     // every seed (a yardstick independent of GSA), and land within the stated
-    // factor of the optimum in the median over seeds. This cannot notice wrong
-    // update equations (G(t − 1) for G(t) passes it): the tests
+    // factor of the optimum in the median over seeds. It catches a swarm that
+    // does not search: attraction flipped to repulsion (seed 1 ends worse than
+    // random search) or positions never moved (no improvement on the initial
+    // agents). It cannot notice subtler wrong equations (G(t − 1) for G(t),
+    // or Kbest taking the lightest agents, both pass it): the tests
     // `one_gsa_iteration_…_worked_by_hand` and `the_gsa_loop_runs_the_hand_step…`
     // pin each equation to a step computed by hand.
     let (x, f) = synthetic(&PAPER_1A_C, 500, 20.0, 3);

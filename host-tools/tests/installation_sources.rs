@@ -18,6 +18,12 @@ fn mre(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_mre")).args(args).output().unwrap()
 }
 
+/// `mre fit SET --method lsq --installation OPTION --out MODEL`.
+fn fit_lsq(set: &Path, option: &str, model: &Path) -> Output {
+    let (set, model) = (set.to_str().unwrap(), model.to_str().unwrap());
+    mre(&["fit", set, "--method", "lsq", "--installation", option, "--out", model])
+}
+
 fn text(o: &Output) -> (String, String) {
     (
         String::from_utf8_lossy(&o.stdout).into_owned(),
@@ -68,16 +74,7 @@ fn fit_writes_the_data_sets_mass_and_the_options_and_tables_carries_exactly_them
     let dir = tempfile::tempdir().unwrap();
     let set = dataset_copy(dir.path(), |t| t.replace("mass_kg = 5.5", "mass_kg = 3.0"));
     let model = dir.path().join("model.toml");
-    let o = mre(&[
-        "fit",
-        set.to_str().unwrap(),
-        "--method",
-        "lsq",
-        "--installation",
-        "usable_stroke_mm=9",
-        "--out",
-        model.to_str().unwrap(),
-    ]);
+    let o = fit_lsq(&set, "usable_stroke_mm=9", &model);
     let (out, err) = text(&o);
     assert!(o.status.success(), "{err}");
     // Which value came from where, said.
@@ -152,16 +149,7 @@ fn an_installation_option_outside_the_limits_or_unknown_is_refused_by_name() {
         ("stroke=9", "unknown key `stroke`"),
         ("mass_kg=heavy", "`heavy` is not a number"),
     ] {
-        let o = mre(&[
-            "fit",
-            set.to_str().unwrap(),
-            "--method",
-            "lsq",
-            "--installation",
-            option,
-            "--out",
-            model.to_str().unwrap(),
-        ]);
+        let o = fit_lsq(&set, option, &model);
         let (_, err) = text(&o);
         assert!(!o.status.success() && err.contains(says), "{option}: {err}");
         assert!(!model.exists(), "{option}: no model written");

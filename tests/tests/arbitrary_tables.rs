@@ -70,7 +70,7 @@ fn branch(compression: bool) -> Branch {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(1000))]
+    #![proptest_config(mre_tests::proptest_config(1000))]
 
     #[test]
     fn any_input_gives_a_finite_force(t in table(), x in proptest::num::f32::ANY, v in proptest::num::f32::ANY, i in proptest::num::f32::ANY) {

@@ -136,6 +136,7 @@ fn generated_with(terms: ModelTerms) -> Table {
 }
 
 proptest! {
+    #![proptest_config(mre_tests::proptest_config(256))]
     /// A force produced by some current is given back by the inverse: the
     /// current it returns (no higher than the one that made it) reproduces
     /// it, with the viscous term and the saturating variable in play.

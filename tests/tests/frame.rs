@@ -167,6 +167,7 @@ fn out_of_order_and_duplicate_frames_are_rejected_and_gaps_counted() {
 }
 
 proptest! {
+    #![proptest_config(mre_tests::proptest_config(256))]
     #[test]
     fn arbitrary_bytes_never_panic_and_never_fake_a_frame(bytes in proptest::collection::vec(any::<u8>(), 0..400)) {
         let mut rx = SampleReceiver::new();

@@ -58,6 +58,7 @@ fn a_tabulated_force_maps_back_to_its_current() {
 }
 
 proptest! {
+    #![proptest_config(mre_tests::proptest_config(256))]
     /// Wherever a force is reachable (it was produced by some current), the
     /// inverse returns a current, no higher than that one, that reproduces it.
     #[test]
@@ -81,6 +82,7 @@ proptest! {
 }
 
 proptest! {
+    #![proptest_config(mre_tests::proptest_config(256))]
     /// Outside the stroke every entry shares, entries clamp x one by one; the
     /// inverse must still invert the forward model there, and say it clamped.
     #[test]

@@ -150,6 +150,7 @@ fn in_contact_the_delay_is_predicted_with_the_last_plans_force() {
 }
 
 proptest! {
+    #![proptest_config(mre_tests::proptest_config(256))]
     /// Whatever the samples, the drive stays within the supply's range and
     /// the law's coil model within the coil's current limits.
     #[test]

@@ -168,7 +168,7 @@ fn any_config() -> impl Strategy<Value = ControlConfig> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 2000, rng_seed: proptest::test_runner::RngSeed::Fixed(31), ..ProptestConfig::default() })]
+    #![proptest_config(mre_tests::proptest_config(2000))]
 
     /// Accepted ⇔ consistent and within the hardware's bounds: nothing
     /// outside them gets through, and nothing inside them is refused.

@@ -5,6 +5,7 @@ use mre_core::math;
 use proptest::prelude::*;
 
 proptest! {
+    #![proptest_config(mre_tests::proptest_config(256))]
     #[test]
     fn exp_is_within_a_few_ulps_of_std(x in -80.0f32..80.0) {
         let exact = f64::from(x).exp();

@@ -12,7 +12,7 @@ fn paper() -> Table {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(2000))]
+    #![proptest_config(mre_tests::proptest_config(2000))]
 
     #[test]
     fn forward_model_is_always_finite(x in ANY, v in ANY, i in ANY) {

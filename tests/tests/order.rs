@@ -80,7 +80,7 @@ fn nearly_ordered_table() -> impl Strategy<Value = Table> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(2000))]
+    #![proptest_config(mre_tests::proptest_config(2000))]
 
     #[test]
     fn shortcuts_give_the_full_scans_answer(

@@ -72,7 +72,7 @@ fn a_segment_too_wide_for_the_fit_keeps_the_exact_map() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(400))]
+    #![proptest_config(mre_tests::proptest_config(400))]
     /// Any segment the fit accepts is within its bound, the bound within
     /// the tolerance, and the polynomial never below i0.
     #[test]
