@@ -7,8 +7,8 @@ use crate::table::{CurrentEntry, ModelTerms, Quartic, TableImage};
 pub const GENERATED_ENTRIES: [CurrentEntry; 5] = [
     CurrentEntry {
         current_a: 0.0,
-        compression: Quartic::new([-0.00643567, 0.2872859, -1.4795728, 95.9654, -2.5834057]),
-        extension: Quartic::new([-0.0007508762, 0.05797151, -0.10722097, 32.552456, 0.029521678]),
+        compression: Quartic::new([-1.9566962e-5, 0.115121104, -0.0074372897, 91.69533, 0.074333645]),
+        extension: Quartic::new([1.4520624e-5, 0.03985537, 0.007468365, 32.348717, 0.083103426]),
         x_min_mm: -0.0046,
         x_max_mm: 15.1009,
     },
@@ -22,7 +22,7 @@ pub const GENERATED_ENTRIES: [CurrentEntry; 5] = [
     CurrentEntry {
         current_a: 1.0,
         compression: Quartic::new([0.00028833392, 1.7215029, -0.3421646, 1374.7157, -2.144731]),
-        extension: Quartic::new([-0.07629, 2.7659576, -18.77531, 539.124, -33.070972]),
+        extension: Quartic::new([-0.00045103225, 0.613206, -0.03171064, 484.89575, 0.90526015]),
         x_min_mm: -0.0076,
         x_max_mm: 15.1009,
     },
@@ -54,5 +54,5 @@ pub static GENERATED_TABLE: TableImage<'static> = TableImage {
     entries: &GENERATED_ENTRIES,
     terms: ModelTerms::NONE,
     installation: GENERATED_INSTALLATION,
-    crc32: 0xfb4e9f3b,
+    crc32: 0x6e8f5376,
 };

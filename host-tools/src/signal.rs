@@ -1,7 +1,7 @@
 //! Signal primitives shared by `fit` and `diagnose`: one white-noise
 //! estimate and one differentiator, so both commands read a channel alike;
-//! and the branch rule `diagnose` fits and scores by (`fit` still keeps the
-//! samples inside the band: DIAGNOSE.md, "Known limits").
+//! and the one branch rule both fit and score by (`fit` through
+//! `dataset::split_branches`).
 use mre_core::model::Branch;
 
 /// A sample's branch counts as ambiguous when its speed is within this many

@@ -150,6 +150,55 @@ proptest! {
         prop_assert!(((back - target) as f64).abs() <= force_tol_n, "{back} vs {target}");
     }
 
+    /// The inverse's answer from its definition: the knot forces in f64,
+    /// the first segment from the lowest current whose ends bracket the
+    /// target, and for a target beyond every knot the knot with the nearest
+    /// force. Targets and knots closer than f32 rounding are skipped (their
+    /// order is the rounding's). Covers the scans with and without the
+    /// proven order facts, on tables where the forces cross in any order.
+    #[test]
+    fn the_inverse_is_the_first_bracketing_segment_or_the_nearest_knot(
+        t in table(), frac in 0.0f64..=1.0, pick in -0.3f64..1.3, compression in any::<bool>(),
+    ) {
+        let entries = t.entries();
+        let lo_mm = entries.iter().map(|e| e.x_min_mm).fold(f32::NEG_INFINITY, f32::max);
+        let hi_mm = entries.iter().map(|e| e.x_max_mm).fold(f32::INFINITY, f32::min);
+        prop_assume!(lo_mm < hi_mm);
+        let x_mm = (lo_mm as f64 + frac * (hi_mm - lo_mm) as f64) as f32;
+        prop_assume!(x_mm >= lo_mm && x_mm <= hi_mm);
+        let b = branch(compression);
+        let quartic = |e: &CurrentEntry| if compression { e.compression } else { e.extension };
+        let knots: Vec<f64> = entries.iter().map(|e| quartic_f64(&quartic(e), x_mm as f64)).collect();
+        let tol = entries.iter().map(|e| horner_tol(&quartic(e), x_mm as f64)).fold(0.0, f64::max) + 1e-3;
+        let (f_min, f_max) = knots.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &f| (a.min(f), b.max(f)));
+        let target = f_min + pick * (f_max - f_min) + (pick - 0.5).signum() * 2.0 * tol;
+        prop_assume!(knots.iter().all(|f| (f - target).abs() > 4.0 * tol));
+        let currents: Vec<f32> = entries.iter().map(|e| e.current_a).collect();
+        for table in [t, t.without_order_facts()] {
+            let r = table.current_for_branch(x_mm, b, target as f32);
+            if target < f_min || target > f_max {
+                let high = target > f_max;
+                let want = if high { f_max } else { f_min };
+                // The nearest knot must be clear of the others.
+                prop_assume!(knots.iter().filter(|&&f| (f - want).abs() <= 4.0 * tol).count() == 1);
+                let k = knots.iter().position(|&f| f == want).unwrap_or(0);
+                prop_assert_eq!(r.current_a, currents[k], "{:?} {} {:?}", knots, target, r);
+                let side = if high { Flags::SATURATED_HIGH } else { Flags::SATURATED_LOW };
+                prop_assert!(r.flags.contains(side), "{:?}", r.flags);
+            } else {
+                let j = knots.windows(2).position(|w| (w[0] < target) != (w[1] < target));
+                prop_assert!(j.is_some(), "a target within the knots' range is bracketed");
+                let j = j.unwrap_or(0);
+                let slack = 1e-4 * (currents[j + 1] - currents[j]).max(1e-3);
+                prop_assert!(
+                    r.current_a >= currents[j] - slack && r.current_a <= currents[j + 1] + slack,
+                    "{} outside segment {} ({}..{} A) of {:?} at {}", r.current_a, j, currents[j], currents[j + 1], knots, target
+                );
+                prop_assert!(!r.flags.intersects(Flags::SATURATED_HIGH | Flags::SATURATED_LOW), "{:?}", r.flags);
+            }
+        }
+    }
+
     /// A table survives its flash image: same entries, and any flipped bit in
     /// the stored CRC is caught.
     #[test]

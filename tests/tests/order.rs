@@ -144,9 +144,9 @@ fn quartic_f64(q: &Quartic, x: f64) -> f64 {
 }
 
 /// The flown table's 1.5 A and 2 A compression quartics cross near contact
-/// (found here by f64 bisection on their difference): the "1.5 A is the
-/// largest" region ends below the crossing, the "forces rise with current"
-/// region starts above it, each within 0.01 mm of it.
+/// (found here by f64 bisection on their difference): the "forces rise with
+/// current" region starts above it, within 0.01 mm; the "largest entry at
+/// contact" region ends below the first crossing of that entry, likewise.
 #[test]
 fn the_proven_regions_end_at_the_flown_tables_crossing() {
     let e = &mre_core::generated_table::GENERATED_ENTRIES;
@@ -167,10 +167,36 @@ fn the_proven_regions_end_at_the_flown_tables_crossing() {
         facts.ascending_from_mm > crossing_mm && facts.ascending_from_mm < crossing_mm + 0.01,
         "{facts:?} vs {crossing_mm}"
     );
-    assert_eq!(facts.top, 3);
+    // The largest entry at the bottom of the shared stroke (the highest
+    // x_min of the entries), found in f64, and the first x above it where
+    // another entry's quartic overtakes it (an f64 scan in 1 µm steps, then
+    // bisection): the "largest entry" region ends below that crossing,
+    // within 0.01 mm of it.
+    let bottom_mm = e.iter().map(|c| c.x_min_mm as f64).fold(f64::NEG_INFINITY, f64::max);
+    let at = |k: usize, x: f64| quartic_f64(&e[k].compression, x);
+    let top = (0..e.len())
+        .max_by(|&a, &b| at(a, bottom_mm).total_cmp(&at(b, bottom_mm)))
+        .unwrap();
+    assert_eq!(facts.top, top, "{facts:?}");
+    let overtaken = |x: f64| (0..e.len()).any(|k| k != top && at(k, x) > at(top, x));
+    let mut x = bottom_mm;
+    while !overtaken(x + 1e-3) {
+        x += 1e-3;
+        assert!(x < 1.0, "entry {top} stays the largest past 1 mm");
+    }
+    let (mut lo, mut hi) = (x, x + 1e-3);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if overtaken(mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let overtaken_mm = lo as f32;
     assert!(
-        facts.top_to_mm < crossing_mm && facts.top_to_mm > crossing_mm - 0.01,
-        "{facts:?} vs {crossing_mm}"
+        facts.top_to_mm <= overtaken_mm && facts.top_to_mm > overtaken_mm - 0.01,
+        "{facts:?} vs {overtaken_mm}"
     );
 }
 

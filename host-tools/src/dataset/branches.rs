@@ -1,6 +1,9 @@
-//! The paper's branch split: compression samples (v > 0) and extension
-//! samples (v ≤ 0), as in `mre_core::model::Branch::from_velocity`.
+//! The paper's branch split, by the one rule `fit` and `diagnose` share
+//! ([`crate::signal::clear_branch`]): compression v > 0, extension v ≤ 0, and
+//! samples with |v| inside the recording's own velocity-noise band
+//! ([`crate::signal::branch_band_m_s`]) left out, their branch being chance.
 use super::{Recording, Samples};
+use crate::signal::{branch_band_m_s, clear_branch};
 use mre_core::model::Branch;
 
 /// The (x, F) samples of one branch.
@@ -25,23 +28,17 @@ impl BranchSamples {
     }
 }
 
-/// The branch a sample belongs to (v > 0 → compression, else extension).
-pub fn branch_of(v_m_s: f64) -> Branch {
-    if v_m_s > 0.0 {
-        Branch::Compression
-    } else {
-        Branch::Extension
-    }
-}
-
-/// Splits samples into (compression, extension).
+/// Splits one recording's samples into (compression, extension), leaving out
+/// those whose |v| is inside the band computed from this recording's velocity.
 pub fn split_branches(samples: &Samples) -> (BranchSamples, BranchSamples) {
+    let band_m_s = branch_band_m_s(&samples.v_m_s);
     let mut compression = BranchSamples::default();
     let mut extension = BranchSamples::default();
     for ((&x, &v), &f) in samples.x_mm.iter().zip(&samples.v_m_s).zip(&samples.force_n) {
-        let side = match branch_of(v) {
-            Branch::Compression => &mut compression,
-            Branch::Extension => &mut extension,
+        let side = match clear_branch(v, band_m_s) {
+            Some(Branch::Compression) => &mut compression,
+            Some(Branch::Extension) => &mut extension,
+            None => continue,
         };
         side.x_mm.push(x);
         side.force_n.push(f);
@@ -49,7 +46,8 @@ pub fn split_branches(samples: &Samples) -> (BranchSamples, BranchSamples) {
     (compression, extension)
 }
 
-/// Splits and pools several recordings (e.g. all fit recordings at one current).
+/// Splits each recording by its own band, then pools them (e.g. all fit
+/// recordings at one current).
 pub fn split_pooled<'a>(recordings: impl IntoIterator<Item = &'a Recording>) -> (BranchSamples, BranchSamples) {
     let mut compression = BranchSamples::default();
     let mut extension = BranchSamples::default();

@@ -1,5 +1,6 @@
 //! From a data set to the fitting problems: the `fit`-role recordings pooled
-//! per current, split into compression (v > 0) and extension (v ≤ 0).
+//! per current, split into compression and extension by the shared branch
+//! rule (`dataset::split_branches`: |v| inside a recording's noise band is left out).
 use crate::dataset::{split_pooled, BranchSamples, Dataset, Role};
 use anyhow::{bail, Result};
 use mre_core::model::Branch;
