@@ -5,15 +5,11 @@
 //! pinned to the search grid.
 mod diagnose_support;
 
-use diagnose_support::{dataset, fit_recording, law_n, Added, SAMPLE_PERIOD_S};
-use mre_host::dataset::{Dataset, Samples};
+use diagnose_support::{dataset, law_n, motion_campaign, Added, SAMPLE_PERIOD_S};
+use mre_host::dataset::Dataset;
 use mre_host::diagnose::design::{Designs, Terms, Viscous};
 use mre_host::diagnose::prepared::{prepare, FoldPlan};
 use mre_host::diagnose::{diagnose, DiagnoseOptions};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
-use std::path::PathBuf;
 
 const DT_S: f64 = 1e-3;
 const NOISE_N: f64 = 2.0;
@@ -31,35 +27,10 @@ fn sinusoid(amp_mm: f64, freq_hz: f64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
 /// A campaign of sinusoids at 0 and 1 A whose force is `force(x, v, I)` plus
 /// Gaussian noise; `(amplitude mm, frequency Hz)` per test.
 fn campaign(tests: &[(f64, f64)], force: impl Fn(f64, f64, f64) -> f64, seed: u64) -> Dataset {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let noise = Normal::new(0.0, NOISE_N).expect("valid");
-    let mut recordings = Vec::new();
-    for current_a in [0.0, 1.0] {
-        for &(amp_mm, freq_hz) in tests {
-            let (time_s, x_mm, v_m_s) = sinusoid(amp_mm, freq_hz);
-            let force_n = x_mm
-                .iter()
-                .zip(&v_m_s)
-                .map(|(&x, &v)| force(x, v, current_a) + noise.sample(&mut rng))
-                .collect();
-            recordings.push(fit_recording(
-                format!("a{amp_mm}_f{freq_hz}_i{current_a}.csv"),
-                current_a,
-                Samples {
-                    time_s,
-                    x_mm,
-                    v_m_s,
-                    force_n,
-                    ..Samples::default()
-                },
-            ));
-        }
-    }
-    Dataset {
-        name: "physical".into(),
-        root: PathBuf::new(),
-        recordings,
-    }
+    let per_sample = |x_mm: &[f64], v_m_s: &[f64], current_a: f64| -> Vec<f64> {
+        x_mm.iter().zip(v_m_s).map(|(&x, &v)| force(x, v, current_a)).collect()
+    };
+    motion_campaign("physical", &[0.0, 1.0], tests, sinusoid, per_sample, NOISE_N, seed)
 }
 
 /// A friction damper's force: a backbone that saturates at `F_s(I)` beyond a

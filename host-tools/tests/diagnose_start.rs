@@ -8,14 +8,10 @@
 //! branch, G·f_y (150–900 N here) off at the start.
 mod diagnose_support;
 
-use mre_host::dataset::{Dataset, Samples};
+use mre_host::dataset::Dataset;
 use mre_host::diagnose::design::{memory_feature_on_branches, Designs, Terms, START_FROM_REST};
 use mre_host::diagnose::prepared::{prepare, FoldPlan};
 use mre_host::plant::base_laws::{Hysteresis, HystereticLaw};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
-use std::path::PathBuf;
 
 const DT_S: f64 = 0.002;
 const NOISE_N: f64 = 1.0;
@@ -34,35 +30,9 @@ fn from_rest(amp_mm: f64, freq_hz: f64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
 
 fn dahl_from_rest(seed: u64) -> (Dataset, HystereticLaw) {
     let law = HystereticLaw::example(Hysteresis::Dahl, 0.0);
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let noise = Normal::new(0.0, NOISE_N).expect("valid");
-    let mut recordings = Vec::new();
-    for current_a in [0.0, 1.0] {
-        for (amp_mm, freq_hz) in [(2.0, 2.0), (5.0, 1.0), (10.0, 0.5)] {
-            let (time_s, x_mm, v_m_s) = from_rest(amp_mm, freq_hz);
-            let force_n = law
-                .forces_n(&x_mm, &v_m_s, current_a)
-                .into_iter()
-                .map(|f| f + noise.sample(&mut rng))
-                .collect();
-            recordings.push(diagnose_support::fit_recording(
-                format!("a{amp_mm}_i{current_a}.csv"),
-                current_a,
-                Samples {
-                    time_s,
-                    x_mm,
-                    v_m_s,
-                    force_n,
-                    ..Samples::default()
-                },
-            ));
-        }
-    }
-    let ds = Dataset {
-        name: "dahl from rest".into(),
-        root: PathBuf::new(),
-        recordings,
-    };
+    let tests = [(2.0, 2.0), (5.0, 1.0), (10.0, 0.5)];
+    let forces = |x_mm: &[f64], v_m_s: &[f64], current_a: f64| law.forces_n(x_mm, v_m_s, current_a);
+    let ds = diagnose_support::motion_campaign("dahl from rest", &[0.0, 1.0], &tests, from_rest, forces, NOISE_N, seed);
     (ds, law)
 }
 

@@ -448,13 +448,19 @@ impl Ranges {
 }
 
 impl Span {
-    /// The span of `train`'s recordings (an unbounded span when empty).
-    pub fn of(prep: &Prepared, train: &[usize]) -> Span {
-        let ranges: Vec<Ranges> = prep.recs.iter().map(Ranges::of).collect();
-        Span::from_ranges(prep, &ranges, train)
+    /// No limit on any covariate, at each of `n_currents` currents.
+    pub fn unbounded(n_currents: usize) -> Span {
+        let everything = (f64::NEG_INFINITY, f64::INFINITY);
+        Span {
+            x_mm: vec![everything; n_currents],
+            v_m_s: vec![everything; n_currents],
+            all_x_mm: everything,
+            a_m_s2: everything,
+        }
     }
 
-    /// As [`Span::of`], from each recording's precomputed [`Ranges`].
+    /// The span of `train`'s recordings, from each recording's precomputed
+    /// [`Ranges`] (an unbounded span when `train` is empty).
     fn from_ranges(prep: &Prepared, ranges: &[Ranges], train: &[usize]) -> Span {
         let everything = (f64::NEG_INFINITY, f64::INFINITY);
         let or_all = |r: (f64, f64), all: (f64, f64)| if r.0 <= r.1 { r } else { all };

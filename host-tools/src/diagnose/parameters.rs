@@ -38,7 +38,7 @@ fn values_of_variant(prep: &Prepared, effect: Effect, terms: &Terms) -> Vec<Valu
         beta: vec![0.0; layout.n_cols],
         delta: 0.0,
         sse: 0.0,
-        span: Span::of(prep, &[]),
+        span: Span::unbounded(prep.currents_a.len()),
         at_bound: Vec::new(),
     };
     super::terms::of(effect).map_or_else(Vec::new, |t| t.parameters(prep, &layout, terms, &zero))

@@ -178,6 +178,50 @@ pub fn dataset(added: Added, seed: u64) -> Dataset {
     }
 }
 
+/// A campaign of fit recordings at each of `currents_a` and each
+/// `(amplitude mm, frequency Hz)` of `tests`, named `a{A}_f{f}_i{I}.csv`:
+/// the motion `motion(A, f)` = (t, x, v) and the force `force(x, v, I)`
+/// (whole recordings) plus seeded Gaussian noise of `noise_n`.
+#[allow(clippy::type_complexity)]
+pub fn motion_campaign(
+    name: &str,
+    currents_a: &[f64],
+    tests: &[(f64, f64)],
+    motion: impl Fn(f64, f64) -> (Vec<f64>, Vec<f64>, Vec<f64>),
+    force: impl Fn(&[f64], &[f64], f64) -> Vec<f64>,
+    noise_n: f64,
+    seed: u64,
+) -> Dataset {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let noise = Normal::new(0.0, noise_n).expect("a finite noise level");
+    let mut recordings = Vec::new();
+    for &current_a in currents_a {
+        for &(amp_mm, freq_hz) in tests {
+            let (time_s, x_mm, v_m_s) = motion(amp_mm, freq_hz);
+            let force_n = force(&x_mm, &v_m_s, current_a)
+                .into_iter()
+                .map(|f| f + noise.sample(&mut rng))
+                .collect();
+            recordings.push(fit_recording(
+                format!("a{amp_mm}_f{freq_hz}_i{current_a}.csv"),
+                current_a,
+                Samples {
+                    time_s,
+                    x_mm,
+                    v_m_s,
+                    force_n,
+                    ..Samples::default()
+                },
+            ));
+        }
+    }
+    Dataset {
+        name: name.into(),
+        root: PathBuf::new(),
+        recordings,
+    }
+}
+
 /// A fit recording that carries only its current (no mass, run order or tags).
 pub fn fit_recording(file: String, current_a: f64, samples: Samples) -> Recording {
     Recording {
