@@ -2,8 +2,9 @@
 //! name) from the working directory, stderr in sentences, nothing partial
 //! written when it fails.
 mod diagnose_support;
-use diagnose_support::{dataset, Added};
+use diagnose_support::{dataset, fit_recording, Added};
 use mre_host::dataset::write::{write_dataset, WriteOptions};
+use mre_host::dataset::{Dataset, Samples};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -41,8 +42,8 @@ fn names_in(dir: &Path) -> Vec<String> {
 }
 
 // Catches resolving `--json` against the report folder (diag.json lands in
-// rep/, the listing check fails). Its stderr check did not catch a Debug dump
-// of each failing variant's `Terms`: no variant fails on this data.
+// rep/, the listing check fails). No variant fails on this data, so a Debug
+// dump of a failing variant is left to the ramp test below.
 #[test]
 fn a_bare_json_file_name_works_and_stderr_holds_sentences_only() {
     let (_data_dir, data) = viscous_data_set();
@@ -84,4 +85,63 @@ fn a_failing_run_writes_nothing_and_says_why_in_a_sentence() {
     for dump in ["{", "Some(", "None", "panicked"] {
         assert!(!stderr.contains(dump), "stderr holds `{dump}`:\n{stderr}");
     }
+}
+
+/// Constant-speed ramps out and back (0.1 m/s, 0–10 mm) at 0, 1 and 2 A:
+/// every sample of a branch has the same |v|, so no turn-around memory
+/// variant can be fitted (its columns are collinear with the quartic's).
+fn constant_speed_ramps() -> (tempfile::TempDir, PathBuf) {
+    let (dt_s, v_m_s, n) = (1e-4, 0.1, 1000);
+    let mut recordings = Vec::new();
+    for current_a in [0.0, 1.0, 2.0] {
+        for run in 0..2 {
+            let time_s: Vec<f64> = (0..2 * n).map(|i| i as f64 * dt_s).collect();
+            let v: Vec<f64> = (0..2 * n).map(|i| if i < n { v_m_s } else { -v_m_s }).collect();
+            let x_mm: Vec<f64> = (0..2 * n)
+                .map(|i| 1e3 * v_m_s * dt_s * if i < n { i as f64 } else { (2 * n - 1 - i) as f64 })
+                .collect();
+            // A stiffness and a friction step that rise with current, and a
+            // deterministic ripple in place of noise (different per run).
+            let force_n = x_mm
+                .iter()
+                .zip(&v)
+                .enumerate()
+                .map(|(i, (&x, &v))| {
+                    (50.0 + 40.0 * current_a) * x + 0.5 * x * x
+                        + v.signum() * (20.0 + 10.0 * current_a)
+                        + 2.0 * ((i * (7 + run)) as f64 * 0.37).sin()
+                })
+                .collect();
+            recordings.push(fit_recording(
+                format!("i{current_a}_r{run}.csv"),
+                current_a,
+                Samples { time_s, x_mm, v_m_s: v, force_n, ..Samples::default() },
+            ));
+        }
+    }
+    let data_dir = tempfile::tempdir().expect("tempdir");
+    let data = data_dir.path().join("ramps");
+    let ds = Dataset { name: "constant-speed ramps".into(), root: PathBuf::new(), recordings };
+    write_dataset(&ds, &data, &WriteOptions::default()).expect("write");
+    (data_dir, data)
+}
+
+// Catches a Debug dump of each failing variant (planted in cv.rs's
+// score_refined: `eprintln!("{t:?}: {e:#}")` per failed variant fails the
+// `{` check).
+#[test]
+fn variants_that_cannot_be_fitted_are_one_sentence_not_a_dump() {
+    let (_data_dir, data) = constant_speed_ramps();
+    let cwd = tempfile::tempdir().expect("tempdir");
+    let out = diagnose_in(cwd.path(), &data);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let notes: Vec<&str> = stderr.lines().filter(|l| l.starts_with("note:")).collect();
+    assert_eq!(notes.len(), 1, "one note, for turn-around memory:\n{stderr}");
+    assert!(notes[0].contains("turn-around memory was not tested"), "{stderr}");
+    assert!(notes[0].contains("rank deficient"), "the reason is given: {stderr}");
+    for dump in ["{", "}", "Some(", "None", "Terms"] {
+        assert!(!stderr.contains(dump), "stderr holds `{dump}`:\n{stderr}");
+    }
+    assert!(stderr.lines().count() <= 4, "{stderr}");
 }
