@@ -12,6 +12,7 @@
 //! [`unexplained`]).
 pub mod baseline;
 pub mod candidates;
+pub mod cv;
 pub mod design;
 pub mod locate;
 pub mod model_out;
@@ -32,7 +33,8 @@ use candidates::Effect;
 use design::Designs;
 use mre_core::table::Table;
 use prepared::{FoldPlan, Prepared};
-use select::{Scored, Selection, Thresholds};
+use cv::Scored;
+use select::{Selection, Thresholds};
 
 #[derive(Clone, Debug)]
 pub struct DiagnoseOptions {

@@ -25,7 +25,8 @@
 //! in the model terms, not a fixed column.
 use crate::diagnose::design::{Designs, Terms};
 use crate::diagnose::prepared::{scored, Prepared};
-use crate::diagnose::select::{self, Scored, Thresholds};
+use crate::diagnose::cv::{self, Scored};
+use crate::diagnose::select::{self, Thresholds};
 use crate::diagnose::signals::current_weights;
 use crate::vocabulary::Effect;
 use anyhow::Result;
@@ -97,7 +98,7 @@ pub fn oracle(
         .iter()
         .map(|v| v.iter().map(|a| if scale > 0.0 { a / scale } else { 0.0 }).collect())
         .collect();
-    let before = select::score(prep, &[*reference])?;
+    let before = cv::score(prep, &[*reference])?;
     let touches_fit = prep.fit_indices().iter().any(|&i| column[i].iter().any(|c| *c != 0.0));
     let (after, amplitude) = if touches_fit {
         let columns = if per_current {
@@ -108,7 +109,7 @@ pub fn oracle(
         let base = Designs::build(prep, reference);
         let first = base.layout.n_cols;
         let d = columns.iter().fold(base, |d, c| with_column(&d, prep, c));
-        let after = select::score_designs(prep, &d)?;
+        let after = cv::score_designs(prep, &d)?;
         // The fitted added force (N) at every sample, for its RMS.
         let fitted: Vec<Vec<f64>> = (0..prep.recs.len())
             .map(|i| {
@@ -157,8 +158,8 @@ pub fn oracle_terms(
     effect: Effect,
     th: &Thresholds,
 ) -> Result<Oracle> {
-    let before = select::score(prep, &[*reference])?;
-    let after = select::score(prep, &[*truth])?;
+    let before = cv::score(prep, &[*reference])?;
+    let after = cv::score(prep, &[*truth])?;
     let delta = after.solution.delta;
     Ok(verdict(prep, &before, after, effect, th, delta))
 }
