@@ -3,7 +3,7 @@
 //! about the data the terms' identifiability tests and grids read.
 use super::design::Terms;
 use super::prepared::Prepared;
-use super::select::Thresholds;
+use super::acceptance::Thresholds;
 use super::terms;
 
 pub use super::terms::memory_variants;

@@ -10,6 +10,7 @@
 //! (forward selection on held-out data, judged by [`support`]) →
 //! [`parameters`] (values and intervals) → [`report`] (with what stays
 //! [`unexplained`]).
+pub mod acceptance;
 pub mod baseline;
 pub mod candidates;
 pub mod cv;
@@ -34,7 +35,8 @@ use design::Designs;
 use mre_core::table::Table;
 use prepared::{FoldPlan, Prepared};
 use cv::Scored;
-use select::{Selection, Thresholds};
+use acceptance::Thresholds;
+use select::Selection;
 
 #[derive(Clone, Debug)]
 pub struct DiagnoseOptions {
@@ -138,7 +140,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
     let selection = select::forward_select(&prep, &opts.thresholds)?;
     let mut findings = Vec::new();
     let finding = |effect: Effect,
-                   c: &select::Comparison,
+                   c: &acceptance::Comparison,
                    nested: select::HeldOutRatio,
                    before: &Scored,
                    after: &Scored,
@@ -233,7 +235,7 @@ fn evidence_for(
     effect: Effect,
     pred_before: &[Vec<f64>],
     pred_after: &[Vec<f64>],
-    c: &select::Comparison,
+    c: &acceptance::Comparison,
 ) -> String {
     let loc = locate::locate(prep, pred_before);
     let (mut res, mut term) = (Vec::new(), Vec::new());

@@ -6,7 +6,7 @@
 //! the injected added force, normalised to unit RMS, as one extra design
 //! column with a free amplitude, and is judged against the reference by the
 //! same comparison and acceptance routes as every candidate
-//! ([`select::compare`]). An injection the oracle cannot get accepted is not
+//! ([`acceptance::compare`]). An injection the oracle cannot get accepted is not
 //! identifiable in these recordings with this model class, whatever a
 //! candidate's search does: a miss there is no fault of the candidate.
 //!
@@ -26,7 +26,7 @@
 use crate::diagnose::design::{Designs, Terms};
 use crate::diagnose::prepared::{scored, Prepared};
 use crate::diagnose::cv::{self, Scored};
-use crate::diagnose::select::{self, Thresholds};
+use crate::diagnose::acceptance::{self, Thresholds};
 use crate::diagnose::signals::current_weights;
 use crate::vocabulary::Effect;
 use anyhow::Result;
@@ -132,7 +132,7 @@ pub fn oracle(
 /// `after` judged against `before` as `effect`'s candidate would be.
 fn verdict(prep: &Prepared, before: &Scored, after: Scored, effect: Effect, th: &Thresholds, amplitude: f64) -> Oracle {
     let in_sample_ratio = (before.fit_sse / after.fit_sse.max(1e-300)).sqrt();
-    let c = select::compare(prep, before, after, Some(effect), th);
+    let c = acceptance::compare(prep, before, after, Some(effect), th);
     Oracle {
         held_out_ratio: c.ratio_pool,
         held_out_ratio_all: c.ratio,

@@ -5,7 +5,7 @@ use crate::diagnose::candidates::{median_dt_s, stepped_validate_count};
 use crate::diagnose::design::{Layout, Solution, Terms};
 use crate::diagnose::locate::CURRENT_NOT_FOLLOWED;
 use crate::diagnose::prepared::Prepared;
-use crate::diagnose::select::Thresholds;
+use crate::diagnose::acceptance::Thresholds;
 use crate::vocabulary::Effect;
 
 pub struct CoilLag;

@@ -4,7 +4,7 @@ use super::{Block, Sample, Term, Value};
 use crate::diagnose::candidates::{spread_within_currents, stroke_ends_mm, two_sided};
 use crate::diagnose::design::{end_stop_shape, Layout, Solution, Terms};
 use crate::diagnose::prepared::Prepared;
-use crate::diagnose::select::Thresholds;
+use crate::diagnose::acceptance::Thresholds;
 use crate::vocabulary::Effect;
 
 pub struct EndStop;

@@ -3,7 +3,7 @@ use super::{Block, Sample, Term, Value};
 use crate::diagnose::candidates::acceleration_misfit_over_noise;
 use crate::diagnose::design::{Layout, Solution, Terms};
 use crate::diagnose::prepared::Prepared;
-use crate::diagnose::select::Thresholds;
+use crate::diagnose::acceptance::Thresholds;
 use crate::vocabulary::Effect;
 
 pub struct Inertia;

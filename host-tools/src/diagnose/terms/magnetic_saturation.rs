@@ -4,7 +4,7 @@ use super::{Term, Value};
 use crate::diagnose::candidates::intermediate_validate_count;
 use crate::diagnose::design::{Layout, Solution, Terms};
 use crate::diagnose::prepared::Prepared;
-use crate::diagnose::select::Thresholds;
+use crate::diagnose::acceptance::Thresholds;
 use crate::vocabulary::Effect;
 
 pub struct MagneticSaturation;

@@ -2,7 +2,7 @@
 //! effect, each a [`Term`], listed once in [`REGISTRY`]. The stages read
 //! effects only through the trait: [`super::candidates`] asks each term what
 //! the data must contain and which variants to search, [`super::design`]
-//! builds its columns, [`super::select`] checks its physical constraint and
+//! builds its columns, [`super::acceptance`] checks its physical constraint and
 //! [`super::parameters`] reads its parameters.
 //!
 //! Adding an effect: a new file here implementing [`Term`] (its searched
@@ -11,7 +11,7 @@
 //! the data-set format and the plant share (DIAGNOSE.md, "Adding an effect").
 use super::design::{Layout, Solution, Terms};
 use super::prepared::Prepared;
-use super::select::Thresholds;
+use super::acceptance::Thresholds;
 use crate::vocabulary::Effect;
 
 mod coil_lag;

@@ -4,7 +4,7 @@ use super::{Term, Value};
 use crate::diagnose::candidates::median_dt_s;
 use crate::diagnose::design::{Layout, Solution, Terms};
 use crate::diagnose::prepared::Prepared;
-use crate::diagnose::select::Thresholds;
+use crate::diagnose::acceptance::Thresholds;
 use crate::vocabulary::Effect;
 
 pub struct SensorDelay;

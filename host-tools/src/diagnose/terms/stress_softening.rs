@@ -4,7 +4,7 @@ use super::{Term, Value};
 use crate::diagnose::candidates::{distinct_sequences, temperature_span_c};
 use crate::diagnose::design::{Layout, SofteningLaw, Solution, Terms};
 use crate::diagnose::prepared::Prepared;
-use crate::diagnose::select::Thresholds;
+use crate::diagnose::acceptance::Thresholds;
 use crate::vocabulary::Effect;
 
 pub struct StressSoftening;
