@@ -295,8 +295,9 @@ pub fn compare(prep: &Prepared, before: &Scored, after: Scored, effect: Option<E
 }
 
 /// The one acceptance rule, for the round's decision ([`compare`]) and for
-/// each nested re-decision ([`nested_ratio`](super::select::nested_ratio)): a route passes, the in-sample
-/// ΔBIC stays under its cap, and a viscous term dissipates.
+/// each nested re-decision ([`nested_ratio`](super::heldout::nested_ratio)):
+/// a route passes, the in-sample ΔBIC stays under its cap, and a viscous
+/// term dissipates.
 pub(super) fn accepts(
     prep: &Prepared,
     j: &Judgement,

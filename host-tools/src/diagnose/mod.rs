@@ -7,7 +7,8 @@
 //! model) → [`locate`] (where the residual sits) → [`candidates`] (one term
 //! per word of [`crate::vocabulary`], each a plug-in of [`terms`], built by
 //! [`design`]) → [`select`]
-//! (forward selection on held-out data, judged by [`support`]) →
+//! (forward selection on held-out data: scored by [`cv`], judged by
+//! [`acceptance`] and [`support`], the winner's ratio nested by [`heldout`]) →
 //! [`parameters`] (values and intervals) → [`report`] (with what stays
 //! [`unexplained`]).
 pub mod acceptance;
@@ -15,6 +16,7 @@ pub mod baseline;
 pub mod candidates;
 pub mod cv;
 pub mod design;
+pub mod heldout;
 pub mod locate;
 pub mod model_out;
 pub mod parameters;
@@ -87,13 +89,13 @@ pub struct Finding {
     pub heldout_improvement: f64,
     /// The headline: the same ratio with the choice between effects nested,
     /// each held-out unit scored by the candidate chosen without it
-    /// ([`select::nested_ratio`]).
+    /// ([`heldout::nested_ratio`]).
     pub heldout_improvement_nested: f64,
     /// 95 % bootstrap interval of `heldout_improvement_nested`, over the
     /// same recordings (every recording, held out).
     pub ratio_ci95: [f64; 2],
     /// The per-recording held-out SSEs both come from.
-    pub nested: select::HeldOutRatio,
+    pub nested: heldout::HeldOutRatio,
     pub delta_bic: f64,
 }
 
@@ -141,7 +143,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
     let mut findings = Vec::new();
     let finding = |effect: Effect,
                    c: &acceptance::Comparison,
-                   nested: select::HeldOutRatio,
+                   nested: heldout::HeldOutRatio,
                    before: &Scored,
                    after: &Scored,
                    variant_sse|
@@ -184,7 +186,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
             findings.push(finding(
                 effect,
                 c,
-                select::HeldOutRatio::over_every_recording(c.sse_before.clone(), c.sse_after.clone(), &opts.thresholds),
+                heldout::HeldOutRatio::over_every_recording(c.sse_before.clone(), c.sse_after.clone(), &opts.thresholds),
                 &selection.baseline,
                 &selection.reference,
                 &first.scored.variant_sse,
@@ -197,7 +199,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
         let c = &round.tested[k];
         let Some(effect) = c.effect else { break };
         let nested = round.nested_ratio.clone().unwrap_or_else(|| {
-            select::HeldOutRatio::over_every_recording(c.sse_before.clone(), c.sse_after.clone(), &opts.thresholds)
+            heldout::HeldOutRatio::over_every_recording(c.sse_before.clone(), c.sse_after.clone(), &opts.thresholds)
         });
         findings.push(finding(effect, c, nested, &before, &c.scored, &c.scored.variant_sse)?);
         before = c.scored.clone();
