@@ -31,13 +31,13 @@ pub mod terms;
 pub mod unexplained;
 
 use crate::dataset::Dataset;
+use acceptance::Thresholds;
 use anyhow::Result;
 use candidates::Effect;
+use cv::Scored;
 use design::Designs;
 use mre_core::table::Table;
 use prepared::{FoldPlan, Prepared};
-use cv::Scored;
-use acceptance::Thresholds;
 use select::Selection;
 
 #[derive(Clone, Debug)]
@@ -186,7 +186,11 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
             findings.push(finding(
                 effect,
                 c,
-                heldout::HeldOutRatio::over_every_recording(c.sse_before.clone(), c.sse_after.clone(), &opts.thresholds),
+                heldout::HeldOutRatio::over_every_recording(
+                    c.sse_before.clone(),
+                    c.sse_after.clone(),
+                    &opts.thresholds,
+                ),
                 &selection.baseline,
                 &selection.reference,
                 &first.scored.variant_sse,

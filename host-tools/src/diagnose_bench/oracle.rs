@@ -23,10 +23,10 @@
 //! Not available to the column oracle: the scale route (`stress_softening` over a
 //! run order judged on per-recording gains), which needs the softening law
 //! in the model terms, not a fixed column.
+use crate::diagnose::acceptance::{self, Thresholds};
+use crate::diagnose::cv::{self, Scored};
 use crate::diagnose::design::{Designs, Terms};
 use crate::diagnose::prepared::{scored, Prepared};
-use crate::diagnose::cv::{self, Scored};
-use crate::diagnose::acceptance::{self, Thresholds};
 use crate::diagnose::signals::current_weights;
 use crate::vocabulary::Effect;
 use anyhow::Result;
