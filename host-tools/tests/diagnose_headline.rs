@@ -4,7 +4,7 @@
 //! only, while the ratio covered the validate recordings too).
 mod diagnose_support;
 use diagnose_support::{dataset, Added};
-use mre_host::diagnose::select::bootstrap_ratio_ci95;
+use mre_host::diagnose::acceptance::bootstrap_ratio_ci95;
 use mre_host::diagnose::{diagnose, report, summary_line, DiagnoseOptions};
 
 #[test]

@@ -5,9 +5,9 @@
 mod diagnose_support;
 
 use mre_host::dataset::{Dataset, Role, Samples};
+use mre_host::diagnose::acceptance::Thresholds;
 use mre_host::diagnose::design::Terms;
 use mre_host::diagnose::prepared::{prepare, FoldPlan};
-use mre_host::diagnose::select::Thresholds;
 use mre_host::diagnose_bench::oracle::{oracle, Amplitude};
 use mre_host::vocabulary::Effect;
 use std::f64::consts::PI;

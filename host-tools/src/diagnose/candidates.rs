@@ -1,9 +1,9 @@
 //! The candidates stage: which registered effects ([`super::terms`]) this
 //! data set can identify, and the variants of each to search; with the facts
 //! about the data the terms' identifiability tests and grids read.
+use super::acceptance::Thresholds;
 use super::design::Terms;
 use super::prepared::Prepared;
-use super::select::Thresholds;
 use super::terms;
 
 pub use super::terms::memory_variants;

@@ -7,12 +7,16 @@
 //! model) → [`locate`] (where the residual sits) → [`candidates`] (one term
 //! per word of [`crate::vocabulary`], each a plug-in of [`terms`], built by
 //! [`design`]) → [`select`]
-//! (forward selection on held-out data, judged by [`support`]) →
+//! (forward selection on held-out data: scored by [`cv`], judged by
+//! [`acceptance`] and [`support`], the winner's ratio nested by [`heldout`]) →
 //! [`parameters`] (values and intervals) → [`report`] (with what stays
 //! [`unexplained`]).
+pub mod acceptance;
 pub mod baseline;
 pub mod candidates;
+pub mod cv;
 pub mod design;
+pub mod heldout;
 pub mod locate;
 pub mod model_out;
 pub mod parameters;
@@ -27,12 +31,14 @@ pub mod terms;
 pub mod unexplained;
 
 use crate::dataset::Dataset;
+use acceptance::Thresholds;
 use anyhow::Result;
 use candidates::Effect;
+use cv::Scored;
 use design::Designs;
 use mre_core::table::Table;
 use prepared::{FoldPlan, Prepared};
-use select::{Scored, Selection, Thresholds};
+use select::Selection;
 
 #[derive(Clone, Debug)]
 pub struct DiagnoseOptions {
@@ -83,13 +89,13 @@ pub struct Finding {
     pub heldout_improvement: f64,
     /// The headline: the same ratio with the choice between effects nested,
     /// each held-out unit scored by the candidate chosen without it
-    /// ([`select::nested_ratio`]).
+    /// ([`heldout::nested_ratio`]).
     pub heldout_improvement_nested: f64,
     /// 95 % bootstrap interval of `heldout_improvement_nested`, over the
     /// same recordings (every recording, held out).
     pub ratio_ci95: [f64; 2],
     /// The per-recording held-out SSEs both come from.
-    pub nested: select::HeldOutRatio,
+    pub nested: heldout::HeldOutRatio,
     pub delta_bic: f64,
 }
 
@@ -136,8 +142,8 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
     let selection = select::forward_select(&prep, &opts.thresholds)?;
     let mut findings = Vec::new();
     let finding = |effect: Effect,
-                   c: &select::Comparison,
-                   nested: select::HeldOutRatio,
+                   c: &acceptance::Comparison,
+                   nested: heldout::HeldOutRatio,
                    before: &Scored,
                    after: &Scored,
                    variant_sse|
@@ -180,7 +186,11 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
             findings.push(finding(
                 effect,
                 c,
-                select::HeldOutRatio::over_every_recording(c.sse_before.clone(), c.sse_after.clone(), &opts.thresholds),
+                heldout::HeldOutRatio::over_every_recording(
+                    c.sse_before.clone(),
+                    c.sse_after.clone(),
+                    &opts.thresholds,
+                ),
                 &selection.baseline,
                 &selection.reference,
                 &first.scored.variant_sse,
@@ -193,7 +203,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
         let c = &round.tested[k];
         let Some(effect) = c.effect else { break };
         let nested = round.nested_ratio.clone().unwrap_or_else(|| {
-            select::HeldOutRatio::over_every_recording(c.sse_before.clone(), c.sse_after.clone(), &opts.thresholds)
+            heldout::HeldOutRatio::over_every_recording(c.sse_before.clone(), c.sse_after.clone(), &opts.thresholds)
         });
         findings.push(finding(effect, c, nested, &before, &c.scored, &c.scored.variant_sse)?);
         before = c.scored.clone();
@@ -231,7 +241,7 @@ fn evidence_for(
     effect: Effect,
     pred_before: &[Vec<f64>],
     pred_after: &[Vec<f64>],
-    c: &select::Comparison,
+    c: &acceptance::Comparison,
 ) -> String {
     let loc = locate::locate(prep, pred_before);
     let (mut res, mut term) = (Vec::new(), Vec::new());

@@ -177,7 +177,7 @@ pub struct Prepared {
     /// Free drop: the acceleration is the drop mass's, `a = g − F/M`.
     pub free_drop: bool,
     /// Whether validate recordings may be evidence for a term that changes
-    /// only their predictions ([`super::select::Thresholds::validate_evidence`]);
+    /// only their predictions ([`super::acceptance::Thresholds::validate_evidence`]);
     /// false: no choice reads them.
     pub validate_evidence: bool,
 }

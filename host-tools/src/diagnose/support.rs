@@ -14,8 +14,8 @@
 //! support improves, and a paired test of the squared-error differences
 //! whose sample count is corrected for autocorrelation (AR(1): n·(1 − ρ)/(1 + ρ)
 //! per recording).
+use super::cv::Scored;
 use super::prepared::scored_by_both;
-use super::select::Scored;
 
 /// A recording counts as a unit of the support with at least this many support samples.
 pub const MIN_UNIT_SAMPLES: usize = 10;

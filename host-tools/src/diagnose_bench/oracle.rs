@@ -6,7 +6,7 @@
 //! the injected added force, normalised to unit RMS, as one extra design
 //! column with a free amplitude, and is judged against the reference by the
 //! same comparison and acceptance routes as every candidate
-//! ([`select::compare`]). An injection the oracle cannot get accepted is not
+//! ([`acceptance::compare`]). An injection the oracle cannot get accepted is not
 //! identifiable in these recordings with this model class, whatever a
 //! candidate's search does: a miss there is no fault of the candidate.
 //!
@@ -23,9 +23,10 @@
 //! Not available to the column oracle: the scale route (`stress_softening` over a
 //! run order judged on per-recording gains), which needs the softening law
 //! in the model terms, not a fixed column.
+use crate::diagnose::acceptance::{self, Thresholds};
+use crate::diagnose::cv::{self, Scored};
 use crate::diagnose::design::{Designs, Terms};
 use crate::diagnose::prepared::{scored, Prepared};
-use crate::diagnose::select::{self, Scored, Thresholds};
 use crate::diagnose::signals::current_weights;
 use crate::vocabulary::Effect;
 use anyhow::Result;
@@ -97,7 +98,7 @@ pub fn oracle(
         .iter()
         .map(|v| v.iter().map(|a| if scale > 0.0 { a / scale } else { 0.0 }).collect())
         .collect();
-    let before = select::score(prep, &[*reference])?;
+    let before = cv::score(prep, &[*reference])?;
     let touches_fit = prep.fit_indices().iter().any(|&i| column[i].iter().any(|c| *c != 0.0));
     let (after, amplitude) = if touches_fit {
         let columns = if per_current {
@@ -108,7 +109,7 @@ pub fn oracle(
         let base = Designs::build(prep, reference);
         let first = base.layout.n_cols;
         let d = columns.iter().fold(base, |d, c| with_column(&d, prep, c));
-        let after = select::score_designs(prep, &d)?;
+        let after = cv::score_designs(prep, &d)?;
         // The fitted added force (N) at every sample, for its RMS.
         let fitted: Vec<Vec<f64>> = (0..prep.recs.len())
             .map(|i| {
@@ -131,7 +132,7 @@ pub fn oracle(
 /// `after` judged against `before` as `effect`'s candidate would be.
 fn verdict(prep: &Prepared, before: &Scored, after: Scored, effect: Effect, th: &Thresholds, amplitude: f64) -> Oracle {
     let in_sample_ratio = (before.fit_sse / after.fit_sse.max(1e-300)).sqrt();
-    let c = select::compare(prep, before, after, Some(effect), th);
+    let c = acceptance::compare(prep, before, after, Some(effect), th);
     Oracle {
         held_out_ratio: c.ratio_pool,
         held_out_ratio_all: c.ratio,
@@ -157,8 +158,8 @@ pub fn oracle_terms(
     effect: Effect,
     th: &Thresholds,
 ) -> Result<Oracle> {
-    let before = select::score(prep, &[*reference])?;
-    let after = select::score(prep, &[*truth])?;
+    let before = cv::score(prep, &[*reference])?;
+    let after = cv::score(prep, &[*truth])?;
     let delta = after.solution.delta;
     Ok(verdict(prep, &before, after, effect, th, delta))
 }

@@ -495,7 +495,7 @@ pub fn run_real_bench(
 /// The scale route's numbers for `stress_softening` (all gains; fit
 /// recordings' only), and each recording's gain as `index:run order:level:gain`
 /// (read by `bench/softening_oracle.py`).
-fn scale_note(c: &crate::diagnose::select::Comparison, validate: &[usize]) -> String {
+fn scale_note(c: &crate::diagnose::acceptance::Comparison, validate: &[usize]) -> String {
     match (&c.scale, c.scale_test) {
         (Some(s), Some(t)) => {
             let f = s.test(validate);

@@ -1,11 +1,11 @@
 //! `coil_lag`: the material sees the recorded current through a first-order
 //! lag L/R ([`crate::diagnose::design::effective_current_a`]).
 use super::{Term, Value};
+use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::candidates::{median_dt_s, stepped_validate_count};
 use crate::diagnose::design::{Layout, Solution, Terms};
 use crate::diagnose::locate::CURRENT_NOT_FOLLOWED;
 use crate::diagnose::prepared::Prepared;
-use crate::diagnose::select::Thresholds;
 use crate::vocabulary::Effect;
 
 pub struct CoilLag;

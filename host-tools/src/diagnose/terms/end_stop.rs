@@ -1,10 +1,10 @@
 //! `end_stop`: a stop at `x_e` pushing back `k_e(I)·max(0, x − x_e)²` (or
 //! the mirror image at the extension end of a two-sided stroke).
 use super::{Block, Sample, Term, Value};
+use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::candidates::{spread_within_currents, stroke_ends_mm, two_sided};
 use crate::diagnose::design::{end_stop_shape, Layout, Solution, Terms};
 use crate::diagnose::prepared::Prepared;
-use crate::diagnose::select::Thresholds;
 use crate::vocabulary::Effect;
 
 pub struct EndStop;

@@ -4,10 +4,10 @@
 //! that is rate-independent over the speeds tested, and each knee with the
 //! memory.
 use super::{Block, Sample, Term, Value};
+use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::candidates::{rate_dependent, tested_speeds_m_s, KNEE_FRACTIONS};
 use crate::diagnose::design::{Layout, Solution, Terms};
 use crate::diagnose::prepared::Prepared;
-use crate::diagnose::select::Thresholds;
 use crate::vocabulary::Effect;
 
 pub struct HysteresisMemory;

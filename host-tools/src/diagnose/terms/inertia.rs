@@ -1,9 +1,9 @@
 //! `inertia`: a mass `m_s` moving with the measured end, `m_s·a`.
 use super::{Block, Sample, Term, Value};
+use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::candidates::acceleration_misfit_over_noise;
 use crate::diagnose::design::{Layout, Solution, Terms};
 use crate::diagnose::prepared::Prepared;
-use crate::diagnose::select::Thresholds;
 use crate::vocabulary::Effect;
 
 pub struct Inertia;

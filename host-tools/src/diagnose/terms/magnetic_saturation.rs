@@ -1,10 +1,10 @@
 //! `magnetic_saturation`: between tabulated currents the law interpolates
 //! on `tanh(I/I_s)` instead of I.
 use super::{Term, Value};
+use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::candidates::intermediate_validate_count;
 use crate::diagnose::design::{Layout, Solution, Terms};
 use crate::diagnose::prepared::Prepared;
-use crate::diagnose::select::Thresholds;
 use crate::vocabulary::Effect;
 
 pub struct MagneticSaturation;

@@ -2,16 +2,16 @@
 //! effect, each a [`Term`], listed once in [`REGISTRY`]. The stages read
 //! effects only through the trait: [`super::candidates`] asks each term what
 //! the data must contain and which variants to search, [`super::design`]
-//! builds its columns, [`super::select`] checks its physical constraint and
+//! builds its columns, [`super::acceptance`] checks its physical constraint and
 //! [`super::parameters`] reads its parameters.
 //!
 //! Adding an effect: a new file here implementing [`Term`] (its searched
 //! value lives in [`Terms::settings`], under its word), its line in
 //! [`REGISTRY`], and its word in [`crate::vocabulary::Effect`], the contract
 //! the data-set format and the plant share (DIAGNOSE.md, "Adding an effect").
+use super::acceptance::Thresholds;
 use super::design::{Layout, Solution, Terms};
 use super::prepared::Prepared;
-use super::select::Thresholds;
 use crate::vocabulary::Effect;
 
 mod coil_lag;
@@ -179,7 +179,9 @@ mod tests {
         assert_eq!(c.get(Effect::Inertia), None);
         assert_eq!(c, Settings::default().with(Effect::EndStop, Some(8.0)));
         // Every word at once fits.
-        let all = Effect::VOCABULARY.iter().fold(Settings::default(), |s, &e| s.with(e, Some(2.0)));
+        let all = Effect::VOCABULARY
+            .iter()
+            .fold(Settings::default(), |s, &e| s.with(e, Some(2.0)));
         assert!(Effect::VOCABULARY.iter().all(|&e| all.get(e) == Some(2.0)));
     }
 

@@ -1,10 +1,10 @@
 //! `sensor_delay`: the force channel lags (or leads) the motion by τ; the
 //! design reads x, v, a and the current at t − τ.
 use super::{Term, Value};
+use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::candidates::median_dt_s;
 use crate::diagnose::design::{Layout, Solution, Terms};
 use crate::diagnose::prepared::Prepared;
-use crate::diagnose::select::Thresholds;
 use crate::vocabulary::Effect;
 
 pub struct SensorDelay;

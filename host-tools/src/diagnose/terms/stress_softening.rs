@@ -1,10 +1,10 @@
 //! `stress_softening`: each recording's force scaled by `1 − Δ·g_r`, with
 //! `g_r` from its place in the run order or its temperature.
 use super::{Term, Value};
+use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::candidates::{distinct_sequences, temperature_span_c};
 use crate::diagnose::design::{Layout, SofteningLaw, Solution, Terms};
 use crate::diagnose::prepared::Prepared;
-use crate::diagnose::select::Thresholds;
 use crate::vocabulary::Effect;
 
 pub struct StressSoftening;

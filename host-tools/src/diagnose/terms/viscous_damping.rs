@@ -1,10 +1,10 @@
 //! `viscous_damping`: a rate-dependent force `c(I)·φ(v)`, `φ(v) = v` or
 //! `v0·tanh(v/v0)`.
 use super::{Block, Sample, Term, Value};
+use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::candidates::{rate_dependent, spread_within_currents, tested_speeds_m_s, KNEE_FRACTIONS};
 use crate::diagnose::design::{Layout, Solution, Terms, Viscous};
 use crate::diagnose::prepared::Prepared;
-use crate::diagnose::select::Thresholds;
 use crate::vocabulary::Effect;
 
 pub struct ViscousDamping;
