@@ -107,7 +107,8 @@ fn constant_speed_ramps() -> (tempfile::TempDir, PathBuf) {
                 .zip(&v)
                 .enumerate()
                 .map(|(i, (&x, &v))| {
-                    (50.0 + 40.0 * current_a) * x + 0.5 * x * x
+                    (50.0 + 40.0 * current_a) * x
+                        + 0.5 * x * x
                         + v.signum() * (20.0 + 10.0 * current_a)
                         + 2.0 * ((i * (7 + run)) as f64 * 0.37).sin()
                 })
@@ -115,13 +116,23 @@ fn constant_speed_ramps() -> (tempfile::TempDir, PathBuf) {
             recordings.push(fit_recording(
                 format!("i{current_a}_r{run}.csv"),
                 current_a,
-                Samples { time_s, x_mm, v_m_s: v, force_n, ..Samples::default() },
+                Samples {
+                    time_s,
+                    x_mm,
+                    v_m_s: v,
+                    force_n,
+                    ..Samples::default()
+                },
             ));
         }
     }
     let data_dir = tempfile::tempdir().expect("tempdir");
     let data = data_dir.path().join("ramps");
-    let ds = Dataset { name: "constant-speed ramps".into(), root: PathBuf::new(), recordings };
+    let ds = Dataset {
+        name: "constant-speed ramps".into(),
+        root: PathBuf::new(),
+        recordings,
+    };
     write_dataset(&ds, &data, &WriteOptions::default()).expect("write");
     (data_dir, data)
 }

@@ -1,7 +1,9 @@
 //! Physics checks of the drop-impact plant, with expected values from
 //! physics and from the paper (never from the simulator's own output).
 use mre_host::plant::synth::step_command;
-use mre_host::plant::{simulate, ConcealedEffect, CurrentSource, ImpactConfig, LawParams, MeasurementModel, Plant, Trajectory};
+use mre_host::plant::{
+    simulate, ConcealedEffect, CurrentSource, ImpactConfig, LawParams, MeasurementModel, Plant, Trajectory,
+};
 
 /// The paper's Table 5 measured peak forces (`shared/paper/table4.toml`).
 const TABLE5: [(f64, f64); 5] = [

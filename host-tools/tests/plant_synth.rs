@@ -319,7 +319,9 @@ fn same_seed_same_bytes_and_seeds_vary_the_plant() {
 
 #[test]
 fn random_effect_covers_the_vocabulary_including_none() {
-    let picked: BTreeSet<&str> = (0..200).map(|s| resolve_effect_name("random", s).unwrap().name()).collect();
+    let picked: BTreeSet<&str> = (0..200)
+        .map(|s| resolve_effect_name("random", s).unwrap().name())
+        .collect();
     // The spec's words a plain drop campaign can reveal (not `inertia`, not
     // `hysteresis_memory`), and `none`.
     let expected = [
@@ -345,7 +347,9 @@ fn effect_terms_match_the_spec_formulas() {
     let loading = |gain: f64| gain * elastic * (1.0 + 0.5 * (v / 0.003f64).tanh());
     assert!((base.force_n(x, v, 0.0, 1) - loading(1.0)).abs() < 1e-9);
 
-    let sat = base.clone().with_effect(ConcealedEffect::MagneticSaturation { i_s_a: 0.4 });
+    let sat = base
+        .clone()
+        .with_effect(ConcealedEffect::MagneticSaturation { i_s_a: 0.4 });
     let u = |i: f64| (i / 0.4f64).tanh();
     let gain = 1.0 + (u(0.3) - u(0.0)) / (u(0.5) - u(0.0)) * (10.15 - 1.0);
     assert!((sat.force_n(x, v, 0.3, 1) - loading(gain)).abs() < 1e-6);
@@ -365,7 +369,9 @@ fn effect_terms_match_the_spec_formulas() {
     assert!((soft.force_n(x, v, 0.0, 11) - factor * loading(1.0)).abs() < 1e-9);
 
     // The coil lag acts on the current, not on the force law at a given current.
-    let lag = base.clone().with_effect(ConcealedEffect::CoilLag { time_constant_s: 5e-4 });
+    let lag = base
+        .clone()
+        .with_effect(ConcealedEffect::CoilLag { time_constant_s: 5e-4 });
     assert_eq!(lag.force_n(x, v, 1.0, 1), base.force_n(x, v, 1.0, 1));
     assert_eq!(lag.effect.coil_lag_s(), Some(5e-4));
 

@@ -1,8 +1,8 @@
 //! The control step against mock I/O: fault handling, fail-safe, overrun
 //! accounting, rate config, stats and the coil duty.
 use mre_core::control::{
-    open_loop_duty, Coil, ControlConfig, ControlConfigError, Controller, DisplacementSensor,
-    NoVelocitySensor, VelocitySensor, DEFAULT_RATE_HZ,
+    open_loop_duty, Coil, ControlConfig, ControlConfigError, Controller, DisplacementSensor, NoVelocitySensor,
+    VelocitySensor, DEFAULT_RATE_HZ,
 };
 use mre_core::estimate::AlphaBeta;
 use mre_core::law::ImpactLaw;

@@ -380,7 +380,7 @@ pub(super) struct Judgement {
     route: Option<&'static str>,
 }
 
-/// Three routes, each reading only the decision pool ([`decision_pool`]):
+/// Four routes, each reading only the decision pool ([`decision_pool`]):
 /// never the validate recordings for a term fitted on the fit recordings,
 /// so those stay an honest check of what was chosen.
 /// - *large*: held-out RMSE ratio over the pool's recordings ≥ `min_ratio`

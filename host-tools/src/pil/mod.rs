@@ -10,12 +10,12 @@
 //!   the firmware, [`InProcess`] runs the same core code linked into the host.
 //! - [`run_lockstep`] drives a [`Plant`] with a backend and records every
 //!   sample, so a PIL run and a host run can be compared sample for sample.
+#[cfg(test)]
+mod fault_handler_tests;
 pub mod faults;
 pub mod link;
 pub mod qemu;
 pub mod sim;
-#[cfg(test)]
-mod fault_handler_tests;
 #[cfg(test)]
 mod tests;
 
