@@ -8,9 +8,6 @@ use mre_host::diagnose::baseline::{fit_table, predict_all};
 use mre_host::diagnose::prepared::{prepare, FoldPlan};
 use mre_host::fit::problems::branch_problems;
 use mre_host::fit::{fit_branches, FitOptions, Method};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
 use std::path::PathBuf;
 
 /// A ramp v_n = −0.05 + 0.001·n m/s (n = 0..100) plus ε·(−1)ⁿ, ε = 1 mm/s.
@@ -68,44 +65,30 @@ fn samples_inside_the_band_are_exactly_those_left_out() {
 fn noisy_velocity_set(seed: u64) -> Dataset {
     const DT_S: f64 = 1e-3;
     const F0_N: f64 = 300.0;
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let v_noise = Normal::new(0.0, 0.003).unwrap();
-    let f_noise = Normal::new(0.0, 2.0).unwrap();
-    let mut recordings = Vec::new();
-    for current_a in [0.0, 1.0] {
-        for (amp_mm, freq_hz) in [(4.0, 1.0), (8.0, 0.5), (12.0, 0.5)] {
-            let w = 2.0 * std::f64::consts::PI * freq_hz;
-            let n = (2.0 / freq_hz / DT_S) as usize;
-            let time_s: Vec<f64> = (0..n).map(|i| i as f64 * DT_S).collect();
-            let x_mm: Vec<f64> = time_s.iter().map(|t| amp_mm * (w * t).sin()).collect();
-            let v_true: Vec<f64> = time_s.iter().map(|t| 1e-3 * amp_mm * w * (w * t).cos()).collect();
-            let force_n = x_mm
-                .iter()
-                .zip(&v_true)
-                .map(|(x, v)| {
-                    let k = 40.0 + 30.0 * current_a;
-                    k * x + 0.2 * x * x + F0_N * (1.0 + current_a) * v.signum() + f_noise.sample(&mut rng)
-                })
-                .collect();
-            let v_m_s = v_true.iter().map(|v| v + v_noise.sample(&mut rng)).collect();
-            recordings.push(diagnose_support::fit_recording(
-                format!("a{amp_mm}_i{current_a}.csv"),
-                current_a,
-                Samples {
-                    time_s,
-                    x_mm,
-                    v_m_s,
-                    force_n,
-                    ..Samples::default()
-                },
-            ));
-        }
+    let sinusoid = |amp_mm: f64, freq_hz: f64| {
+        let w = 2.0 * std::f64::consts::PI * freq_hz;
+        let n = (2.0 / freq_hz / DT_S) as usize;
+        let time_s: Vec<f64> = (0..n).map(|i| i as f64 * DT_S).collect();
+        let x_mm = time_s.iter().map(|t| amp_mm * (w * t).sin()).collect();
+        let v_m_s = time_s.iter().map(|t| 1e-3 * amp_mm * w * (w * t).cos()).collect();
+        (time_s, x_mm, v_m_s)
+    };
+    let hysteretic = |x_mm: &[f64], v_m_s: &[f64], current_a: f64| -> Vec<f64> {
+        let k = 40.0 + 30.0 * current_a;
+        x_mm.iter()
+            .zip(v_m_s)
+            .map(|(x, v)| k * x + 0.2 * x * x + F0_N * (1.0 + current_a) * v.signum())
+            .collect()
+    };
+    diagnose_support::Campaign {
+        name: "noisy velocity",
+        currents_a: &[0.0, 1.0],
+        tests: &[(4.0, 1.0), (8.0, 0.5), (12.0, 0.5)],
+        noise_n: 2.0,
+        v_noise_m_s: 0.003,
+        seed,
     }
-    Dataset {
-        name: "noisy velocity".into(),
-        root: PathBuf::new(),
-        recordings,
-    }
+    .build(sinusoid, hysteretic)
 }
 
 #[test]

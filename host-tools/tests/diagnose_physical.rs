@@ -5,7 +5,7 @@
 //! pinned to the search grid.
 mod diagnose_support;
 
-use diagnose_support::{dataset, law_n, motion_campaign, Added, SAMPLE_PERIOD_S};
+use diagnose_support::{dataset, law_n, Added, Campaign, SAMPLE_PERIOD_S};
 use mre_host::dataset::Dataset;
 use mre_host::diagnose::design::{Designs, Terms, Viscous};
 use mre_host::diagnose::prepared::{prepare, FoldPlan};
@@ -30,7 +30,15 @@ fn campaign(tests: &[(f64, f64)], force: impl Fn(f64, f64, f64) -> f64, seed: u6
     let per_sample = |x_mm: &[f64], v_m_s: &[f64], current_a: f64| -> Vec<f64> {
         x_mm.iter().zip(v_m_s).map(|(&x, &v)| force(x, v, current_a)).collect()
     };
-    motion_campaign("physical", &[0.0, 1.0], tests, sinusoid, per_sample, NOISE_N, seed)
+    Campaign {
+        name: "physical",
+        currents_a: &[0.0, 1.0],
+        tests,
+        noise_n: NOISE_N,
+        v_noise_m_s: 0.0,
+        seed,
+    }
+    .build(sinusoid, per_sample)
 }
 
 /// A friction damper's force: a backbone that saturates at `F_s(I)` beyond a

@@ -32,7 +32,15 @@ fn dahl_from_rest(seed: u64) -> (Dataset, HystereticLaw) {
     let law = HystereticLaw::example(Hysteresis::Dahl, 0.0);
     let tests = [(2.0, 2.0), (5.0, 1.0), (10.0, 0.5)];
     let forces = |x_mm: &[f64], v_m_s: &[f64], current_a: f64| law.forces_n(x_mm, v_m_s, current_a);
-    let ds = diagnose_support::motion_campaign("dahl from rest", &[0.0, 1.0], &tests, from_rest, forces, NOISE_N, seed);
+    let ds = diagnose_support::Campaign {
+        name: "dahl from rest",
+        currents_a: &[0.0, 1.0],
+        tests: &tests,
+        noise_n: NOISE_N,
+        v_noise_m_s: 0.0,
+        seed,
+    }
+    .build(from_rest, forces);
     (ds, law)
 }
 

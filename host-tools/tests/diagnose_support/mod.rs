@@ -179,46 +179,61 @@ pub fn dataset(added: Added, seed: u64) -> Dataset {
 }
 
 /// A campaign of fit recordings at each of `currents_a` and each
-/// `(amplitude mm, frequency Hz)` of `tests`, named `a{A}_f{f}_i{I}.csv`:
-/// the motion `motion(A, f)` = (t, x, v) and the force `force(x, v, I)`
-/// (whole recordings) plus seeded Gaussian noise of `noise_n`.
-#[allow(clippy::type_complexity)]
-pub fn motion_campaign(
-    name: &str,
-    currents_a: &[f64],
-    tests: &[(f64, f64)],
-    motion: impl Fn(f64, f64) -> (Vec<f64>, Vec<f64>, Vec<f64>),
-    force: impl Fn(&[f64], &[f64], f64) -> Vec<f64>,
-    noise_n: f64,
-    seed: u64,
-) -> Dataset {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let noise = Normal::new(0.0, noise_n).expect("a finite noise level");
-    let mut recordings = Vec::new();
-    for &current_a in currents_a {
-        for &(amp_mm, freq_hz) in tests {
-            let (time_s, x_mm, v_m_s) = motion(amp_mm, freq_hz);
-            let force_n = force(&x_mm, &v_m_s, current_a)
-                .into_iter()
-                .map(|f| f + noise.sample(&mut rng))
-                .collect();
-            recordings.push(fit_recording(
-                format!("a{amp_mm}_f{freq_hz}_i{current_a}.csv"),
-                current_a,
-                Samples {
-                    time_s,
-                    x_mm,
-                    v_m_s,
-                    force_n,
-                    ..Samples::default()
-                },
-            ));
+/// `(amplitude mm, frequency Hz)` of `tests`, named `a{A}_f{f}_i{I}.csv`,
+/// with seeded Gaussian noise: `noise_n` on the force, `v_noise_m_s` on the
+/// recorded velocity (the force is computed from the true one).
+pub struct Campaign<'a> {
+    pub name: &'a str,
+    pub currents_a: &'a [f64],
+    pub tests: &'a [(f64, f64)],
+    pub noise_n: f64,
+    pub v_noise_m_s: f64,
+    pub seed: u64,
+}
+
+impl Campaign<'_> {
+    /// The motion `motion(A, f)` = (t, x, v) and the force `force(x, v, I)`
+    /// (whole recordings) of each test.
+    #[allow(clippy::type_complexity)]
+    pub fn build(
+        &self,
+        motion: impl Fn(f64, f64) -> (Vec<f64>, Vec<f64>, Vec<f64>),
+        force: impl Fn(&[f64], &[f64], f64) -> Vec<f64>,
+    ) -> Dataset {
+        let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
+        let f_noise = Normal::new(0.0, self.noise_n).expect("a finite force noise");
+        let v_noise = Normal::new(0.0, self.v_noise_m_s).expect("a finite velocity noise");
+        let mut recordings = Vec::new();
+        for &current_a in self.currents_a {
+            for &(amp_mm, freq_hz) in self.tests {
+                let (time_s, x_mm, v_true) = motion(amp_mm, freq_hz);
+                let force_n = force(&x_mm, &v_true, current_a)
+                    .into_iter()
+                    .map(|f| f + f_noise.sample(&mut rng))
+                    .collect();
+                let v_m_s = if self.v_noise_m_s > 0.0 {
+                    v_true.iter().map(|v| v + v_noise.sample(&mut rng)).collect()
+                } else {
+                    v_true
+                };
+                recordings.push(fit_recording(
+                    format!("a{amp_mm}_f{freq_hz}_i{current_a}.csv"),
+                    current_a,
+                    Samples {
+                        time_s,
+                        x_mm,
+                        v_m_s,
+                        force_n,
+                        ..Samples::default()
+                    },
+                ));
+            }
         }
-    }
-    Dataset {
-        name: name.into(),
-        root: PathBuf::new(),
-        recordings,
+        Dataset {
+            name: self.name.into(),
+            root: PathBuf::new(),
+            recordings,
+        }
     }
 }
 
