@@ -381,40 +381,25 @@ fn solve_from(
         // Entry 0 is proven the smallest force: nothing falls to the target.
         return saturated(0, first.current_a, f0, Flags::SATURATED_LOW);
     }
-    if f0 > target_force_n {
-        // Every force so far lies above the target, the nearest lowest of
-        // them, so a force that falls to the target falls below the nearest
-        // first: an entry at or above the nearest costs one comparison.
-        // (Near contact, where the fitted entries cross, this is the long
-        // scan: a target below them all.)
-        for (k, entry) in entries.rest() {
-            if k >= entries.len {
-                break;
-            }
-            let force = force_at(k, entry);
-            if force < nearest.0 {
-                if force <= target_force_n {
-                    return bracket(k, (i_prev, entry.current_a), f0, force, target_force_n);
-                }
-                nearest = (force, entry.current_a);
-            }
-            (f0, i_prev) = (force, entry.current_a);
-        }
-        return saturated(0, nearest.1, nearest.0, Flags::SATURATED_LOW);
-    }
-    // Entry 0's force is NaN: nothing is nearer, and the first force at or
-    // below the target still brackets it.
+    // Every force so far lies above the target, the nearest lowest of them,
+    // so a force that falls to the target falls below the nearest first: an
+    // entry at or above the nearest costs one comparison. (Near contact,
+    // where the fitted entries cross, this is the long scan: a target below
+    // them all.) A NaN entry 0 is never the nearer: every force is then
+    // tested against the target, and none replaces it.
     for (k, entry) in entries.rest() {
         if k >= entries.len {
             break;
         }
         let force = force_at(k, entry);
-        // Falling to or through the target from above.
-        if force <= target_force_n {
-            return bracket(k, (i_prev, entry.current_a), f0, force, target_force_n);
-        }
-        if force < nearest.0 {
-            nearest = (force, entry.current_a);
+        if !(force >= nearest.0) {
+            // Falling to or through the target from above.
+            if force <= target_force_n {
+                return bracket(k, (i_prev, entry.current_a), f0, force, target_force_n);
+            }
+            if force < nearest.0 {
+                nearest = (force, entry.current_a);
+            }
         }
         (f0, i_prev) = (force, entry.current_a);
     }

@@ -18,18 +18,17 @@ fn diagnose_in(cwd: &Path, data: &Path) -> Output {
         .expect("run mre")
 }
 
-/// A data set with viscous damping added, written to a fresh folder (kept
-/// while the returned guard lives).
-fn viscous_data_set() -> (tempfile::TempDir, PathBuf) {
+/// `ds` written to a fresh folder (kept while the returned guard lives).
+fn written(ds: &Dataset) -> (tempfile::TempDir, PathBuf) {
     let data_dir = tempfile::tempdir().expect("tempdir");
     let data = data_dir.path().join("data");
-    write_dataset(
-        &dataset(Added::Viscous { c_n_s_per_m: 400.0 }, 3),
-        &data,
-        &WriteOptions::default(),
-    )
-    .expect("write");
+    write_dataset(ds, &data, &WriteOptions::default()).expect("write");
     (data_dir, data)
+}
+
+/// A data set with viscous damping added, written to a fresh folder.
+fn viscous_data_set() -> (tempfile::TempDir, PathBuf) {
+    written(&dataset(Added::Viscous { c_n_s_per_m: 400.0 }, 3))
 }
 
 fn names_in(dir: &Path) -> Vec<String> {
@@ -126,15 +125,11 @@ fn constant_speed_ramps() -> (tempfile::TempDir, PathBuf) {
             ));
         }
     }
-    let data_dir = tempfile::tempdir().expect("tempdir");
-    let data = data_dir.path().join("ramps");
-    let ds = Dataset {
+    written(&Dataset {
         name: "constant-speed ramps".into(),
         root: PathBuf::new(),
         recordings,
-    };
-    write_dataset(&ds, &data, &WriteOptions::default()).expect("write");
-    (data_dir, data)
+    })
 }
 
 // Catches a Debug dump of each failing variant (planted in cv.rs's
