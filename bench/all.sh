@@ -22,8 +22,8 @@ for s in "${sections[@]}"; do
     fitting)
         bash bench/fitting.sh
         cargo bench -q -p host-tools --bench fit -- --noplot
-        cargo test -q -p host-tools --test dataset_motion drift -- --nocapture
-        cargo test -q -p host-tools --test dataset_motion fit_from -- --nocapture
+        cargo test -q -p host-tools --test integration dataset_motion::drift -- --nocapture
+        cargo test -q -p host-tools --test integration dataset_motion::fit_from -- --nocapture
         ;;
     firmware)
         bash firmware/bench/budgets.sh
@@ -37,9 +37,9 @@ for s in "${sections[@]}"; do
         "$MRE" bench-control --real-coils --out "$out/real-coils" >/dev/null
         cat "$out/real-coils/report.md"
         "$MRE" fmu models/drop-full-stroke.toml --out "$out/damper.fmu"
-        CARGO_TARGET_DIR=target/fmu cargo run -q --release --config profile.release.lto=false \
+        CARGO_TARGET_DIR=target/fmu cargo run -q --release \
             -p mre-fmu --example step_cost -- "$out/damper.fmu"
-        cargo test -q -p host-tools --test fmu_fmpy -- --nocapture
+        cargo test -q -p host-tools --test integration fmu_fmpy:: -- --nocapture
         ;;
     diagnosis)
         "$MRE" bench-diagnose --cases 60 --seed 1 --mts-cases 10 --json "$out/sim1.json"

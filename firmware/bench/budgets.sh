@@ -42,8 +42,8 @@ echo "$COUNTS" | awk -F' [|] ' -v m="$MODEL_MAX" -v c="$CONTROL_MAX" '
     }
     if (bad) { print "BUDGET EXCEEDED: instructions per step" > "/dev/stderr"; exit 1 }
   }'
-for image in "cargo fw:target/thumbv7em-none-eabihf/release/mre-firmware" \
-  "cargo fw-nucleo:target/nucleo/thumbv7em-none-eabihf/release/mre-firmware"; do
+for image in "cargo fw:target/thumbv7em-none-eabihf/firmware/mre-firmware" \
+  "cargo fw-nucleo:target/nucleo/thumbv7em-none-eabihf/firmware/mre-firmware"; do
   llvm-size -A "${image#*:}" | awk -v name="${image%%:*}" -v f="$FLASH_MAX" -v r="$RAM_MAX" '
     $1 ~ /^\.(vector_table|text|rodata|data)$/ { flash += $2 }
     $1 ~ /^\.(data|bss|uninit)$/ { ram += $2 }

@@ -10,7 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 N=${1:?window index}
 MODE=${2:-functions}
-ELF=target/pil-bench/thumbv7em-none-eabihf/release/mre-firmware
+ELF=target/pil-bench/thumbv7em-none-eabihf/firmware/mre-firmware
 PCS=$(mktemp)
 TRACE_CLEANUP=$PCS
 . firmware/bench/trace.sh

@@ -18,8 +18,8 @@ cargo fw -q
 NM=$(command -v llvm-nm || command -v arm-none-eabi-nm || command -v rust-nm)
 TRACE=$(mktemp)
 trap 'rm -f "$TRACE"' EXIT
-for image in pil:target/pil/thumbv7em-none-eabihf/release/mre-firmware \
-             b-l475e-iot01a:target/thumbv7em-none-eabihf/release/mre-firmware; do
+for image in pil:target/pil/thumbv7em-none-eabihf/firmware/mre-firmware \
+             b-l475e-iot01a:target/thumbv7em-none-eabihf/firmware/mre-firmware; do
   name=${image%%:*}
   ELF=${image#*:}
   pc=$(printf '%016x' "0x$("$NM" "$ELF" | awk '$3=="mre_coil_pin_safe" {print $1}')")

@@ -172,12 +172,10 @@ fn build_libraries(root: &Path) -> Result<PathBuf> {
     let status = Command::new(cargo)
         .current_dir(root)
         .env("CARGO_TARGET_DIR", &target)
-        // The workspace's fat LTO buys a model evaluation nothing measurable
-        // behind an FMI call, and costs minutes of linking.
-        .args(["build", "--release", "--quiet", "--config", "profile.release.lto=false"])
         .args([
-            "--config",
-            "profile.release.debug=0",
+            "build",
+            "--release",
+            "--quiet",
             "-p",
             "mre-fmu-damper",
             "-p",
@@ -188,7 +186,7 @@ fn build_libraries(root: &Path) -> Result<PathBuf> {
     if !status.success() {
         bail!(
             "building the FMU libraries failed (cargo build --release -p mre-fmu-damper -p mre-fmu-controller: {status}); \
-             rust-fmi generates its bindings with bindgen, which needs libclang (Debian: apt-get install libclang-dev)"
+             its output above names the cause"
         );
     }
     Ok(target.join("release"))

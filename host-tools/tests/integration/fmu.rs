@@ -1,0 +1,173 @@
+//! `mre fmu`'s FMUs loaded by rust-fmi's importer (the `fmi` crate): the
+//! damper's force is the core's on a recorded drop (CS and ME), the
+//! controller's command is the board controller's, and a refused table page
+//! fails initialisation instead of running.
+use crate::fmu_support;
+
+use fmi::fmi3::import::Fmi3Import;
+use fmi::fmi3::{CoSimulation, Common, Fmi3Model, GetSet, ModelExchange};
+use fmi::traits::FmiImport;
+use fmu_support::*;
+use mre_core::control::Controller;
+use std::io::{Read, Write};
+
+fn vr(import: &Fmi3Import, name: &str) -> u32 {
+    import
+        .model_description()
+        .model_variables
+        .iter_abstract()
+        .find(|v| v.name() == name)
+        .unwrap_or_else(|| panic!("no variable {name}"))
+        .value_reference()
+}
+
+fn get(inst: &mut impl GetSet, vr: u32) -> f64 {
+    let mut out = [0.0];
+    inst.get_float64(&[vr], &mut out).expect("get");
+    out[0]
+}
+
+#[test]
+fn damper_force_is_the_cores_on_a_recorded_drop() {
+    let dir = tempfile::tempdir().unwrap();
+    let table = every_term_table();
+    let model = dir.path().join("every-term.toml");
+    std::fs::write(&model, mre_host::table_file::table_to_toml(&table)).unwrap();
+    let fmu = mre_fmu(&model, dir.path(), false);
+    let import: Fmi3Import = fmi::import::from_path(&fmu).expect("the fmi crate imports damper.fmu");
+    let md = import.model_description();
+    assert_eq!(md.fmi_version, "3.0");
+    assert!(md.model_exchange.is_some() && md.co_simulation.is_some());
+    let [x, v, i, f, tau] =
+        ["displacement_m", "velocity_m_s", "current_a", "force_n", "coil_tau_s"].map(|n| vr(&import, n));
+
+    let samples = trace();
+    let scale = samples
+        .iter()
+        .map(|s| core_force_n(&table, s).abs())
+        .fold(0.0f32, f32::max);
+    // x goes in as m and the FMU converts to mm in f32: a few ulps of the force.
+    let allowed_n = 8.0 * f64::from(f32::EPSILON) * f64::from(scale);
+    let mut cs = import
+        .instantiate_cs("damper", false, false, false, false, &[])
+        .expect("CS instance");
+    cs.enter_initialization_mode(None, 0.0, None).unwrap();
+    cs.exit_initialization_mode().unwrap();
+    let mut me = import.instantiate_me("damper-me", false, false).expect("ME instance");
+    me.enter_initialization_mode(None, 0.0, None).unwrap();
+    me.exit_initialization_mode().unwrap();
+    me.enter_continuous_time_mode().unwrap();
+    // The model file's coil τ (2 ms), read from the page the FMU carries.
+    assert_eq!(get(&mut cs, tau), 2.0e-3_f32 as f64);
+    let mut worst_n: f64 = 0.0;
+    for s in &samples {
+        let inputs = [s.x_mm * 1e-3, s.v_m_s, s.current_a];
+        cs.set_float64(&[x, v, i], &inputs).unwrap();
+        me.set_float64(&[x, v, i], &inputs).unwrap();
+        let core_n = f64::from(core_force_n(&table, s));
+        for force in [get(&mut cs, f), get(&mut me, f)] {
+            worst_n = worst_n.max((force - core_n).abs());
+        }
+    }
+    assert!(
+        worst_n <= allowed_n,
+        "damper.fmu's force differs from the core's by up to {worst_n} N (f32 rounding allows {allowed_n} N)"
+    );
+    // Not trivially equal: the drive spans a real range of forces.
+    assert!(scale > 100.0, "the drive should load the damper (peak {scale} N)");
+}
+
+#[test]
+fn controller_commands_what_the_board_controller_commands() {
+    // The model the firmware flies (fitted over the whole 0–15 mm stroke).
+    let dir = tempfile::tempdir().unwrap();
+    let model = repo().join("models/drop-full-stroke.toml");
+    let table = mre_host::table_file::read_table_file(&model).unwrap();
+    let damper = mre_fmu(&model, dir.path(), true);
+    let import: Fmi3Import =
+        fmi::import::from_path(mre_host::fmu::controller_path(&damper)).expect("the fmi crate imports controller.fmu");
+    let [x, v, u, period] =
+        ["displacement_m", "velocity_m_s", "coil_command_a", "control_period_s"].map(|n| vr(&import, n));
+    let mut cs = import
+        .instantiate_cs("controller", false, false, false, false, &[])
+        .unwrap();
+    cs.enter_initialization_mode(None, 0.0, None).unwrap();
+    cs.exit_initialization_mode().unwrap();
+    let period_s = get(&mut cs, period);
+    assert_eq!(period_s, f64::from(1.0f32 / 10_000.0), "the board's 10 kHz");
+
+    // The board's controller with the same table and installation, fed the same samples.
+    let cfg = mre_host::fmu::installation(&table).unwrap();
+    let mut board = Controller::new(cfg, Ok(table)).unwrap();
+    let mut t = 0.0;
+    let mut changed = 0;
+    let mut last = f64::NAN;
+    // The recording is sampled at 20 kHz: every second sample is one 10 kHz period.
+    for s in trace().into_iter().step_by(2) {
+        cs.set_float64(&[x, v], &[s.x_mm * 1e-3, s.v_m_s]).unwrap();
+        let (mut event, mut terminate, mut early, mut reached) = (false, false, false, 0.0);
+        cs.do_step(t, period_s, true, &mut event, &mut terminate, &mut early, &mut reached)
+            .unwrap();
+        t += period_s;
+        let expected = board.step_sample((s.x_mm * 1e-3 * 1e3) as f32, Some(s.v_m_s as f32));
+        let command = get(&mut cs, u);
+        assert_eq!(command, f64::from(expected.current_a), "tick at {t} s");
+        assert!(
+            !expected.flags.is_fault(),
+            "the drop should fly without a fault ({:?})",
+            expected.flags
+        );
+        changed += usize::from(command != last);
+        last = command;
+    }
+    assert!(changed > 10, "the command should follow the drop ({changed} changes)");
+}
+
+#[test]
+fn a_refused_table_page_fails_initialisation() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = dir.path().join("every-term.toml");
+    std::fs::write(&model, mre_host::table_file::table_to_toml(&every_term_table())).unwrap();
+    let fmu = mre_fmu(&model, dir.path(), false);
+    // Flip one byte of the page's blob: its CRC no longer matches.
+    let corrupted = dir.path().join("corrupted.fmu");
+    {
+        let mut zin = zip::ZipArchive::new(std::fs::File::open(&fmu).unwrap()).unwrap();
+        let mut zout = zip::ZipWriter::new(std::fs::File::create(&corrupted).unwrap());
+        for k in 0..zin.len() {
+            let mut entry = zin.by_index(k).unwrap();
+            let name = entry.name().to_owned();
+            let mut bytes = Vec::new();
+            entry.read_to_end(&mut bytes).unwrap();
+            if name == "resources/table.page" {
+                bytes[40] ^= 0x01;
+            }
+            zout.start_file(name, zip::write::SimpleFileOptions::default()).unwrap();
+            zout.write_all(&bytes).unwrap();
+        }
+        zout.finish().unwrap();
+    }
+    let import: Fmi3Import = fmi::import::from_path(&corrupted).unwrap();
+    let mut cs = import
+        .instantiate_cs("damper", false, false, false, false, &[])
+        .unwrap();
+    cs.enter_initialization_mode(None, 0.0, None).unwrap();
+    assert!(
+        cs.exit_initialization_mode().is_err(),
+        "a page the board's loader refuses must not be flown"
+    );
+}
+
+#[test]
+fn a_missing_model_file_is_a_sentence() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_mre"))
+        .args(["fmu", "no-such-model.toml", "--out"])
+        .arg(dir.path().join("d.fmu"))
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("cannot read model file no-such-model.toml"), "{err}");
+    assert!(!dir.path().join("d.fmu").exists());
+}
