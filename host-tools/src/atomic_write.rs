@@ -135,6 +135,7 @@ pub fn stage_folder(dest: &Path, replace: bool, fill: impl FnOnce(&Path) -> Resu
         let tmp = builder
             .tempdir_in(parent)
             .with_context(|| format!("cannot create a temporary folder in {}", parent.display()))?;
+        interrupt::track(tmp.path());
         fill(tmp.path())?;
         std::fs::write(tmp.path().join(MARKER_FILE), MARKER_TEXT)
             .with_context(|| format!("cannot write {}", dest.join(MARKER_FILE).display()))?;
@@ -301,6 +302,7 @@ impl OutputSet {
         let mut tmp = builder
             .tempfile_in(dir)
             .with_context(|| format!("cannot create a temporary file in {}", dir.display()))?;
+        interrupt::track(tmp.path());
         let injected = self.fail_after == Some(self.staged.len());
         let written = if injected {
             tmp.write_all(&bytes[..bytes.len() / 2])
@@ -455,5 +457,6 @@ pub fn files_in(dir: &Path) -> Vec<(PathBuf, PathBuf)> {
     files
 }
 
+pub mod interrupt;
 #[cfg(test)]
 mod tests;

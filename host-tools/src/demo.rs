@@ -188,8 +188,8 @@ fn model_families(data: &Path, out: &Path, seed: u64) -> Result<DemoStep> {
 }
 
 /// The diagnosed model of "from recordings to flash" as `damper.fmu` and
-/// `controller.fmu` (`mre fmu --controller`). Without the FMU libraries
-/// (building them needs libclang) the step says so and the demo goes on.
+/// `controller.fmu` (`mre fmu --controller`). When the FMU libraries cannot be
+/// built or the FMUs written, the step says why and the demo goes on.
 fn fmus(out: &Path) -> Result<DemoStep> {
     let _progress = crate::progress::spinner("building the FMUs of the diagnosed model");
     let title =
@@ -212,7 +212,17 @@ fn fmus(out: &Path) -> Result<DemoStep> {
         out: dir.join("damper.fmu"),
         controller: true,
     };
-    let written = crate::fmu::run_fmu_with(&request, &libraries)?;
+    let written = match crate::fmu::run_fmu_with(&request, &libraries) {
+        Ok(written) => written,
+        Err(e) => {
+            return Ok(DemoStep {
+                title,
+                headline: format!("skipped: writing the FMUs failed: {e:#}"),
+                report: model,
+                downloads: Vec::new(),
+            })
+        }
+    };
     // Linked from the page so a reader downloads them (the browser check
     // fails on a link to a file that is not there).
     let links: Vec<String> = written
@@ -228,7 +238,7 @@ fn fmus(out: &Path) -> Result<DemoStep> {
          - damper: `displacement_m` (m), `velocity_m_s` (m/s), `current_a` (A) in; `force_n` (N) out.\n\
          - controller: measured `displacement_m`, `velocity_m_s` in; `coil_command_a` (A) out, one control tick \
          per `control_period_s` (the board's 10 kHz).\n\n\
-         The README's section \"FMUs\" shows how to use them in OpenModelica, Simulink and FMPy.\n",
+         docs/fmu.md in the repository shows how to use them in OpenModelica, Simulink and FMPy.\n",
         links.join(" and "),
         crate::fmu::PLATFORM
     );
@@ -245,15 +255,19 @@ fn fmus(out: &Path) -> Result<DemoStep> {
 }
 
 fn processor_in_the_loop(out: &Path, seed: u64) -> Result<DemoStep> {
-    use crate::pil::qemu::{qemu_binary, workspace_root, INSTALL_HINT};
+    use crate::pil::qemu::{firmware_target_missing, usable_qemu, workspace_root};
     let title = "closed-loop drop test, firmware in QEMU (PIL)".to_string();
-    if qemu_binary().is_none() {
-        return Ok(DemoStep {
-            title,
-            headline: format!("skipped: {INSTALL_HINT}"),
-            report: workspace_root().join("firmware/README.md"),
-            downloads: Vec::new(),
-        });
+    let skipped = |why: String| DemoStep {
+        title: title.clone(),
+        headline: format!("skipped: {why}"),
+        report: workspace_root().join("firmware/README.md"),
+        downloads: Vec::new(),
+    };
+    if let Err(why) = usable_qemu() {
+        return Ok(skipped(why));
+    }
+    if let Some(why) = firmware_target_missing() {
+        return Ok(skipped(why));
     }
     let _progress = crate::progress::spinner("building the PIL firmware and running it in QEMU");
     let dir = out.join("pil");
@@ -261,7 +275,12 @@ fn processor_in_the_loop(out: &Path, seed: u64) -> Result<DemoStep> {
         sim: drop_request(out, seed)?,
         elf: None,
     };
-    let run = crate::pil::sim::run_pil(&request, &dir)?;
+    // A failing image build or QEMU run skips this step alone: the rest of
+    // the demo's pages are still written.
+    let run = match crate::pil::sim::run_pil(&request, &dir) {
+        Ok(run) => run,
+        Err(e) => return Ok(skipped(format!("the firmware-in-QEMU run failed: {e:#}"))),
+    };
     let a = run.agreement;
     let gain = match &run.comparison.controlled_vs_passive {
         Some((reference, pct)) => format!("; controlled peak force {pct:.1} % below {reference}"),
@@ -290,6 +309,7 @@ pub fn run_demo(options: &DemoOptions) -> Result<Vec<DemoStep>> {
             ..options.clone()
         })?;
         write_index(staging, &steps)?;
+        name_the_published_folder(staging, &options.out_dir)?;
         for step in &mut steps {
             if let Ok(inside) = step.report.strip_prefix(staging) {
                 step.report = options.out_dir.join(inside);
@@ -300,8 +320,105 @@ pub fn run_demo(options: &DemoOptions) -> Result<Vec<DemoStep>> {
     Ok(steps)
 }
 
-/// `index.html` in the demo's output folder: every step's headline, linked
-/// to the step's own page (the `index.html` beside its report).
+/// Steps record the paths they were given (a model file, a data set's
+/// outputs), which during the run lie in the hidden staging folder that is
+/// renamed to `out` at the end. Pages must name the folder the user asked
+/// for, so every text output's staging path is rewritten to `out`.
+fn name_the_published_folder(staging: &Path, out: &Path) -> Result<()> {
+    const TEXT: [&str; 8] = ["md", "html", "json", "toml", "csv", "rs", "txt", "svg"];
+    // The staging folder as steps may have spelled it: absolute, canonical, as given.
+    let mut spellings: Vec<(String, String)> = Vec::new();
+    let forms = |p: &Path| {
+        [
+            std::path::absolute(p).ok(),
+            std::fs::canonicalize(p).ok(),
+            Some(p.to_path_buf()),
+        ]
+    };
+    let out_abs = std::path::absolute(out).unwrap_or_else(|_| out.to_path_buf());
+    for (staged, published) in
+        forms(staging)
+            .into_iter()
+            .zip([Some(out_abs.clone()), Some(out_abs), Some(out.to_path_buf())])
+    {
+        if let (Some(staged), Some(published)) = (staged, published) {
+            let pair = (staged.display().to_string(), published.display().to_string());
+            if !spellings.contains(&pair) {
+                spellings.push(pair);
+            }
+        }
+    }
+    let mut folders = vec![staging.to_path_buf()];
+    while let Some(folder) = folders.pop() {
+        for entry in std::fs::read_dir(&folder).with_context(|| format!("cannot read {}", folder.display()))? {
+            let path = entry?.path();
+            if path.is_dir() {
+                folders.push(path);
+                continue;
+            }
+            let is_text = path.extension().is_some_and(|e| TEXT.iter().any(|t| e == *t));
+            if !is_text {
+                continue;
+            }
+            let Ok(text) = std::fs::read_to_string(&path) else {
+                continue;
+            };
+            let mut renamed = text.clone();
+            for (staged, published) in &spellings {
+                renamed = renamed.replace(staged.as_str(), published);
+            }
+            if renamed != text {
+                std::fs::write(&path, renamed).with_context(|| format!("cannot write {}", path.display()))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The four results a reader came for, shown first on `out/index.html`: each
+/// a figure a step wrote, linked to that step's page.
+fn results(out: &Path) -> Vec<crate::html::ResultFigure> {
+    let figure = |png: &str, page: &str, caption: &str, missing: &str| crate::html::ResultFigure {
+        image: out.join(png),
+        page: out.join(page),
+        caption: caption.to_string(),
+        missing: missing.to_string(),
+    };
+    vec![
+        figure(
+            "mr-damper-mts/plots/fig12_bracket_0p5A.png",
+            "mr-damper-mts/index.html",
+            "The paper's model against real MR damper loops at 0.5 A, a current it was never fitted on \
+             (interpolated between 0 A and 1 A).",
+            "the fit step wrote no figure at 0.5 A",
+        ),
+        figure(
+            "diagnose-mr-damper-mts/loops_worst.png",
+            "diagnose-mr-damper-mts/index.html",
+            "Diagnosis on the real MR damper data: measured loops, the paper's model, and the model with \
+             the physics diagnosis found, on recordings held out of the fit.",
+            "the diagnosis wrote no loop figure",
+        ),
+        figure(
+            "recordings-to-flash/force-displacement.png",
+            "recordings-to-flash/index.html",
+            "The controlled drop (simulated plant): the diagnosed model and the paper's table flown by the \
+             board's controller, against the passive damper and the physical limit.",
+            "the closed-loop step wrote no figure",
+        ),
+        figure(
+            &format!("pil/{}.png", crate::pil::sim::AGREEMENT_FIGURE),
+            "pil/index.html",
+            "Processor in the loop: the real firmware image in QEMU against the same core on the host, \
+             coil command per control period.",
+            "skipped: QEMU 10 was not found (see the PIL step below for the command that installs it)",
+        ),
+    ]
+}
+
+/// `index.html` in the demo's output folder: the four result figures, then
+/// every step's headline, linked to the step's own page (the `index.html`
+/// beside its report).
 fn write_index(out: &Path, steps: &[DemoStep]) -> Result<()> {
     let pages: Vec<Option<PathBuf>> = steps
         .iter()
@@ -326,6 +443,7 @@ fn write_index(out: &Path, steps: &[DemoStep]) -> Result<()> {
         "The paper's model fitted to real MR damper recordings and to simulated drop tests, validated by \
          predicting currents it never saw, diagnosed for missing physics, and run in closed loop on the host \
          and on the firmware. Each step's page has its tables, figures and data files.",
+        &results(out),
         &entries,
     )
 }
@@ -357,4 +475,25 @@ fn run_steps(options: &DemoOptions) -> Result<Vec<DemoStep>> {
         processor_in_the_loop(out, options.seed)?,
     ];
     Ok(steps)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pages_name_the_published_folder_not_the_staging_one() {
+        let dir = tempfile::tempdir().unwrap();
+        let staging = dir.path().join(".mre-stage-abc123");
+        std::fs::create_dir_all(staging.join("fit/validate")).unwrap();
+        let model = staging.join("fit/model.toml");
+        let report = staging.join("fit/validate/report.md");
+        std::fs::write(&report, format!("Model: `{}`.\n", model.display())).unwrap();
+        std::fs::write(staging.join("fig.png"), b"\x89PNG not text").unwrap();
+        let out = dir.path().join("out");
+        name_the_published_folder(&staging, &out).unwrap();
+        let text = std::fs::read_to_string(&report).unwrap();
+        assert_eq!(text, format!("Model: `{}`.\n", out.join("fit/model.toml").display()));
+        assert_eq!(std::fs::read(staging.join("fig.png")).unwrap(), b"\x89PNG not text");
+    }
 }

@@ -7,6 +7,7 @@ pub mod dataset;
 pub mod demo;
 pub mod diagnose;
 pub mod diagnose_bench;
+pub mod error_measure;
 pub mod fit;
 pub mod fmu;
 pub mod html;

@@ -70,8 +70,8 @@ enum Command {
         #[arg(long)]
         model: String,
         /// Folder for report.md and report.json.
-        #[arg(long)]
-        report: PathBuf,
+        #[arg(long, alias = "report")]
+        out: PathBuf,
         /// Treat recordings at these currents as `validate` (as given to `fit`).
         #[arg(long, value_delimiter = ',')]
         hold_out_current: Vec<f64>,
@@ -108,8 +108,10 @@ enum Command {
     Tables {
         /// Model file from `mre fit` (or any table file).
         model: PathBuf,
-        #[arg(long, default_value = mre_host::tables::DEFAULT_OUT)]
-        out: PathBuf,
+        /// Rust source to write; default: the firmware's own, `firmware/src/generated_table.rs`,
+        /// when run from the root of a checkout (it never creates that folder elsewhere).
+        #[arg(long)]
+        out: Option<PathBuf>,
     },
     /// Write a synthetic drop-impact data set with a concealed effect (key file beside it).
     Synth {
@@ -146,23 +148,23 @@ enum Command {
         #[arg(long)]
         model: Option<String>,
         /// Folder for report.md and its plots.
+        #[arg(long, alias = "report")]
+        out: PathBuf,
+        /// report.json path (default: report.json in the --out folder).
         #[arg(long)]
-        report: PathBuf,
-        /// report.json path.
+        json: Option<PathBuf>,
+        /// Folder for one predictions CSV per recording (default: predictions/ in the --out folder).
         #[arg(long)]
-        json: PathBuf,
-        /// Folder for one predictions CSV per recording.
-        #[arg(long)]
-        predictions: PathBuf,
+        predictions: Option<PathBuf>,
         /// Hold out whole groups: one cross-validation fold per value of this tag (e.g. frequency_hz).
         #[arg(long)]
         folds_by: Option<String>,
         /// Number of stratified cross-validation folds (when --folds-by is not given).
         #[arg(long, default_value_t = 5)]
         folds: usize,
-        /// Treat recordings at this current (A) as `validate`; repeatable.
-        #[arg(long)]
-        validate_current: Vec<f64>,
+        /// Treat recordings at these currents as `validate` (held out of every fit).
+        #[arg(long, alias = "validate-current", value_delimiter = ',')]
+        hold_out_current: Vec<f64>,
         #[arg(long, default_value_t = 1)]
         seed: u64,
         /// Also write the final model (a table file with its [installation]) for `mre tables`.
@@ -208,9 +210,9 @@ enum Command {
         /// With --real: one cross-validation fold per value of this tag.
         #[arg(long)]
         folds_by: Option<String>,
-        /// With --real: treat recordings at this current (A) as `validate`; repeatable.
-        #[arg(long)]
-        validate_current: Vec<f64>,
+        /// With --real: treat recordings at these currents as `validate` (held out of every fit).
+        #[arg(long, alias = "validate-current", value_delimiter = ',')]
+        hold_out_current: Vec<f64>,
         /// With --real: run only the cases injecting these effects (`none` included by name);
         /// each case keeps its seed, so the cases run are the same as in the full benchmark.
         #[arg(long, value_delimiter = ',')]
@@ -229,8 +231,8 @@ enum Command {
         /// Data set folder (holding dataset.toml).
         dataset: PathBuf,
         /// Folder for report.json, report.md, predictions/ and plots/.
-        #[arg(long)]
-        report: PathBuf,
+        #[arg(long, alias = "report")]
+        out: PathBuf,
         /// Recordings at these currents are only predicted (held out).
         #[arg(long, value_delimiter = ',', default_value = "0.5")]
         hold_out_current: Vec<f64>,
@@ -282,8 +284,8 @@ enum Command {
         #[arg(long)]
         coil_lag_off_ms: Option<f64>,
         /// Folder for CSV, summary and plots.
-        #[arg(long)]
-        report: PathBuf,
+        #[arg(long, alias = "report")]
+        out: PathBuf,
     },
     /// Data set helpers: `mre dataset init DIR` writes dataset.toml for a folder of recordings.
     Dataset {
@@ -301,8 +303,8 @@ enum Command {
         #[arg(long)]
         elf: Option<PathBuf>,
         /// Folder for CSV, summary, plots and pil.json.
-        #[arg(long)]
-        report: PathBuf,
+        #[arg(long, alias = "report")]
+        out: PathBuf,
         /// Inject faults instead (e.g. `all:1e-2`, `corrupt:1e-3,drop:1e-2,duplicate:1e-2,sensors,upload,sense-stuck,sense-stale`);
         /// writes faults.md and faults.json.
         #[arg(long)]
@@ -462,6 +464,9 @@ impl DropArgs {
 fn main() {
     let cli = Cli::parse();
     mre_host::progress::set_enabled(!cli.quiet && show_progress());
+    if let Err(e) = mre_host::atomic_write::interrupt::install() {
+        eprintln!("warning: {e:#}; an interrupted run may leave .mre-stage-* files behind");
+    }
     // Every command's outputs are published together or not at all; the demo
     // stages its whole output folder itself (its steps read earlier outputs).
     let result = match cli.command {
@@ -536,7 +541,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Validate {
             dataset,
             model,
-            report,
+            out: report,
             hold_out_current,
         } => {
             let _progress = mre_host::progress::spinner("validating");
@@ -573,6 +578,7 @@ fn run(cli: Cli) -> Result<()> {
             println!("wrote {}/sweep.csv and the Fig. 13/14 plots", out.display());
         }
         Command::Tables { model, out } => {
+            let out = mre_host::tables::resolve_out(out)?;
             let (table, installation) = mre_host::tables::run_tables_stated(&model, &out)?;
             println!(
                 "wrote {} entries (CRC-32 {:#010x}) to {}",
@@ -638,19 +644,21 @@ fn run(cli: Cli) -> Result<()> {
         Command::Diagnose {
             dataset,
             model,
-            report,
+            out: report,
             json,
             predictions,
             folds_by,
             folds,
-            validate_current,
+            hold_out_current,
             seed,
             model_out,
             rules,
             installation,
         } => {
+            let json = json.unwrap_or_else(|| report.join("report.json"));
+            let predictions = predictions.unwrap_or_else(|| report.join("predictions"));
             let mut opts =
-                mre_host::diagnose::options_from_cli(model.as_deref(), folds_by, folds, validate_current, seed)?;
+                mre_host::diagnose::options_from_cli(model.as_deref(), folds_by, folds, hold_out_current, seed)?;
             opts.thresholds = opts.thresholds.with_overrides(&rules)?;
             let progress = mre_host::progress::spinner("diagnosing");
             let out = match &model_out {
@@ -723,12 +731,12 @@ fn run(cli: Cli) -> Result<()> {
             json,
             real: Some(real),
             folds_by,
-            validate_current,
+            hold_out_current,
             only,
             rules,
             ..
         } => {
-            let mut opts = mre_host::diagnose::options_from_cli(None, folds_by, 5, validate_current, seed)?;
+            let mut opts = mre_host::diagnose::options_from_cli(None, folds_by, 5, hold_out_current, seed)?;
             opts.thresholds = opts.thresholds.with_overrides(&rules)?;
             let ds = mre_host::dataset::Dataset::load(&real)?;
             let summary = mre_host::diagnose_bench::real::run_real_bench(&ds, cases, seed, &only, &opts, |c| {
@@ -785,7 +793,7 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Compare {
             dataset,
-            report,
+            out: report,
             hold_out_current,
             agents,
             iters,
@@ -803,6 +811,9 @@ fn run(cli: Cli) -> Result<()> {
             opts.hold_out_a = hold_out_current;
             opts.seed = seed;
             let r = mre_host::compare::run_compare(&dataset, &opts, &report)?;
+            for l in &r.left_out {
+                eprintln!("note: {} left out: {}", l.family, l.missing);
+            }
             println!("{}", mre_host::compare::report::summary_line(&r));
             println!("report: {}", report.join("report.md").display());
             println!("page: {}", report.join("index.html").display());
@@ -842,7 +853,7 @@ fn run(cli: Cli) -> Result<()> {
             controlled,
             coil_lag_ms,
             coil_lag_off_ms,
-            report,
+            out: report,
         } => {
             use mre_host::plant::closed_loop::{run_sim, RunSpec, DEFAULT_RUNS};
             let mut request = drop.request(coil_lag_ms.map(|ms| ms * 1e-3))?;
@@ -873,7 +884,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Pil {
             drop,
             elf,
-            report,
+            out: report,
             faults: Some(spec),
             serial: _,
         } => {
@@ -892,7 +903,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Pil {
             drop,
             elf,
-            report,
+            out: report,
             faults: None,
             serial,
         } => {

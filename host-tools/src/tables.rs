@@ -8,7 +8,7 @@ use anyhow::Result;
 use mre_core::installation::Installation;
 use mre_core::table::Table;
 use std::fmt::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Where `mre tables` writes by default (relative to the workspace root).
 pub const DEFAULT_OUT: &str = "firmware/src/generated_table.rs";
@@ -31,7 +31,7 @@ pub fn generate_table_source(
     );
     let _ = writeln!(
         s,
-        "//! A host test (`host-tools/tests/tables.rs`) fails if this file drifts from the model."
+        "//! A host test (`host-tools/tests/integration/tables.rs`) fails if this file drifts from the model."
     );
     let _ = writeln!(s, "use crate::installation::{{Installation, DEFAULT_INSTALLATION}};");
     let _ = writeln!(
@@ -117,6 +117,23 @@ pub fn run_tables(model: &Path, out: &Path) -> Result<Table> {
 }
 
 /// [`run_tables`], also saying where the installation came from.
+/// Where `mre tables` writes: `out`, or [`DEFAULT_OUT`] when the current
+/// folder is a checkout's root (its `firmware/src` exists). Elsewhere a missing
+/// `--out` is an error: writing the default would create `./firmware/src/`.
+pub fn resolve_out(out: Option<PathBuf>) -> Result<PathBuf> {
+    if let Some(out) = out {
+        return Ok(out);
+    }
+    let default = Path::new(DEFAULT_OUT);
+    match default.parent() {
+        Some(folder) if folder.is_dir() => Ok(default.to_path_buf()),
+        _ => anyhow::bail!(
+            "no --out given, and this is not the root of an mre checkout (no firmware/src here): \
+             give --out FILE for the generated table"
+        ),
+    }
+}
+
 pub fn run_tables_stated(model: &Path, out: &Path) -> Result<(Table, InstallationSource)> {
     let (table, installation) = read_flash_table(model)?;
     let sha = read_dataset_sha256(model)?;

@@ -90,7 +90,60 @@ pub struct Comparison {
     pub options: CompareOptions,
     pub tracks: Vec<Track>,
     pub outcomes: Vec<Outcome>,
+    /// Families this data set is too small for, each with what is missing.
+    pub left_out: Vec<LeftOut>,
     pub total_time_s: f64,
+}
+
+/// A family not fitted, and what the data set lacks for it.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct LeftOut {
+    pub family: String,
+    pub missing: String,
+}
+
+/// What the data set lacks for a comparison at all: fit recordings, and fit
+/// currents on both sides of every held-out one (its loops are interpolated).
+fn what_is_missing(tracks: &[tracks::Track], hold_out_a: &[f64]) -> Option<String> {
+    let mut fit_a: Vec<f64> = tracks
+        .iter()
+        .filter(|t| t.role == Role::Fit)
+        .map(|t| t.current_a)
+        .collect();
+    fit_a.sort_by(f64::total_cmp);
+    fit_a.dedup();
+    let (Some(&lo), Some(&hi)) = (fit_a.first(), fit_a.last()) else {
+        return Some("no recording is left to fit once the held-out currents are set aside".into());
+    };
+    let outside: Vec<String> = hold_out_a
+        .iter()
+        .filter(|&&c| c <= lo || c >= hi)
+        .map(|c| format!("{c} A"))
+        .collect();
+    (!outside.is_empty()).then(|| {
+        format!(
+            "held-out {} not between two fitted currents (fitted: {:?} A): a held-out current is predicted by \
+             interpolating its neighbours, so record currents on both sides of it or hold out another",
+            outside.join(", "),
+            fit_a
+        )
+    })
+}
+
+/// Why `polynomial+diagnose` cannot be scored, if it cannot: the diagnosis
+/// cross-validates over folds of fit recordings, so it needs one per fold.
+fn diagnosis_needs(tracks: &[tracks::Track]) -> Option<String> {
+    let folds = match crate::diagnose::DiagnoseOptions::default().folds {
+        crate::diagnose::prepared::FoldPlan::Stratified { k } => k,
+        crate::diagnose::prepared::FoldPlan::ByTag(_) => return None,
+    };
+    let fit = tracks.iter().filter(|t| t.role == Role::Fit).count();
+    (fit < folds).then(|| {
+        format!(
+            "too few fit recordings: `mre diagnose` cross-validates over {folds} folds of recordings and this \
+             data set has {fit}; add recordings (at least {folds} fit recordings) to score it"
+        )
+    })
 }
 
 /// Fits every family on `ds` (loaded) and predicts every recording.
@@ -99,10 +152,11 @@ pub fn compare(ds: &Dataset, options: &CompareOptions) -> Result<Comparison> {
     let mut ds = ds.clone();
     crate::fit::problems::hold_out(&mut ds, &options.hold_out_a);
     let tracks = tracks::tracks(&ds, &[]);
-    if !tracks.iter().any(|t| t.role == Role::Fit) {
-        bail!("data set `{}` has no fit recordings left to fit", ds.name);
+    if let Some(missing) = what_is_missing(&tracks, &options.hold_out_a) {
+        bail!("data set `{}` cannot be compared: {missing}", ds.name);
     }
     let mut outcomes = Vec::new();
+    let mut left_out = Vec::new();
     for (name, method) in [("polynomial-lsq", Method::Lsq), ("polynomial-gsa", Method::Gsa)] {
         let t0 = Instant::now();
         let p = polynomial::quartics(
@@ -120,7 +174,14 @@ pub fn compare(ds: &Dataset, options: &CompareOptions) -> Result<Comparison> {
             t0,
         ));
     }
-    if !options.skip_diagnosis {
+    let diagnosis_missing = diagnosis_needs(&tracks);
+    if let (false, Some(missing)) = (options.skip_diagnosis, &diagnosis_missing) {
+        left_out.push(LeftOut {
+            family: "polynomial+diagnose".into(),
+            missing: missing.clone(),
+        });
+    }
+    if !options.skip_diagnosis && diagnosis_missing.is_none() {
         let t0 = Instant::now();
         let p = polynomial::with_diagnosis(&ds, &options.hold_out_a, &tracks)?;
         outcomes.push(poly_outcome(
@@ -138,6 +199,7 @@ pub fn compare(ds: &Dataset, options: &CompareOptions) -> Result<Comparison> {
         options: options.clone(),
         tracks,
         outcomes,
+        left_out,
         total_time_s: start.elapsed().as_secs_f64(),
     })
 }

@@ -63,6 +63,8 @@ pub struct ReportJson {
     /// The family with the lowest held-out NRMSE.
     pub best_heldout: Option<String>,
     pub families: Vec<FamilyJson>,
+    /// Families the data set is too small for, with what it lacks.
+    pub left_out: Vec<super::LeftOut>,
 }
 
 /// The numbers of a comparison.
@@ -118,7 +120,10 @@ pub fn summarise(c: &Comparison) -> ReportJson {
     ReportJson {
         dataset: c.dataset.clone(),
         hold_out_currents_a: c.options.hold_out_a.clone(),
-        nrmse_definition: "RMSE / max |F measured| per recording, averaged over recordings".into(),
+        nrmse_definition: format!(
+            "{} per recording, averaged over recordings",
+            crate::error_measure::DEFINITION
+        ),
         gsa_agents: b.gsa.agents,
         gsa_iters: b.gsa.iters,
         gsa_samples_per_recording: b.gsa_samples_per_track,
@@ -131,6 +136,7 @@ pub fn summarise(c: &Comparison) -> ReportJson {
         total_time_s: c.total_time_s,
         best_heldout,
         families,
+        left_out: c.left_out.clone(),
     }
 }
 
@@ -146,6 +152,16 @@ fn ratio(r: &ReportJson, best: f64, base: &str) -> Option<f64> {
 /// A held-out NRMSE this many times lower than the polynomial-plus-diagnosis
 /// counts as a wide margin (the report then says what the firmware would need).
 pub const WIDE_MARGIN: f64 = 1.25;
+
+/// An NRMSE (a fraction in the JSON) as pages print it: percent, 3 significant
+/// digits at most; "–" where it is undefined.
+fn percent(nrmse: f64) -> String {
+    if nrmse.is_finite() {
+        format!("{:.2} %", 100.0 * nrmse)
+    } else {
+        "–".into()
+    }
+}
 
 pub fn markdown(r: &ReportJson) -> String {
     let mut s = format!(
@@ -173,16 +189,19 @@ pub fn markdown(r: &ReportJson) -> String {
     s.push_str("| family | kind | parameters | fit NRMSE | held-out NRMSE | AIC | BIC | fit time (s) |\n|---|---|---|---|---|---|---|---|\n");
     for f in &r.families {
         s.push_str(&format!(
-            "| {} | {} | {} | {:.4} | {} | {:.0} | {:.0} | {:.2} |\n",
+            "| {} | {} | {} | {} | {} | {:.0} | {:.0} | {:.2} |\n",
             f.name,
             f.kind,
             f.n_parameters,
-            f.fit_nrmse,
-            f.heldout_nrmse.map_or("–".into(), |h| format!("{h:.4}")),
+            percent(f.fit_nrmse),
+            f.heldout_nrmse.map_or("–".into(), percent),
             f.aic,
             f.bic,
             f.fit_time_s
         ));
+    }
+    for l in &r.left_out {
+        s.push_str(&format!("\n**{} is left out**: {}.\n", l.family, l.missing));
     }
     s.push_str("\n## What wins on the held-out recordings\n\n");
     let best = r
@@ -194,8 +213,9 @@ pub fn markdown(r: &ReportJson) -> String {
         Some(b) => {
             let h = b.heldout_nrmse.unwrap_or(f64::NAN);
             s.push_str(&format!(
-                "**{}** predicts the held-out recordings best (mean NRMSE {:.4}).",
-                b.name, h
+                "**{}** predicts the held-out recordings best (mean NRMSE {}).",
+                b.name,
+                percent(h)
             ));
             for base in ["polynomial-lsq", "polynomial+diagnose"] {
                 if let Some(q) = ratio(r, h, base).filter(|_| b.name != base) {
@@ -235,7 +255,7 @@ pub fn markdown(r: &ReportJson) -> String {
         {
             s.push_str(&format!("| {} | {} |", rec.file, rec.current_a));
             for f in &r.families {
-                s.push_str(&format!(" {:.4} |", f.recordings[i].nrmse));
+                s.push_str(&format!(" {} |", percent(f.recordings[i].nrmse)));
             }
             s.push('\n');
         }
@@ -306,11 +326,11 @@ pub fn summary_line(r: &ReportJson) -> String {
         .and_then(|n| r.families.iter().find(|f| &f.name == n));
     match best {
         Some(b) => format!(
-            "{} families in {:.1} s; best on held-out recordings: {} (mean NRMSE {:.4})",
+            "{} families in {:.1} s; best on held-out recordings: {} (mean NRMSE {})",
             r.families.len(),
             r.total_time_s,
             b.name,
-            b.heldout_nrmse.unwrap_or(f64::NAN)
+            b.heldout_nrmse.map_or("–".into(), percent)
         ),
         None => format!(
             "{} families in {:.1} s; no held-out recordings",

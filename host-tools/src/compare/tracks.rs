@@ -2,9 +2,11 @@
 //! track of measured x(t), v(t), F(t) at its held current, and the metric
 //! the comparison reports.
 //!
-//! NRMSE of a recording = RMSE / max |F measured| (the definition; the
-//! validation report divides by the force range instead). A family's score is
-//! the mean over recordings, so a 2 mm test counts as much as a 25 mm one.
+//! A recording's error is the one measure of every report
+//! ([`crate::error_measure`]: RMSE / measured force range). A family's score
+//! is the mean over recordings, so a 2 mm test counts as much as a 25 mm one.
+//! (The fitting objective weights each track by its peak |F| instead,
+//! `force_scale_n`: a weight, never reported.)
 use crate::dataset::{Dataset, Recording, Role};
 
 /// One recording, in internal units (s, mm, m/s, N, A).
@@ -103,9 +105,9 @@ pub fn rmse_n(measured: &[f64], model: &[f64]) -> f64 {
     (sse / n as f64).sqrt()
 }
 
-/// NRMSE of one recording: RMSE / max |F measured|.
+/// NRMSE of one recording ([`crate::error_measure`]).
 pub fn nrmse(track: &Track, model: &[f64]) -> f64 {
-    rmse_n(&track.force_n, model) / track.force_scale_n
+    crate::error_measure::nrmse_of(&track.force_n, model)
 }
 
 /// Mean NRMSE over the tracks with `role` (NaN if there are none).
@@ -161,11 +163,11 @@ mod tests {
     }
 
     #[test]
-    fn nrmse_is_rmse_over_peak_force() {
-        // Errors 3 and 4 on two samples: RMSE = √((9 + 16)/2) = √12.5; peak |F| = 10.
+    fn nrmse_is_rmse_over_the_measured_force_range() {
+        // Errors 3 and 4 on two samples: RMSE = √((9 + 16)/2) = √12.5; range 5 − (−10) = 15.
         let t = track(vec![-10.0, 5.0]);
         let got = nrmse(&t, &[-7.0, 9.0]);
-        assert!((got - 12.5f64.sqrt() / 10.0).abs() < 1e-12);
+        assert!((got - 12.5f64.sqrt() / 15.0).abs() < 1e-12);
     }
 
     #[test]

@@ -16,7 +16,7 @@
 //!
 //! Errors grow with time from contact: a load-cell offset δF gives
 //! Δx = δF·t²/(2m), an impact-velocity error Δv0 gives Δx = Δv0·t
-//! (the drift study in host-tools/tests/dataset_motion.rs measures both).
+//! (the drift study in host-tools/tests/integration/dataset_motion.rs measures both).
 
 /// Standard gravity (m/s²), as the drop simulator uses.
 pub const G_M_S2: f64 = 9.81;

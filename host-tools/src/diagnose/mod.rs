@@ -348,8 +348,9 @@ pub fn in_a_folder(path: &std::path::Path) -> std::path::PathBuf {
 pub fn summary_line(r: &report::ReportJson) -> String {
     if r.effects.is_empty() {
         return format!(
-            "no missing physics found (baseline RMSE {:.3} N, NRMSE {:.4})",
-            r.baseline.rmse_n, r.baseline.nrmse
+            "no missing physics found (baseline RMSE {:.3} N, NRMSE {:.2} %)",
+            r.baseline.rmse_n,
+            100.0 * r.baseline.nrmse
         );
     }
     let names: Vec<String> = r

@@ -70,7 +70,7 @@ pub fn metrics(d: &Diagnosis, pred: &[Vec<f64>]) -> Metrics {
     let rmse_n = (se / n.max(1) as f64).sqrt();
     Metrics {
         rmse_n,
-        nrmse: if hi > lo { rmse_n / (hi - lo) } else { 0.0 },
+        nrmse: crate::error_measure::nrmse(rmse_n, if hi > lo { hi - lo } else { 0.0 }),
     }
 }
 

@@ -50,6 +50,10 @@ pub struct ModelMeta {
     pub final_kbest_pct: f64,
     pub bounds: String,
     pub velocity_estimated: bool,
+    /// Currents whose recordings were held out of the fit (`--hold-out-current`),
+    /// so `validate` and `plot` can tell what the model never saw.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub held_out_current_a: Vec<f64>,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -161,6 +165,7 @@ pub fn build(
             final_kbest_pct: g.final_kbest_pct,
             bounds: options.bounds.label().to_string(),
             velocity_estimated,
+            held_out_current_a: Vec::new(),
         },
         current,
         installation: None,

@@ -24,7 +24,6 @@
 pub mod json;
 
 use anyhow::{Context, Result};
-use base64::Engine;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
@@ -182,7 +181,7 @@ fn render_files(out: &mut String, base: &Path, files: &[(PathBuf, PathBuf)], top
     let mut shown: Vec<PathBuf> = Vec::new();
     for (dest, from) in files.iter().filter(|(d, _)| extension(d) == "md") {
         let text = String::from_utf8_lossy(&read(dest, from)?).into_owned();
-        out.push_str(&markdown(&text, files, &mut shown)?);
+        out.push_str(&markdown(&text, base, files, &mut shown));
     }
     // A figure saved as PNG and SVG is embedded once, in the smaller form.
     let size = |p: &Path| std::fs::metadata(p).map_or(u64::MAX, |m| m.len());
@@ -200,14 +199,13 @@ fn render_files(out: &mut String, base: &Path, files: &[(PathBuf, PathBuf)], top
         .collect();
     if !figures.is_empty() {
         let _ = writeln!(out, "<{h}>Figures</{h}>\n<div class=\"figures\">");
-        for (dest, from) in figures {
+        for (dest, _) in figures {
             let name = escape(&dest.file_name().unwrap_or_default().to_string_lossy());
             let _ = writeln!(
                 out,
-                "<figure><a href=\"{link}\"><img src=\"{data}\" alt=\"{name}\"></a>\
+                "<figure><a href=\"{link}\"><img src=\"{link}\" alt=\"{name}\"></a>\
                  <figcaption>{name}</figcaption></figure>",
                 link = escape(&href(base, dest)),
-                data = data_uri(dest, from)?
             );
         }
         out.push_str("</div>\n");
@@ -254,24 +252,13 @@ fn render_files(out: &mut String, base: &Path, files: &[(PathBuf, PathBuf)], top
     Ok(())
 }
 
-/// A figure file as a `data:` URI.
-fn data_uri(dest: &Path, from: &Path) -> Result<String> {
-    let mime = if extension(dest) == "svg" {
-        "image/svg+xml"
-    } else {
-        "image/png"
-    };
-    let data = base64::engine::general_purpose::STANDARD.encode(read(dest, from)?);
-    Ok(format!("data:{mime};base64,{data}"))
-}
-
 /// A markdown report as HTML; its headings move one level down, below the
 /// page's own title. Images it shows from its own folder (`files`) are
-/// embedded and added to `shown`.
-fn markdown(text: &str, files: &[(PathBuf, PathBuf)], shown: &mut Vec<PathBuf>) -> Result<String> {
+/// linked relative to the page (`base`; never embedded, so a figure is stored
+/// once) and added to `shown`.
+fn markdown(text: &str, base: &Path, files: &[(PathBuf, PathBuf)], shown: &mut Vec<PathBuf>) -> String {
     use pulldown_cmark::{CowStr, Event, HeadingLevel, Options, Parser, Tag, TagEnd};
     let demote = |l: HeadingLevel| HeadingLevel::try_from(l as usize + 1).unwrap_or(l);
-    let mut failed = None;
     let parser = Parser::new_ext(text, Options::ENABLE_TABLES).map(|e| match e {
         Event::Start(Tag::Image {
             link_type,
@@ -282,14 +269,10 @@ fn markdown(text: &str, files: &[(PathBuf, PathBuf)], shown: &mut Vec<PathBuf>) 
             let local = files
                 .iter()
                 .find(|(d, _)| d.file_name().is_some_and(|n| n.to_string_lossy() == *dest_url));
-            let dest_url = match local.map(|(d, f)| (d, data_uri(d, f))) {
-                Some((d, Ok(uri))) => {
+            let dest_url = match local {
+                Some((d, _)) => {
                     shown.push(d.clone());
-                    CowStr::from(uri)
-                }
-                Some((_, Err(e))) => {
-                    failed = Some(e);
-                    dest_url
+                    CowStr::from(href(base, d))
                 }
                 None => dest_url,
             };
@@ -318,13 +301,9 @@ fn markdown(text: &str, files: &[(PathBuf, PathBuf)], shown: &mut Vec<PathBuf>) 
     });
     let mut html = String::new();
     pulldown_cmark::html::push_html(&mut html, parser);
-    if let Some(e) = failed {
-        return Err(e);
-    }
     // Wide tables scroll inside their own box.
-    Ok(html
-        .replace("<table>", "<div class=\"scroll\"><table>")
-        .replace("</table>", "</table></div>"))
+    html.replace("<table>", "<div class=\"scroll\"><table>")
+        .replace("</table>", "</table></div>")
 }
 
 fn skeleton(title: &str, lead: Option<&str>, body: &str) -> String {
@@ -351,11 +330,47 @@ pub struct IndexEntry<'a> {
     pub downloads: &'a [PathBuf],
 }
 
-/// The demo's `index.html` in `dir`: one row per step with its headline and
-/// a link to the step's page.
-pub fn write_index(dir: &Path, title: &str, lead: &str, entries: &[IndexEntry]) -> Result<()> {
+/// A result shown as a figure at the top of the demo's `index.html`.
+pub struct ResultFigure {
+    pub image: PathBuf,
+    /// The step's page the figure links to.
+    pub page: PathBuf,
+    pub caption: String,
+    /// Said in place of the figure when its step wrote none (a skipped step).
+    pub missing: String,
+}
+
+/// The demo's `index.html` in `dir`: the result figures (linked, never
+/// embedded), then one row per step with its headline and a link to the
+/// step's page.
+pub fn write_index(
+    dir: &Path,
+    title: &str,
+    lead: &str,
+    results: &[ResultFigure],
+    entries: &[IndexEntry],
+) -> Result<()> {
     let dest = dir.join("index.html");
-    let mut body = String::from("<ol class=\"steps\">\n");
+    let mut body = String::from("<section class=\"results\">\n<h2>Results</h2>\n<div class=\"figures\">\n");
+    for r in results {
+        let caption = escape(&r.caption);
+        if r.image.is_file() {
+            let _ = writeln!(
+                body,
+                "<figure class=\"result\"><a href=\"{page}\"><img src=\"{image}\" alt=\"{caption}\"></a>\
+                 <figcaption>{caption} <a href=\"{page}\">Open the step's page</a>.</figcaption></figure>",
+                page = escape(&href(dir, &r.page)),
+                image = escape(&href(dir, &r.image)),
+            );
+        } else {
+            let _ = writeln!(
+                body,
+                "<figure class=\"result missing\"><p class=\"note\">{}</p><figcaption>{caption}</figcaption></figure>",
+                escape(&r.missing)
+            );
+        }
+    }
+    body.push_str("</div>\n</section>\n<h2>Steps</h2>\n<ol class=\"steps\">\n");
     for e in entries {
         let heading = match e.link {
             Some(link) => format!("<a href=\"{}\">{}</a>", escape(&href(dir, link)), escape(e.title)),
@@ -376,7 +391,7 @@ pub fn write_index(dir: &Path, title: &str, lead: &str, entries: &[IndexEntry]) 
         };
         let _ = writeln!(
             body,
-            "<li><h2>{heading}</h2><p>{}{downloads}</p></li>",
+            "<li><h3>{heading}</h3><p>{}{downloads}</p></li>",
             escape(e.headline)
         );
     }
@@ -416,9 +431,11 @@ mod tests {
         assert!(html.contains("<th>a</th>"), "markdown table rendered");
         assert!(html.contains("&lt;x&gt;"), "raw HTML in markdown is escaped");
         assert!(html.contains("data-json-path=\"report.json#/rmse_n\">0.1250<"));
-        assert!(html.contains("src=\"data:image/svg+xml;base64,"));
-        // The figure the report shows is embedded there and not repeated in the gallery.
-        assert!(html.contains("<img src=\"data:image/svg+xml;base64,") && html.contains("alt=\"loops\""));
+        // Figures are linked beside the page, never embedded: each is stored once.
+        assert!(!html.contains("base64"), "no embedded image");
+        // The figure the report shows is shown there and not repeated in the gallery.
+        assert!(html.contains("<img src=\"loops.svg\" alt=\"loops\""), "{html}");
+        assert!(html.contains("<img src=\"fig.svg\""), "gallery figure linked");
         assert_eq!(html.matches("<figcaption>").count(), 1, "only fig.svg in the gallery");
         assert!(html.contains("<a href=\"run.csv\">run.csv</a>"));
         // An FMU is a download the page offers, not a file left unlisted.
@@ -455,10 +472,27 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let d = dir.path();
         let page = d.join("sim").join("index.html");
+        std::fs::create_dir_all(d.join("sim")).unwrap();
+        std::fs::write(d.join("sim/force.png"), b"png").unwrap();
+        let results = [
+            ResultFigure {
+                image: d.join("sim/force.png"),
+                page: page.clone(),
+                caption: "The controlled drop".into(),
+                missing: "no figure".into(),
+            },
+            ResultFigure {
+                image: d.join("pil/agreement.png"),
+                page: d.join("pil/index.html"),
+                caption: "PIL".into(),
+                missing: "skipped: no QEMU".into(),
+            },
+        ];
         write_index(
             d,
             "demo",
             "all steps",
+            &results,
             &[
                 IndexEntry {
                     title: "drop test",
@@ -483,7 +517,23 @@ mod tests {
         .unwrap();
         let html = std::fs::read_to_string(d.join("index.html")).unwrap();
         assert!(html.contains("<a href=\"sim/index.html\">drop test</a>"));
-        assert!(html.contains("<h2>PIL</h2><p>skipped</p>"));
+        assert!(html.contains("<h3>PIL</h3><p>skipped</p>"));
+        // Results first: a figure that exists is shown (linked, not embedded)
+        // and links to its page; one that does not says why instead.
+        let results_at = html.find("<section class=\"results\">").unwrap();
+        assert!(results_at < html.find("<ol class=\"steps\">").unwrap());
+        assert!(
+            html.contains("<a href=\"sim/index.html\"><img src=\"sim/force.png\" alt=\"The controlled drop\"></a>"),
+            "{html}"
+        );
+        assert!(
+            html.contains("<p class=\"note\">skipped: no QEMU</p><figcaption>PIL</figcaption>"),
+            "{html}"
+        );
+        assert!(
+            !html.contains("pil/agreement.png"),
+            "no link to a figure that is not there"
+        );
         assert!(
             html.contains("<p>wrote 1 FMU. Download: <a href=\"fmu/damper.fmu\">damper.fmu</a></p>"),
             "{html}"

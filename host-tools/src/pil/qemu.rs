@@ -18,8 +18,43 @@ pub fn qemu_binary() -> Option<PathBuf> {
         .find(|p| p.is_file())
 }
 
+/// A `qemu-system-arm` that has the board's machine, or why there is none:
+/// an older QEMU (bookworm's 7.2) lacks `b-l475e-iot01a` and would fail the
+/// run with "unsupported machine type".
+pub fn usable_qemu() -> Result<PathBuf, String> {
+    let qemu = qemu_binary().ok_or_else(|| format!("qemu-system-arm was not found: {INSTALL_HINT}"))?;
+    let machines = Command::new(&qemu)
+        .args(["-machine", "help"])
+        .output()
+        .map_err(|e| format!("{} does not run ({e}): {INSTALL_HINT}", qemu.display()))?;
+    if String::from_utf8_lossy(&machines.stdout).contains(MACHINE) {
+        Ok(qemu)
+    } else {
+        Err(format!(
+            "{} has no {MACHINE} machine (it is older than QEMU 10): {INSTALL_HINT}",
+            qemu.display()
+        ))
+    }
+}
+
+/// The QEMU machine the PIL image runs on.
+pub const MACHINE: &str = "b-l475e-iot01a";
+
+/// Why the firmware images cannot be built here, if they cannot: the
+/// `thumbv7em-none-eabihf` standard library is not installed.
+pub fn firmware_target_missing() -> Option<String> {
+    let sysroot = Command::new(std::env::var_os("RUSTC").unwrap_or_else(|| "rustc".into()))
+        .args(["--print", "sysroot"])
+        .output()
+        .ok()?;
+    let sysroot = String::from_utf8_lossy(&sysroot.stdout).trim().to_string();
+    let lib = Path::new(&sysroot).join("lib/rustlib/thumbv7em-none-eabihf");
+    (!lib.is_dir())
+        .then(|| "the board's Rust target is not installed: rustup target add thumbv7em-none-eabihf".to_string())
+}
+
 /// How to install QEMU 10 (the `b-l475e-iot01a` machine is not in bookworm's 7.2).
-pub const INSTALL_HINT: &str = "install qemu-system-arm ≥ 9 (Debian bookworm: \
+pub const INSTALL_HINT: &str = "install qemu-system-arm ≥ 10 (Debian bookworm: \
     apt-get install -y -t \"$(.ci/apt-backports)\" qemu-system-arm, which adds bookworm-backports \
     from the mirror your apt sources already use)";
 
@@ -35,7 +70,7 @@ pub fn workspace_root() -> PathBuf {
 pub fn default_elf() -> PathBuf {
     match std::env::var_os("MRE_PIL_ELF") {
         Some(p) => PathBuf::from(p),
-        None => workspace_root().join("target/pil/thumbv7em-none-eabihf/release/mre-firmware"),
+        None => workspace_root().join("target/pil/thumbv7em-none-eabihf/firmware/mre-firmware"),
     }
 }
 
@@ -64,7 +99,7 @@ fn build_variant(alias: &str, target_dir: &str) -> Result<PathBuf> {
     }
     Ok(workspace_root()
         .join(target_dir)
-        .join("thumbv7em-none-eabihf/release/mre-firmware"))
+        .join("thumbv7em-none-eabihf/firmware/mre-firmware"))
 }
 
 /// The address of the firmware's symbol `name` (a `#[no_mangle]` static),

@@ -199,6 +199,46 @@ pub fn run_firmware_on(
     Ok((trajectory, frames, counters))
 }
 
+/// The figure of the firmware's coil commands over the host's (file stem; PNG and SVG).
+pub const AGREEMENT_FIGURE: &str = "agreement";
+
+/// The coil command the firmware sent each period over the one the same core
+/// computed in-process: a line under dots, so a mismatch shows as a dot off it.
+fn agreement_figure(firmware: &Trajectory, host: &Trajectory, ag: &Agreement, label: &str, base: &Path) -> Result<()> {
+    use crate::plot::{Chart, Series, Style, PALETTE};
+    let commands = |t: &Trajectory| {
+        t.samples
+            .iter()
+            .map(|s| (s.time_s * 1e3, s.command_a))
+            .collect::<Vec<_>>()
+    };
+    crate::plot::render(
+        &Chart {
+            title: format!(
+                "Coil command, firmware {label} against the host: {} of {} bit-identical",
+                ag.bit_identical_commands, ag.samples
+            ),
+            x_label: "time t (ms)".into(),
+            y_label: "coil command (A)".into(),
+            series: vec![
+                Series {
+                    label: "host, same core in-process".into(),
+                    points: commands(host),
+                    color: PALETTE[0],
+                    style: Style::Line { width: 3 },
+                },
+                Series {
+                    label: format!("firmware {label}"),
+                    points: commands(firmware),
+                    color: PALETTE[1],
+                    style: Style::Dots,
+                },
+            ],
+        },
+        base,
+    )
+}
+
 pub fn compare(a: &Trajectory, b: &Trajectory, frames: u64) -> Agreement {
     let mut ag = Agreement {
         samples: a.samples.len().min(b.samples.len()),
@@ -266,6 +306,13 @@ pub fn run_pil_on(sim: &SimRequest, target: FirmwareLink<'_>, report_dir: &Path)
     }
     let comparison = Comparison::from_runs(runs);
     crate::plant::sim_report::write_sim_report(&comparison, report_dir)?;
+    agreement_figure(
+        &firmware,
+        &host,
+        &agreement,
+        &target.label(),
+        &report_dir.join(AGREEMENT_FIGURE),
+    )?;
     let json = serde_json::json!({
         "firmware_vs_in_process": agreement,
         "firmware_vs_mre_sim": agreement_with_sim,

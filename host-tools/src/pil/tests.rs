@@ -1,7 +1,7 @@
 //! PIL against QEMU. These tests fail (not skip) when `CI` is set and QEMU is
 //! missing; elsewhere they skip with the install hint.
 use super::link::PilLink;
-use super::qemu::{build_firmware, build_firmware_rtt, qemu_binary, symbol_address, Qemu, INSTALL_HINT};
+use super::qemu::{build_firmware, build_firmware_rtt, symbol_address, Qemu};
 use super::sim::FirmwareCounters;
 use super::*;
 use std::path::PathBuf;
@@ -57,11 +57,11 @@ impl Plant for StandInDrop {
 
 /// QEMU, or `None` to skip (outside CI only).
 pub(super) fn qemu_or_skip() -> Option<PathBuf> {
-    match qemu_binary() {
-        Some(q) => Some(q),
-        None if std::env::var_os("CI").is_some() => panic!("QEMU is required in CI: {INSTALL_HINT}"),
-        None => {
-            eprintln!("\n*** SKIPPED: PIL test not run, QEMU is missing ({INSTALL_HINT}); under CI=1 this fails ***\n");
+    match super::qemu::usable_qemu() {
+        Ok(q) => Some(q),
+        Err(why) if std::env::var_os("CI").is_some() => panic!("QEMU 10 is required in CI: {why}"),
+        Err(why) => {
+            eprintln!("\n*** SKIPPED: PIL test not run: {why}; under CI=1 this fails ***\n");
             None
         }
     }
@@ -337,7 +337,7 @@ fn coil_pin_is_driven_low_first_thing_at_boot() {
 // board. QEMU has no flash controller: these tests cover the transfer and the
 // firmware's receiver; the PIL image stores the upload on a RAM page through
 // the same `mre_core::upload` code, whose flash page logic is tested on the
-// host (`tests/tests/upload.rs`, `tests/tests/flash_table.rs`).
+// host (`tests/tests/core/upload.rs`, `tests/tests/core/flash_table.rs`).
 
 fn start_on_pty() -> Option<(Qemu, PathBuf)> {
     let qemu = qemu_or_skip()?;

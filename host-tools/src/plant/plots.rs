@@ -1,12 +1,17 @@
 //! PNG plots of simulated impacts (force–time and force–displacement).
 //! Rendered through `plot::chart::render_png` (bundled font, atomic write).
 use super::closed_loop::Comparison;
+use crate::plot::chart::{LegendSample, SampleLook};
 use anyhow::{anyhow, Result};
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::path::Path;
 
 const SIZE: (u32, u32) = (1000, 640);
+/// Plot area height of [`SIZE`] after the caption, margins and x labels.
+const PLOT_PX: u32 = SIZE.1 - 40 - 32 - 50;
+/// The legend's font size (px).
+const LEGEND_FONT_PX: u32 = 16;
 /// The figures' one palette (Okabe–Ito).
 const COLOURS: [RGBColor; 7] = crate::plot::chart::PALETTE;
 
@@ -51,13 +56,18 @@ fn force_axes<'a, 'b>(
 fn legend<'a, 'b: 'a>(chart: &mut ForceChart<'a, 'b>, position: SeriesLabelPosition) -> Result<()> {
     chart
         .configure_series_labels()
-        .label_font(("sans-serif", 16))
+        .label_font(("sans-serif", LEGEND_FONT_PX))
         .background_style(WHITE.mix(0.9))
         .border_style(BLACK)
         .position(position)
         .draw()
         .map_err(|e| anyhow!("{e}"))?;
     Ok(())
+}
+
+/// A legend sample dashed as its line is (`dash` px on, `gap` px off, 2 px wide).
+fn dashed_sample(at: (i32, i32), colour: RGBColor, dash: i32, gap: i32) -> LegendSample {
+    LegendSample::new(at, SampleLook::Dashes { width: 2, dash, gap }, colour)
 }
 
 /// Measured force against time since contact, one line per run.
@@ -71,7 +81,7 @@ pub fn force_time_png(cmp: &Comparison, path: &Path) -> Result<()> {
             "Drop impact: force against time",
             "time since contact (ms)",
             t_max * 1.02,
-            f_max * 1.08,
+            crate::plot::chart::with_legend_room(0.0, f_max * 1.02, cmp.runs.len(), LEGEND_FONT_PX, PLOT_PX),
         )?;
         for (i, run) in cmp.runs.iter().enumerate() {
             let colour = COLOURS[i % COLOURS.len()];
@@ -105,7 +115,14 @@ pub fn force_displacement_with_limit_png(cmp: &Comparison, limit_n: Option<f64>,
             "Drop impact: force against displacement",
             "displacement (mm, compression positive)",
             x_hi,
-            f_max * 1.08,
+            // One legend row per run, plus the stroke and the limit lines.
+            crate::plot::chart::with_legend_room(
+                0.0,
+                f_max.max(limit_n.unwrap_or(0.0)) * 1.02,
+                cmp.runs.len() + 2,
+                LEGEND_FONT_PX,
+                PLOT_PX,
+            ),
         )?;
         for (i, run) in cmp.runs.iter().enumerate() {
             let colour = COLOURS[i % COLOURS.len()];
@@ -126,7 +143,7 @@ pub fn force_displacement_with_limit_png(cmp: &Comparison, limit_n: Option<f64>,
             ))
             .map_err(|e| anyhow!("{e}"))?
             .label(format!("usable stroke {stroke:.0} mm"))
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey.stroke_width(2)));
+            .legend(move |at| dashed_sample(at, grey, 8, 6));
         if let Some(limit) = limit_n {
             let black = RGBColor(0, 0, 0);
             chart
@@ -138,7 +155,7 @@ pub fn force_displacement_with_limit_png(cmp: &Comparison, limit_n: Option<f64>,
                 ))
                 .map_err(|e| anyhow!("{e}"))?
                 .label(format!("physical limit {limit:.0} N"))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], black.stroke_width(2)));
+                .legend(move |at| dashed_sample(at, black, 4, 4));
         }
         legend(&mut chart, SeriesLabelPosition::UpperLeft)
     })

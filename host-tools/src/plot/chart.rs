@@ -2,7 +2,9 @@
 //! atomically. Text uses the bundled DejaVu Sans (registered once).
 use anyhow::{anyhow, Result};
 use plotters::coord::Shift;
+use plotters::element::{Drawable, PointCollection};
 use plotters::prelude::*;
+use plotters_backend::{BackendCoord, DrawingErrorKind};
 use std::path::Path;
 
 const FONT: &str = "sans-serif";
@@ -88,9 +90,23 @@ fn ranges(chart: &Chart) -> Result<((f64, f64), (f64, f64))> {
     Ok(((x0, x1), pad(y0, y1)))
 }
 
+/// The top of a y-range that leaves the upper band of the plot to a legend of
+/// `rows` entries in a `font_px` font, over a plot area `plot_px` tall: data up
+/// to `hi` stays below the legend, which then never hides it.
+pub fn with_legend_room(lo: f64, hi: f64, rows: usize, font_px: u32, plot_px: u32) -> f64 {
+    // A row is the text height plus plotters' spacing; the box adds a margin.
+    let legend_px = rows as f64 * (1.5 * f64::from(font_px) + 4.0) + 30.0;
+    let share = (legend_px / f64::from(plot_px)).min(0.6);
+    lo + (hi - lo) / (1.0 - share)
+}
+
+/// Plot area height of [`SIZE`] after the caption, margins and x labels.
+const PLOT_PX: u32 = SIZE.1 - 45 - 40 - 60;
+
 fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, chart: &Chart) -> Result<()> {
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("plotting failed: {e:?}");
     let ((x0, x1), (y0, y1)) = ranges(chart)?;
+    let y1 = with_legend_room(y0, y1, chart.series.len(), 20, PLOT_PX);
     root.fill(&WHITE).map_err(e)?;
     let mut c = ChartBuilder::on(&root)
         .caption(&chart.title, (FONT, 30))
@@ -110,10 +126,8 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, chart: &Chart) -> Resu
         .map_err(e)?;
     for s in &chart.series {
         let color = s.color;
-        let legend_style = match s.style {
-            Style::Dots => color.mix(0.6).stroke_width(6),
-            Style::Line { width } | Style::Dashed { width } => color.stroke_width(width + 1),
-        };
+        // The legend's sample is drawn as the series is: a line, a dashed line, or dots.
+        let style = s.style;
         let anno = match s.style {
             Style::Line { width } => c
                 .draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(width)))
@@ -121,8 +135,8 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, chart: &Chart) -> Resu
             Style::Dashed { width } => c
                 .draw_series(DashedLineSeries::new(
                     s.points.iter().copied(),
-                    10,
-                    6,
+                    DASH_PX.0 as u32,
+                    DASH_PX.1 as u32,
                     color.stroke_width(width),
                 ))
                 .map_err(e)?,
@@ -131,7 +145,7 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, chart: &Chart) -> Resu
                 .map_err(e)?,
         };
         anno.label(s.label.clone())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], legend_style));
+            .legend(move |at| LegendSample::of(style, color, at));
     }
     c.configure_series_labels()
         .background_style(WHITE.mix(0.85))
@@ -142,6 +156,93 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, chart: &Chart) -> Resu
         .map_err(e)?;
     root.present().map_err(e)?;
     Ok(())
+}
+
+/// A legend entry's sample, drawn as its series is (24 px wide): a plotters
+/// element of its own, so it carries no backend type (composed elements do,
+/// and a legend closure cannot return them).
+#[derive(Clone, Copy, Debug)]
+pub struct LegendSample {
+    at: (i32, i32),
+    look: SampleLook,
+    color: RGBColor,
+}
+
+/// How a [`LegendSample`] is drawn.
+#[derive(Clone, Copy, Debug)]
+pub enum SampleLook {
+    Line {
+        width: u32,
+    },
+    /// Dashes `dash` px long with `gap` px between, as `DashedLineSeries` draws them.
+    Dashes {
+        width: u32,
+        dash: i32,
+        gap: i32,
+    },
+    Dots,
+}
+
+/// The dash pattern [`draw`] gives [`Style::Dashed`] series.
+const DASH_PX: (i32, i32) = (10, 6);
+
+impl LegendSample {
+    pub fn new(at: (i32, i32), look: SampleLook, color: RGBColor) -> Self {
+        Self { at, look, color }
+    }
+
+    fn of(style: Style, color: RGBColor, at: (i32, i32)) -> Self {
+        let look = match style {
+            Style::Line { width } => SampleLook::Line { width },
+            Style::Dashed { width } => SampleLook::Dashes {
+                width,
+                dash: DASH_PX.0,
+                gap: DASH_PX.1,
+            },
+            Style::Dots => SampleLook::Dots,
+        };
+        Self::new(at, look, color)
+    }
+}
+
+impl<'a> PointCollection<'a, (i32, i32)> for &'a LegendSample {
+    type Point = &'a (i32, i32);
+    type IntoIter = std::iter::Once<&'a (i32, i32)>;
+    fn point_iter(self) -> Self::IntoIter {
+        std::iter::once(&self.at)
+    }
+}
+
+impl<DB: DrawingBackend> Drawable<DB> for LegendSample {
+    fn draw<I: Iterator<Item = BackendCoord>>(
+        &self,
+        mut pos: I,
+        backend: &mut DB,
+        _: (u32, u32),
+    ) -> Result<(), DrawingErrorKind<DB::ErrorType>> {
+        const WIDE: i32 = 24;
+        let Some((x, y)) = pos.next() else {
+            return Ok(());
+        };
+        match self.look {
+            SampleLook::Line { width } => backend.draw_line((x, y), (x + WIDE, y), &self.color.stroke_width(width)),
+            SampleLook::Dashes { width, dash, gap } => {
+                let mut from = 0;
+                while from < WIDE {
+                    let to = (from + dash).min(WIDE);
+                    backend.draw_line((x + from, y), (x + to, y), &self.color.stroke_width(width))?;
+                    from = to + gap.max(1);
+                }
+                Ok(())
+            }
+            SampleLook::Dots => {
+                for dx in [4, 12, 20] {
+                    backend.draw_circle((x + dx, y), 3, &self.color.mix(0.6).filled(), true)?;
+                }
+                Ok(())
+            }
+        }
+    }
 }
 
 /// Renders `chart` to `{base}.png` and `{base}.svg` (both in memory first).

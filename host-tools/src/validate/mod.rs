@@ -106,7 +106,7 @@ pub fn validate(ds: &Dataset, table: &Table, model_label: &str) -> ValidationRep
     ValidationReport {
         dataset: ds.name.clone(),
         model: model_label.to_string(),
-        nrmse_normaliser: "measured force range (max F − min F) of the recording".to_string(),
+        nrmse_normaliser: crate::error_measure::DEFINITION.to_string(),
         percent_error_min_share_of_peak: PERCENT_ERROR_MIN_SHARE,
         recordings: ds.recordings.iter().map(|r| validate_recording(table, r)).collect(),
     }
@@ -139,7 +139,7 @@ pub fn validate_recording(table: &Table, rec: &Recording) -> RecordingReport {
         interpolated,
         samples: measured.len(),
         rmse_n,
-        nrmse: if range > 0.0 { rmse_n / range } else { f64::NAN },
+        nrmse: crate::error_measure::nrmse(rmse_n, range),
         peak_measured_n: peak(measured),
         peak_model_n: peak(&model),
         largest_error: LargestError {

@@ -76,13 +76,15 @@ pub fn markdown(r: &ValidationReport) -> String {
     );
     let _ = writeln!(
         s,
-        "| recording | current (A) | t (s) | x (mm) | experiment (N) | simulation (N) | error (%) |"
+        "| recording | current (A) | t (s) | x (mm) | experiment (N) | simulation (N) | error there (% of the measured force there) |"
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|");
     let note = format!(
-        "The error is in % of the measured force at that sample. The sample is the largest error among those \
-         where the measured force is at least {} % of the recording's peak: near zero force a percentage means \
-         nothing.",
+        "The paper's Tables 5 and 6 compare the two forces at one sample: the error there is in % of the measured \
+         force at that sample, so it is not the NRMSE above (which averages over every sample and divides by the \
+         whole force range, docs/error-measure.md) and can be several times larger. The sample is the largest \
+         error among those where the measured force is at least {} % of the recording's peak: near zero force a \
+         percentage means nothing.",
         r.percent_error_min_share_of_peak * 100.0
     );
     for x in &r.recordings {
