@@ -1,7 +1,7 @@
 //! The installation: what the damper is mounted in and wired to. One value
 //! for the board's defaults (`LawConfig::default`) and the host's simulation
 //! (`mre sim`, `mre pil`, `mre bench-control`, the demo), so the image and the
-//! simulation cannot drift apart (`host-tools/tests/installation.rs`).
+//! simulation cannot drift apart (`host-tools/tests/integration/installation.rs`).
 //!
 //! A model file's `[installation]` section overrides it; `mre tables` and
 //! `mre upload` carry it in the flash table (format 3, under the table's

@@ -6,7 +6,7 @@
 //! removes the drive: zero, not the 2 A fail-safe, because the fail-safe
 //! drives 67 % duty into the very coil or driver that failed
 //! (`Controller::check_coil_current`). Pure logic: host-tested in
-//! `tests/tests/overcurrent.rs`.
+//! `tests/tests/core/overcurrent.rs`.
 //!
 //! The monitor is only as good as its input, so [`SenseMonitor`] also checks
 //! the channel itself and latches `Flags::CURRENT_SENSE`:

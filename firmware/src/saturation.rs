@@ -34,7 +34,7 @@
 //! [`RHO_MAX`], or the bound exceeds [`TOLERANCE_PER_A`] of the segment's
 //! upper current (1 A at least), or the polynomial could fall below `i0`
 //! for some `0 < t ≤ 1`, the segment keeps the exact map (`I_s·atanh(w0 +
-//! t·Δw)` through the logarithm, out of line). `tests/tests/saturation.rs`
+//! t·Δw)` through the logarithm, out of line). `tests/tests/core/saturation.rs`
 //! checks the bound against f64's atanh on random segments and on the
 //! flown entries (the generated table's five currents at I_s = 1.5 A, as
 //! `ModelTerms::EVERY_TERM`: bounds 1.3–2.7·10⁻⁶ A, measured ≤ 3·10⁻⁷ A).

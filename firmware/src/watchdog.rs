@@ -3,7 +3,7 @@
 //! its deadline. A hung task (or a thread-mode executor that a task keeps
 //! busy) then stops the feeding and the watchdog resets the chip into the
 //! fail-safe reset path (`crate::boot::BootPlan`). Pure logic over
-//! millisecond timestamps, host-tested in `tests/tests/watchdog.rs`.
+//! millisecond timestamps, host-tested in `tests/tests/core/watchdog.rs`.
 
 /// One supervised task: when it last checked in, and how long it may go
 /// without (ms).

@@ -8,6 +8,7 @@
 //     JSON pointer in the JSON file beside the page, to the 4 significant
 //     digits shown;
 //   - every link leads to a file that exists;
+//   - the demo's front page (index.html at the root) shows four result figures;
 //   - a screenshot at a laptop's size (1366×768) is written for review.
 // Usage: node --experimental-websocket check.mjs SCREENSHOT_DIR PAGE.html...
 // Ends with "N passed, N failed" and a non-zero exit when any check fails.
@@ -136,6 +137,15 @@ for (const abs of absPages) {
   const images = await evaluate(
     '[...document.images].map((i) => ({ alt: i.alt, ok: i.complete && i.naturalWidth > 0 }))');
   for (const img of images) check(img.ok, `${name}: image ${img.alt} did not render`);
+
+  // The demo's front page opens with its four results, each a figure that rendered.
+  if (name === 'index.html') {
+    const results = await evaluate(
+      '[...document.querySelectorAll("section.results figure")].map((f) => { const i = f.querySelector("img"); ' +
+      'return { caption: f.innerText.slice(0, 60), ok: !!i && i.complete && i.naturalWidth > 0 }; })');
+    check(results.length === 4, `${name}: ${results.length} result figures, expected 4`);
+    for (const r of results) check(r.ok, `${name}: result figure "${r.caption}" has no rendered image`);
+  }
 
   const numbers = await evaluate(
     '[...document.querySelectorAll("[data-json-path]")].map((e) => [e.dataset.jsonPath, e.textContent])');

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""FMPy checks of mre's FMUs (issue 28). Run by host-tools/tests/fmu_fmpy.rs,
+"""FMPy checks of mre's FMUs (issue 28). Run by host-tools/tests/integration/fmu_fmpy.rs,
 which writes the FMUs and the reference data into DIR:
 
   every-term/damper.fmu    a model file with every format-2 term
