@@ -66,7 +66,7 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &Comparison, k: us
     for (i, (panel, o)) in body.split_evenly((2, cols)).iter().zip(&c.outcomes).enumerate() {
         let mut ch = ChartBuilder::on(panel)
             .caption(
-                format!("{} — NRMSE {:.3}", o.name, nrmse(t, &o.predictions[k])),
+                format!("{} — NRMSE {:.1} %", o.name, 100.0 * nrmse(t, &o.predictions[k])),
                 (FONT, 22),
             )
             .margin(10)

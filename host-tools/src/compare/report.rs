@@ -306,8 +306,10 @@ pub fn write_all(c: &Comparison, r: &ReportJson, dir: &Path) -> Result<()> {
             let path = dir.join("predictions").join(&o.name).join(format!("{}.csv", t.stem));
             write_atomic_with(&path, |w| {
                 writeln!(w, "time_s,force_measured_n,force_model_n")?;
+                // Model forces to 1 mN: far below any measured force's resolution,
+                // and a third of the file the full f64 digits took.
                 for ((time, f), m) in t.time_s.iter().zip(&t.force_n).zip(p) {
-                    writeln!(w, "{time},{f},{m}")?;
+                    writeln!(w, "{time},{f},{m:.3}")?;
                 }
                 Ok(())
             })?;

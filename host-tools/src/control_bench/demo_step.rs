@@ -1,11 +1,12 @@
 //! The `mre demo` step "from recordings to flash": the bundled campaign with
 //! a concealed coil lag (`data/drop-coil_lag`), `mre diagnose --model-out`,
 //! `mre tables`, and the controlled drop on the plant that recorded it, with
-//! the paper's table (a) and the diagnosed model (c) against the limit.
+//! the paper's table (a) and the diagnosed model (c) against the passive
+//! damper and the physical limit.
 use super::limit::physical_limit;
 use super::{drop_setup, RunOutcome};
 use crate::demo::DemoStep;
-use crate::plant::closed_loop::{run_controlled, Comparison, RunResult, RunSpec};
+use crate::plant::closed_loop::{run_controlled, run_passive, Comparison, RunResult, RunSpec};
 use crate::plant::synth::{draw_plant, SynthPlan};
 use anyhow::{anyhow, Result};
 use mre_core::Table;
@@ -48,7 +49,15 @@ pub fn recordings_to_flash(data: &Path, out: &Path) -> Result<DemoStep> {
         .iter()
         .map(|r| RunOutcome::new(&r.label, &r.summary, &limit, setup.usable_stroke_mm()))
         .collect();
-    let cmp = Comparison::from_runs(runs);
+    // The figure also shows the passive damper at both ends of the coil's
+    // range: what the controller is there to beat.
+    let mut drawn = runs;
+    for current_a in [0.0, 2.0] {
+        let spec = RunSpec::Passive(current_a);
+        let t = run_passive(&setup, current_a)?;
+        drawn.push(RunResult::new(spec, spec.label(), &setup, t));
+    }
+    let cmp = Comparison::from_runs(drawn);
     let png = dir.join("force-displacement.png");
     crate::plant::plots::force_displacement_with_limit_png(&cmp, Some(limit.envelope_n), &png)?;
 

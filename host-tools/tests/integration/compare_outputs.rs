@@ -83,9 +83,12 @@ fn report_schema_and_numbers_match_the_written_predictions() {
         }
         assert_eq!((fit.len(), held.len()), (10, 5), "{name}");
         let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
-        assert!((f["fit_nrmse"].as_f64().unwrap() - mean(&fit)).abs() < 1e-9, "{name}");
+        // The CSVs round model forces to 1 mN, so each recomputed RMSE is within
+        // 0.5 mN of the report's; every recording's force range exceeds 100 N
+        // here, so the NRMSEs agree within 0.0005 / 100 = 5e-6.
+        assert!((f["fit_nrmse"].as_f64().unwrap() - mean(&fit)).abs() < 5e-6, "{name}");
         assert!(
-            (f["heldout_nrmse"].as_f64().unwrap() - mean(&held)).abs() < 1e-9,
+            (f["heldout_nrmse"].as_f64().unwrap() - mean(&held)).abs() < 5e-6,
             "{name}"
         );
     }
