@@ -472,17 +472,13 @@ fn sniff_vendor(reader: &super::vendor::VendorReader, path: &Path, bytes: &[u8])
         reader.name,
         table.channels.join(", ")
     )];
-    let names: Vec<String> = table
-        .channels
-        .iter()
-        .map(|c| {
-            map_name(c).unwrap_or_else(|| {
-                notes.push(format!("channel `{c}` not recognised: ignored"));
-                "ignore".into()
-            })
-        })
-        .collect();
-    parse_header(&names, &path.display().to_string(), 1).map_err(|e| anyhow::anyhow!("{e}"))?;
+    notes.extend(table.notes.iter().cloned());
+    let (names, ignored) = super::vendor::column_names(&table);
+    notes.extend(ignored.iter().map(|c| format!("channel `{c}` not recognised: ignored")));
+    // Never a manifest that cannot load: say what was found and what is accepted.
+    if let Some(why) = super::vendor::unusable(reader, &table, &names) {
+        anyhow::bail!("{}: {why}", path.display());
+    }
     let rows: Vec<Vec<String>> = table
         .rows
         .iter()

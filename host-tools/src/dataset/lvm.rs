@@ -56,7 +56,7 @@ struct SegmentHeader {
 
 fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
     let dpath = path.display().to_string();
-    let text = super::vendor::text(path, bytes, "an .lvm file is ASCII text")?;
+    let text = super::vendor::text(path, bytes, "an .lvm file is text")?;
     let bad = |line: usize, message: String| DatasetError::BadRecord {
         path: dpath.clone(),
         line,
@@ -279,5 +279,6 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
         channels,
         names_line,
         rows,
+        notes: Vec::new(),
     })
 }

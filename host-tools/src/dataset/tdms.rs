@@ -244,5 +244,6 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
         channels: names,
         names_line: 1,
         rows,
+        notes: Vec::new(),
     })
 }
