@@ -55,3 +55,78 @@ fn mts_german_latin1_export_reads_its_time_series_and_skips_the_peak_table() {
     let lowest = s.force_n.iter().cloned().fold(f64::INFINITY, f64::min);
     assert!(close(lowest, -147_160.52, 1e-6), "{lowest}");
 }
+
+// --- LabVIEW .lvm (lvm_read's test data) -------------------------------------
+
+fn lvm_table(name: &str) -> Result<mre_host::dataset::vendor::Table, DatasetError> {
+    let path = real(name);
+    let bytes = std::fs::read(&path).unwrap();
+    (mre_host::dataset::lvm::READER.read)(&path, &bytes)
+}
+
+fn number(c: &mre_host::dataset::read::Cell) -> f64 {
+    c.to_string().parse().unwrap()
+}
+
+/// `Samples 8192` in the one header, 16 384 data rows (lines 23–16406): two
+/// writes under one header. lvm_read reads all rows; so does mre.
+#[test]
+fn lvm_two_writes_under_one_header_are_read_whole() {
+    let t = lvm_table("lvm_read_long_single_header_multi_ch.lvm").unwrap();
+    assert_eq!(t.rows.len(), 16_384);
+    assert_eq!(t.channels, ["Time (s)", "F (g)", "m_1 (m/s^2)", "m_2 (m/s^2)"]);
+    // X_Columns No: time = X0 + k·Delta_X, Delta_X 0.000977, continuing
+    // into the second write (row 8192, line 8215: 0.052115 0.210231 0.276808).
+    let row = &t.rows[8192];
+    assert_eq!(row.0, 8215);
+    assert!(close(number(&row.1[0]), 8192.0 * 0.000977, 1e-9));
+    assert!(close(number(&row.1[1]), 0.052115, 1e-12));
+    assert!(close(number(&row.1[3]), 0.276808, 1e-12));
+    // Line 16406, the last: 0.052073 0.235689 0.263686.
+    let last = t.rows.last().unwrap();
+    assert_eq!(last.0, 16_406);
+    assert!(close(number(&last.1[2]), 0.235689, 1e-12));
+    assert!(t.notes.iter().any(|n| n.contains("2 writes under one header")), "{:?}", t.notes);
+}
+
+/// X_Columns Multi: header rows with a blank cell over each X column
+/// (`Samples 51200 ␉ ␉ 51200`). The file holds 3 of the 51 200 samples it
+/// declares (lvm_read's authors cut it): refused as cut short, the true
+/// reason, after its Multi header was read (channels and units right).
+#[test]
+fn lvm_x_columns_multi_header_is_read_and_the_cut_file_called_cut() {
+    let e = lvm_table("lvm_read_multi_time_column.lvm").err().unwrap().to_string();
+    assert!(e.contains("declares 51200 samples but holds 3: the file is cut short"), "{e}");
+    assert!(!e.contains("X_Dimension"), "{e}");
+}
+
+/// `X_Columns No`, decimal comma, `Newtons` and `m/s^2` (lvm_read's test:
+/// first value 0.914018). A hammer test, not a damper record, so it is read
+/// as a table: the channels with their units, the time base and the values.
+#[test]
+fn lvm_decimal_comma_newtons_and_the_time_base() {
+    let t = lvm_table("lvm_read_short.lvm").unwrap();
+    assert_eq!(
+        t.channels,
+        ["Time (s)", "Excitation (Trigger) (Newtons)", "Response (Trigger) (m/s^2)"]
+    );
+    assert_eq!(t.rows.len(), 10);
+    assert!(close(number(&t.rows[0].1[1]), 0.914018, 1e-12));
+    // Delta_X 3,906250E-5: the last sample (line 33: ␉0,680572␉1,212775) at 9 × 39.0625 µs.
+    let last = &t.rows[9];
+    assert_eq!(last.0, 33);
+    assert!(close(number(&last.1[0]), 9.0 * 3.90625e-5, 1e-15));
+    assert!(close(number(&last.1[2]), 1.212775, 1e-12));
+}
+
+/// `°C` written as the Windows-1252 byte 0xB0 (`Temperatura (°C)`): read as
+/// text, not refused as "not text". The file has pressure, temperature and
+/// volume, no force: refused for that, its channels listed.
+#[test]
+fn lvm_windows_1252_unit_is_text_and_a_file_without_force_says_so() {
+    let t = lvm_table("lvm_read_with_comments.lvm").unwrap();
+    assert_eq!(t.channels[2], "Temperatura (°C) (°C)");
+    assert!(close(number(&t.rows[0].1[1]), 1.833787, 1e-12), "lvm_read's test value");
+    let e = load("lvm_read_with_comments.lvm", "c.lvm", "").unwrap_err().to_string();
+    assert!(e.contains("no force channel") && e.contains("Temperatura (°C) (°C)"), "{e}");
+}
