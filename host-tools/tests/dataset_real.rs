@@ -130,3 +130,39 @@ fn lvm_windows_1252_unit_is_text_and_a_file_without_force_says_so() {
     let e = load("lvm_read_with_comments.lvm", "c.lvm", "").unwrap_err().to_string();
     assert!(e.contains("no force channel") && e.contains("Temperatura (°C) (°C)"), "{e}");
 }
+
+// --- NI TDMS (npTDMS's test data) --------------------------------------------
+
+fn tdms_table(name: &str) -> Result<mre_host::dataset::vendor::Table, DatasetError> {
+    let path = real(name);
+    let bytes = std::fs::read(&path).unwrap();
+    (mre_host::dataset::tdms::READER.read)(&path, &bytes)
+}
+
+/// Written by LabVIEW: 9 segments with incremental metadata (lead-in
+/// flags 0x6 / 0xE), three groups holding a channel `Dev1_port3_line7 -
+/// line 0`: the raw group (segment 4: 20 000 uint8 bytes from byte 1678,
+/// read by hand as 0, 1, 0, 1, …) and two decimated levels (segment 8:
+/// 400 + 8 bytes; npTDMS's test reads Level1 as 0, 1, 0, 1, …). mre reads
+/// the longest group as the record and names the skipped ones.
+#[test]
+fn tdms_multi_segment_labview_file_reads_its_longest_group() {
+    let t = tdms_table("nptdms_Digital_Input.tdms").unwrap();
+    assert_eq!(t.channels, ["Time (s)", "Dev1_port3_line7 - line 0"]);
+    assert_eq!(t.rows.len(), 20_000);
+    for (k, row) in t.rows.iter().take(10).enumerate() {
+        assert_eq!(number(&row.1[1]), (k % 2) as f64, "sample {k}");
+    }
+    let skipped = t.notes.join("; ");
+    assert!(skipped.contains("Decimated Data_Level1` (400 values"), "{skipped}");
+    assert!(skipped.contains("Decimated Data_Level2` (8 values"), "{skipped}");
+}
+
+/// DAQmx raw data (npTDMS reads it by applying the DAQmx scalers): refused
+/// for that reason, not as corrupt or cut short.
+#[test]
+fn tdms_daqmx_raw_file_is_refused_for_its_true_reason() {
+    let e = tdms_table("nptdms_raw1.tdms").err().unwrap().to_string();
+    assert!(e.contains("DAQmx raw data"), "{e}");
+    assert!(!e.contains("corrupt") && !e.contains("cut short"), "{e}");
+}
