@@ -56,6 +56,36 @@ fn mts_german_latin1_export_reads_its_time_series_and_skips_the_peak_table() {
     assert!(close(lowest, -147_160.52, 1e-6), "{lowest}");
 }
 
+/// The German record with its displacement negated (lines 16–587, fifth
+/// field; one stated change): force and displacement now read opposite
+/// ways, the work on the specimen while loading is negative (by hand, awk
+/// over lines 16–110: +15.0 J of 35.2 J gross before the change), and the
+/// record is refused naming the fix, though it is no impact.
+#[test]
+fn mts_record_whose_loading_work_is_negative_names_the_sign_fix() {
+    let bytes = std::fs::read(real("mts793_deu_emodul_specimen.dat")).unwrap();
+    let mut out = Vec::new();
+    for (i, line) in bytes.split_inclusive(|&b| b == b'\n').enumerate() {
+        if !(15..587).contains(&i) {
+            out.extend_from_slice(line);
+            continue;
+        }
+        let mut fields: Vec<Vec<u8>> = line.split(|&b| b == b'\t').map(<[u8]>::to_vec).collect();
+        let weg = &mut fields[4];
+        if weg.first() == Some(&b'-') {
+            weg.remove(0);
+        } else {
+            weg.insert(0, b'-');
+        }
+        out.extend_from_slice(&fields.join(&b'\t'));
+    }
+    assert_ne!(out, bytes);
+    let dir = folder("mts793_deu_emodul_specimen.dat", "specimen.dat", "");
+    std::fs::write(dir.path().join("specimen.dat"), &out).unwrap();
+    let e = Dataset::load(dir.path()).unwrap_err().to_string();
+    assert!(e.contains("sign = { force_n = -1 }") && e.contains("passive damper takes work"), "{e}");
+}
+
 // --- LabVIEW .lvm (lvm_read's test data) -------------------------------------
 
 fn lvm_table(name: &str) -> Result<mre_host::dataset::vendor::Table, DatasetError> {

@@ -231,7 +231,12 @@ impl Dataset {
                     samples.accel_m_s2.as_deref(),
                 );
                 match found.first() {
-                    Some(inv) if impact => Err(inverted_error(&mpath, line, &file, inv, &declared)),
+                    Some(inv) if impact => return Err(inverted_error(&mpath, line, &file, inv, &declared)),
+                    _ => {}
+                }
+                // Every record, impact or not: the work on the damper while loading.
+                match super::sign::negative_work(&samples.force_n, &samples.x_mm) {
+                    Some(inv) if !samples.x_mm.is_empty() => Err(inverted_error(&mpath, line, &file, &inv, &declared)),
                     _ => Ok(()),
                 }
             };
