@@ -196,3 +196,45 @@ fn tdms_daqmx_raw_file_is_refused_for_its_true_reason() {
     assert!(e.contains("DAQmx raw data"), "{e}");
     assert!(!e.contains("corrupt") && !e.contains("cut short"), "{e}");
 }
+
+// --- mre dataset init on real files ------------------------------------------
+
+/// A folder holding only `name` as `file`, no manifest.
+fn bare(name: &str, file: &str) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(real(name), dir.path().join(file)).unwrap();
+    dir
+}
+
+/// init on BAM's record: compression reads negative in both force and
+/// displacement (force below zero while loading; the work positive). init
+/// flips both, says so, and the manifest loads once the current is filled in.
+#[test]
+fn init_flips_a_compression_negative_mts_record_and_its_manifest_loads() {
+    let dir = bare("mts793_deu_emodul_specimen.dat", "specimen.dat");
+    let text = mre_host::dataset::init::manifest_for(dir.path(), None, Some("bam")).unwrap();
+    assert!(text.contains("sign = { force_kn = -1, displacement_mm = -1 }"), "{text}");
+    assert!(text.contains("assumed: `force_kn` reads compression negative"), "{text}");
+    assert!(text.contains("skipped the 2-row data block at line 590"), "{text}");
+    // The lab fills in the current, nothing else.
+    let text = text.replace("file = \"specimen.dat\"", "file = \"specimen.dat\"\ncurrent_a = 0.0");
+    std::fs::write(dir.path().join("dataset.toml"), text).unwrap();
+    let ds = Dataset::load(dir.path()).unwrap();
+    let s = &ds.recordings[0].samples;
+    // Line 16, flipped: -1,0232348 kN → +1023.2348 N; -5,6224585 mm → +5.6224585 mm.
+    assert!(close(s.force_n[0], 1023.2348, 1e-6) && close(s.x_mm[0], 5.6224585, 1e-9));
+}
+
+/// init never writes a manifest that cannot load: a file without force
+/// (pressure, temperature, volume) fails naming its channels and the names
+/// accepted.
+#[test]
+fn init_refuses_a_file_without_force_naming_its_channels() {
+    let dir = bare("lvm_read_with_comments.lvm", "c.lvm");
+    let e = mre_host::dataset::init::manifest_for(dir.path(), None, Some("x"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no force channel") && e.contains("force_n, force_kn, force_lbf"), "{e}");
+    assert!(e.contains("Temperatura (°C) (°C)"), "{e}");
+    assert!(!dir.path().join("dataset.toml").exists());
+}

@@ -375,11 +375,41 @@ fn detect_flip(names: &[String], rows: &[Vec<String>], notes: &mut Vec<String>) 
         Some((i, values))
     };
     let (fi, force) = column(Quantity::Force)?;
-    if force.is_empty() || !super::sign::one_sided(&force) {
+    if force.is_empty() {
         return None;
     }
     let x = column(Quantity::Displacement);
-    let found = super::sign::inverted_columns(&force, x.as_ref().map(|(_, v)| v.as_slice()), None, None);
+    let mut found = if super::sign::one_sided(&force) {
+        super::sign::inverted_columns(&force, x.as_ref().map(|(_, v)| v.as_slice()), None, None)
+    } else {
+        Vec::new()
+    };
+    // The load checks the work while loading on every record: the flips
+    // written must leave it positive, or the manifest would not load.
+    if let Some((_, xs)) = &x {
+        let flipped = |c: &[f64], q: Quantity| -> Vec<f64> {
+            let s = if found.iter().any(|i| i.quantity == q) { -1.0 } else { 1.0 };
+            c.iter().map(|v| v * s).collect()
+        };
+        let (f2, x2) = (flipped(&force, Quantity::Force), flipped(xs, Quantity::Displacement));
+        if super::sign::negative_work(&f2, &x2).is_some() {
+            // Flip the column the mean-sign checks did not flip (force when neither).
+            let q = if found.iter().any(|i| i.quantity == Quantity::Force) {
+                Quantity::Displacement
+            } else {
+                Quantity::Force
+            };
+            match found.iter().position(|i| i.quantity == q) {
+                Some(i) => {
+                    found.remove(i);
+                }
+                None => found.push(super::sign::Inverted {
+                    quantity: q,
+                    evidence: "the work done on the damper while loading is negative otherwise".to_string(),
+                }),
+            }
+        }
+    }
     let mut flips = Vec::new();
     for inv in &found {
         let i = if inv.quantity == Quantity::Force {
