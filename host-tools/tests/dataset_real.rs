@@ -83,7 +83,10 @@ fn mts_record_whose_loading_work_is_negative_names_the_sign_fix() {
     let dir = folder("mts793_deu_emodul_specimen.dat", "specimen.dat", "");
     std::fs::write(dir.path().join("specimen.dat"), &out).unwrap();
     let e = Dataset::load(dir.path()).unwrap_err().to_string();
-    assert!(e.contains("sign = { force_n = -1 }") && e.contains("passive damper takes work"), "{e}");
+    assert!(
+        e.contains("sign = { force_n = -1 }") && e.contains("passive damper takes work"),
+        "{e}"
+    );
 }
 
 // --- LabVIEW .lvm (lvm_read's test data) -------------------------------------
@@ -116,7 +119,11 @@ fn lvm_two_writes_under_one_header_are_read_whole() {
     let last = t.rows.last().unwrap();
     assert_eq!(last.0, 16_406);
     assert!(close(number(&last.1[2]), 0.235689, 1e-12));
-    assert!(t.notes.iter().any(|n| n.contains("2 writes under one header")), "{:?}", t.notes);
+    assert!(
+        t.notes.iter().any(|n| n.contains("2 writes under one header")),
+        "{:?}",
+        t.notes
+    );
 }
 
 /// X_Columns Multi: header rows with a blank cell over each X column
@@ -126,7 +133,10 @@ fn lvm_two_writes_under_one_header_are_read_whole() {
 #[test]
 fn lvm_x_columns_multi_header_is_read_and_the_cut_file_called_cut() {
     let e = lvm_table("lvm_read_multi_time_column.lvm").err().unwrap().to_string();
-    assert!(e.contains("declares 51200 samples but holds 3: the file is cut short"), "{e}");
+    assert!(
+        e.contains("declares 51200 samples but holds 3: the file is cut short"),
+        "{e}"
+    );
     assert!(!e.contains("X_Dimension"), "{e}");
 }
 
@@ -138,7 +148,11 @@ fn lvm_decimal_comma_newtons_and_the_time_base() {
     let t = lvm_table("lvm_read_short.lvm").unwrap();
     assert_eq!(
         t.channels,
-        ["Time (s)", "Excitation (Trigger) (Newtons)", "Response (Trigger) (m/s^2)"]
+        [
+            "Time (s)",
+            "Excitation (Trigger) (Newtons)",
+            "Response (Trigger) (m/s^2)"
+        ]
     );
     assert_eq!(t.rows.len(), 10);
     assert!(close(number(&t.rows[0].1[1]), 0.914018, 1e-12));
@@ -158,7 +172,10 @@ fn lvm_windows_1252_unit_is_text_and_a_file_without_force_says_so() {
     assert_eq!(t.channels[2], "Temperatura (°C) (°C)");
     assert!(close(number(&t.rows[0].1[1]), 1.833787, 1e-12), "lvm_read's test value");
     let e = load("lvm_read_with_comments.lvm", "c.lvm", "").unwrap_err().to_string();
-    assert!(e.contains("no force channel") && e.contains("Temperatura (°C) (°C)"), "{e}");
+    assert!(
+        e.contains("no force channel") && e.contains("Temperatura (°C) (°C)"),
+        "{e}"
+    );
 }
 
 // --- NI TDMS (npTDMS's test data) --------------------------------------------
@@ -213,8 +230,14 @@ fn bare(name: &str, file: &str) -> tempfile::TempDir {
 fn init_flips_a_compression_negative_mts_record_and_its_manifest_loads() {
     let dir = bare("mts793_deu_emodul_specimen.dat", "specimen.dat");
     let text = mre_host::dataset::init::manifest_for(dir.path(), None, Some("bam")).unwrap();
-    assert!(text.contains("sign = { force_kn = -1, displacement_mm = -1 }"), "{text}");
-    assert!(text.contains("assumed: `force_kn` reads compression negative"), "{text}");
+    assert!(
+        text.contains("sign = { force_kn = -1, displacement_mm = -1 }"),
+        "{text}"
+    );
+    assert!(
+        text.contains("assumed: `force_kn` reads compression negative"),
+        "{text}"
+    );
     assert!(text.contains("skipped the 2-row data block at line 590"), "{text}");
     // The lab fills in the current, nothing else.
     let text = text.replace("file = \"specimen.dat\"", "file = \"specimen.dat\"\ncurrent_a = 0.0");
@@ -234,7 +257,10 @@ fn init_refuses_a_file_without_force_naming_its_channels() {
     let e = mre_host::dataset::init::manifest_for(dir.path(), None, Some("x"))
         .unwrap_err()
         .to_string();
-    assert!(e.contains("no force channel") && e.contains("force_n, force_kn, force_lbf"), "{e}");
+    assert!(
+        e.contains("no force channel") && e.contains("force_n, force_kn, force_lbf"),
+        "{e}"
+    );
     assert!(e.contains("Temperatura (°C) (°C)"), "{e}");
     assert!(!dir.path().join("dataset.toml").exists());
 }

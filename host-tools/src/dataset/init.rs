@@ -388,7 +388,11 @@ fn detect_flip(names: &[String], rows: &[Vec<String>], notes: &mut Vec<String>) 
     // written must leave it positive, or the manifest would not load.
     if let Some((_, xs)) = &x {
         let flipped = |c: &[f64], q: Quantity| -> Vec<f64> {
-            let s = if found.iter().any(|i| i.quantity == q) { -1.0 } else { 1.0 };
+            let s = if found.iter().any(|i| i.quantity == q) {
+                -1.0
+            } else {
+                1.0
+            };
             c.iter().map(|v| v * s).collect()
         };
         let (f2, x2) = (flipped(&force, Quantity::Force), flipped(xs, Quantity::Displacement));

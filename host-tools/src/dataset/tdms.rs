@@ -193,13 +193,18 @@ fn read_channel(channel: &TdmsChannel<'_>) -> Result<Channel, String> {
 /// channels, the group with the longest channels, the others named in notes.
 fn one_record(groups: Vec<Group>) -> (Vec<Channel>, Vec<String>) {
     let all: Vec<&Channel> = groups.iter().flat_map(|g| &g.channels).collect();
-    let distinct = all.iter().enumerate().all(|(i, c)| all[..i].iter().all(|d| d.name != c.name));
+    let distinct = all
+        .iter()
+        .enumerate()
+        .all(|(i, c)| all[..i].iter().all(|d| d.name != c.name));
     let same_length = all.windows(2).all(|w| w[0].values.len() == w[1].values.len());
     if distinct && same_length {
         return (groups.into_iter().flat_map(|g| g.channels).collect(), Vec::new());
     }
     let longest = |g: &Group| g.channels.iter().map(|c| c.values.len()).max().unwrap_or(0);
-    let best = (0..groups.len()).max_by_key(|&i| (longest(&groups[i]), std::cmp::Reverse(i))).unwrap_or(0);
+    let best = (0..groups.len())
+        .max_by_key(|&i| (longest(&groups[i]), std::cmp::Reverse(i)))
+        .unwrap_or(0);
     let notes = groups
         .iter()
         .enumerate()
@@ -252,7 +257,10 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
     let mut time_base: Vec<(Option<f64>, Option<f64>)> = Vec::new();
     for c in chosen {
         if channels.iter().any(|(name, _)| *name == c.name) {
-            return Err(bad(format!("two groups have a channel `{}`; mre reads one of each", c.name)));
+            return Err(bad(format!(
+                "two groups have a channel `{}`; mre reads one of each",
+                c.name
+            )));
         }
         time_base.push(c.time_base);
         channels.push((c.name, c.unit));
