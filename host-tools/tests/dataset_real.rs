@@ -56,6 +56,27 @@ fn mts_german_latin1_export_reads_its_time_series_and_skips_the_peak_table() {
     assert!(close(lowest, -147_160.52, 1e-6), "{lowest}");
 }
 
+/// BAM's cube compression test (2024): the two-row peak table comes first
+/// (lines 14–17, `Ch 1 Weg`, `Ch 1 Prüfkraft`), the time series after it
+/// (names line 21: `Datum, Tageszeit, Laufzeit, Ch 1 Weg, Ch 1 Prüfkraft`
+/// over `d, d, s, mm, kN`; data lines 23–504, 482 rows). The peak table no
+/// longer hides the series.
+#[test]
+fn mts_peak_table_first_does_not_hide_the_time_series() {
+    let ds = load("mts793_deu_cube_compression_specimen.dat", "specimen.dat", "").unwrap();
+    let s = &ds.recordings[0].samples;
+    assert_eq!(s.len(), 482);
+    // Line 23: 45349  0,40462285  35,414063  -0,0020439089  -16,605667
+    assert!(close(s.time_s[0], 35.414063, 1e-9));
+    assert!(close(s.x_mm[0], -0.0020439089, 1e-12));
+    assert!(close(s.force_n[0], -16_605.667, 1e-6));
+    // Line 492 holds the series' lowest force (awk over lines 23–504).
+    let lowest = s.force_n.iter().cloned().fold(f64::INFINITY, f64::min);
+    assert!(close(lowest, -1_061_380.7, 1e-3), "{lowest}");
+    // Line 504: … 131,70801  4,8337913  0,41905928
+    assert!(close(s.time_s[481], 131.70801, 1e-9) && close(s.force_n[481], 419.05928, 1e-6));
+}
+
 /// The German record with its displacement negated (lines 16–587, fifth
 /// field; one stated change): force and displacement now read opposite
 /// ways, the work on the specimen while loading is negative (by hand, awk

@@ -155,7 +155,7 @@ pub fn map_name(raw: &str) -> Option<String> {
         "displacement" | "disp" | "position" | "stroke" | "x" | "deflection" | "extension" | "weg" | "verschiebung"
         | "desplazamiento" | "déplacement" | "deplacement" => "displacement",
         "velocity" | "vel" | "speed" | "v" => "velocity",
-        "force" | "load" | "f" | "kraft" | "fuerza" | "carga" | "charge" => "force",
+        "force" | "load" | "f" | "kraft" | "prüfkraft" | "pruefkraft" | "fuerza" | "carga" | "charge" => "force",
         "acceleration" | "accel" | "acc" | "a" => "acceleration",
         "current" | "i" | "coil current" => "current",
         "temperature" | "temp" => "temperature",
