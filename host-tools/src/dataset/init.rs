@@ -860,7 +860,8 @@ mod tests {
         use crate::dataset::matlab::mat_v5::mat_v5;
         let dir = tempfile::tempdir().unwrap();
         let t: Vec<f64> = (0..30).map(|k| k as f64 * 1e-3).collect();
-        let x: Vec<f64> = (0..30).map(|k| (k as f64 * 0.2).sin()).collect();
+        // Compressed while the force rises (the load's work check).
+        let x: Vec<f64> = (0..30).map(|k| (k as f64 * 0.05).sin()).collect();
         let f: Vec<f64> = (0..30).map(|k| k as f64).collect();
         let bytes = mat_v5(&[
             ("t", 30, 1, &t),
