@@ -464,10 +464,16 @@ fn check_keys(text: &str, mpath: &str) -> Result<(), DatasetError> {
 
 /// The non-comment records of a recording file as (line, fields): through
 /// the csv crate for `,` (quotes, CRLF), split on runs of blanks for
-/// `whitespace`. A UTF-8 byte-order mark is skipped; lines starting with `#`
-/// and blank lines are ignored.
+/// `whitespace`. The text is decoded first (a byte-order mark skipped);
+/// lines starting with `#` and blank lines are ignored.
 fn records(bytes: &[u8], delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize, Vec<String>)>, DatasetError> {
-    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF".as_slice()).unwrap_or(bytes);
+    // Any encoding a lab's software writes (super::text), as UTF-8 from here on.
+    let decoded = super::text::decode(bytes).map_err(|line| DatasetError::BadRecord {
+        path: dpath.to_string(),
+        line,
+        message: "binary bytes (NUL) where a text recording was expected".to_string(),
+    })?;
+    let bytes = decoded.text.as_bytes();
     let mut out = Vec::new();
     match delimiter {
         Delimiter::Comma => {
