@@ -192,3 +192,25 @@ fn csv_in_legacy_encodings_and_utf16_loads() {
     let e = load(dir.path(), MANIFEST, &binary).unwrap_err().to_string();
     assert!(e.contains("line 3") && e.contains("binary bytes (NUL)"), "{e}");
 }
+
+/// `;` with decimal commas and CRLF, as a spreadsheet in a German, French
+/// or Spanish locale saves CSV: `delimiter = ";"` reads it, and `mre dataset
+/// init` writes that line itself.
+#[test]
+fn semicolon_files_with_decimal_commas_load_and_init_says_so() {
+    let body = rows(";", "\r\n").replace('.', ",");
+    let text = format!("time_s;displacement_mm;force_n\r\n{body}");
+    let dir = tempfile::tempdir().unwrap();
+    let manifest = MANIFEST.replace("current_a = 0.5\n", "current_a = 0.5\ndelimiter = \";\"\n");
+    check_samples(&load(dir.path(), &manifest, text.as_bytes()).unwrap());
+    // Read as `,` it is refused at its header, not misread.
+    let e = load(dir.path(), MANIFEST, text.as_bytes()).unwrap_err().to_string();
+    assert!(e.contains("line 1") && e.contains("unknown column name `time_s;displacement_mm;force_n`"), "{e}");
+
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("a0x5A.csv"), &text).unwrap();
+    let toml = mre_host::dataset::init::manifest_for(dir.path(), Some("a{current_a}A"), None).unwrap();
+    assert!(toml.contains("delimiter = \";\""), "{toml}");
+    std::fs::write(dir.path().join("dataset.toml"), &toml).unwrap();
+    check_samples(&Dataset::load(dir.path()).unwrap());
+}

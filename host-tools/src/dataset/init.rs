@@ -37,6 +37,8 @@ const KEYS: &[&str] = &[
 #[derive(Clone, Debug, PartialEq)]
 enum Delimiter {
     Comma,
+    /// `;` with decimal commas.
+    Semicolon,
     Whitespace,
 }
 
@@ -133,16 +135,21 @@ fn sniff_records(text: &str) -> Result<(Delimiter, Vec<Vec<String>>)> {
     let Some(first) = lines.first() else {
         bail!("no data lines")
     };
-    let delimiter = if first.contains(',') {
+    // `;` first: its decimal commas would otherwise read as delimiters.
+    let delimiter = if first.contains(';') {
+        Delimiter::Semicolon
+    } else if first.contains(',') {
         Delimiter::Comma
-    } else if first.contains(';') {
-        bail!("`;`-separated: the data set format reads `,` or whitespace; convert the file first")
     } else {
         Delimiter::Whitespace
     };
     let records = lines
         .iter()
         .map(|l| match delimiter {
+            Delimiter::Semicolon => l
+                .split(';')
+                .map(|f| f.trim().trim_matches('"').replacen(',', ".", 1))
+                .collect(),
             Delimiter::Comma => l.split(',').map(|f| f.trim().trim_matches('"').to_string()).collect(),
             Delimiter::Whitespace => l.split_whitespace().map(|f| f.trim_matches('"').to_string()).collect(),
         })
@@ -683,8 +690,14 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
     }
     let _ = writeln!(s, "name = {}\n\n[defaults]", toml_string(&title));
     let write_layout = |s: &mut String, l: &Layout| {
-        if l.delimiter == Delimiter::Whitespace {
-            let _ = writeln!(s, "delimiter = \"whitespace\"");
+        match l.delimiter {
+            Delimiter::Whitespace => {
+                let _ = writeln!(s, "delimiter = \"whitespace\"");
+            }
+            Delimiter::Semicolon => {
+                let _ = writeln!(s, "delimiter = \";\"");
+            }
+            Delimiter::Comma => {}
         }
         if let Some(c) = &l.columns {
             let _ = writeln!(s, "{}", columns_line(c));
@@ -735,10 +748,10 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
         }
         if own {
             if f.layout.delimiter != common.delimiter {
-                let d = if f.layout.delimiter == Delimiter::Whitespace {
-                    "whitespace"
-                } else {
-                    ","
+                let d = match f.layout.delimiter {
+                    Delimiter::Whitespace => "whitespace",
+                    Delimiter::Semicolon => ";",
+                    Delimiter::Comma => ",",
                 };
                 let _ = writeln!(s, "delimiter = \"{d}\"");
             }

@@ -46,6 +46,10 @@ pub const SETTING_BOUNDS: &[(&str, f64, f64, &str)] = &[
 enum Delimiter {
     #[serde(rename = ",")]
     Comma,
+    /// `;` with a decimal comma, as spreadsheets in German, French or
+    /// Spanish locales save CSV.
+    #[serde(rename = ";")]
+    Semicolon,
     Whitespace,
 }
 
@@ -476,8 +480,10 @@ fn records(bytes: &[u8], delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize
     let bytes = decoded.text.as_bytes();
     let mut out = Vec::new();
     match delimiter {
-        Delimiter::Comma => {
+        Delimiter::Comma | Delimiter::Semicolon => {
+            let semicolon = delimiter == Delimiter::Semicolon;
             let mut reader = csv::ReaderBuilder::new()
+                .delimiter(if semicolon { b';' } else { b',' })
                 .has_headers(false)
                 .flexible(true)
                 .trim(csv::Trim::All)
@@ -496,7 +502,8 @@ fn records(bytes: &[u8], delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize
                 if record.iter().all(str::is_empty) {
                     continue;
                 }
-                out.push((line, record.iter().map(str::to_owned).collect()));
+                let field = |f: &str| if semicolon { decimal_comma(f) } else { f.to_owned() };
+                out.push((line, record.iter().map(field).collect()));
             }
         }
         Delimiter::Whitespace => {
@@ -519,6 +526,17 @@ fn records(bytes: &[u8], delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize
         }
     }
     Ok(out)
+}
+
+/// A field of a `;` file: `1,5` is the number 1.5; other text is kept as
+/// written (a name, or a bad value reported as written).
+fn decimal_comma(f: &str) -> String {
+    let dotted = f.replacen(',', ".", 1);
+    if !f.contains('.') && dotted.parse::<f64>().is_ok() {
+        dotted
+    } else {
+        f.to_owned()
+    }
 }
 
 fn read_samples(
