@@ -143,7 +143,10 @@ fn a_file_that_is_not_text_names_its_line() {
     text.extend_from_slice(b"0.01,\xff\xfe,1\n");
     let dir = tempfile::tempdir().unwrap();
     let err = load(dir.path(), MANIFEST, &text).unwrap_err().to_string();
-    assert!(err.contains("line 3, column 2") && err.contains("is not a number"), "{err}");
+    assert!(
+        err.contains("line 3, column 2") && err.contains("is not a number"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -171,7 +174,10 @@ fn an_absurd_estimated_velocity_is_rejected_at_load() {
 fn csv_in_legacy_encodings_and_utf16_loads() {
     let text = |comment: &str| format!("# {comment}\ntime_s,displacement_mm,force_n\n{}", rows(",", "\n"));
     let cases: Vec<(&str, Vec<u8>)> = vec![
-        ("windows-1252", encoding_rs::WINDOWS_1252.encode(&text("Prüfer: Müller")).0.into_owned()),
+        (
+            "windows-1252",
+            encoding_rs::WINDOWS_1252.encode(&text("Prüfer: Müller")).0.into_owned(),
+        ),
         ("GBK", encoding_rs::GBK.encode(&text("试样 1 号")).0.into_owned()),
         ("UTF-16LE", {
             let mut b = vec![0xFF, 0xFE];
@@ -180,7 +186,10 @@ fn csv_in_legacy_encodings_and_utf16_loads() {
         }),
     ];
     for (what, bytes) in cases {
-        assert!(std::str::from_utf8(&bytes).is_err(), "{what}: not UTF-8, so the case tests decoding");
+        assert!(
+            std::str::from_utf8(&bytes).is_err(),
+            "{what}: not UTF-8, so the case tests decoding"
+        );
         let dir = tempfile::tempdir().unwrap();
         let ds = load(dir.path(), MANIFEST, &bytes).unwrap_or_else(|e| panic!("{what}: {e}"));
         check_samples(&ds);
@@ -205,7 +214,10 @@ fn semicolon_files_with_decimal_commas_load_and_init_says_so() {
     check_samples(&load(dir.path(), &manifest, text.as_bytes()).unwrap());
     // Read as `,` it is refused at its header, not misread.
     let e = load(dir.path(), MANIFEST, text.as_bytes()).unwrap_err().to_string();
-    assert!(e.contains("line 1") && e.contains("unknown column name `time_s;displacement_mm;force_n`"), "{e}");
+    assert!(
+        e.contains("line 1") && e.contains("unknown column name `time_s;displacement_mm;force_n`"),
+        "{e}"
+    );
 
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("a0x5A.csv"), &text).unwrap();
