@@ -50,11 +50,17 @@ const NAMES: &[(&str, Quantity, f64)] = &[
     ("time_ms", Quantity::Time, 1e-3),
     ("displacement_mm", Quantity::Displacement, 1.0),
     ("displacement_m", Quantity::Displacement, 1e3),
+    // 1 in = 25.4 mm exactly (international inch, 1959).
+    ("displacement_in", Quantity::Displacement, 25.4),
     ("velocity_m_s", Quantity::Velocity, 1.0),
     ("velocity_mm_s", Quantity::Velocity, 1e-3),
     ("acceleration_m_s2", Quantity::Acceleration, 1.0),
+    // Standard gravity, 9.806 65 m/s² exactly (3rd CGPM, 1901).
+    ("acceleration_g", Quantity::Acceleration, 9.806_65),
     ("force_n", Quantity::Force, 1.0),
     ("force_kn", Quantity::Force, 1e3),
+    // 1 lbf = 0.453 592 37 kg × 9.806 65 m/s², exactly.
+    ("force_lbf", Quantity::Force, 4.448_221_615_260_5),
     ("current_a", Quantity::Current, 1.0),
     ("temperature_c", Quantity::Temperature, 1.0),
 ];
@@ -135,15 +141,21 @@ pub fn map_name(raw: &str) -> Option<String> {
         .chars()
         .map(|c| if "()[]{}_,;:".contains(c) { ' ' } else { c })
         .collect();
-    // "Axial Force" (MTS channel names): the axis says nothing about the quantity.
-    let mut words: Vec<&str> = cleaned.split_whitespace().skip_while(|w| *w == "axial").collect();
+    // "Axial Force", "Universal Force", "Ch 1 Kraft" (MTS channel names): the
+    // axis, frame and channel number say nothing about the quantity.
+    let mut words: Vec<&str> = cleaned
+        .split_whitespace()
+        .skip_while(|w| matches!(*w, "axial" | "universal" | "ch") || w.chars().all(|c| c.is_ascii_digit()))
+        .collect();
     let unit = if words.len() > 1 { words.pop() } else { None };
     let word = words.join(" ");
     let quantity = match word.as_str() {
-        "time" | "t" => "time",
-        "displacement" | "disp" | "position" | "stroke" | "x" | "deflection" | "extension" => "displacement",
+        // English, German, Spanish and French, as MTS and Instron exports name them.
+        "time" | "t" | "running time" | "zeit" | "laufzeit" | "tiempo" | "temps" => "time",
+        "displacement" | "disp" | "position" | "stroke" | "x" | "deflection" | "extension" | "weg" | "verschiebung"
+        | "desplazamiento" | "déplacement" | "deplacement" => "displacement",
         "velocity" | "vel" | "speed" | "v" => "velocity",
-        "force" | "load" | "f" => "force",
+        "force" | "load" | "f" | "kraft" | "prüfkraft" | "pruefkraft" | "fuerza" | "carga" | "charge" => "force",
         "acceleration" | "accel" | "acc" | "a" => "acceleration",
         "current" | "i" | "coil current" => "current",
         "temperature" | "temp" => "temperature",
@@ -167,11 +179,14 @@ pub fn map_name(raw: &str) -> Option<String> {
         ("time", Some("ms")) => "time_ms",
         ("displacement", None | Some("mm")) => "displacement_mm",
         ("displacement", Some("m")) => "displacement_m",
+        ("displacement", Some("in")) => "displacement_in",
         ("velocity", None | Some("m_s")) => "velocity_m_s",
         ("velocity", Some("mm_s")) => "velocity_mm_s",
         ("acceleration", None | Some("m_s2") | Some("m_s^2")) => "acceleration_m_s2",
+        ("acceleration", Some("g")) => "acceleration_g",
         ("force", None | Some("n")) => "force_n",
         ("force", Some("kn")) => "force_kn",
+        ("force", Some("lbf")) => "force_lbf",
         ("current", None | Some("a")) => "current_a",
         ("temperature", None | Some("c") | Some("degc") | Some("°c")) => "temperature_c",
         _ => return None,

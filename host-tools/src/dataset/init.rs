@@ -37,6 +37,8 @@ const KEYS: &[&str] = &[
 #[derive(Clone, Debug, PartialEq)]
 enum Delimiter {
     Comma,
+    /// `;` with decimal commas.
+    Semicolon,
     Whitespace,
 }
 
@@ -133,16 +135,21 @@ fn sniff_records(text: &str) -> Result<(Delimiter, Vec<Vec<String>>)> {
     let Some(first) = lines.first() else {
         bail!("no data lines")
     };
-    let delimiter = if first.contains(',') {
+    // `;` first: its decimal commas would otherwise read as delimiters.
+    let delimiter = if first.contains(';') {
+        Delimiter::Semicolon
+    } else if first.contains(',') {
         Delimiter::Comma
-    } else if first.contains(';') {
-        bail!("`;`-separated: the data set format reads `,` or whitespace; convert the file first")
     } else {
         Delimiter::Whitespace
     };
     let records = lines
         .iter()
         .map(|l| match delimiter {
+            Delimiter::Semicolon => l
+                .split(';')
+                .map(|f| f.trim().trim_matches('"').replacen(',', ".", 1))
+                .collect(),
             Delimiter::Comma => l.split(',').map(|f| f.trim().trim_matches('"').to_string()).collect(),
             Delimiter::Whitespace => l.split_whitespace().map(|f| f.trim_matches('"').to_string()).collect(),
         })
@@ -375,11 +382,45 @@ fn detect_flip(names: &[String], rows: &[Vec<String>], notes: &mut Vec<String>) 
         Some((i, values))
     };
     let (fi, force) = column(Quantity::Force)?;
-    if force.is_empty() || !super::sign::one_sided(&force) {
+    if force.is_empty() {
         return None;
     }
     let x = column(Quantity::Displacement);
-    let found = super::sign::inverted_columns(&force, x.as_ref().map(|(_, v)| v.as_slice()), None, None);
+    let mut found = if super::sign::one_sided(&force) {
+        super::sign::inverted_columns(&force, x.as_ref().map(|(_, v)| v.as_slice()), None, None)
+    } else {
+        Vec::new()
+    };
+    // The load checks the work while loading on every record: the flips
+    // written must leave it positive, or the manifest would not load.
+    if let Some((_, xs)) = &x {
+        let flipped = |c: &[f64], q: Quantity| -> Vec<f64> {
+            let s = if found.iter().any(|i| i.quantity == q) {
+                -1.0
+            } else {
+                1.0
+            };
+            c.iter().map(|v| v * s).collect()
+        };
+        let (f2, x2) = (flipped(&force, Quantity::Force), flipped(xs, Quantity::Displacement));
+        if super::sign::negative_work(&f2, &x2).is_some() {
+            // Flip the column the mean-sign checks did not flip (force when neither).
+            let q = if found.iter().any(|i| i.quantity == Quantity::Force) {
+                Quantity::Displacement
+            } else {
+                Quantity::Force
+            };
+            match found.iter().position(|i| i.quantity == q) {
+                Some(i) => {
+                    found.remove(i);
+                }
+                None => found.push(super::sign::Inverted {
+                    quantity: q,
+                    evidence: "the work done on the damper while loading is negative otherwise".to_string(),
+                }),
+            }
+        }
+    }
     let mut flips = Vec::new();
     for inv in &found {
         let i = if inv.quantity == Quantity::Force {
@@ -472,17 +513,13 @@ fn sniff_vendor(reader: &super::vendor::VendorReader, path: &Path, bytes: &[u8])
         reader.name,
         table.channels.join(", ")
     )];
-    let names: Vec<String> = table
-        .channels
-        .iter()
-        .map(|c| {
-            map_name(c).unwrap_or_else(|| {
-                notes.push(format!("channel `{c}` not recognised: ignored"));
-                "ignore".into()
-            })
-        })
-        .collect();
-    parse_header(&names, &path.display().to_string(), 1).map_err(|e| anyhow::anyhow!("{e}"))?;
+    notes.extend(table.notes.iter().cloned());
+    let (names, ignored) = super::vendor::column_names(&table);
+    notes.extend(ignored.iter().map(|c| format!("channel `{c}` not recognised: ignored")));
+    // Never a manifest that cannot load: say what was found and what is accepted.
+    if let Some(why) = super::vendor::unusable(reader, &table, &names) {
+        anyhow::bail!("{}: {why}", path.display());
+    }
     let rows: Vec<Vec<String>> = table
         .rows
         .iter()
@@ -653,8 +690,14 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
     }
     let _ = writeln!(s, "name = {}\n\n[defaults]", toml_string(&title));
     let write_layout = |s: &mut String, l: &Layout| {
-        if l.delimiter == Delimiter::Whitespace {
-            let _ = writeln!(s, "delimiter = \"whitespace\"");
+        match l.delimiter {
+            Delimiter::Whitespace => {
+                let _ = writeln!(s, "delimiter = \"whitespace\"");
+            }
+            Delimiter::Semicolon => {
+                let _ = writeln!(s, "delimiter = \";\"");
+            }
+            Delimiter::Comma => {}
         }
         if let Some(c) = &l.columns {
             let _ = writeln!(s, "{}", columns_line(c));
@@ -705,10 +748,10 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
         }
         if own {
             if f.layout.delimiter != common.delimiter {
-                let d = if f.layout.delimiter == Delimiter::Whitespace {
-                    "whitespace"
-                } else {
-                    ","
+                let d = match f.layout.delimiter {
+                    Delimiter::Whitespace => "whitespace",
+                    Delimiter::Semicolon => ";",
+                    Delimiter::Comma => ",",
                 };
                 let _ = writeln!(s, "delimiter = \"{d}\"");
             }
@@ -830,7 +873,8 @@ mod tests {
         use crate::dataset::matlab::mat_v5::mat_v5;
         let dir = tempfile::tempdir().unwrap();
         let t: Vec<f64> = (0..30).map(|k| k as f64 * 1e-3).collect();
-        let x: Vec<f64> = (0..30).map(|k| (k as f64 * 0.2).sin()).collect();
+        // Compressed while the force rises (the load's work check).
+        let x: Vec<f64> = (0..30).map(|k| (k as f64 * 0.05).sin()).collect();
         let f: Vec<f64> = (0..30).map(|k| k as f64).collect();
         let bytes = mat_v5(&[
             ("t", 30, 1, &t),

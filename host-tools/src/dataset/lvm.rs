@@ -14,7 +14,11 @@
 //! (`X_Dimension` Time), in seconds. A file with several segments must list
 //! the same channels and units in each; their rows continue the record.
 //! A segment holding fewer rows than its `Samples`, or a last line without a
-//! line end, is a file cut short and refused.
+//! line end, is a file cut short and refused; one holding more was written
+//! in several writes under one header ("one header only") and is read whole.
+//! With `X_Columns Multi` the header rows hold one value per channel over
+//! its Y column, blank cells over the X columns. Text in any encoding
+//! (`super::text`: a `°C` unit in Windows-1252).
 use super::error::DatasetError;
 use super::read::Cell;
 use super::vendor::{cell, Table, VendorReader};
@@ -56,7 +60,7 @@ struct SegmentHeader {
 
 fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
     let dpath = path.display().to_string();
-    let text = super::vendor::text(path, bytes, "an .lvm file is ASCII text")?;
+    let text = super::vendor::text(path, bytes, "an .lvm file is text")?;
     let bad = |line: usize, message: String| DatasetError::BadRecord {
         path: dpath.clone(),
         line,
@@ -120,6 +124,7 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
 
     let mut channels: Option<(Vec<String>, usize)> = None;
     let mut rows: Vec<(usize, Vec<Cell>)> = Vec::new();
+    let mut notes = Vec::new();
     let mut segment = 0;
     while let Some(&(n, line)) = lines.peek() {
         if line.trim_matches([separator, ' ']).is_empty() {
@@ -136,7 +141,13 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
                 fields.pop();
             }
             let Some(tag) = fields.first().cloned() else { continue };
-            let values: Vec<String> = fields.into_iter().skip(1).collect();
+            let mut values: Vec<String> = fields.into_iter().skip(1).collect();
+            // LabVIEW writes X_Columns Multi headers with each channel's value
+            // over its Y column and a blank cell over each X column.
+            let blank_between = values.len() > 1 && values.iter().skip(1).step_by(2).all(String::is_empty);
+            if x_columns == XColumns::Multi && blank_between {
+                values = values.into_iter().step_by(2).collect();
+            }
             match tag.as_str() {
                 END_OF_HEADER => {
                     closed = true;
@@ -265,11 +276,21 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
             rows.push((n, row));
             k += 1;
         }
-        if let Some(samples) = h.samples.filter(|&s| s != k) {
-            return Err(bad(
-                rows.last().map_or(names_line, |r| r.0),
-                format!("segment {segment} declares {samples} samples but holds {k}: the file is cut short or corrupt"),
-            ));
+        match h.samples {
+            Some(samples) if k < samples => {
+                return Err(bad(
+                    rows.last().map_or(names_line, |r| r.0),
+                    format!("segment {segment} declares {samples} samples but holds {k}: the file is cut short"),
+                ))
+            }
+            // "One header only": later writes add rows under the first
+            // write's header, whose Samples counts that write alone.
+            Some(samples) if k > samples => notes.push(format!(
+                "segment {segment} holds {k} rows under a header of {samples} samples: \
+                 {} writes under one header, read as one record",
+                k.div_ceil(samples.max(1))
+            )),
+            _ => {}
         }
     }
     let Some((channels, names_line)) = channels else {
@@ -279,5 +300,6 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
         channels,
         names_line,
         rows,
+        notes,
     })
 }

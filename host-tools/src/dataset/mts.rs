@@ -8,8 +8,11 @@
 //! iDelim 0 = space (Plain), 1 = comma with quoted text (Lotus), 2 = tab
 //! (Excel); sDecimal is the decimal separator. Free header lines follow,
 //! then a row of channel names, a row of their units, and the data. MPT may
-//! repeat the whole header before each data buffer; a repeat must name the
-//! same channels and units, and its rows continue the record.
+//! repeat the whole header before each data buffer, and exports in the
+//! operator's language put a block header (`Data Acquisition`,
+//! `Datenerfassung`, …) above each buffer; buffers naming the same channels
+//! continue one record. A file may hold several records (a time series and
+//! a short peak table): the longest is read, the others are named in notes.
 //!
 //! Plain files are refused: their names (`Axial Force`) hold the separator.
 //! A file whose last line has no line end was cut short and is refused; one
@@ -92,18 +95,39 @@ fn split(line: &str, delimiter: char) -> Vec<String> {
     fields
 }
 
+/// One data buffer: its channels (`Name (unit)`), the line of its names,
+/// and its rows.
+struct Block {
+    channels: Vec<String>,
+    names_line: usize,
+    rows: Vec<(usize, Vec<Cell>)>,
+}
+
 fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
     let dpath = path.display().to_string();
-    let text = super::vendor::text(path, bytes, "an MTS Specimen.dat is ANSI text")?;
+    let text = super::vendor::text(path, bytes, "an MTS Specimen.dat is text")?;
     let bad = |line: usize, message: String| DatasetError::BadRecord {
         path: dpath.clone(),
         line,
         message,
     };
-    let mut channels: Option<(Vec<String>, usize)> = None;
-    let mut rows = Vec::new();
+    let blocks = blocks(&text, &bad)?;
+    choose(blocks).ok_or_else(|| {
+        bad(
+            text.lines().count().max(1),
+            "no data rows (a row of channel names, a row of units, then numbers)".to_string(),
+        )
+    })
+}
+
+/// Every data buffer in file order. A buffer is a row of names, a row of
+/// units and the numeric rows under them; any other text line (the MTS793
+/// line, a per-block header such as `Data Acquisition` or `Datenerfassung`
+/// in the export's language, operator information) ends it.
+fn blocks(text: &str, bad: &dyn Fn(usize, String) -> DatasetError) -> Result<Vec<Block>, DatasetError> {
+    let mut out: Vec<Block> = Vec::new();
     let mut format: Option<(char, char)> = None;
-    // Rows of the current header block, before its first data row.
+    // Text rows since the last data row: the names and units are its last two.
     let mut pending: Vec<(usize, Vec<String>)> = Vec::new();
     let mut in_data = false;
     for (i, line) in text.lines().enumerate() {
@@ -117,17 +141,23 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
         let Some((delimiter, decimal)) = format else {
             return Err(bad(n, "no MTS793 header line above the data".to_string()));
         };
-        if line.trim().is_empty() {
+        if line.trim_matches([delimiter, ' ', '\t']).is_empty() {
             continue;
         }
         let fields = split(line, delimiter);
         let numeric = |f: &String| matches!(cell(f, decimal), Cell::Number(_)) || f.parse::<f64>().is_ok();
-        if in_data {
-            rows.push((n, fields.iter().map(|f| cell(f, decimal)).collect()));
-            continue;
+        let row = |fields: &[String]| (n, fields.iter().map(|f| cell(f, decimal)).collect::<Vec<Cell>>());
+        // Inside a buffer, a row as wide as its names with a number in it is
+        // data (a bad cell is reported as written, later); a text line ends it.
+        if let Some(block) = out.last_mut().filter(|_| in_data) {
+            if fields.len() == block.channels.len() && fields.iter().any(numeric) {
+                block.rows.push(row(&fields));
+                continue;
+            }
         }
         if fields.is_empty() || !fields.iter().all(numeric) {
             pending.push((n, fields));
+            in_data = false;
             continue;
         }
         // The first data row of a block: names and units are the two rows above.
@@ -148,34 +178,46 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
                 ),
             ));
         }
-        let block: Vec<String> = names.iter().zip(units).map(|(c, u)| format!("{c} ({u})")).collect();
-        match &channels {
-            None => channels = Some((block, *names_line)),
-            Some((first, _)) if *first != block => {
-                return Err(bad(
-                    *names_line,
-                    format!(
-                        "this data buffer's channels ({}) differ from the first buffer's ({}); \
-                         mre reads one set of channels per file",
-                        block.join(", "),
-                        first.join(", ")
-                    ),
-                ))
-            }
-            Some(_) => {}
-        }
+        out.push(Block {
+            channels: names.iter().zip(units).map(|(c, u)| format!("{c} ({u})")).collect(),
+            names_line: *names_line,
+            rows: vec![row(&fields)],
+        });
+        pending.clear();
         in_data = true;
-        rows.push((n, fields.iter().map(|f| cell(f, decimal)).collect()));
     }
-    let Some((channels, names_line)) = channels else {
-        return Err(bad(
-            text.lines().count().max(1),
-            "no data rows (a row of channel names, a row of units, then numbers)".to_string(),
-        ));
-    };
-    Ok(Table {
-        channels,
-        names_line,
-        rows,
+    Ok(out)
+}
+
+/// The time series: buffers with the same channels continue one record
+/// (MPT repeats the header before each buffer), and the record with the
+/// most rows is taken. The others (a peak or cycle table, a second
+/// process's data) are skipped and named in the table's notes.
+fn choose(blocks: Vec<Block>) -> Option<Table> {
+    let mut records: Vec<Block> = Vec::new();
+    for b in blocks {
+        match records.iter_mut().find(|r| r.channels == b.channels) {
+            Some(r) => r.rows.extend(b.rows),
+            None => records.push(b),
+        }
+    }
+    let longest = (0..records.len()).max_by_key(|&i| (records[i].rows.len(), std::cmp::Reverse(i)))?;
+    let chosen = records.remove(longest);
+    let notes = records
+        .iter()
+        .map(|r| {
+            format!(
+                "skipped the {}-row data block at line {} ({}): the longest block is the time series",
+                r.rows.len(),
+                r.names_line,
+                r.channels.join(", ")
+            )
+        })
+        .collect();
+    Some(Table {
+        channels: chosen.channels,
+        names_line: chosen.names_line,
+        rows: chosen.rows,
+        notes,
     })
 }

@@ -46,6 +46,10 @@ pub const SETTING_BOUNDS: &[(&str, f64, f64, &str)] = &[
 enum Delimiter {
     #[serde(rename = ",")]
     Comma,
+    /// `;` with a decimal comma, as spreadsheets in German, French or
+    /// Spanish locales save CSV.
+    #[serde(rename = ";")]
+    Semicolon,
     Whitespace,
 }
 
@@ -231,7 +235,12 @@ impl Dataset {
                     samples.accel_m_s2.as_deref(),
                 );
                 match found.first() {
-                    Some(inv) if impact => Err(inverted_error(&mpath, line, &file, inv, &declared)),
+                    Some(inv) if impact => return Err(inverted_error(&mpath, line, &file, inv, &declared)),
+                    _ => {}
+                }
+                // Every record, impact or not: the work on the damper while loading.
+                match super::sign::negative_work(&samples.force_n, &samples.x_mm) {
+                    Some(inv) if !samples.x_mm.is_empty() => Err(inverted_error(&mpath, line, &file, &inv, &declared)),
                     _ => Ok(()),
                 }
             };
@@ -459,14 +468,22 @@ fn check_keys(text: &str, mpath: &str) -> Result<(), DatasetError> {
 
 /// The non-comment records of a recording file as (line, fields): through
 /// the csv crate for `,` (quotes, CRLF), split on runs of blanks for
-/// `whitespace`. A UTF-8 byte-order mark is skipped; lines starting with `#`
-/// and blank lines are ignored.
+/// `whitespace`. The text is decoded first (a byte-order mark skipped);
+/// lines starting with `#` and blank lines are ignored.
 fn records(bytes: &[u8], delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize, Vec<String>)>, DatasetError> {
-    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF".as_slice()).unwrap_or(bytes);
+    // Any encoding a lab's software writes (super::text), as UTF-8 from here on.
+    let decoded = super::text::decode(bytes).map_err(|line| DatasetError::BadRecord {
+        path: dpath.to_string(),
+        line,
+        message: "binary bytes (NUL) where a text recording was expected".to_string(),
+    })?;
+    let bytes = decoded.text.as_bytes();
     let mut out = Vec::new();
     match delimiter {
-        Delimiter::Comma => {
+        Delimiter::Comma | Delimiter::Semicolon => {
+            let semicolon = delimiter == Delimiter::Semicolon;
             let mut reader = csv::ReaderBuilder::new()
+                .delimiter(if semicolon { b';' } else { b',' })
                 .has_headers(false)
                 .flexible(true)
                 .trim(csv::Trim::All)
@@ -485,7 +502,8 @@ fn records(bytes: &[u8], delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize
                 if record.iter().all(str::is_empty) {
                     continue;
                 }
-                out.push((line, record.iter().map(str::to_owned).collect()));
+                let field = |f: &str| if semicolon { decimal_comma(f) } else { f.to_owned() };
+                out.push((line, record.iter().map(field).collect()));
             }
         }
         Delimiter::Whitespace => {
@@ -508,6 +526,17 @@ fn records(bytes: &[u8], delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize
         }
     }
     Ok(out)
+}
+
+/// A field of a `;` file: `1,5` is the number 1.5; other text is kept as
+/// written (a name, or a bad value reported as written).
+fn decimal_comma(f: &str) -> String {
+    let dotted = f.replacen(',', ".", 1);
+    if !f.contains('.') && dotted.parse::<f64>().is_ok() {
+        dotted
+    } else {
+        f.to_owned()
+    }
 }
 
 fn read_samples(

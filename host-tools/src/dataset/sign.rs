@@ -91,6 +91,39 @@ pub fn inverted_columns(
     out
 }
 
+/// Share of the loading branch's work (|F·dx| summed) by which the net work
+/// must be negative before the record is called inverted: a tare jump or
+/// noise moves it a little, a wrong sign flips most of it.
+const WORK_CLEAR: f64 = 0.25;
+
+/// The work check every record with a measured displacement gets: a passive
+/// damper takes work while it is loaded, so ∫F·dx from the first sample to
+/// the largest force is positive. When it is clearly negative, force and
+/// displacement read opposite ways: the force column is named (its sign is
+/// the usual culprit; the evidence says displacement could be instead).
+pub fn negative_work(force_n: &[f64], x_mm: &[f64]) -> Option<Inverted> {
+    let n = force_n.len().min(x_mm.len());
+    if n < 2 {
+        return None;
+    }
+    let end = loading_end(&force_n[..n], None);
+    // Trapezoids in N·mm = mJ.
+    let (net, gross) = (1..=end).fold((0.0, 0.0), |(net, gross), k| {
+        let w = 0.5 * (force_n[k] + force_n[k - 1]) * (x_mm[k] - x_mm[k - 1]);
+        (net + w, gross + w.abs())
+    });
+    (gross > 0.0 && net < -WORK_CLEAR * gross).then(|| Inverted {
+        quantity: Quantity::Force,
+        evidence: format!(
+            "the work done on the damper from the first sample to the largest force (sample {}) is \
+             {:.4} J, negative, and a passive damper takes work (if the force reads right, flip \
+             displacement_mm instead)",
+            end + 1,
+            net * 1e-3
+        ),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -124,5 +157,16 @@ mod tests {
         assert!(one_sided(&f));
         let shaker: Vec<f64> = (0..100).map(|k| (k as f64 * 0.1).sin()).collect();
         assert!(!one_sided(&shaker));
+    }
+
+    #[test]
+    fn work_on_loading_is_positive_unless_one_column_is_flipped() {
+        let (x, f, _) = impact();
+        assert!(negative_work(&f, &x).is_none());
+        let neg = |c: &[f64]| c.iter().map(|a| -a).collect::<Vec<_>>();
+        assert!(negative_work(&neg(&f), &x).is_some());
+        assert!(negative_work(&f, &neg(&x)).is_some());
+        // Both flipped: the work cannot tell.
+        assert!(negative_work(&neg(&f), &neg(&x)).is_none());
     }
 }

@@ -69,16 +69,17 @@ fn raw_data_bytes(bytes: &[u8]) -> Result<u64, String> {
                 "segment {segment} is big-endian, which mre's TDMS reader does not read"
             ));
         }
-        if toc & TOC_INTERLEAVED != 0 {
-            return Err(format!(
-                "segment {segment} holds interleaved data, which mre's TDMS reader does not read; \
-                 write the channels one after another (decimated)"
-            ));
-        }
+        // DAQmx raw segments are flagged interleaved too: name the DAQmx data.
         if toc & TOC_DAQMX_RAW != 0 {
             return Err(format!(
                 "segment {segment} holds DAQmx raw data, which mre's TDMS reader does not read; \
                  log scaled data instead"
+            ));
+        }
+        if toc & TOC_INTERLEAVED != 0 {
+            return Err(format!(
+                "segment {segment} holds interleaved data, which mre's TDMS reader does not read; \
+                 write the channels one after another (decimated)"
             ));
         }
         if next == u64::MAX {
@@ -145,6 +146,75 @@ fn values(channel: &TdmsChannel<'_>) -> Option<Result<Vec<f64>, tdms_rs::TdmsErr
     })
 }
 
+/// One channel, read: name, unit (`unit_string`), values and waveform time
+/// base (`wf_start_offset`, `wf_increment`).
+struct Channel {
+    name: String,
+    unit: String,
+    values: Vec<f64>,
+    time_base: (Option<f64>, Option<f64>),
+}
+
+struct Group {
+    name: String,
+    channels: Vec<Channel>,
+}
+
+fn read_channel(channel: &TdmsChannel<'_>) -> Result<Channel, String> {
+    let name = channel.name().to_string();
+    let v = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| values(channel)))
+        .map_err(|_| format!("channel `{name}`: corrupt raw data"))?;
+    let Some(v) = v else {
+        return Err(format!(
+            "channel `{name}` holds {:?} values; mre reads numeric channels",
+            channel.dtype()
+        ));
+    };
+    let values = v.map_err(|e| format!("channel `{name}`: {e} (the file is cut short or corrupt)"))?;
+    let unit = match channel.property("unit_string") {
+        Some(PropertyValue::String(u)) if !u.trim().is_empty() => u.trim().to_string(),
+        _ => String::new(),
+    };
+    let time_base = (
+        property_f64(channel, "wf_start_offset"),
+        property_f64(channel, "wf_increment"),
+    );
+    Ok(Channel {
+        name,
+        unit,
+        values,
+        time_base,
+    })
+}
+
+/// The channels of one record. All groups together when their channels
+/// have distinct names and one length (force in one group, displacement in
+/// another); else, as LabVIEW logs levels or runs as groups of the same
+/// channels, the group with the longest channels, the others named in notes.
+fn one_record(groups: Vec<Group>) -> (Vec<Channel>, Vec<String>) {
+    let all: Vec<&Channel> = groups.iter().flat_map(|g| &g.channels).collect();
+    let distinct = all
+        .iter()
+        .enumerate()
+        .all(|(i, c)| all[..i].iter().all(|d| d.name != c.name));
+    let same_length = all.windows(2).all(|w| w[0].values.len() == w[1].values.len());
+    if distinct && same_length {
+        return (groups.into_iter().flat_map(|g| g.channels).collect(), Vec::new());
+    }
+    let longest = |g: &Group| g.channels.iter().map(|c| c.values.len()).max().unwrap_or(0);
+    let best = (0..groups.len())
+        .max_by_key(|&i| (longest(&groups[i]), std::cmp::Reverse(i)))
+        .unwrap_or(0);
+    let notes = groups
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| *i != best)
+        .map(|(_, g)| format!("skipped group `{}` ({} values per channel at most)", g.name, longest(g)))
+        .collect();
+    let chosen = groups.into_iter().nth(best).map(|g| g.channels).unwrap_or_default();
+    (chosen, notes)
+}
+
 fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
     let dpath = path.display().to_string();
     let bad = |message: String| DatasetError::Unreadable {
@@ -170,37 +240,31 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
              (repeated chunks, or data mre's TDMS reader does not read)"
         )));
     }
+    let mut groups: Vec<Group> = Vec::new();
+    for group in file.groups() {
+        let mut g = Group {
+            name: group.name().to_string(),
+            channels: Vec::new(),
+        };
+        for channel in group.channels() {
+            g.channels.push(read_channel(&channel).map_err(&bad)?);
+        }
+        groups.push(g);
+    }
+    let (chosen, notes) = one_record(groups);
     let mut channels: Vec<(String, String)> = Vec::new();
     let mut columns: Vec<Vec<f64>> = Vec::new();
     let mut time_base: Vec<(Option<f64>, Option<f64>)> = Vec::new();
-    for group in file.groups() {
-        for channel in group.channels() {
-            let name = channel.name().to_string();
-            let v = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| values(&channel)))
-                .map_err(|_| bad(format!("channel `{name}`: corrupt raw data")))?;
-            let Some(v) = v else {
-                return Err(bad(format!(
-                    "channel `{name}` holds {:?} values; mre reads numeric channels",
-                    channel.dtype()
-                )));
-            };
-            let v = v.map_err(|e| bad(format!("channel `{name}`: {e} (the file is cut short or corrupt)")))?;
-            let unit = match channel.property("unit_string") {
-                Some(PropertyValue::String(u)) if !u.trim().is_empty() => u.trim().to_string(),
-                _ => String::new(),
-            };
-            if channels.iter().any(|c| c.0 == name) {
-                return Err(bad(format!(
-                    "two groups have a channel `{name}`; mre reads one of each"
-                )));
-            }
-            time_base.push((
-                property_f64(&channel, "wf_start_offset"),
-                property_f64(&channel, "wf_increment"),
-            ));
-            channels.push((name, unit));
-            columns.push(v);
+    for c in chosen {
+        if channels.iter().any(|(name, _)| *name == c.name) {
+            return Err(bad(format!(
+                "two groups have a channel `{}`; mre reads one of each",
+                c.name
+            )));
         }
+        time_base.push(c.time_base);
+        channels.push((c.name, c.unit));
+        columns.push(c.values);
     }
     if channels.is_empty() {
         return Err(bad("no channels".to_string()));
@@ -244,5 +308,6 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
         channels: names,
         names_line: 1,
         rows,
+        notes,
     })
 }

@@ -5,7 +5,7 @@
 //! values. The dispatch then names the columns (`columns` in dataset.toml,
 //! else from the channel names and units) and checks and converts the rows
 //! as it does a CSV file's.
-use super::columns::map_name;
+use super::columns::{map_name, parse_header, required_columns};
 use super::error::DatasetError;
 use super::read::{samples_from_rows, Cell};
 use super::Samples;
@@ -30,6 +30,9 @@ pub struct Table {
     pub names_line: usize,
     /// (line or sample number, one cell per channel).
     pub rows: Vec<(usize, Vec<Cell>)>,
+    /// What the reader chose or assumed (skipped blocks, extra writes), for
+    /// `mre dataset init` to show.
+    pub notes: Vec<String>,
 }
 
 /// Every vendor format mre reads: registering a new one is one line here.
@@ -40,14 +43,47 @@ pub fn recognise(bytes: &[u8]) -> Option<&'static VendorReader> {
     READERS.iter().find(|r| (r.recognises)(bytes))
 }
 
-/// The unit-carrying names of a table's channels; `Err` names the first
-/// channel that cannot be told.
-pub fn column_names(table: &Table) -> Result<Vec<String>, String> {
-    table
+/// The unit-carrying names of a table's channels, `ignore` for a channel
+/// whose name and unit mre cannot tell (a command signal, a spare input, a
+/// date), and those channels.
+pub fn column_names(table: &Table) -> (Vec<String>, Vec<String>) {
+    let mut ignored = Vec::new();
+    let names = table
         .channels
         .iter()
-        .map(|c| map_name(c).ok_or_else(|| c.clone()))
-        .collect()
+        .map(|c| {
+            map_name(c).unwrap_or_else(|| {
+                ignored.push(c.clone());
+                "ignore".to_string()
+            })
+        })
+        .collect();
+    (names, ignored)
+}
+
+/// Why `names` (from [`column_names`]) cannot load, if they cannot: a
+/// quantity twice, or no time or no force channel. The message lists the
+/// file's channels and the names mre accepts, so `columns` can be written.
+pub fn unusable(reader: &VendorReader, table: &Table, names: &[String]) -> Option<String> {
+    let why = match parse_header(names, "", 1) {
+        Err(DatasetError::DuplicateColumn { name, column, .. }) => {
+            format!("channel {column} also reads as `{name}`")
+        }
+        Err(e) => e.to_string(),
+        Ok(layout) => match required_columns(&layout, "", 1) {
+            Err(DatasetError::MissingColumn { quantity, accepted, .. }) => {
+                format!("no {quantity} channel mre can tell (names it accepts: {accepted})")
+            }
+            Err(e) => e.to_string(),
+            Ok(()) => return None,
+        },
+    };
+    Some(format!(
+        "{} channels {}: {why}; name the channels in dataset.toml, in file order, e.g. \
+         columns = [\"time_s\", \"force_kn\", \"ignore\"] (docs/dataset-format.md)",
+        reader.name,
+        table.channels.join(", ")
+    ))
 }
 
 /// Samples of a vendor file. `columns` (from dataset.toml, located at
@@ -66,15 +102,14 @@ pub fn read_samples(
     let (names, name_path, name_line) = match columns {
         Some(c) => (c.to_vec(), mpath, columns_line),
         None => {
-            let names = column_names(&table).map_err(|channel| DatasetError::BadRecord {
-                path: dpath.clone(),
-                line: table.names_line,
-                message: format!(
-                    "{} channel `{channel}`: no column name mre knows for it (docs/dataset-format.md); \
-                     name the channels in dataset.toml, e.g. columns = [\"time_s\", \"force_kn\", \"ignore\"]",
-                    reader.name
-                ),
-            })?;
+            let (names, _) = column_names(&table);
+            if let Some(message) = unusable(reader, &table, &names) {
+                return Err(DatasetError::BadRecord {
+                    path: dpath.clone(),
+                    line: table.names_line,
+                    message,
+                });
+            }
             (names, dpath.as_str(), table.names_line)
         }
     };
@@ -108,23 +143,20 @@ pub fn cell(text: &str, decimal: char) -> Cell {
     }
 }
 
-/// The text of a vendor text export: a UTF-8 byte-order mark is dropped,
-/// bytes that are not UTF-8 are refused at their line (`what` says what the
-/// file should be, e.g. "an .lvm file is ASCII text"), and so is a file whose
-/// last line has no line end (a copy cut short).
-pub fn text<'a>(path: &Path, bytes: &'a [u8], what: &str) -> Result<&'a str, DatasetError> {
+/// The text of a vendor text export, in whatever encoding it was written
+/// (`super::text`: UTF-8, UTF-16 with a mark, Windows-1252, GBK, …). Binary
+/// bytes are refused at their line (`what` says what the file should be,
+/// e.g. "an .lvm file is text"), and so is a file whose last line has no
+/// line end (a copy cut short).
+pub fn text<'a>(path: &Path, bytes: &'a [u8], what: &str) -> Result<std::borrow::Cow<'a, str>, DatasetError> {
     let bad = |line: usize, message: String| DatasetError::BadRecord {
         path: path.display().to_string(),
         line,
         message,
     };
-    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF".as_slice()).unwrap_or(bytes);
-    let text = std::str::from_utf8(bytes).map_err(|e| {
-        bad(
-            bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1,
-            format!("not text ({what})"),
-        )
-    })?;
+    let text = super::text::decode(bytes)
+        .map_err(|line| bad(line, format!("binary bytes (NUL) where text was expected ({what})")))?
+        .text;
     if !text.ends_with('\n') {
         return Err(bad(
             text.lines().count().max(1),

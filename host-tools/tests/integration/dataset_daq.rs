@@ -136,11 +136,17 @@ fn a_toml_syntax_error_names_line_and_column() {
 
 #[test]
 fn a_file_that_is_not_text_names_its_line() {
+    // Bytes that are not UTF-8 are read in the legacy encoding they look
+    // like (here Windows-1252 `ÿþ`), and a field that is not a number is
+    // named at its line and column, as written.
     let mut text = b"time_s,displacement_mm,force_n\n0,0,0\n".to_vec();
     text.extend_from_slice(b"0.01,\xff\xfe,1\n");
     let dir = tempfile::tempdir().unwrap();
-    let err = load(dir.path(), MANIFEST, &text).unwrap_err();
-    assert!(matches!(err, DatasetError::BadRecord { line: 3, .. }), "{err}");
+    let err = load(dir.path(), MANIFEST, &text).unwrap_err().to_string();
+    assert!(
+        err.contains("line 3, column 2") && err.contains("is not a number"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -157,4 +163,66 @@ fn an_absurd_estimated_velocity_is_rejected_at_load() {
         matches!(&err, DatasetError::OutOfRange { line: 2, column: 2, name, .. } if name.contains("estimated")),
         "{err}"
     );
+}
+
+/// Spreadsheets and lab software save in the system's encoding: a comment
+/// line in Windows-1252 (`Prüfer`), in GBK (`试样`), and the whole file as
+/// UTF-16 with its byte-order mark all load; NUL bytes without a UTF-16
+/// mark are binary and refused at their line. (No real CSV export with a
+/// licence that allows redistribution was found; these are built here.)
+#[test]
+fn csv_in_legacy_encodings_and_utf16_loads() {
+    let text = |comment: &str| format!("# {comment}\ntime_s,displacement_mm,force_n\n{}", rows(",", "\n"));
+    let cases: Vec<(&str, Vec<u8>)> = vec![
+        (
+            "windows-1252",
+            encoding_rs::WINDOWS_1252.encode(&text("Prüfer: Müller")).0.into_owned(),
+        ),
+        ("GBK", encoding_rs::GBK.encode(&text("试样 1 号")).0.into_owned()),
+        ("UTF-16LE", {
+            let mut b = vec![0xFF, 0xFE];
+            b.extend(text("Prüfer").encode_utf16().flat_map(u16::to_le_bytes));
+            b
+        }),
+    ];
+    for (what, bytes) in cases {
+        assert!(
+            std::str::from_utf8(&bytes).is_err(),
+            "{what}: not UTF-8, so the case tests decoding"
+        );
+        let dir = tempfile::tempdir().unwrap();
+        let ds = load(dir.path(), MANIFEST, &bytes).unwrap_or_else(|e| panic!("{what}: {e}"));
+        check_samples(&ds);
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let mut binary = text("x").into_bytes();
+    // Byte 40 is on line 3 ("# x\n" and the 31-byte header row come first).
+    binary[40] = 0;
+    let e = load(dir.path(), MANIFEST, &binary).unwrap_err().to_string();
+    assert!(e.contains("line 3") && e.contains("binary bytes (NUL)"), "{e}");
+}
+
+/// `;` with decimal commas and CRLF, as a spreadsheet in a German, French
+/// or Spanish locale saves CSV: `delimiter = ";"` reads it, and `mre dataset
+/// init` writes that line itself.
+#[test]
+fn semicolon_files_with_decimal_commas_load_and_init_says_so() {
+    let body = rows(";", "\r\n").replace('.', ",");
+    let text = format!("time_s;displacement_mm;force_n\r\n{body}");
+    let dir = tempfile::tempdir().unwrap();
+    let manifest = MANIFEST.replace("current_a = 0.5\n", "current_a = 0.5\ndelimiter = \";\"\n");
+    check_samples(&load(dir.path(), &manifest, text.as_bytes()).unwrap());
+    // Read as `,` it is refused at its header, not misread.
+    let e = load(dir.path(), MANIFEST, text.as_bytes()).unwrap_err().to_string();
+    assert!(
+        e.contains("line 1") && e.contains("unknown column name `time_s;displacement_mm;force_n`"),
+        "{e}"
+    );
+
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("a0x5A.csv"), &text).unwrap();
+    let toml = mre_host::dataset::init::manifest_for(dir.path(), Some("a{current_a}A"), None).unwrap();
+    assert!(toml.contains("delimiter = \";\""), "{toml}");
+    std::fs::write(dir.path().join("dataset.toml"), &toml).unwrap();
+    check_samples(&Dataset::load(dir.path()).unwrap());
 }

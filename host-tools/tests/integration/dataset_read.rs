@@ -160,21 +160,21 @@ fn error_missing_required_column() {
     let f = dir.path().join("a.csv").display().to_string();
     assert_eq!(
         load_err(dir.path()),
-        format!("{f}: line 1: missing required column for force (one of force_n, force_kn)")
+        format!("{f}: line 1: missing required column for force (one of force_n, force_kn, force_lbf)")
     );
 }
 
 #[test]
 fn error_unknown_column_name() {
     let dir = tempfile::tempdir().unwrap();
-    one_recording(dir.path(), "time_s,displacement_in,force_n\n");
+    one_recording(dir.path(), "time_s,displacement_cm,force_n\n");
     let f = dir.path().join("a.csv").display().to_string();
     assert_eq!(
         load_err(dir.path()),
         format!(
-            "{f}: line 1, column 2: unknown column name `displacement_in` (accepted: time_s, time_ms, \
-             displacement_mm, displacement_m, velocity_m_s, velocity_mm_s, acceleration_m_s2, force_n, force_kn, \
-             current_a, temperature_c, ignore)"
+            "{f}: line 1, column 2: unknown column name `displacement_cm` (accepted: time_s, time_ms, \
+             displacement_mm, displacement_m, displacement_in, velocity_m_s, velocity_mm_s, acceleration_m_s2, \
+             acceleration_g, force_n, force_kn, force_lbf, current_a, temperature_c, ignore)"
         )
     );
 }
