@@ -192,26 +192,36 @@ pub fn case(effect: Effect, seed: u64) -> Result<OutsideCase> {
         mass_kg: rng.random_range(20.0..40.0),
         impact_velocity_m_s: rng.random_range(0.3..0.6),
     });
+    // Every test as (current, role, excitation, command step): the sinusoid,
+    // multisine and drop tests at each current, and controlled drops whose
+    // command steps mid-impact (the coil's lag shows).
+    let step_drop = Excitation::Drop {
+        mass_kg: 30.0,
+        impact_velocity_m_s: 0.5,
+    };
+    let mut jobs: Vec<(f64, Role, &Excitation, Option<f64>)> = Vec::new();
+    for &(current_a, role) in &CURRENTS_A {
+        jobs.extend(tests.iter().map(|t| (current_a, role, t, None)));
+    }
+    jobs.push((0.0, Role::Validate, &step_drop, Some(1.0)));
+    jobs.push((1.0, Role::Validate, &step_drop, Some(0.0)));
+    // Run order crossed with test condition (a seeded shuffle): a drift in
+    // run order is then not a drift in frequency or current. The material's
+    // damage history follows the run order.
+    use rand::seq::SliceRandom;
+    jobs.shuffle(&mut rng);
     let mut mullins = MullinsState::default();
     let mut recordings = Vec::new();
-    let mut sequence = 0u32;
-    for &(current_a, role) in &CURRENTS_A {
-        for test in &tests {
-            sequence += 1;
-            let command = |_t: f64| current_a;
-            recordings.push(plant.record(test, &command, current_a, role, sequence, &mut mullins, &mut rng)?);
-        }
-    }
-    // Controlled drops whose command steps mid-impact: the coil's lag shows.
-    for (k, &(from, to)) in [(0.0, 1.0), (1.0, 0.0)].iter().enumerate() {
-        sequence += 1;
-        let test = Excitation::Drop {
-            mass_kg: 30.0,
-            impact_velocity_m_s: 0.5,
+    for (k, &(current_a, role, test, step_to)) in jobs.iter().enumerate() {
+        let sequence = k as u32 + 1;
+        let command = move |t: f64| match step_to {
+            Some(to) if t >= 0.004 => to,
+            _ => current_a,
         };
-        let command = move |t: f64| if t < 0.004 { from } else { to };
-        let mut r = plant.record(&test, &command, from, Role::Validate, sequence, &mut mullins, &mut rng)?;
-        r.file = format!("step{k}_{from}-{to}A.csv");
+        let mut r = plant.record(test, &command, current_a, role, sequence, &mut mullins, &mut rng)?;
+        if let Some(to) = step_to {
+            r.file = format!("{sequence:02}_step_{current_a}-{to}A.csv");
+        }
         recordings.push(r);
     }
     Ok(OutsideCase {
