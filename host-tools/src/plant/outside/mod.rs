@@ -408,6 +408,38 @@ mod tests {
         }
     }
 
+    /// The generator is written from the physics: no file of it reads the
+    /// estimator's terms, design or shapes (the inverse crime of issue 38).
+    #[test]
+    fn no_file_calls_the_estimator() {
+        let files = [
+            include_str!("mod.rs"),
+            include_str!("antialias_delay.rs"),
+            include_str!("coloured_noise.rs"),
+            include_str!("eddy_lag.rs"),
+            include_str!("excitation.rs"),
+            include_str!("hunt_crossley.rs"),
+            include_str!("maxwell.rs"),
+            include_str!("mullins.rs"),
+            include_str!("play_hysteresis.rs"),
+            include_str!("saturation.rs"),
+            include_str!("velocity_estimate.rs"),
+        ];
+        let banned = [
+            "crate::diagnose",
+            "super::super::diagnose",
+            "end_stop_shape",
+            "mre_host::diagnose",
+        ];
+        for (k, text) in files.iter().enumerate() {
+            // This test names the banned paths itself; only code outside it counts.
+            let code = text.split("fn no_file_calls_the_estimator").next().unwrap_or(text);
+            for b in banned {
+                assert!(!code.contains(b), "file {k} of plant/outside uses `{b}`");
+            }
+        }
+    }
+
     #[test]
     fn the_same_seed_gives_the_same_case() {
         let (a, b) = (case(Effect::EndStop, 5).unwrap(), case(Effect::EndStop, 5).unwrap());
