@@ -221,6 +221,10 @@ enum Command {
         /// seeds from --seed); reports false-positive and top-1 rates with 95 % bounds.
         #[arg(long)]
         calibration: Option<usize>,
+        /// Run this many outside-class cases per vocabulary word instead (`plant::outside`:
+        /// physics outside the model class, seeds from --seed); reports per-effect verdicts.
+        #[arg(long)]
+        outside: Option<usize>,
         /// Change a decision rule, NAME=VALUE (repeatable), as for `mre diagnose`.
         #[arg(long = "set")]
         rules: Vec<String>,
@@ -698,6 +702,27 @@ fn run(cli: Cli) -> Result<()> {
             print!("{}", mre_host::control_bench::markdown(&outcomes));
             println!("\nreport: {}", out.join("report.md").display());
             println!("page: {}", out.join("index.html").display());
+        }
+        Command::BenchDiagnose {
+            seed,
+            json,
+            outside: Some(n),
+            rules,
+            ..
+        } => {
+            let mut opts = mre_host::diagnose::DiagnoseOptions::default();
+            opts.thresholds = opts.thresholds.with_overrides(&rules)?;
+            let summary = mre_host::diagnose_bench::outside::run(n, seed, &opts, |c| {
+                eprintln!(
+                    "seed {}: truth {:<20} verdict {:<12} found {:?} ({:.1} s)",
+                    c.seed, c.truth, c.verdict, c.found, c.seconds
+                )
+            })?;
+            print_summary(
+                &mre_host::diagnose_bench::outside::format_summary(&summary),
+                &summary,
+                json,
+            )?;
         }
         Command::BenchDiagnose {
             seed,

@@ -26,9 +26,11 @@ pub mod report;
 pub mod scale;
 pub mod select;
 pub mod signals;
+pub mod sparse;
 pub mod support;
 pub mod terms;
 pub mod unexplained;
+pub mod verdict;
 
 use crate::dataset::Dataset;
 use acceptance::Thresholds;
@@ -116,6 +118,8 @@ pub struct Diagnosis {
     pub scored_mask: Vec<Vec<bool>>,
     /// Where the final residual is still concentrated, beyond the noise.
     pub unexplained: Vec<unexplained::Unexplained>,
+    /// Found, none or inconclusive, with the reasons and deciding experiments.
+    pub verdict: verdict::VerdictReport,
     pub thresholds: Thresholds,
     /// Bootstrap resamples behind the parameter intervals.
     pub parameter_resamples: usize,
@@ -220,6 +224,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
         .map(|(r, m)| prepared::scored_by_both(&r.in_domain, m))
         .collect();
     let unexplained = unexplained::locate_unexplained(&prep, &final_pred, &scored_mask);
+    let verdict = verdict::decide(&prep, &selection, findings.len(), &opts.thresholds);
     Ok(Diagnosis {
         prep,
         baseline_table,
@@ -231,6 +236,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
         final_pred,
         scored_mask,
         unexplained,
+        verdict,
         thresholds: opts.thresholds,
         parameter_resamples: opts.parameter_resamples,
     })
@@ -347,10 +353,19 @@ pub fn in_a_folder(path: &std::path::Path) -> std::path::PathBuf {
 /// One line for the terminal: what was found.
 pub fn summary_line(r: &report::ReportJson) -> String {
     if r.effects.is_empty() {
+        let head = match r.verdict.verdict {
+            verdict::Verdict::Inconclusive => {
+                let mut codes: Vec<&str> = r.verdict.reasons.iter().map(|x| x.code).collect();
+                codes.dedup();
+                format!("inconclusive: {}", codes.join(", "))
+            }
+            _ => "no missing physics found".to_string(),
+        };
         return format!(
-            "no missing physics found (baseline RMSE {:.3} N, NRMSE {:.2} %)",
+            "{head} (baseline RMSE {:.3} N, NRMSE {:.2} %; final held-out residual {:.0}× the force noise)",
             r.baseline.rmse_n,
-            100.0 * r.baseline.nrmse
+            100.0 * r.baseline.nrmse,
+            r.verdict.residual_over_noise
         );
     }
     let names: Vec<String> = r

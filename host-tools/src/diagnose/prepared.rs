@@ -288,7 +288,10 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
 fn assign_folds(recs: &mut [Rec], ds: &Dataset, plan: &FoldPlan) -> Result<usize> {
     match plan {
         FoldPlan::Stratified { k } => {
-            let k = (*k).max(2);
+            // Never more folds than fit recordings: an empty fold is a fold
+            // only in name, and the report counts folds.
+            let n_fit = recs.iter().filter(|r| r.is_fit()).count();
+            let k = (*k).min(n_fit).max(2);
             let mut currents: Vec<f64> = recs.iter().filter(|r| r.is_fit()).map(|r| r.current_a).collect();
             currents.sort_by(f64::total_cmp);
             currents.dedup();

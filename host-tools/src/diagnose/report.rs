@@ -44,6 +44,8 @@ pub struct NotIdentifiable {
 /// `report.json`, exactly the contract of issue 5.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct ReportJson {
+    /// Found, none or inconclusive, with its reasons.
+    pub verdict: super::verdict::VerdictReport,
     pub baseline: Metrics,
     pub effects: Vec<EffectEntry>,
     pub not_identifiable: Vec<NotIdentifiable>,
@@ -76,6 +78,7 @@ pub fn metrics(d: &Diagnosis, pred: &[Vec<f64>]) -> Metrics {
 
 pub fn report_json(d: &Diagnosis) -> ReportJson {
     ReportJson {
+        verdict: d.verdict.clone(),
         baseline: metrics(d, &d.baseline_pred),
         effects: d
             .findings
@@ -102,6 +105,34 @@ pub fn report_json(d: &Diagnosis) -> ReportJson {
             .collect(),
         final_: metrics(d, &d.final_pred),
         unexplained: d.unexplained.clone(),
+    }
+}
+
+/// The verdict when nothing was found: none, or inconclusive with its reasons.
+fn verdict_markdown(s: &mut String, v: &super::verdict::VerdictReport) {
+    use super::verdict::Verdict;
+    match v.verdict {
+        Verdict::Found => {}
+        Verdict::None => {
+            let _ = writeln!(
+                s,
+                "**Verdict: none.** No candidate improved the held-out fit significantly, and these data could \
+                 have shown one (final held-out residual {:.1}× the force noise).\n",
+                v.residual_over_noise
+            );
+        }
+        Verdict::Inconclusive => {
+            let _ = writeln!(
+                s,
+                "**Verdict: inconclusive.** No candidate passed, but the final held-out residual is {:.0}× the \
+                 force noise and these data cannot rule the vocabulary out:\n",
+                v.residual_over_noise
+            );
+            for r in &v.reasons {
+                let _ = writeln!(s, "- `{}`: {}. Would decide: {}.", r.code, r.detail, r.experiment);
+            }
+            let _ = writeln!(s);
+        }
     }
 }
 
@@ -243,12 +274,7 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
     );
     let _ = writeln!(s, "{}\n", velocity_sentence(p));
     let _ = writeln!(s, "## Result\n");
-    if json.effects.is_empty() {
-        let _ = writeln!(
-            s,
-            "**No missing physics found.** No candidate improved the held-out fit significantly.\n"
-        );
-    }
+    verdict_markdown(&mut s, &json.verdict);
     for (k, (e, f)) in json.effects.iter().zip(&d.findings).enumerate() {
         let _ = writeln!(
             s,

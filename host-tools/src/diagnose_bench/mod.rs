@@ -4,5 +4,6 @@
 //! run under the frozen rules.
 pub mod calibration;
 pub mod oracle;
+pub mod outside;
 pub mod real;
 pub mod simulated;

@@ -20,6 +20,7 @@ pub mod closed_loop;
 pub mod effects;
 pub mod law;
 pub mod measure;
+pub mod outside;
 pub mod plots;
 pub mod sim_report;
 pub mod stepper;

@@ -26,8 +26,17 @@ fn outputs_follow_the_contract() {
     keys.sort_unstable();
     assert_eq!(
         keys,
-        ["baseline", "effects", "final", "not_identifiable", "unexplained"]
+        [
+            "baseline",
+            "effects",
+            "final",
+            "not_identifiable",
+            "unexplained",
+            "verdict"
+        ]
     );
+    assert_eq!(v["verdict"]["verdict"], "found");
+    assert!(v["verdict"]["reasons"].as_array().expect("reasons").is_empty());
     assert!(v["unexplained"].is_array());
     for m in ["baseline", "final"] {
         assert!(v[m]["rmse_n"].is_f64() && v[m]["nrmse"].is_f64());

@@ -14,6 +14,9 @@ impl Term for CoilLag {
     fn effect(&self) -> Effect {
         Effect::CoilLag
     }
+    fn deciding_experiment(&self) -> &'static str {
+        "current steps commanded mid-stroke (controlled impacts), so the force follows the coil's lag"
+    }
     fn present_in(&self, t: &Terms) -> bool {
         t.coil_lag_s.is_some()
     }

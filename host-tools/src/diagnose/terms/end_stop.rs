@@ -13,6 +13,9 @@ impl Term for EndStop {
     fn effect(&self) -> Effect {
         Effect::EndStop
     }
+    fn deciding_experiment(&self) -> &'static str {
+        "amplitudes stepping across the stop at each current, each amplitude repeated"
+    }
     fn present_in(&self, t: &Terms) -> bool {
         t.end_stop_x_mm.is_some()
     }

@@ -48,6 +48,9 @@ impl Term for HysteresisMemory {
     fn effect(&self) -> Effect {
         Effect::HysteresisMemory
     }
+    fn deciding_experiment(&self) -> &'static str {
+        "partial loops: reversals at several amplitudes inside the stroke at each current"
+    }
     fn is_reference(&self) -> bool {
         true
     }

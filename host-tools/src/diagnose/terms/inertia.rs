@@ -15,6 +15,9 @@ impl Term for Inertia {
     fn effect(&self) -> Effect {
         Effect::Inertia
     }
+    fn deciding_experiment(&self) -> &'static str {
+        "an accelerometer on the moving mass, or drops of two different masses"
+    }
     fn present_in(&self, t: &Terms) -> bool {
         t.settings.get(Effect::Inertia).is_some()
     }

@@ -13,6 +13,9 @@ impl Term for MagneticSaturation {
     fn effect(&self) -> Effect {
         Effect::MagneticSaturation
     }
+    fn deciding_experiment(&self) -> &'static str {
+        "tests at a current above the highest fitted one, held out as `validate`"
+    }
     fn present_in(&self, t: &Terms) -> bool {
         t.saturation_i_a.is_some()
     }

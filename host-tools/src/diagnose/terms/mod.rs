@@ -141,6 +141,11 @@ pub trait Term: Sync {
     fn set_by_design(&self) -> &'static [&'static str] {
         &[]
     }
+    /// The experiment that would separate the term from the baseline when
+    /// these data cannot (reported with an `inconclusive` verdict).
+    fn deciding_experiment(&self) -> &'static str {
+        "more tests at the conditions where the term acts, each repeated"
+    }
     /// The covariates its residual signature follows, as [`super::locate`]
     /// names them.
     fn signature(&self) -> &'static [&'static str];

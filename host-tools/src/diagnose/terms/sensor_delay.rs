@@ -13,6 +13,9 @@ impl Term for SensorDelay {
     fn effect(&self) -> Effect {
         Effect::SensorDelay
     }
+    fn deciding_experiment(&self) -> &'static str {
+        "one amplitude at three or more frequencies, so the phase lag grows with frequency"
+    }
     fn present_in(&self, t: &Terms) -> bool {
         t.delay_s.is_some()
     }

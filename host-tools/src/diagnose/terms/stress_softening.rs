@@ -13,6 +13,9 @@ impl Term for StressSoftening {
     fn effect(&self) -> Effect {
         Effect::StressSoftening
     }
+    fn deciding_experiment(&self) -> &'static str {
+        "the first test repeated at the end of the run, and the run order crossed with amplitude"
+    }
     fn present_in(&self, t: &Terms) -> bool {
         t.softening.is_some()
     }

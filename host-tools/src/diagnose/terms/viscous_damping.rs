@@ -13,6 +13,9 @@ impl Term for ViscousDamping {
     fn effect(&self) -> Effect {
         Effect::ViscousDamping
     }
+    fn deciding_experiment(&self) -> &'static str {
+        "one amplitude at three or more frequencies (the velocity changes, the stroke does not)"
+    }
     fn present_in(&self, t: &Terms) -> bool {
         t.viscous.is_some()
     }
