@@ -1,4 +1,4 @@
-//! report.json, report.md and predictions/<family>/<stem>.csv of `mre compare`.
+//! report.json, report.md and predictions/<stem>.csv of `mre compare`.
 use super::tracks::{information_criteria, mean_nrmse, nrmse, rmse_n};
 use super::Comparison;
 use crate::atomic_write::{write_atomic, write_atomic_with};
@@ -273,7 +273,7 @@ pub fn markdown(r: &ReportJson) -> String {
     }
     s.push_str(
         "\nPlots: `plots/<current>_<recording>.png|svg`, measured samples against every family. \
-         Predictions: `predictions/<family>/<recording>.csv`.\n",
+         Predictions: `predictions/<recording>.csv`, the measured force and one column per family.\n",
     );
     s
 }
@@ -300,20 +300,33 @@ fn firmware_needs(f: &FamilyJson) -> String {
 }
 
 /// Writes report.json, report.md and every prediction CSV under `dir`.
+/// The predictions CSV's column for a family: `force_<name>_n`, the name's
+/// `+` and `-` as `_` (`polynomial+diagnose` → `force_polynomial_diagnose_n`).
+pub fn prediction_column(family: &str) -> String {
+    format!("force_{}_n", family.replace(['+', '-'], "_"))
+}
+
 pub fn write_all(c: &Comparison, r: &ReportJson, dir: &Path) -> Result<()> {
-    for o in &c.outcomes {
-        for (t, p) in c.tracks.iter().zip(&o.predictions) {
-            let path = dir.join("predictions").join(&o.name).join(format!("{}.csv", t.stem));
-            write_atomic_with(&path, |w| {
-                writeln!(w, "time_s,force_measured_n,force_model_n")?;
-                // Model forces to 1 mN: far below any measured force's resolution,
-                // and a third of the file the full f64 digits took.
-                for ((time, f), m) in t.time_s.iter().zip(&t.force_n).zip(p) {
-                    writeln!(w, "{time},{f},{m:.3}")?;
+    // One file per recording, every family a column: time and the measured
+    // force are written once, not once per family.
+    for (k, t) in c.tracks.iter().enumerate() {
+        let path = dir.join("predictions").join(format!("{}.csv", t.stem));
+        write_atomic_with(&path, |w| {
+            write!(w, "time_s,force_measured_n")?;
+            for o in &c.outcomes {
+                write!(w, ",{}", prediction_column(&o.name))?;
+            }
+            writeln!(w)?;
+            for (i, (time, f)) in t.time_s.iter().zip(&t.force_n).enumerate() {
+                write!(w, "{time},{f}")?;
+                // Model forces to 1 mN: far below any measured force's resolution.
+                for o in &c.outcomes {
+                    write!(w, ",{:.3}", o.predictions[k][i])?;
                 }
-                Ok(())
-            })?;
-        }
+                writeln!(w)?;
+            }
+            Ok(())
+        })?;
     }
     write_atomic(&dir.join("report.md"), markdown(r).as_bytes())?;
     write_atomic(&dir.join("report.json"), serde_json::to_string_pretty(r)?.as_bytes())?;

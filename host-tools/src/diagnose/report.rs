@@ -200,8 +200,10 @@ pub fn write_predictions(d: &Diagnosis, dir: &Path) -> Result<()> {
                 w.write_record([
                     r.time_s[t].to_string(),
                     r.force_n[t].to_string(),
-                    d.baseline_pred[i][t].to_string(),
-                    d.final_pred[i][t].to_string(),
+                    // Model forces to 1 mN (as `mre compare` writes them): the
+                    // f64 digits beyond add size, not information.
+                    format!("{:.3}", d.baseline_pred[i][t]),
+                    format!("{:.3}", d.final_pred[i][t]),
                 ])?;
             }
             w.flush()?;
