@@ -23,6 +23,11 @@ pub fn qemu_binary() -> Option<PathBuf> {
 /// run with "unsupported machine type".
 pub fn usable_qemu() -> Result<PathBuf, String> {
     let qemu = qemu_binary().ok_or_else(|| format!("qemu-system-arm was not found: {INSTALL_HINT}"))?;
+    with_board_machine(qemu)
+}
+
+/// `qemu` if it lists the board's machine, else why it cannot run the PIL image.
+fn with_board_machine(qemu: PathBuf) -> Result<PathBuf, String> {
     let machines = Command::new(&qemu)
         .args(["-machine", "help"])
         .output()
@@ -278,5 +283,31 @@ impl Drop for Qemu {
             self.child.kill().ok();
             self.child.wait().ok();
         }
+    }
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::*;
+
+    /// A stand-in `qemu-system-arm` that lists `machines` for `-machine help`.
+    fn fake_qemu(dir: &Path, machines: &str) -> PathBuf {
+        use std::os::unix::fs::PermissionsExt;
+        let path = dir.join("qemu-system-arm");
+        std::fs::write(&path, format!("#!/bin/sh\nprintf '%s\\n' '{machines}'\n")).unwrap();
+        std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+        path
+    }
+
+    #[test]
+    fn an_old_qemu_without_the_board_is_refused_with_the_fix() {
+        let dir = tempfile::tempdir().unwrap();
+        // Bookworm's QEMU 7.2 lists other STM32 boards but not this one.
+        let old = fake_qemu(dir.path(), "netduino2 Netduino 2 Machine (Cortex-M3)");
+        let why = with_board_machine(old).unwrap_err();
+        assert!(why.contains("no b-l475e-iot01a machine"), "{why}");
+        assert!(why.contains("apt-get install"), "the fix is named: {why}");
+        let new = fake_qemu(dir.path(), "b-l475e-iot01a B-L475E-IOT01A Discovery Kit (Cortex-M4)");
+        assert_eq!(with_board_machine(new.clone()), Ok(new));
     }
 }

@@ -301,3 +301,22 @@ fn with_suffix(base: &Path, ext: &str) -> std::path::PathBuf {
     s.push(ext);
     s.into()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn data_stays_below_the_legend_band() {
+        // A legend of 4 rows in a 20 px font: 4 × (1.5·20 + 4) + 30 = 166 px
+        // at the top of a 655 px plot. The data's top (hi) must sit at least
+        // that far below the axis top.
+        let (lo, hi) = (-800.0, 6938.0);
+        let top = with_legend_room(lo, hi, 4, 20, 655);
+        let gap_px = 655.0 * (top - hi) / (top - lo);
+        assert!((gap_px - 166.0).abs() < 1e-9, "{gap_px}");
+        // No legend rows still leave the box's margin; the share is capped.
+        assert!(with_legend_room(0.0, 1.0, 0, 20, 655) > 1.0);
+        assert!(with_legend_room(0.0, 1.0, 100, 20, 655) <= 1.0 / 0.4 + 1e-12);
+    }
+}
