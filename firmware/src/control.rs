@@ -303,10 +303,14 @@ impl Controller {
     /// displacement within `REST_X_MM` of 0 and the estimated speed below
     /// `stuck_min_speed_m_s`), never mid-impact. True if it cleared. A fault
     /// whose cause persists latches again.
+    /// `OVER_CURRENT` stays latched (a short does not heal at rest; only a
+    /// reset clears it, firmware/README.md "Faults"), as `TABLE_FAULT` does.
     pub fn clear_faults_if_at_rest(&mut self) -> bool {
         let at_rest = self.is_at_rest();
         if at_rest {
+            let kept = Flags(self.latched.0 & Flags::OVER_CURRENT.0);
             self.clear_faults();
+            self.latched |= kept;
         }
         at_rest
     }
