@@ -156,6 +156,7 @@ class Flash(Regs):
     def __init__(self, chip, base):
         super().__init__(chip, base)
         self.key_step = 0
+        self.pending = None
         self.fail_erase = False
         self.fail_program = False
         self.busy_until = 0
@@ -195,6 +196,25 @@ class Flash(Regs):
             self.chip.nvic_update_flash()
             return
         super().write(off, val)
+
+    # Datasheet DS10969 §6.3.10 "Flash memory characteristics": page erase
+    # t_ERASE 22 ms typ, double-word program t_prog 81.7 µs typ. BSY (SR bit
+    # 16) is set meanwhile.
+    ERASE_CYCLES = SYSCLK * 22 // 1000
+    PROGRAM_CYCLES = SYSCLK * 817 // 10_000_000
+
+    def start(self, cycles, error_bits, effect):
+        self.v[0x10] |= 1 << 16
+        self.pending = (self.chip.cycles + cycles, error_bits, effect)
+
+    def tick(self, cycles):
+        if self.pending and self.chip.cycles >= self.pending[0]:
+            _t, bits, effect = self.pending
+            self.pending = None
+            if effect:
+                effect()
+            self.v[0x10] &= ~(1 << 16)
+            self.finish(bits)
 
     def finish(self, error_bits):
         self.v[0x10] |= error_bits | 1              # EOP (§3.7.5: set also on error when EOPIE)
@@ -365,7 +385,9 @@ class Adc(Regs):
         self.events = []          # (due_cycle, fn)
         self.channels = {}        # channel -> volts (callable or float)
         self.calibrated = False
+        self.cal_done_at = None
         self.injected_conversions = 0
+        self.regular_conversion_times = []
 
     def cr(self):
         return self.v[0x08]
@@ -408,6 +430,7 @@ class Adc(Regs):
                     self.v[0x08] &= ~(1 << 31)
                     self.v[0xB4] = 0x40
                     self.calibrated = True
+                    self.cal_done_at = self.chip.cycles
                 self.at(self.CAL_CYCLES, cal_done)
         else:
             new |= cr & (1 << 31)
@@ -428,6 +451,7 @@ class Adc(Regs):
             ch = (self.v[0x30] >> 6) & 0x1F
             def conv(self=self, ch=ch):
                 self.v[0x40] = self.code(ch)
+                self.regular_conversion_times.append(self.chip.cycles)
                 self.v[0x00] |= (1 << 2) | (1 << 3)
                 self.v[0x08] &= ~4
             self.at(self.CONV_CYCLES, conv)
@@ -538,26 +562,43 @@ class Usart(Regs):
         self.name, self.irq = name, irq
         self.tx = bytearray()
         self.rx = bytearray()
+        self.last_rx = 0
+        self.idle_due = False
+
+    BYTE_CYCLES = SYSCLK * 10 // 115_200     # 8N1 at 115200 baud: 10 bit times a byte
 
     def read(self, off):
         if off == 0x24:
             self.v[0x1C] &= ~(1 << 5)
-            val = self.v[0x24]
-            self.feed()
-            return val
-        if off == 0x1C:
-            self.feed()
+            return self.v[0x24]
         return super().read(off)
 
     def feed(self):
-        if not self.v[0x1C] & (1 << 5) and self.rx and self.v[0x00] & 5 == 5:
-            self.v[0x24] = self.rx.pop(0)
-            self.v[0x1C] |= 1 << 5
+        """One byte per frame time into RDR (RXNE; a byte not read before the
+        next arrives sets ORE, §40.5.5), then IDLE (ISR bit 4, §40.8.10)
+        one frame after the last byte."""
+        isr = self.v[0x1C]
+        if self.v[0x00] & 5 != 5:
+            return
+        if self.chip.cycles - self.last_rx >= self.BYTE_CYCLES:
+            if self.rx:
+                if isr & (1 << 5):
+                    self.v[0x1C] |= 1 << 3          # ORE: the byte is lost
+                    self.rx.pop(0)
+                else:
+                    self.v[0x24] = self.rx.pop(0)
+                    self.v[0x1C] |= 1 << 5
+                self.last_rx = self.chip.cycles
+                self.idle_due = True
+            elif self.idle_due:
+                self.v[0x1C] |= 1 << 4
+                self.idle_due = False
         self.chip.nvic_level(self.irq, self.irq_level())
 
     def irq_level(self):
         cr1, isr = self.v[0x00], self.v[0x1C]
         return bool((cr1 & (1 << 5) and isr & (1 << 5)) or (cr1 & (1 << 7) and isr & (1 << 7))
+                    or (cr1 & (1 << 4) and isr & (1 << 4)) or (cr1 & (1 << 5) and isr & (1 << 3))
                     or (cr1 & (1 << 6) and isr & (1 << 6)))
 
     def write(self, off, val):
@@ -608,6 +649,7 @@ class Chip:
             o = 0xFF800
             self.flash_mem[o:o + len(flash_page)] = flash_page
         self.pending_reset = None
+        self.dw_words = {}
         self.sleeps = 0
         self.fault_log = []
         self.ecc_bad = set()        # flash offsets (8-byte aligned) with a double-ECC error
@@ -640,6 +682,8 @@ class Chip:
         for k, port in enumerate("ABCDEFGH"):
             P[0x48000000 + 0x400 * k] = Gpio(self, 0x48000000 + 0x400 * k, port)
         self.gpiob = P[0x48000400]
+        # B1 (PC13) has an external pull-up on both boards: released reads 1.
+        P[0x48000800].inputs[13] = 1
         P[0x40000000] = self.tim2 = Timer(self, 0x40000000, "TIM2", 28, 32)
         P[0x40000400] = self.tim3 = Timer(self, 0x40000400, "TIM3", 29, 16)
         P[0x50040000] = self.adc1 = Adc(self, 0x50040000, "ADC1")
@@ -755,26 +799,49 @@ class Chip:
             self.flash.v[0x10] |= 1 << 7     # PGSERR
             return
         o = address - 0x08000000
-        if self.flash.fail_program:
-            self.flash.finish(1 << 3)        # PROGERR: nothing written
+        if self.flash.v[0x10] & (1 << 16):
+            self.flash.v[0x10] |= 1 << 7     # PGSERR: written while busy
             return
-        for k in range(size):
-            self.flash_mem[o + k] &= (value >> (8 * k)) & 0xFF
-        if o < 0xFF000:
-            self.uc.mem_write(0x08000000 + o, bytes(self.flash_mem[o:o + size]))
-        if (o + size) % 8 == 0:
-            self.flash.finish(0)
+        dw = o & ~7
+        if o % 8 == 0:
+            self.dw_words = {}
+        self.dw_words[o % 8] = (value, size)
+        if (o + size) % 8:
+            return                           # the double word completes with its second word
+        words = self.dw_words
+        self.dw_words = {}
+        erased = all(b == 0xFF for b in self.flash_mem[dw:dw + 8])
+        data = bytearray(8)
+        for at, (v, n) in words.items():
+            for k in range(n):
+                data[at + k] = (v >> (8 * k)) & 0xFF
+        if self.flash.fail_program:
+            self.flash.start(Flash.PROGRAM_CYCLES, 1 << 3, None)   # PROGERR: nothing written
+            return
+        if not erased and any(data):
+            # §3.7.5 PROGERR: the double word was not erased (and the data is not all 0).
+            self.flash.start(Flash.PROGRAM_CYCLES, 1 << 3, None)
+            return
+
+        def write(dw=dw, data=bytes(data)):
+            for k in range(8):
+                self.flash_mem[dw + k] &= data[k]
+            if dw < 0xFF000:
+                self.uc.mem_write(0x08000000 + dw, bytes(self.flash_mem[dw:dw + 8]))
+        self.flash.start(Flash.PROGRAM_CYCLES, 0, write)
 
     def flash_erase(self, bank, page):
         if self.flash.fail_erase:
-            self.flash.finish(1 << 1)         # OPERR: the page keeps its content
+            self.flash.start(Flash.ERASE_CYCLES, 1 << 1, None)   # OPERR: the page keeps its content
             return
         o = (bank - 1) * 0x80000 + page * 0x800
-        self.flash_mem[o:o + 0x800] = b"\xff" * 0x800
-        self.ecc_bad = {a for a in self.ecc_bad if not o <= a < o + 0x800}
-        if o < 0xFF000:
-            self.uc.mem_write(0x08000000 + o, b"\xff" * 0x800)
-        self.flash.finish(0)
+
+        def erase(o=o):
+            self.flash_mem[o:o + 0x800] = b"\xff" * 0x800
+            self.ecc_bad = {a for a in self.ecc_bad if not o <= a < o + 0x800}
+            if o < 0xFF000:
+                self.uc.mem_write(0x08000000 + o, b"\xff" * 0x800)
+        self.flash.start(Flash.ERASE_CYCLES, 0, erase)
 
     def periph_at(self, addr):
         if 0x50040000 <= addr < 0x50040400:
@@ -979,6 +1046,9 @@ class Chip:
             p = min(p, bp >> 4)
         return p
 
+    def any_pending(self):
+        return bool(self.sys_pending) or any(self.ispr[k] & self.iser[k] for k in range(8))
+
     def next_exception(self):
         cands = list(self.sys_pending)
         for k in range(8):
@@ -1133,7 +1203,11 @@ class Chip:
         while self.cycles < end:
             if self.violations:
                 raise AssertionError("rehost: " + "; ".join(self.violations[:5]))
-            self.step(min(SLICE, end - self.cycles))
+            # A pending interrupt held off by PRIMASK, BASEPRI or a running
+            # handler is taken the instruction it becomes eligible (as the
+            # NVIC does): single steps until then.
+            budget = 1 if self.any_pending() else SLICE
+            self.step(min(budget, end - self.cycles))
             if until is not None and until():
                 return True
         if self.violations:
