@@ -50,7 +50,9 @@ fn build(args: &[&str], out: &str) -> PathBuf {
         .status()
         .expect("running cargo");
     assert!(status.success(), "cargo {args:?} failed");
-    workspace_root().join(out).join("thumbv7em-none-eabihf/release/mre-firmware")
+    workspace_root()
+        .join(out)
+        .join("thumbv7em-none-eabihf/release/mre-firmware")
 }
 
 /// The two board images, built once per test binary.

@@ -66,7 +66,9 @@ fn take_flash_errors() -> Result<(), mre_core::flash_table::FlashError> {
         Ok(())
     } else {
         // Write 1 to clear what is left, so the next operation starts clean.
-        embassy_stm32::pac::FLASH.sr().write_value(embassy_stm32::pac::flash::regs::Sr(sr));
+        embassy_stm32::pac::FLASH
+            .sr()
+            .write_value(embassy_stm32::pac::flash::regs::Sr(sr));
         Err(mre_core::flash_table::FlashError)
     }
 }
