@@ -1,6 +1,8 @@
 """The real board image (`cargo fw`, `cargo fw-nucleo`) on a Cortex-M4 in the
 Unicorn engine, with STM32L4 peripheral models written from the reference
-manual RM0351 (Rev 9). Each model cites the section it encodes. Every read or
+manual RM0351 (Rev 9). Each model cites the section it encodes (section numbers
+as remembered from RM0351 Rev 9's layout, not checked against the document here;
+offsets and bits as stm32-metapac 21 and embassy-stm32 0.6.0 use them). Every read or
 write the firmware makes to an address no model claims stops the run and fails
 the test (`Unmodelled`). What is a model and what is real: the CPU (Unicorn's
 QEMU-derived Thumb-2/FPU core) runs the real image, bit for bit what `cargo fw`

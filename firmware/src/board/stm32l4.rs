@@ -111,9 +111,10 @@ const JEXTEN_RISING: u8 = 1;
 /// 32 kHz = 5 ms (RM0351 §32.3.2, §32.7.2-3).
 const WATCHDOG_PR: u8 = 0;
 const WATCHDOG_RLR: u16 = 39;
-/// Boot, from `init` to the first period: the table's validation (its
-/// order proof) alone is about 2.4 M instructions (30 ms at one per cycle;
-/// `firmware/rehost`), so boot runs under a 500 ms timeout (PR /8, RLR
+/// Boot, from reset to the first period, is about 2.4 M instructions in
+/// the rehosted image (`firmware/rehost`), most of it the table's
+/// validation (its order proof): 30 ms at one instruction per cycle, more
+/// with flash wait states. So boot runs under a 500 ms timeout (PR /8, RLR
 /// 1999) and `Board::start` narrows it to 5 ms.
 const BOOT_WATCHDOG_TIMEOUT_US: u32 = 500_000;
 
