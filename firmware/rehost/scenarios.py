@@ -90,6 +90,11 @@ def scenario_boot(args, cause):
     commands = [(t, s) for t, s in hist if isinstance(s, float) and s > 0]
     check(commands, f"{cause}: no coil command: {hist}")
     first_t, first = commands[0]
+    # Boot is supervised: the watchdog runs before the first ADC busy-wait
+    # (ADC1's calibration) and before the first coil command.
+    started = chip.iwdg.started_at
+    check(started is not None and started < chip.adc1.cal_done_at and started < first_t,
+          f"{cause}: watchdog started at {started}, ADC1 calibrated at {chip.adc1.cal_done_at}")
     cal3 = chip.adc3.regular_conversion_times
     if cause == "pin":
         # Calibration first with the coil off: 64 current-sense zero samples

@@ -508,6 +508,7 @@ class Iwdg(Regs):
     def __init__(self, chip, base):
         super().__init__(chip, base)
         self.running = False
+        self.started_at = None
         self.unlocked = False
         self.counter_cycles = 0
         self.reloads = 0
@@ -526,6 +527,7 @@ class Iwdg(Regs):
             if key == 0xCCCC:
                 if not self.running:
                     self.running = True
+                    self.started_at = self.chip.cycles
                     self.counter_cycles = self.timeout_cycles()
                 self.unlocked = False
             elif key == 0xAAAA:
