@@ -121,6 +121,21 @@ impl ResetCause {
     }
 }
 
+/// The fail-safe current (A) from reset until the installed configuration
+/// is known: the default fail-safe, but never above the weakest coil the
+/// board's limits let an upload install (`limits::STM32L4_BOARD`,
+/// `installation_min.coil_rating_a`): an installed 1 A coil is not driven
+/// at the default's 2 A while the table page is still unread.
+pub const BOOT_FAILSAFE_CURRENT_A: f32 = {
+    let default = crate::law::LawConfig::DEFAULT_FAILSAFE_CURRENT_A;
+    let weakest = crate::limits::STM32L4_BOARD.installation_min.coil_rating_a;
+    if default < weakest {
+        default
+    } else {
+        weakest
+    }
+};
+
 /// The coil command a panic or HardFault handler sets before it halts
 /// (firmware/README.md, "Panic and HardFault"). One decision for every board;
 /// the register writes are the board's (`board::coil_safe_from_a_fault`).
@@ -144,5 +159,54 @@ pub fn coil_after_fault(drive_running: bool, latched: crate::Flags, failsafe_cur
         }
     } else {
         CoilAfterFault::Off
+    }
+}
+
+/// The power-on self-test before the controller arms (class-B practice):
+/// the board's current sense converts, its PWM duty reads back, and the
+/// flown table's CRC holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SelfTest {
+    /// An injected conversion of the shunt ended (ADC3 JEOC) at boot.
+    pub sense_converts: bool,
+    /// TIM3 runs with CH1 on the pin and CCR1 holds the commanded duty.
+    pub pwm_reads_back: bool,
+    /// The flown table (uploaded or built-in) passed its CRC and validation.
+    pub table_crc_holds: bool,
+}
+
+impl SelfTest {
+    pub fn passed(&self) -> bool {
+        self.sense_converts && self.pwm_reads_back && self.table_crc_holds
+    }
+
+    /// The faults latched before the first period when a check fails, so
+    /// the controller never arms and holds the fail-safe current: a sense
+    /// that does not convert or a drive that does not read back is
+    /// `CURRENT_SENSE` (the coil current cannot be trusted), a table that
+    /// fails its CRC `TABLE_FAULT`. Neither clears with B1
+    /// (`Controller::latch_boot_faults`).
+    pub fn faults(&self) -> crate::Flags {
+        let mut f = crate::Flags::NONE;
+        if !self.sense_converts || !self.pwm_reads_back {
+            f |= crate::Flags::CURRENT_SENSE;
+        }
+        if !self.table_crc_holds {
+            f |= crate::Flags::TABLE_FAULT;
+        }
+        f
+    }
+
+    /// The first failed check, for the one boot-failure log line.
+    pub fn first_failure(&self) -> Option<&'static str> {
+        if !self.sense_converts {
+            Some("current sense does not convert")
+        } else if !self.pwm_reads_back {
+            Some("PWM duty does not read back")
+        } else if !self.table_crc_holds {
+            Some("table CRC does not hold")
+        } else {
+            None
+        }
     }
 }

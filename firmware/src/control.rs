@@ -228,6 +228,8 @@ pub struct Controller {
     window_periods: u16,
     window_overruns: u16,
     sense: SenseMonitor,
+    /// Faults of a failed power-on self-test: kept through B1's clear.
+    boot_faults: Flags,
     stats: Stats,
 }
 
@@ -251,6 +253,7 @@ impl Controller {
             window_periods: 0,
             window_overruns: 0,
             sense: SenseMonitor::default(),
+            boot_faults: Flags::NONE,
             stats: Stats::default(),
         };
         match table {
@@ -303,10 +306,14 @@ impl Controller {
     /// displacement within `REST_X_MM` of 0 and the estimated speed below
     /// `stuck_min_speed_m_s`), never mid-impact. True if it cleared. A fault
     /// whose cause persists latches again.
+    /// `OVER_CURRENT` stays latched (a short does not heal at rest; only a
+    /// reset clears it, firmware/README.md "Faults"), as `TABLE_FAULT` does.
     pub fn clear_faults_if_at_rest(&mut self) -> bool {
         let at_rest = self.is_at_rest();
         if at_rest {
+            let kept = Flags(self.latched.0 & (Flags::OVER_CURRENT.0 | self.boot_faults.0));
             self.clear_faults();
+            self.latched |= kept;
         }
         at_rest
     }
@@ -336,6 +343,14 @@ impl Controller {
     /// Latches a fault detected outside the step.
     pub fn latch_fault(&mut self, fault: Flags) {
         self.latch(fault);
+    }
+
+    /// Faults a failed power-on self-test latches before the first period
+    /// (`boot::SelfTest::faults`): the controller holds the fail-safe and
+    /// never arms; B1 does not clear them (only a reset).
+    pub fn latch_boot_faults(&mut self, faults: Flags) {
+        self.boot_faults |= faults;
+        self.latch(faults);
     }
 
     fn latch(&mut self, fault: Flags) {

@@ -114,6 +114,9 @@ pub enum PageError {
     Corrupt,
     Refused(ConfigBlobError),
     Flash(FlashError),
+    /// The read-back after an upload differs from what was written (an
+    /// erase or program that failed silently).
+    NotAsWritten,
 }
 
 impl PageError {
@@ -125,6 +128,7 @@ impl PageError {
             PageError::Corrupt => "page corrupt (length or CRC)",
             PageError::Refused(_) => "table or configuration refused",
             PageError::Flash(_) => "flash read failed",
+            PageError::NotAsWritten => "flash read-back differs from what was written",
         }
     }
 }
@@ -203,5 +207,21 @@ pub fn store<P: TablePage + ?Sized>(page: &mut P, table: &Table, cfg: &ControlCo
         .and_then(|()| page.write(0, image.get(..len).unwrap_or(&[])));
     page.end_update();
     written?;
+    // Byte for byte what was written, not merely a valid page: a driver that
+    // reports an erase or program error as success (embassy-stm32 0.6's L4
+    // flash interrupt clears the error flags before its `wait_ready` reads
+    // them, firmware/README.md) leaves the old table or a mix, and a valid
+    // old table must not be answered "stored".
+    let mut chunk = [0u8; 64];
+    let mut at = 0usize;
+    while at < len {
+        let n = chunk.len().min(len.saturating_sub(at));
+        let back = chunk.get_mut(..n).ok_or(PageError::NotAsWritten)?;
+        page.read(at, back)?;
+        if image.get(at..at.saturating_add(n)) != Some(&*back) {
+            return Err(PageError::NotAsWritten);
+        }
+        at = at.saturating_add(n);
+    }
     load(page).map(|_| ())
 }

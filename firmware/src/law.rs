@@ -143,7 +143,7 @@ impl Default for LawConfig {
             current_min_a: 0.0,
             current_max_a: 2.0,
             slew_a_per_s: 2000.0,
-            failsafe_current_a: 2.0,
+            failsafe_current_a: Self::DEFAULT_FAILSAFE_CURRENT_A,
             rebound: ReboundPolicy::Minimum,
             branch_band_m_s: 0.005,
             x_valid_min_mm: -1.0,
@@ -171,6 +171,9 @@ pub enum ConfigError {
 }
 
 impl LawConfig {
+    /// The default fail-safe current (A): the default coil's rating.
+    pub const DEFAULT_FAILSAFE_CURRENT_A: f32 = 2.0;
+
     pub fn validate(&self) -> Result<(), ConfigError> {
         let all = [
             self.mass_kg,

@@ -200,8 +200,15 @@ mod fw {
             );
         }
         let table = boot.table;
+        let table_crc_holds = table.is_ok();
         let cfg = match boot.config {
-            Ok(cfg) => cfg,
+            Ok(cfg) => {
+                // The installed coil's fail-safe from here on (init, the
+                // halt, the fault handlers): never above its rating.
+                board::set_failsafe_current_a(cfg.law.failsafe_current_a);
+                board.hold_fail_safe();
+                cfg
+            }
             Err(e) => {
                 // Only a build with a bad RATE_HZ gets here: hold the coil at
                 // the fail-safe duty and let the watchdog (never fed) reset.
@@ -209,7 +216,6 @@ mod fw {
                 board::halt_fail_safe(board)
             }
         };
-        #[allow(unused_mut)]
         let mut ctl = match Controller::new(cfg, table) {
             Ok(c) => c,
             Err(e) => {
@@ -217,6 +223,25 @@ mod fw {
                 board::halt_fail_safe(board)
             }
         };
+        // Power-on self-test before arming: one clear report either way; a
+        // failed check latches its fault so the controller never arms and
+        // holds the fail-safe (the LED blinks the fault's code, every
+        // command frame and stats line carries it).
+        let self_test = board.self_test(table_crc_holds);
+        match self_test.first_failure() {
+            None => defmt::info!("self-test passed: current sense converts, PWM duty reads back, table CRC holds"),
+            Some(why) => {
+                let faults = self_test.faults();
+                ctl.latch_boot_faults(faults);
+                LATCHED.store(ctl.latched().0, Ordering::Relaxed);
+                defmt::error!(
+                    "BOOT FAILURE: self-test: {=str}; not armed, coil at the fail-safe {=f32} A (latched {=u32:#010x})",
+                    why,
+                    board::failsafe_current_a(),
+                    faults.0
+                );
+            }
+        }
         // Instruction-count benchmark image: measure, then exit QEMU.
         #[cfg(all(feature = "pil", feature = "bench"))]
         board::icount::run(&mut ctl);
@@ -411,9 +436,14 @@ mod fw {
             // the step: an over-current already removes this period's drive,
             // a stale or stuck channel latches CURRENT_SENSE.
             ctl.check_coil_current(board.io.coil_current());
+            // Latched faults published as soon as latched (not at the end
+            // of the period): a fault handler that runs mid-period must see
+            // an over-current latched this period and keep the drive off.
+            LATCHED.store(ctl.latched().0, Ordering::Relaxed);
             let t0 = board::cycles();
             let cmd = ctl.step_io(&mut board.io);
             ctl.record_step_cycles(board::cycles().wrapping_sub(t0));
+            LATCHED.store(ctl.latched().0, Ordering::Relaxed);
             board::UPLOAD_GATE.observe(&ctl, &cmd);
             let overran = board.io.finish_period(&cmd, &ctl);
             if let Some(c) = board.io.take_deferred_calibration() {

@@ -1,6 +1,7 @@
 //! The table upload on the STM32L4 boards: the flash page behind
 //! `mre_core::flash_table::TablePage` and the task that answers `mre upload`
 //! on the ST-LINK VCP (`mre_core::upload`).
+use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use embassy_stm32::usart::BufferedUart;
 use mre_core::table::TableImage;
 use mre_core::upload::{choose_boot_table, BootTable};
@@ -23,6 +24,55 @@ const TABLE_PAGE_OFFSET: u32 = mre_core::flash_table::TABLE_PAGE_ADDRESS - mre_c
 /// `flash/l.rs` leaves FLASH_ACR alone; embassy's later sources save, disable
 /// and reset it, commit 1b9e61437 "fix STM32L4 corrupted data cache after
 /// erase/write"), so this page does, in `begin_update` / `end_update`.
+/// FLASH_SR's error flags (RM0351 §3.7.5 FLASH_SR: OPERR 1, PROGERR 3,
+/// WRPERR 4, PGAERR 5, SIZERR 6, PGSERR 7, MISERR 8, FASTERR 9, RDERR 14,
+/// OPTVERR 15) seen by [`FlashErrorCapture`] since the operation began.
+static FLASH_SR_ERRORS: AtomicU32 = AtomicU32::new(0);
+const FLASH_SR_ERROR_MASK: u32 = (1 << 1) | (0x7F << 3) | (1 << 14) | (1 << 15);
+/// A double-ECC error in the table page since the read began (the NMI).
+static TABLE_PAGE_ECC: AtomicBool = AtomicBool::new(false);
+
+/// Bound before embassy's flash interrupt handler: embassy-stm32 0.6.0's
+/// L4 `on_interrupt` (`flash/l.rs`) writes 1 to every FLASH_SR error flag
+/// before its `wait_ready` reads them, so an erase or program error comes
+/// back `Ok`. This handler keeps the flags first.
+pub struct FlashErrorCapture;
+
+impl embassy_stm32::interrupt::typelevel::Handler<embassy_stm32::interrupt::typelevel::FLASH> for FlashErrorCapture {
+    unsafe fn on_interrupt() {
+        let sr = embassy_stm32::pac::FLASH.sr().read().0;
+        FLASH_SR_ERRORS.fetch_or(sr & FLASH_SR_ERROR_MASK, Ordering::Relaxed);
+    }
+}
+
+/// Whether FLASH_ECCR's failing address (bank `bk_ecc`, offset `addr_ecc`
+/// in that bank) lies in the table page (bank 2, its last page).
+pub fn in_table_page(bk_ecc: bool, addr_ecc: u32) -> bool {
+    let in_bank = TABLE_PAGE_OFFSET - mre_core::flash_table::FLASH_BANK_BYTES;
+    bk_ecc && (in_bank..in_bank + mre_core::flash_table::PAGE_BYTES as u32).contains(&addr_ecc)
+}
+
+/// The NMI handler saw a double-ECC error in the table page.
+pub fn note_table_page_ecc() {
+    TABLE_PAGE_ECC.store(true, Ordering::Relaxed);
+}
+
+/// Errors of the operation just finished: those the capture kept and
+/// those still in FLASH_SR (an operation that raised no interrupt).
+fn take_flash_errors() -> Result<(), mre_core::flash_table::FlashError> {
+    let sr = embassy_stm32::pac::FLASH.sr().read().0 & FLASH_SR_ERROR_MASK;
+    let seen = FLASH_SR_ERRORS.swap(0, Ordering::Relaxed) | sr;
+    if seen == 0 {
+        Ok(())
+    } else {
+        // Write 1 to clear what is left, so the next operation starts clean.
+        embassy_stm32::pac::FLASH
+            .sr()
+            .write_value(embassy_stm32::pac::flash::regs::Sr(sr));
+        Err(mre_core::flash_table::FlashError)
+    }
+}
+
 struct FlashPage {
     flash: embassy_stm32::flash::Flash<'static, embassy_stm32::flash::Async>,
     /// FLASH_ACR.DCEN before the update began.
@@ -30,21 +80,32 @@ struct FlashPage {
 }
 
 impl mre_core::flash_table::TablePage for FlashPage {
+    /// A read that raised a double-ECC NMI (a torn page) fails: boot then
+    /// flies the built-in table.
     fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), mre_core::flash_table::FlashError> {
+        TABLE_PAGE_ECC.store(false, Ordering::Relaxed);
         self.flash
             .blocking_read(TABLE_PAGE_OFFSET + offset as u32, buf)
-            .map_err(|_| mre_core::flash_table::FlashError)
+            .map_err(|_| mre_core::flash_table::FlashError)?;
+        if TABLE_PAGE_ECC.swap(false, Ordering::Relaxed) {
+            return Err(mre_core::flash_table::FlashError);
+        }
+        Ok(())
     }
 
     fn erase(&mut self) -> Result<(), mre_core::flash_table::FlashError> {
         let end = TABLE_PAGE_OFFSET + mre_core::flash_table::PAGE_BYTES as u32;
+        FLASH_SR_ERRORS.store(0, Ordering::Relaxed);
         embassy_futures::block_on(self.flash.erase(TABLE_PAGE_OFFSET, end))
-            .map_err(|_| mre_core::flash_table::FlashError)
+            .map_err(|_| mre_core::flash_table::FlashError)?;
+        take_flash_errors()
     }
 
     fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), mre_core::flash_table::FlashError> {
+        FLASH_SR_ERRORS.store(0, Ordering::Relaxed);
         embassy_futures::block_on(self.flash.write(TABLE_PAGE_OFFSET + offset as u32, data))
-            .map_err(|_| mre_core::flash_table::FlashError)
+            .map_err(|_| mre_core::flash_table::FlashError)?;
+        take_flash_errors()
     }
 
     /// ST errata sheet ES0250 (STM32L471/475/476/486; §2.2.2 as embassy's

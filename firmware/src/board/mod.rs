@@ -128,6 +128,25 @@ core::arch::global_asm!(
 /// status LED's blink code and the fault handlers' over-current check.
 pub static LATCHED_FAULTS: core::sync::atomic::AtomicU32 = core::sync::atomic::AtomicU32::new(0);
 
+/// The fail-safe current (A, f32 bits) every board path drives: init, the
+/// boot-failure halt, the panic, HardFault and NMI handlers. Until the boot
+/// table is read it is [`mre_core::boot::BOOT_FAILSAFE_CURRENT_A`] (no
+/// higher than the weakest coil the board's limits admit); `main` then sets
+/// the installed configuration's (`cfg.law.failsafe_current_a`, never above
+/// the installed coil's rating), so a 1 A coil is never driven at 2 A.
+static FAILSAFE_CURRENT_A_BITS: core::sync::atomic::AtomicU32 =
+    core::sync::atomic::AtomicU32::new(mre_core::boot::BOOT_FAILSAFE_CURRENT_A.to_bits());
+
+pub fn failsafe_current_a() -> f32 {
+    f32::from_bits(FAILSAFE_CURRENT_A_BITS.load(core::sync::atomic::Ordering::Relaxed))
+}
+
+/// The installed configuration's fail-safe current (from `main`, once the
+/// boot table and its configuration are known).
+pub fn set_failsafe_current_a(current_a: f32) {
+    FAILSAFE_CURRENT_A_BITS.store(current_a.to_bits(), core::sync::atomic::Ordering::Relaxed);
+}
+
 /// A board's coil as the panic and HardFault handlers drive it: registers
 /// only (the PAC), no driver state the fault may have left half-written.
 pub trait FaultCoil {
@@ -146,11 +165,7 @@ pub trait FaultCoil {
 pub fn coil_safe_from_a_fault(coil: &mut impl FaultCoil) -> mre_core::boot::CoilAfterFault {
     use mre_core::boot::{coil_after_fault, CoilAfterFault};
     let latched = mre_core::Flags(LATCHED_FAULTS.load(core::sync::atomic::Ordering::Relaxed));
-    let command = coil_after_fault(
-        coil.drive_running(),
-        latched,
-        mre_core::law::LawConfig::default().failsafe_current_a,
-    );
+    let command = coil_after_fault(coil.drive_running(), latched, failsafe_current_a());
     match command {
         CoilAfterFault::FailSafe { current_a } => coil.hold_current_a(current_a),
         CoilAfterFault::Off => coil.off(),

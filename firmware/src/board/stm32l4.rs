@@ -17,7 +17,7 @@ use embassy_stm32::wdg::IndependentWatchdog;
 use embassy_time::{Duration, Instant, Ticker};
 use mre_core::boot::{CalibrationTime, FirstCommand, ResetCause};
 use mre_core::control::{open_loop_duty, Coil, Controller, DisplacementSensor, VelocitySensor};
-use mre_core::law::{Command, LawConfig};
+use mre_core::law::Command;
 use mre_core::overcurrent::Sense;
 use mre_core::pacing::Pacer;
 
@@ -42,7 +42,8 @@ macro_rules! vcp_pins {
 #[cfg(feature = "board-b-l475e-iot01a")]
 embassy_stm32::bind_interrupts!(struct Irqs {
     USART1 => embassy_stm32::usart::BufferedInterruptHandler<embassy_stm32::peripherals::USART1>;
-    FLASH => embassy_stm32::flash::InterruptHandler;
+    // The error capture first: embassy's handler clears FLASH_SR's error flags.
+    FLASH => super::flash_upload::FlashErrorCapture, embassy_stm32::flash::InterruptHandler;
 });
 #[cfg(feature = "board-b-l475e-iot01a")]
 use embassy_stm32::interrupt::USART1 as VCP_IRQ;
@@ -67,7 +68,8 @@ macro_rules! vcp_pins {
 #[cfg(feature = "board-nucleo-l476rg")]
 embassy_stm32::bind_interrupts!(struct Irqs {
     USART2 => embassy_stm32::usart::BufferedInterruptHandler<embassy_stm32::peripherals::USART2>;
-    FLASH => embassy_stm32::flash::InterruptHandler;
+    // The error capture first: embassy's handler clears FLASH_SR's error flags.
+    FLASH => super::flash_upload::FlashErrorCapture, embassy_stm32::flash::InterruptHandler;
 });
 #[cfg(feature = "board-nucleo-l476rg")]
 use embassy_stm32::interrupt::USART2 as VCP_IRQ;
@@ -105,7 +107,16 @@ const JEXTEN_RISING: u8 = 1;
 
 /// 50 periods at 10 kHz: long enough for the 1 Hz stats log, short enough
 /// that a hung control loop releases the coil to the reset state quickly.
-const WATCHDOG_TIMEOUT_US: u32 = 5_000;
+/// Set by [`Board::start`]: IWDG_PR = 0 (/4), IWDG_RLR = 39, (39 + 1) × 4 /
+/// 32 kHz = 5 ms (RM0351 §32.3.2, §32.7.2-3).
+const WATCHDOG_PR: u8 = 0;
+const WATCHDOG_RLR: u16 = 39;
+/// Boot, from reset to the first period, is about 2.4 M instructions in
+/// the rehosted image (`firmware/rehost`), most of it the table's
+/// validation (its order proof): 30 ms at one instruction per cycle, more
+/// with flash wait states. So boot runs under a 500 ms timeout (PR /8, RLR
+/// 1999) and `Board::start` narrows it to 5 ms.
+const BOOT_WATCHDOG_TIMEOUT_US: u32 = 500_000;
 
 /// The core clock: 16 MHz HSI / 2 × 20 / 2 = 80 MHz (PLL R). The one place
 /// clocks are set. ADCs run from SYSCLK.
@@ -172,6 +183,9 @@ pub struct Board {
     pub watchdog: IndependentWatchdog<'static, IWDG>,
     /// Taken by [`super::flash_upload::spawn_uplink`].
     pub(super) uplink: Option<Uplink>,
+    /// Power-on self-test results from `init` (`mre_core::boot::SelfTest`).
+    sense_converts: bool,
+    pwm_reads_back: bool,
 }
 
 /// The status LED and the user button B1 (active low on both boards).
@@ -194,6 +208,12 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
     // Read and clear the reset flags before anything can reset again.
     let csr = embassy_stm32::pac::RCC.csr().read().0;
     embassy_stm32::pac::RCC.csr().modify(|w| w.set_rmvf(true));
+    // Supervised from here: the IWDG started at its reset configuration
+    // (PR /4, RLR 0xFFF: 512 ms on the 32 kHz LSI, which the start forces
+    // on; RM0351 §32.3 "IWDG functional description", §32.7 registers)
+    // before the clock set-up and the ADC busy-waits; narrowed to
+    // `WATCHDOG_TIMEOUT_US` right after `embassy_stm32::init`.
+    start_watchdog();
     let cause = ResetCause::from_rcc_csr(csr);
     let plan = cause.boot_plan();
     if cause.is_fault() {
@@ -205,6 +225,9 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
     embassy_stm32::pac::DBGMCU.apb1fzr1().modify(|w| w.set_iwdg(true));
 
     let p = embassy_stm32::init(clock_config());
+    let mut watchdog = IndependentWatchdog::new(p.IWDG, BOOT_WATCHDOG_TIMEOUT_US);
+    watchdog.unleash();
+    watchdog.pet();
     let (pin_x, pin_v, pin_pwm, pin_led, pin_button) = board_pins!(p);
     let pin_i = p.PC1;
     let status = Status {
@@ -228,6 +251,11 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
     );
     let mut ch = pwm.split().ch1;
     let max_duty = ch.max_duty_cycle();
+    // The fail-safe duty before anything else (the ADCs' calibration
+    // busy-waits below) when the reset may have struck mid-impact.
+    if plan.first == FirstCommand::FailSafeAtOnce {
+        ch.set_duty_cycle(duty_compare(fail_safe_duty(), max_duty));
+    }
     ch.enable();
 
     let period = Duration::from_hz(u64::from(rate_hz));
@@ -265,11 +293,18 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
         defmt::info!("calibration: VDDA and current sense deferred until the damper is at rest");
         io.deferred = Some(mre_core::calibration::DeferredSenseZero::default());
     }
-    io.start_current_sense();
+    let adc3_enabled = io.start_current_sense();
     // Until the loop runs, hold the fail-safe current (stiffest damper).
     io.set_duty(fail_safe_duty());
+    // Power-on self-test, first two checks (the table CRC is `main`'s):
+    // the current sense converts (JEOC within 10 PWM periods) and the PWM
+    // duty reads back from TIM3 with the drive on the pin.
+    let self_test = (
+        adc3_enabled && io.sense_converts(),
+        io.pwm_reads_back(duty_compare(fail_safe_duty(), io.max_duty)),
+    );
     io.calibrate_at_rest();
-    let watchdog = IndependentWatchdog::new(p.IWDG, WATCHDOG_TIMEOUT_US);
+    feed_watchdog();
     let flash = embassy_stm32::flash::Flash::new(p.FLASH, Irqs);
     let (vcp, vcp_rx, vcp_tx) = vcp_pins!(p);
     let uart = match (
@@ -302,15 +337,68 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
         embassy_stm32::interrupt::FLASH.set_priority(Priority::P3);
     }
     let uplink = Some(Uplink::new(uart, flash));
-    (Board { io, watchdog, uplink }, status)
+    let (sense_converts, pwm_reads_back) = self_test;
+    (
+        Board {
+            io,
+            watchdog,
+            uplink,
+            sense_converts,
+            pwm_reads_back,
+        },
+        status,
+    )
+}
+
+/// KR = 0xCCCC: starts the IWDG (a no-op when it runs). RM0351 §32.7.1
+/// IWDG_KR; the key is ST's LL driver's `LL_IWDG_KEY_ENABLE`.
+fn start_watchdog() {
+    embassy_stm32::pac::IWDG
+        .kr()
+        .write(|w| w.set_key(embassy_stm32::pac::iwdg::vals::Key::START));
+}
+
+/// KR = 0xAAAA: reloads the IWDG counter (boot's calibration loops).
+fn feed_watchdog() {
+    embassy_stm32::pac::IWDG
+        .kr()
+        .write(|w| w.set_key(embassy_stm32::pac::iwdg::vals::Key::RESET));
+}
+
+/// TIM3's compare value for `duty` ∈ [0, 1] (`as` saturates).
+fn duty_compare(duty: f32, max_duty: u32) -> u32 {
+    (duty * max_duty as f32) as u32
 }
 
 impl Board {
+    /// The power-on self-test: `init`'s two hardware checks and the table's.
+    pub fn self_test(&self, table_crc_holds: bool) -> mre_core::boot::SelfTest {
+        mre_core::boot::SelfTest {
+            sense_converts: self.sense_converts,
+            pwm_reads_back: self.pwm_reads_back,
+            table_crc_holds,
+        }
+    }
+
+    /// The installed fail-safe current to the coil (main, once the boot
+    /// configuration is known; `super::set_failsafe_current_a`).
+    pub fn hold_fail_safe(&mut self) {
+        self.io.set_duty(fail_safe_duty());
+    }
+
     /// Starts the ticker and the watchdog right before the first period.
     pub fn start(&mut self) {
         self.io.ticker.reset();
         self.io.pacer = Pacer::start(Instant::now().as_ticks(), self.io.period.as_ticks());
+        // The 5 ms period of the running loop (RM0351 §32.3.4: KR = 0x5555
+        // unlocks PR and RLR; the new values load at the next reload).
+        use embassy_stm32::pac::iwdg::vals::{Key, Pr};
+        let iwdg = embassy_stm32::pac::IWDG;
+        iwdg.kr().write(|w| w.set_key(Key::ENABLE));
+        iwdg.pr().write(|w| w.set_pr(Pr::from_bits(WATCHDOG_PR)));
+        iwdg.rlr().write(|w| w.set_rl(WATCHDOG_RLR));
         self.watchdog.unleash();
+        self.watchdog.pet();
     }
 }
 
@@ -319,14 +407,16 @@ impl Board {
 /// at boot retries from reset instead of sleeping for ever.
 pub fn halt_fail_safe(mut board: Board) -> ! {
     board.io.set_duty(fail_safe_duty());
+    // The watchdog is running since `init`: not feeding it resets the chip.
     board.watchdog.unleash();
     loop {
         cortex_m::asm::wfi();
     }
 }
 
+/// The installed fail-safe current's duty (`super::failsafe_current_a`).
 fn fail_safe_duty() -> f32 {
-    open_loop_duty(LawConfig::default().failsafe_current_a, COIL_FULL_SCALE_A)
+    open_loop_duty(super::failsafe_current_a(), COIL_FULL_SCALE_A)
 }
 
 impl Io {
@@ -375,7 +465,8 @@ impl Io {
     /// L4 has no triggered mode: its ring-buffered mode ignores the trigger
     /// and there is no injected API, so this is PAC). TIM3_CH4 runs in PWM
     /// mode 2: OC4REF rises at CCR4 = CCR1 / 2 ([`Io::set_duty`]).
-    fn start_current_sense(&mut self) {
+    /// Returns false when ADC3 did not become ready (the self-test fails).
+    fn start_current_sense(&mut self) -> bool {
         use embassy_stm32::pac;
         use embassy_stm32::pac::timer::vals::Ocm;
         pac::TIM3.ccmr_output(1).modify(|w| {
@@ -406,7 +497,52 @@ impl Io {
             w.set_jexten(JEXTEN_RISING);
             w.set_jsq(0, I_SENSE_CHANNEL);
         });
+        // ADC3 enabled before JADSTART: embassy-stm32 0.6 (`adc/v3.rs`)
+        // sets ADEN only inside a blocking read, and ADC3's only one is the
+        // pin-reset calibration; JADSTART with ADEN = 0 is ignored (RM0351
+        // §18.4.9 "ADC on-off control": ADRDY cleared by writing 1, ADEN = 1,
+        // wait for ADRDY; §18.7.3 ADC_CR: JADSTART is set only with ADEN = 1
+        // and ADDIS = 0). Bounded: ADRDY takes t_STAB (about 1 ADC cycle)
+        // plus a few; 10 000 polls are over 0.3 ms at 80 MHz.
+        if !pac::ADC3.cr().read().aden() {
+            pac::ADC3.isr().write(|w| w.set_adrdy(true));
+            pac::ADC3.cr().modify(|w| w.set_aden(true));
+            let mut polls = 0u32;
+            while !pac::ADC3.isr().read().adrdy() {
+                polls = polls.saturating_add(1);
+                if polls > 10_000 {
+                    return false;
+                }
+            }
+        }
         pac::ADC3.cr().modify(|w| w.set_jadstart(true));
+        true
+    }
+
+    /// Self-test: an injected conversion ends (JEOC) within 10 PWM periods
+    /// of the trigger running (0.5 ms at 20 kHz). JEOC is left set: the
+    /// first period reads that conversion.
+    fn sense_converts(&mut self) -> bool {
+        use embassy_stm32::pac;
+        let deadline = Instant::now() + Duration::from_micros(10 * 1_000 / u64::from(PWM_KHZ));
+        loop {
+            if pac::ADC3.isr().read().jeoc() {
+                return true;
+            }
+            if Instant::now() > deadline {
+                return false;
+            }
+        }
+    }
+
+    /// Self-test: TIM3 counts, CH1's output is enabled, CCR1 holds
+    /// `compare`, and PB4 is in its alternate function (TIM3_CH1).
+    fn pwm_reads_back(&self, compare: u32) -> bool {
+        use embassy_stm32::pac;
+        pac::TIM3.cr1().read().cen()
+            && pac::TIM3.ccer().read().cce(0)
+            && u32::from(pac::TIM3.ccr(0).read().ccr()) == compare
+            && pac::GPIOB.moder().read().moder(4) == pac::gpio::vals::Moder::ALTERNATE
     }
 
     /// The displacement offset and the velocity zero with the mass at rest.
@@ -429,6 +565,8 @@ impl Io {
         for s in samples.iter_mut() {
             *s = read(self);
             embassy_time::block_for(Duration::from_micros(50));
+            // Boot is supervised (5 ms): each calibration is 3.2 ms.
+            feed_watchdog();
         }
         match mre_core::calibration::rest_offset(&samples, 0.0, limits) {
             Ok(zero) => {
@@ -444,7 +582,7 @@ impl Io {
 
     fn set_duty(&mut self, duty: f32) {
         // duty ∈ [0, 1] by construction; `as` saturates anyway.
-        let compare = (duty * self.max_duty as f32) as u32;
+        let compare = duty_compare(duty, self.max_duty);
         self.pwm.set_duty_cycle(compare);
         // The current-sense trigger at mid on-time; at least 1 so that a
         // shorted switch at 0 % duty is still sampled.
@@ -606,21 +744,55 @@ fn wait_for_the_watchdog() -> ! {
     }
 }
 
+/// Set by the first panic: a panic inside the handler (its defmt frame)
+/// skips the log and goes straight to the watchdog.
+static PANICKING: core::sync::atomic::AtomicBool = core::sync::atomic::AtomicBool::new(false);
+
 #[panic_handler]
 fn panic(info: &core::panic::PanicInfo) -> ! {
-    // The coil first: the log may stall (RTT) and must not delay it.
+    // Interrupts masked first (PRIMASK): the control interrupt can no
+    // longer overwrite CCR1 or feed the watchdog.
+    cortex_m::interrupt::disable();
+    // The coil next: the log may stall (RTT) and must not delay it.
     coil_safe_from_a_fault();
-    let (file, line) = info.location().map_or(("?", 0), |l| (l.file(), l.line()));
-    defmt::error!(
-        "panic at {=str}:{=u32}; coil at its safe state, reset by the watchdog",
-        file,
-        line
-    );
+    if !PANICKING.swap(true, core::sync::atomic::Ordering::Relaxed) {
+        let (file, line) = info.location().map_or(("?", 0), |l| (l.file(), l.line()));
+        defmt::error!(
+            "panic at {=str}:{=u32}; coil at its safe state, reset by the watchdog",
+            file,
+            line
+        );
+    }
     wait_for_the_watchdog()
 }
 
 #[cortex_m_rt::exception]
 unsafe fn HardFault(_frame: &cortex_m_rt::ExceptionFrame) -> ! {
+    cortex_m::interrupt::disable();
+    coil_safe_from_a_fault();
+    wait_for_the_watchdog()
+}
+
+/// NMI. A flash double-ECC error in the table page (an upload torn by power
+/// loss; RM0351 §3.3.3 "Error code correction": ECCD in FLASH_ECCR, the
+/// failing bank and address in BK_ECC and ADDR_ECC, an NMI raised) is
+/// cleared (ECCD, write 1) and noted, and the interrupted page read
+/// returns: `flash_upload` then refuses the page and boot flies the
+/// built-in table. Any other NMI (an ECC error in the image, the clock
+/// security system) is a fault: the coil safe, the watchdog resets.
+// SAFETY (cortex-m-rt requires `unsafe fn` for NMI, which can preempt
+// critical sections): the handler touches only FLASH_ECCR, an atomic flag
+// and, on the fault path, the same registers as the HardFault handler.
+#[cortex_m_rt::exception]
+unsafe fn NonMaskableInt() {
+    use embassy_stm32::pac;
+    let eccr = pac::FLASH.eccr().read();
+    if eccr.eccd() && super::flash_upload::in_table_page(eccr.bk_ecc(), eccr.addr_ecc()) {
+        pac::FLASH.eccr().modify(|w| w.set_eccd(true));
+        super::flash_upload::note_table_page_ecc();
+        return;
+    }
+    cortex_m::interrupt::disable();
     coil_safe_from_a_fault();
     wait_for_the_watchdog()
 }

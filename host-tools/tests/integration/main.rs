@@ -55,5 +55,6 @@ mod plant_physics;
 mod plant_synth;
 mod plant_synth_inertia;
 mod plot;
+mod rehost;
 mod tables;
 mod validate;

@@ -84,7 +84,7 @@ fn a_torn_or_corrupt_page_is_refused() {
     // Power cut after the header and 40 bytes of the blob.
     let mut page = RamPage::erased();
     page.cut_after = Some(56);
-    assert_eq!(store(&mut page, &table, &cfg), Err(PageError::Corrupt));
+    assert_eq!(store(&mut page, &table, &cfg), Err(PageError::NotAsWritten));
     assert_eq!(load(&mut page).unwrap_err(), PageError::Corrupt);
     // One flipped bit in the blob.
     let mut page = RamPage::erased();

@@ -413,3 +413,84 @@ fn the_upload_gate_opens_only_after_half_a_second_at_rest() {
     }
     assert!(!gate.at_rest(DEFAULT_RATE_HZ));
 }
+
+/// A page whose driver reports success for an erase or a program that did
+/// not happen: embassy-stm32 0.6's L4 flash interrupt clears the error flags
+/// (FLASH_SR, write 1 to clear) before `wait_ready` reads them, so an erase
+/// or program error comes back `Ok` (firmware/README.md, "Uploaded tables").
+struct SilentlyFailingPage {
+    page: RamPage,
+    erase_fails: bool,
+    program_fails: bool,
+}
+impl TablePage for SilentlyFailingPage {
+    fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), mre_core::flash_table::FlashError> {
+        self.page.read(offset, buf)
+    }
+    fn erase(&mut self) -> Result<(), mre_core::flash_table::FlashError> {
+        if !self.erase_fails {
+            self.page.erase()?;
+        }
+        Ok(())
+    }
+    fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), mre_core::flash_table::FlashError> {
+        if !self.program_fails {
+            self.page.write(offset, data)?;
+        }
+        Ok(())
+    }
+}
+
+/// Issue 39: an erase error reported as success leaves the old (valid)
+/// table; a program error leaves the page erased. Either way the host must
+/// be told "not stored" (TABLE_FAULT, page failed), and boot flies what is
+/// really on the page. Planted: `store` without its byte-for-byte read-back
+/// answers the erase case "stored" (the old page is valid).
+#[test]
+fn an_erase_or_program_error_reported_as_success_is_refused() {
+    let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
+    // An earlier upload of Table 4 is on the page.
+    let mut old = RamPage::erased();
+    mre_core::flash_table::store(&mut old, &Table::paper().unwrap(), &cfg).unwrap();
+    let paper_crc = Table::paper().unwrap().crc32();
+    for (erase_fails, program_fails) in [(true, false), (false, true), (true, true)] {
+        let mut page = SilentlyFailingPage {
+            page: old.clone(),
+            erase_fails,
+            program_fails,
+        };
+        let mut port = UploadPort::new();
+        let mut results = Vec::new();
+        for b in frames(&blob(&other_table(), &cfg)).iter().flatten() {
+            if let Some(PortEvent::Commit(r)) = port.push(*b, &mut page, true) {
+                results.push(r);
+            }
+        }
+        assert_eq!(results.len(), 1);
+        assert_eq!(
+            results[0],
+            Err(UploadError::Page(PageError::NotAsWritten)),
+            "erase fails {erase_fails}, program fails {program_fails}"
+        );
+        let answer = CommandFrame::decode(&answer(&results[0])).unwrap();
+        assert_eq!(answer.flags, Flags::TABLE_FAULT);
+        // Code 4: the flash page could not be written or read back.
+        assert_eq!(answer.rejected, 4);
+        // Boot flies what the page really holds, never the refused upload.
+        let boot = choose_boot_table(&mut page.page, &GENERATED_TABLE, DEFAULT_RATE_HZ);
+        let flown = boot.table.unwrap().crc32();
+        assert_ne!(flown, other_table().crc32());
+        match (erase_fails, program_fails) {
+            // The new bytes ANDed over the old page (NOR flash clears bits
+            // only): the CRC no longer holds, the built-in table flies.
+            (true, false) => assert_eq!(boot.source, TableSource::BuiltIn(PageError::Corrupt)),
+            // Erased, nothing programmed.
+            (false, true) => assert_eq!(boot.source, TableSource::BuiltIn(PageError::Empty)),
+            // Nothing happened: the old upload still flies.
+            _ => {
+                assert_eq!(boot.source, TableSource::Uploaded);
+                assert_eq!(flown, paper_crc);
+            }
+        }
+    }
+}
