@@ -97,9 +97,7 @@ pub fn run_fmu_with(request: &FmuRequest, libraries: &Path) -> Result<Vec<PathBu
         let library = libraries.join(library_file(*kind));
         let binary =
             std::fs::read(&library).with_context(|| format!("cannot read the FMU library {}", library.display()))?;
-        let dll = libraries
-            .join(WINDOWS_PLATFORM)
-            .join(windows_library_file(*kind));
+        let dll = libraries.join(WINDOWS_PLATFORM).join(windows_library_file(*kind));
         let windows = match std::fs::read(&dll) {
             Ok(bytes) => Some(bytes),
             Err(_) => {
@@ -111,7 +109,9 @@ pub fn run_fmu_with(request: &FmuRequest, libraries: &Path) -> Result<Vec<PathBu
                 None
             }
         };
-        write_atomic_with(path, |buf| pack(buf, *kind, &xml, &binary, windows.as_deref(), &page, &text))?;
+        write_atomic_with(path, |buf| {
+            pack(buf, *kind, &xml, &binary, windows.as_deref(), &page, &text)
+        })?;
     }
     Ok(kinds.into_iter().map(|(_, p)| p).collect())
 }
@@ -175,7 +175,10 @@ fn pack(
         ("resources/model.toml".to_owned(), model_toml.as_bytes()),
     ];
     if let Some(dll) = windows {
-        files.push((format!("binaries/{WINDOWS_PLATFORM}/{}", windows_library_file(kind)), dll));
+        files.push((
+            format!("binaries/{WINDOWS_PLATFORM}/{}", windows_library_file(kind)),
+            dll,
+        ));
     }
     for (name, bytes) in files {
         zip.start_file(name, deflate)?;
@@ -240,7 +243,12 @@ fn build_libraries(root: &Path) -> Result<PathBuf> {
 /// Cross-builds both FMU crates for Windows x86_64 (MinGW-w64) and copies
 /// the DLLs into `release/x86_64-windows/`; `Err` says what is missing.
 fn build_windows_libraries(root: &Path, target: &Path, release: &Path) -> std::result::Result<(), String> {
-    let found = |program: &str, arg: &str| Command::new(program).arg(arg).output().is_ok_and(|o| o.status.success());
+    let found = |program: &str, arg: &str| {
+        Command::new(program)
+            .arg(arg)
+            .output()
+            .is_ok_and(|o| o.status.success())
+    };
     if !found(WINDOWS_LINKER, "--version") {
         return Err(format!(
             "{WINDOWS_LINKER} is not installed (Debian: apt-get install gcc-mingw-w64-x86-64)"

@@ -219,7 +219,8 @@ def reset_check(controller_path):
 
     ctl = Fmu(controller_path)
     # Stop mid-impact (state and tick count built up), reset, initialise again.
-    commands(ctl, period, inputs[:40])
+    before = commands(ctl, period, inputs[:8])
+    check(before[-1][0] != at_init, "controller: the reset comes while the command is not the initial one")
     ctl.fmu.reset()
     ctl.fmu.enterInitializationMode(startTime=0.0)
     check(ctl.get("coil_command_a") == at_init,

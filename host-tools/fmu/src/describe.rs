@@ -107,9 +107,10 @@ pub fn dependencies(kind: Kind) -> Vec<(u32, Vec<u32>)> {
         .unknowns
         .iter()
         .filter_map(|u| match u {
-            VariableDependency::Output(u) => {
-                Some((u.value_reference, u.dependencies.as_ref().map(|d| d.0.clone()).unwrap_or_default()))
-            }
+            VariableDependency::Output(u) => Some((
+                u.value_reference,
+                u.dependencies.as_ref().map(|d| d.0.clone()).unwrap_or_default(),
+            )),
             _ => None,
         })
         .collect()

@@ -163,7 +163,10 @@ pub fn check_step<M: Exported>(instance: b::fmi3Instance, t: f64, h: f64) -> Res
 /// The dependencies the XML declares for `vr`, or logs and `Err(fmi3Error)`
 /// for a variable that is not an unknown with declared dependencies.
 pub fn dependencies_of<M: Exported>(instance: b::fmi3Instance, vr: u32) -> Result<Vec<u32>, b::fmi3Status> {
-    match crate::describe::dependencies(M::KIND).into_iter().find(|(v, _)| *v == vr) {
+    match crate::describe::dependencies(M::KIND)
+        .into_iter()
+        .find(|(v, _)| *v == vr)
+    {
         Some((_, deps)) => Ok(deps),
         None => {
             log_error::<M>(
@@ -191,6 +194,26 @@ pub fn note_reset<M: Exported>(instance: b::fmi3Instance) {
         let mut resets = RESETS.lock().unwrap_or_else(|e| e.into_inner());
         if !resets.contains(&key) {
             resets.push(key);
+        }
+    }
+}
+
+/// Marks the instance's values stale: fmi-export's reset leaves its value
+/// cache clean, so a get in Initialization Mode would not reach the model.
+/// Setting the first float input to its own value is what dirties it.
+pub fn mark_stale<M: Exported + fmi_export::fmi3::Fmi3Common>(instance: b::fmi3Instance) {
+    use fmi::schema::fmi3::{Causality, Variable};
+    let meta = M::build_toplevel_metadata();
+    let Some(vr) = meta.model_variables.variables.iter().find_map(|v| match v {
+        Variable::Float64(f) if f.causality == Some(Causality::Input) => Some(f.value_reference),
+        _ => None,
+    }) else {
+        return;
+    };
+    let mut value = [0.0f64];
+    unsafe {
+        if M::fmi3_get_float64(instance, &vr, 1, value.as_mut_ptr(), 1) == b::fmi3Status_fmi3OK {
+            M::fmi3_set_float64(instance, &vr, 1, value.as_ptr(), 1);
         }
     }
 }
@@ -379,6 +402,7 @@ macro_rules! export_fmu {
             "fmi3Reset" fn fmi3_reset(instance: fmi3b::fmi3Instance) => {
                 let status = <$ty as ::fmi_export::fmi3::Fmi3Common>::fmi3_reset(instance);
                 $crate::export::note_reset::<$ty>(instance);
+                $crate::export::mark_stale::<$ty>(instance);
                 status
             };
             "fmi3GetBinary" fn fmi3_get_binary(instance: fmi3b::fmi3Instance, vrs: *const fmi3b::fmi3ValueReference,

@@ -234,7 +234,11 @@ fn every_binary_exports_every_fmi3_function() {
                 .map(|e| String::from_utf8_lossy(e.name()).into_owned())
                 .collect();
             let missing: Vec<&String> = required.iter().filter(|f| !exported.contains(f)).collect();
-            assert!(missing.is_empty(), "{}: {name} does not export {missing:?}", fmu.display());
+            assert!(
+                missing.is_empty(),
+                "{}: {name} does not export {missing:?}",
+                fmu.display()
+            );
             let expected_format = if name.ends_with(".dll") {
                 object::BinaryFormat::Pe
             } else {
