@@ -30,7 +30,7 @@ pub struct Controller {
     /// Force the law asked for at the last tick (N); 0 when rebounding or fail-safe
     #[variable(causality = Output, variability = Discrete, initial = Calculated)]
     pub target_force_n: f64,
-    /// Status flags of the last tick (mre_core::flags, e.g. 1 = FAIL_SAFE; firmware/README.md)
+    /// Status flags of the last tick (mre_core::flags, firmware/README.md): 1 = X_CLAMPED (bit 0), 256 = FAIL_SAFE (bit 8)
     #[variable(causality = Output, variability = Discrete, initial = Calculated)]
     pub flags: u32,
     /// Control period of the board (s): one control tick per period
