@@ -76,7 +76,11 @@ pub fn unsupported<M: Exported>(instance: b::fmi3Instance, function: &str) -> b:
 
 /// FMI 3.0: a null `FMUState` makes `fmi3FreeFMUState` a no-op; this FMU
 /// hands out no state, so any other is an error.
-pub fn free_fmu_state<M: Exported>(instance: b::fmi3Instance, state: *mut b::fmi3FMUState) -> b::fmi3Status {
+///
+/// # Safety
+/// `instance` is null or an instance this library created; the other
+/// pointers are as the FMI 3.0 function they serve defines them.
+pub unsafe fn free_fmu_state<M: Exported>(instance: b::fmi3Instance, state: *mut b::fmi3FMUState) -> b::fmi3Status {
     if state.is_null() || unsafe { (*state).is_null() } {
         return b::fmi3Status_fmi3OK;
     }
@@ -102,7 +106,11 @@ fn settable<M: Exported>() -> Vec<u32> {
 }
 
 /// `Ok` when every value reference may be set; else logs and `Err(fmi3Error)`.
-pub fn check_settable<M: Exported>(
+///
+/// # Safety
+/// `instance` is null or an instance this library created; the other
+/// pointers are as the FMI 3.0 function they serve defines them.
+pub unsafe fn check_settable<M: Exported>(
     cache: &std::sync::OnceLock<Vec<u32>>,
     instance: b::fmi3Instance,
     function: &str,
@@ -201,7 +209,11 @@ pub fn note_reset<M: Exported>(instance: b::fmi3Instance) {
 /// Marks the instance's values stale: fmi-export's reset leaves its value
 /// cache clean, so a get in Initialization Mode would not reach the model.
 /// Setting the first float input to its own value is what dirties it.
-pub fn mark_stale<M: Exported + fmi_export::fmi3::Fmi3Common>(instance: b::fmi3Instance) {
+///
+/// # Safety
+/// `instance` is null or an instance this library created; the other
+/// pointers are as the FMI 3.0 function they serve defines them.
+pub unsafe fn mark_stale<M: Exported + fmi_export::fmi3::Fmi3Common>(instance: b::fmi3Instance) {
     use fmi::schema::fmi3::{Causality, Variable};
     let meta = M::build_toplevel_metadata();
     let Some(vr) = meta.model_variables.variables.iter().find_map(|v| match v {
