@@ -5,7 +5,10 @@
 //! An FMU is a zip of
 //! - `modelDescription.xml` (`mre_fmu::describe`),
 //! - `binaries/x86_64-linux/mre_damper.so` (or `mre_controller.so`): the
-//!   `cdylib` of `host-tools/fmu/damper` (`…/controller`),
+//!   `cdylib` of `host-tools/fmu/damper` (`…/controller`), and
+//!   `binaries/x86_64-windows/mre_damper.dll` when it was cross-built
+//!   (MinGW-w64 and the Rust target installed) or is in the libraries'
+//!   `x86_64-windows/` folder,
 //! - `resources/table.page`: the table and the control configuration as the
 //!   board's flash page (`mre_fmu::page`), and `resources/model.toml`, the
 //!   model file it came from (for people; the library reads only the page).
@@ -25,6 +28,14 @@ use std::process::Command;
 
 /// The FMI platform folder of the libraries this build packs.
 pub const PLATFORM: &str = "x86_64-linux";
+
+/// The FMI platform folder of the Windows libraries, packed beside the Linux
+/// ones when `libraries/x86_64-windows/` holds them.
+pub const WINDOWS_PLATFORM: &str = "x86_64-windows";
+
+/// The Rust target and the MinGW-w64 linker the Windows libraries need.
+const WINDOWS_TARGET: &str = "x86_64-pc-windows-gnu";
+const WINDOWS_LINKER: &str = "x86_64-w64-mingw32-gcc";
 
 /// What `mre fmu` was asked for.
 #[derive(Clone, Debug)]
@@ -86,7 +97,21 @@ pub fn run_fmu_with(request: &FmuRequest, libraries: &Path) -> Result<Vec<PathBu
         let library = libraries.join(library_file(*kind));
         let binary =
             std::fs::read(&library).with_context(|| format!("cannot read the FMU library {}", library.display()))?;
-        write_atomic_with(path, |buf| pack(buf, *kind, &xml, &binary, &page, &text))?;
+        let dll = libraries.join(WINDOWS_PLATFORM).join(windows_library_file(*kind));
+        let windows = match std::fs::read(&dll) {
+            Ok(bytes) => Some(bytes),
+            Err(_) => {
+                eprintln!(
+                    "note: {} carries Linux binaries only (no {}; building it needs rustup target {WINDOWS_TARGET} and {WINDOWS_LINKER})",
+                    path.display(),
+                    dll.display()
+                );
+                None
+            }
+        };
+        write_atomic_with(path, |buf| {
+            pack(buf, *kind, &xml, &binary, windows.as_deref(), &page, &text)
+        })?;
     }
     Ok(kinds.into_iter().map(|(_, p)| p).collect())
 }
@@ -127,15 +152,34 @@ pub fn library_file(kind: Kind) -> String {
     format!("lib{}.so", kind.model_identifier())
 }
 
-fn pack(buf: &mut Vec<u8>, kind: Kind, xml: &str, binary: &[u8], page: &[u8], model_toml: &str) -> Result<()> {
+/// The Windows library's file name (the model identifier, as FMI requires).
+pub fn windows_library_file(kind: Kind) -> String {
+    format!("{}.dll", kind.model_identifier())
+}
+
+fn pack(
+    buf: &mut Vec<u8>,
+    kind: Kind,
+    xml: &str,
+    binary: &[u8],
+    windows: Option<&[u8]>,
+    page: &[u8],
+    model_toml: &str,
+) -> Result<()> {
     let mut zip = zip::ZipWriter::new(std::io::Cursor::new(buf));
     let deflate = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
-    let files: [(String, &[u8]); 4] = [
+    let mut files: Vec<(String, &[u8])> = vec![
         ("modelDescription.xml".to_owned(), xml.as_bytes()),
         (format!("binaries/{PLATFORM}/{}.so", kind.model_identifier()), binary),
         (format!("resources/{}", mre_fmu::page::PAGE_FILE), page),
         ("resources/model.toml".to_owned(), model_toml.as_bytes()),
     ];
+    if let Some(dll) = windows {
+        files.push((
+            format!("binaries/{WINDOWS_PLATFORM}/{}", windows_library_file(kind)),
+            dll,
+        ));
+    }
     for (name, bytes) in files {
         zip.start_file(name, deflate)?;
         zip.write_all(bytes)?;
@@ -189,5 +233,64 @@ fn build_libraries(root: &Path) -> Result<PathBuf> {
              its output above names the cause"
         );
     }
-    Ok(target.join("release"))
+    let release = target.join("release");
+    if let Err(why) = build_windows_libraries(root, &target, &release) {
+        eprintln!("note: no Windows binaries in the FMUs: {why}");
+    }
+    Ok(release)
+}
+
+/// Cross-builds both FMU crates for Windows x86_64 (MinGW-w64) and copies
+/// the DLLs into `release/x86_64-windows/`; `Err` says what is missing.
+fn build_windows_libraries(root: &Path, target: &Path, release: &Path) -> std::result::Result<(), String> {
+    let found = |program: &str, arg: &str| {
+        Command::new(program)
+            .arg(arg)
+            .output()
+            .is_ok_and(|o| o.status.success())
+    };
+    if !found(WINDOWS_LINKER, "--version") {
+        return Err(format!(
+            "{WINDOWS_LINKER} is not installed (Debian: apt-get install gcc-mingw-w64-x86-64)"
+        ));
+    }
+    let libdir = Command::new("rustc")
+        .args(["--print", "target-libdir", "--target", WINDOWS_TARGET])
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .map(|o| PathBuf::from(String::from_utf8_lossy(&o.stdout).trim()));
+    if !libdir.is_some_and(|d| d.is_dir()) {
+        return Err(format!(
+            "the Rust target {WINDOWS_TARGET} is not installed (rustup target add {WINDOWS_TARGET})"
+        ));
+    }
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let status = Command::new(cargo)
+        .current_dir(root)
+        .env("CARGO_TARGET_DIR", target)
+        .args([
+            "build",
+            "--release",
+            "--quiet",
+            "--target",
+            WINDOWS_TARGET,
+            "-p",
+            "mre-fmu-damper",
+            "-p",
+            "mre-fmu-controller",
+        ])
+        .status()
+        .map_err(|e| format!("cannot run cargo: {e}"))?;
+    if !status.success() {
+        return Err(format!("cargo build --target {WINDOWS_TARGET} failed ({status})"));
+    }
+    let out = release.join(WINDOWS_PLATFORM);
+    std::fs::create_dir_all(&out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    for kind in [Kind::Damper, Kind::Controller] {
+        let name = windows_library_file(kind);
+        let from = target.join(WINDOWS_TARGET).join("release").join(&name);
+        std::fs::copy(&from, out.join(&name)).map_err(|e| format!("cannot copy {}: {e}", from.display()))?;
+    }
+    Ok(())
 }

@@ -12,17 +12,26 @@ Checks: FMPy's model-description validation passes for both FMUs, every float
 has an SI unit; the damper's force equals the core's on every sample (CS and
 ME); a falling mass written here, closed through controller.fmu and damper.fmu
 in FMPy, reproduces `mre sim --controlled`'s peak force and stroke within 1 %.
+The FMI error contract (issue 43): after fmi3Reset the controller repeats a
+fresh instance's commands; every call the FMUs do not support returns
+fmi3Error with a log line and the process lives (run in a child process, so
+an abort shows as its exit status); setting an output or a calculated
+parameter and a doStep with a bad step or from another time return fmi3Error;
+the dependency count of each output equals the model description's.
 Exits non-zero on any failure.
 """
 import csv
+import ctypes
 import json
 import math
 import shutil
+import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
 import fmpy
+from fmpy.fmi1 import FMICallException
 from fmpy.fmi3 import FMU3Model, FMU3Slave
 from fmpy.validation import validate_fmu
 
@@ -59,7 +68,7 @@ def validate(path):
 class Fmu:
     """One instance of an FMU by variable name (CS or ME)."""
 
-    def __init__(self, path, me=False):
+    def __init__(self, path, me=False, log=None):
         self.md = fmpy.read_model_description(str(path))
         self.dir = tempfile.mkdtemp()
         fmpy.extract(str(path), self.dir)
@@ -68,7 +77,13 @@ class Fmu:
         iface = self.md.modelExchange if me else self.md.coSimulation
         self.fmu = kind(guid=self.md.guid, unzipDirectory=self.dir,
                         modelIdentifier=iface.modelIdentifier, instanceName=path.stem)
-        self.fmu.instantiate()
+        if log is None:
+            self.fmu.instantiate()
+        else:
+            # Every message the FMU logs, as (status, text).
+            def logger(env, status, category, message):
+                log.append((status, message.decode(errors="replace")))
+            self.fmu.instantiate(loggingOn=True, logMessage=logger)
         self.fmu.enterInitializationMode(startTime=0.0)
         self.fmu.exitInitializationMode()
         if me:
@@ -126,6 +141,7 @@ def closed_loop(sim_dir, sim):
         return g - force(xm, vm, i) / m
 
     while t < sim["max_duration_s"]:
+        t0 = t
         ctl.set(displacement_m=x, velocity_m_s=v)
         ctl.fmu.doStep(t, period)
         command = ctl.get("coil_command_a")
@@ -147,7 +163,7 @@ def closed_loop(sim_dir, sim):
             if x < 0.0 and v < 0.0:
                 done = True
                 break
-        damper.fmu.doStep(t - period, period)
+        damper.fmu.doStep(t0, period)
         if done:
             break
     damper.close()
@@ -161,6 +177,146 @@ def closed_loop(sim_dir, sim):
                            f"{mre_value:.2f} ({100 * rel:.2f} %, at most 1 %)")
 
 
+ERROR = 3  # fmi3Error
+
+
+def fails(call):
+    """The status of an FMI call FMPy raises on, or 0 when it returns OK."""
+    try:
+        call()
+        return 0
+    except FMICallException as e:
+        return getattr(e, "status", ERROR)
+
+
+def drop_inputs(n):
+    """x, v of a mass met at 2.24 m/s and stopped over n ticks: it loads the law."""
+    x, out = 0.0, []
+    for k in range(n):
+        v = 2.24 * (1.0 - k / n)
+        out.append((x, v))
+        x += v * 1e-4
+    return out
+
+
+def commands(ctl, period, inputs):
+    got = []
+    for k, (x, v) in enumerate(inputs):
+        ctl.set(displacement_m=x, velocity_m_s=v)
+        ctl.fmu.doStep(k * period, period)
+        got.append((ctl.get("coil_command_a"), ctl.get("target_force_n")))
+    return got
+
+
+def reset_check(controller_path):
+    fresh = Fmu(controller_path)
+    period = fresh.get("control_period_s")
+    at_init = fresh.get("coil_command_a")
+    inputs = drop_inputs(60)
+    expected = commands(fresh, period, inputs)
+    fresh.close()
+    check(any(c != at_init for c, _ in expected), "controller: the drop moves the command")
+
+    ctl = Fmu(controller_path)
+    # Stop mid-impact (state and tick count built up), reset, initialise again.
+    before = commands(ctl, period, inputs[:8])
+    check(before[-1][0] != at_init, "controller: the reset comes while the command is not the initial one")
+    ctl.fmu.reset()
+    ctl.fmu.enterInitializationMode(startTime=0.0)
+    check(ctl.get("coil_command_a") == at_init,
+          "controller: after fmi3Reset the command in Initialization Mode is a fresh instance's")
+    ctl.fmu.exitInitializationMode()
+    again = commands(ctl, period, inputs)
+    ctl.close()
+    check(again == expected, "controller: after fmi3Reset it commands what a fresh instance does on the same inputs")
+
+
+def unsupported_child(path):
+    """Child process: call each unsupported function once; print the status and log."""
+    log = []
+    f = Fmu(Path(path), log=log)
+    u = f.fmu
+    vr = (ctypes.c_uint32 * 1)(0)
+    x = (ctypes.c_double * 1)(0.0)
+    state = ctypes.c_void_p()
+    size = ctypes.c_size_t()
+    q = (ctypes.c_int * 1)(0)
+    calls = {
+        "fmi3GetFMUState": lambda: u.fmi3GetFMUState(u.component, ctypes.byref(state)),
+        "fmi3SetFMUState": lambda: u.fmi3SetFMUState(u.component, state),
+        "fmi3SerializedFMUStateSize": lambda: u.fmi3SerializedFMUStateSize(u.component, state, ctypes.byref(size)),
+        "fmi3GetDirectionalDerivative": lambda: u.fmi3GetDirectionalDerivative(
+            u.component, vr, 1, vr, 1, x, 1, x, 1),
+        "fmi3GetAdjointDerivative": lambda: u.fmi3GetAdjointDerivative(u.component, vr, 1, vr, 1, x, 1, x, 1),
+        "fmi3EvaluateDiscreteStates": lambda: u.fmi3EvaluateDiscreteStates(u.component),
+        "fmi3GetIntervalDecimal": lambda: u.fmi3GetIntervalDecimal(u.component, vr, 1, x, q),
+        "fmi3GetShiftDecimal": lambda: u.fmi3GetShiftDecimal(u.component, vr, 1, x),
+        "fmi3SetIntervalDecimal": lambda: u.fmi3SetIntervalDecimal(u.component, vr, 1, x),
+    }
+    for name, call in calls.items():
+        n = len(log)
+        status = fails(call)
+        said = any(name in m for _, m in log[n:])
+        print(json.dumps({"call": name, "status": status, "logged": said}), flush=True)
+    f.close()
+
+
+def contract_check(sim_dir):
+    for fmu in ["damper.fmu", "controller.fmu"]:
+        path = sim_dir / fmu
+        child = subprocess.run([sys.executable, __file__, "--unsupported", str(path)],
+                               capture_output=True, text=True)
+        check(child.returncode == 0,
+              f"{fmu}: the unsupported calls leave the process alive (exit {child.returncode}; "
+              f"{child.stderr.strip()[-300:]})")
+        results = [json.loads(l) for l in child.stdout.splitlines() if l.startswith("{")]
+        check(len(results) == 9, f"{fmu}: all 9 unsupported calls returned ({len(results)})")
+        for r in results:
+            check(r["status"] == ERROR and r["logged"],
+                  f"{fmu}: {r['call']} returns fmi3Error ({r['status']}) with a log message naming it ({r['logged']})")
+
+    # Setting an output or a calculated parameter is refused; a doStep with a
+    # bad step or from another time than the instance's is refused.
+    for fmu, names in [("damper.fmu", ["force_n", "coil_tau_s"]),
+                       ("controller.fmu", ["coil_command_a", "control_period_s"])]:
+        log = []
+        f = Fmu(sim_dir / fmu, log=log)
+        for name in names:
+            before = f.get(name)
+            n = len(log)
+            status = fails(lambda: f.fmu.setFloat64([f.vr[name]], [before + 1.0]))
+            check(status == ERROR and len(log) > n,
+                  f"{fmu}: setting {name} returns fmi3Error ({status}) with a log message")
+            check(f.get(name) == before, f"{fmu}: {name} keeps its value after the refused set")
+        h = float(f.md.defaultExperiment.stepSize)
+        for what, t, step in [("a negative step", 0.0, -h), ("a NaN step", 0.0, float("nan")),
+                              ("a zero step", 0.0, 0.0), ("a step from a later time", 5 * h, h)]:
+            n = len(log)
+            status = fails(lambda: f.fmu.doStep(t, step))
+            check(status == ERROR and len(log) > n, f"{fmu}: doStep with {what} returns fmi3Error ({status})")
+        f.fmu.doStep(0.0, h)
+        status = fails(lambda: f.fmu.doStep(0.0, h))
+        check(status == ERROR, f"{fmu}: doStep going back in time returns fmi3Error ({status})")
+        status = fails(lambda: f.fmu.doStep(h, h))
+        check(status == 0, f"{fmu}: the next step in time still runs ({status})")
+
+        # Dependencies: the count the FMU gives equals the XML's list.
+        for out in f.md.outputs:
+            n = ctypes.c_size_t(99)
+            f.fmu.fmi3GetNumberOfVariableDependencies(f.fmu.component, out.variable.valueReference,
+                                                      ctypes.byref(n))
+            declared = out.dependencies
+            check(declared is not None and n.value == len(declared),
+                  f"{fmu}: fmi3GetNumberOfVariableDependencies({out.variable.name}) = {n.value}, "
+                  f"the XML lists {None if declared is None else len(declared)}")
+        f.close()
+    # By hand: the damper's force is a function of displacement, velocity and current.
+    md = fmpy.read_model_description(str(sim_dir / "damper.fmu"))
+    force = next(o for o in md.outputs if o.variable.name == "force_n")
+    check(sorted(v.name for v in force.dependencies or []) == ["current_a", "displacement_m", "velocity_m_s"],
+          "damper.fmu: force_n depends on displacement_m, velocity_m_s and current_a in the XML")
+
+
 def main():
     root = Path(sys.argv[1])
     validate(root / "every-term" / "damper.fmu")
@@ -169,9 +325,14 @@ def main():
     trace_check(root / "every-term" / "damper.fmu", root / "trace.csv", me=False)
     trace_check(root / "every-term" / "damper.fmu", root / "trace.csv", me=True)
     closed_loop(root / "sim", json.load(open(root / "sim.json")))
+    reset_check(root / "sim" / "controller.fmu")
+    contract_check(root / "sim")
     print(f"{len(failures)} failed" if failures else "all FMPy checks passed")
     return 1 if failures else 0
 
 
 if __name__ == "__main__":
+    if len(sys.argv) == 3 and sys.argv[1] == "--unsupported":
+        unsupported_child(sys.argv[2])
+        sys.exit(0)
     sys.exit(main())

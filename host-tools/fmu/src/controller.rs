@@ -30,7 +30,7 @@ pub struct Controller {
     /// Force the law asked for at the last tick (N); 0 when rebounding or fail-safe
     #[variable(causality = Output, variability = Discrete, initial = Calculated)]
     pub target_force_n: f64,
-    /// Status flags of the last tick (mre_core::flags, e.g. 1 = FAIL_SAFE; firmware/README.md)
+    /// Status flags of the last tick (mre_core::flags, firmware/README.md): 1 = X_CLAMPED (bit 0), 256 = FAIL_SAFE (bit 8)
     #[variable(causality = Output, variability = Discrete, initial = Calculated)]
     pub flags: u32,
     /// Control period of the board (s): one control tick per period
@@ -52,6 +52,16 @@ pub struct Controller {
 }
 
 impl Controller {
+    /// Back to a fresh instance's state: no core (reloaded from the page,
+    /// latches cleared), no ticks, the outputs of before the first tick.
+    fn restart(&mut self) {
+        self.core = None;
+        self.ticks = 0;
+        self.coil_command_a = 0.0;
+        self.target_force_n = 0.0;
+        self.flags = 0;
+    }
+
     fn core(&mut self, context: &dyn Context<Self>) -> Result<&mut control::Controller, Fmi3Error> {
         if self.core.is_none() {
             let loaded = crate::page::load(context.resource_path()).and_then(|(table, cfg)| {
@@ -88,12 +98,20 @@ impl Controller {
 impl UserModel for Controller {
     type LoggingCategory = DefaultLoggingCategory;
 
+    // Leaving initialisation starts the instance afresh: after fmi3Reset
+    // the core's latches and the tick count would otherwise carry over.
     fn configurate(&mut self, context: &dyn Context<Self>) -> Result<(), Fmi3Error> {
+        crate::export::take_reset(context);
+        self.restart();
         self.start_s = context.time();
         self.core(context).map(|_| ())
     }
 
     fn calculate_values(&mut self, context: &dyn Context<Self>) -> Result<Fmi3Res, Fmi3Error> {
+        // Outputs read in Initialization Mode after a reset are a fresh instance's.
+        if crate::export::take_reset(context) {
+            self.restart();
+        }
         self.core(context).map(|_| Fmi3Res::OK)
     }
 

@@ -53,6 +53,69 @@ fn unit_of(name: &str) -> Option<&'static (&'static str, &'static str, &'static 
     UNITS.iter().find(|(suffix, ..)| name.ends_with(suffix))
 }
 
+/// The inputs every output of `kind` depends on directly, by name: the
+/// damper's force is a function of all three; the controller's outputs hold
+/// between communication points (they change in `doStep` only), so at a
+/// communication point they depend on none.
+fn output_depends_on(kind: Kind) -> &'static [&'static str] {
+    match kind {
+        Kind::Damper => &["displacement_m", "velocity_m_s", "current_a"],
+        Kind::Controller => &[],
+    }
+}
+
+fn metadata(kind: Kind) -> fmi_export::fmi3::ModelMetadata {
+    match kind {
+        Kind::Damper => <crate::Damper as Model>::build_toplevel_metadata(),
+        Kind::Controller => <crate::Controller as Model>::build_toplevel_metadata(),
+    }
+}
+
+/// The model structure with each output's dependencies declared (fmi-export
+/// declares none, which FMI 3.0 reads as "depends on every known").
+fn model_structure(
+    kind: Kind,
+    variables: &fmi::schema::fmi3::ModelVariables,
+    mut structure: fmi::schema::fmi3::ModelStructure,
+) -> fmi::schema::fmi3::ModelStructure {
+    use fmi::schema::fmi3::{DependenciesKind, VariableDependency};
+    use fmi::schema::utils::AttrList;
+    let vrs: Vec<u32> = output_depends_on(kind)
+        .iter()
+        .filter_map(|name| {
+            variables
+                .iter_abstract()
+                .find(|v| v.name() == *name)
+                .map(|v| v.value_reference())
+        })
+        .collect();
+    for unknown in structure.unknowns.iter_mut() {
+        if let VariableDependency::Output(u) = unknown {
+            u.dependencies = Some(AttrList(vrs.clone()));
+            u.dependencies_kind = Some(AttrList(vrs.iter().map(|_| DependenciesKind::Dependent).collect()));
+        }
+    }
+    structure
+}
+
+/// Each output's value reference and those of the knowns it depends on, as
+/// the model description declares them.
+pub fn dependencies(kind: Kind) -> Vec<(u32, Vec<u32>)> {
+    use fmi::schema::fmi3::VariableDependency;
+    let meta = metadata(kind);
+    model_structure(kind, &meta.model_variables, meta.model_structure)
+        .unknowns
+        .iter()
+        .filter_map(|u| match u {
+            VariableDependency::Output(u) => Some((
+                u.value_reference,
+                u.dependencies.as_ref().map(|d| d.0.clone()).unwrap_or_default(),
+            )),
+            _ => None,
+        })
+        .collect()
+}
+
 /// What the XML says besides the variables.
 #[derive(Clone, Debug)]
 pub struct Describe {
@@ -66,10 +129,8 @@ pub struct Describe {
 
 /// The model description of `kind`, as XML.
 pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, String> {
-    let meta = match kind {
-        Kind::Damper => <crate::Damper as Model>::build_toplevel_metadata(),
-        Kind::Controller => <crate::Controller as Model>::build_toplevel_metadata(),
-    };
+    let meta = metadata(kind);
+    let structure = model_structure(kind, &meta.model_variables, meta.model_structure);
     let token = match kind {
         Kind::Damper => <crate::Damper as Model>::INSTANTIATION_TOKEN,
         Kind::Controller => <crate::Controller as Model>::INSTANTIATION_TOKEN,
@@ -159,7 +220,7 @@ pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, Stri
             ..Default::default()
         }),
         model_variables: variables,
-        model_structure: meta.model_structure,
+        model_structure: structure,
         ..Default::default()
     };
     fmi::schema::serialize(&md, false).map_err(|e| format!("cannot write the model description: {e}"))

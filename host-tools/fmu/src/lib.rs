@@ -13,6 +13,7 @@
 pub mod controller;
 pub mod damper;
 pub mod describe;
+pub mod export;
 pub mod page;
 
 pub use controller::Controller;

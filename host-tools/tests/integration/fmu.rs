@@ -171,3 +171,80 @@ fn a_missing_model_file_is_a_sentence() {
     assert!(err.contains("cannot read model file no-such-model.toml"), "{err}");
     assert!(!dir.path().join("d.fmu").exists());
 }
+
+/// The functions FMI 3.0 declares, read from the standard's own header
+/// (`fmi3Functions.h`, shipped with the patched fmi-sys): each line
+/// `#define fmi3X fmi3FullName(fmi3X)`.
+fn fmi3_functions() -> Vec<String> {
+    let header = repo().join("host-tools/fmu/fmi-sys/fmi-standard3/headers/fmi3Functions.h");
+    let text = std::fs::read_to_string(header).unwrap();
+    text.lines()
+        .filter_map(|l| {
+            let mut words = l.split_whitespace();
+            match (words.next(), words.next(), words.next()) {
+                (Some("#define"), Some(name), Some(full)) if full == format!("fmi3FullName({name})") => {
+                    Some(name.to_owned())
+                }
+                _ => None,
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn every_binary_exports_every_fmi3_function() {
+    use object::read::Object;
+    let required = fmi3_functions();
+    // Counted by hand in the header: 6 version/logging/instance + 5 mode + 14 getters + 14 setters
+    // + 2 dependency + 6 FMU state + 2 derivative + 2 configuration + 8 clock + 2 discrete state
+    // + 10 Model Exchange + 3 Co-Simulation + 1 Scheduled Execution.
+    assert_eq!(required.len(), 75, "{required:?}");
+    let dir = tempfile::tempdir().unwrap();
+    let model = dir.path().join("every-term.toml");
+    std::fs::write(&model, mre_host::table_file::table_to_toml(&every_term_table())).unwrap();
+    let damper = mre_fmu(&model, dir.path(), true);
+    // Where the MinGW-w64 linker and the Rust target are installed, mre fmu must pack Windows binaries.
+    let windows_toolchain = std::process::Command::new("x86_64-w64-mingw32-gcc")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success())
+        && std::process::Command::new("rustup")
+            .args(["target", "list", "--installed"])
+            .output()
+            .is_ok_and(|o| String::from_utf8_lossy(&o.stdout).contains("x86_64-pc-windows-gnu"));
+    for fmu in [damper.clone(), mre_host::fmu::controller_path(&damper)] {
+        let mut zip = zip::ZipArchive::new(std::fs::File::open(&fmu).unwrap()).unwrap();
+        let names: Vec<String> = zip.file_names().map(str::to_owned).collect();
+        let binaries: Vec<&String> = names.iter().filter(|n| n.starts_with("binaries/")).collect();
+        let platforms: Vec<&str> = binaries.iter().filter_map(|n| n.split('/').nth(1)).collect();
+        assert!(platforms.contains(&"x86_64-linux"), "{binaries:?}");
+        if windows_toolchain {
+            assert!(platforms.contains(&"x86_64-windows"), "{}: {binaries:?}", fmu.display());
+        } else {
+            eprintln!("note: no MinGW-w64 or no x86_64-pc-windows-gnu target: Linux binaries only checked");
+        }
+        for name in binaries {
+            let mut bytes = Vec::new();
+            zip.by_name(name).unwrap().read_to_end(&mut bytes).unwrap();
+            let file = object::File::parse(&*bytes).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let exported: Vec<String> = file
+                .exports()
+                .unwrap()
+                .filter_map(|e| e.ok()?.name().name().map(|n| String::from_utf8_lossy(n).into_owned()))
+                .collect();
+            let missing: Vec<&String> = required.iter().filter(|f| !exported.contains(f)).collect();
+            assert!(
+                missing.is_empty(),
+                "{}: {name} does not export {missing:?}",
+                fmu.display()
+            );
+            let expected_format = if name.ends_with(".dll") {
+                object::BinaryFormat::Pe
+            } else {
+                object::BinaryFormat::Elf
+            };
+            assert_eq!(file.format(), expected_format, "{name}");
+            assert_eq!(file.architecture(), object::Architecture::X86_64, "{name}");
+        }
+    }
+}
