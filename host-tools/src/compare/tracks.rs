@@ -95,15 +95,8 @@ pub fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m: f64, x| m.max(x.abs()))
 }
 
-/// RMSE (N) between measured and modelled force.
-pub fn rmse_n(measured: &[f64], model: &[f64]) -> f64 {
-    let n = measured.len().min(model.len());
-    if n == 0 {
-        return 0.0;
-    }
-    let sse: f64 = measured.iter().zip(model).map(|(a, b)| (a - b) * (a - b)).sum();
-    (sse / n as f64).sqrt()
-}
+/// RMSE (N) between measured and modelled force (the one error measure's numerator).
+pub use crate::error_measure::rmse_n;
 
 /// NRMSE of one recording ([`crate::error_measure`]).
 pub fn nrmse(track: &Track, model: &[f64]) -> f64 {
