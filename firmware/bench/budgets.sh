@@ -19,8 +19,9 @@ MODEL_MAX=150 CONTROL_MAX=400 FLASH_MAX=$((128 * 1024)) RAM_MAX=$((16 * 1024))
 COUNTS=$(bash firmware/bench/icount.sh)
 echo "$COUNTS"
 # Both hardware images are flashed, so both are held to the memory budgets.
-cargo fw -q
-cargo fw-nucleo -q
+. firmware/bench/image.sh
+FW=$(firmware_image fw fw)
+NUCLEO=$(firmware_image fw-nucleo fw-nucleo)
 
 echo "$COUNTS" | awk -F' [|] ' -v m="$MODEL_MAX" -v c="$CONTROL_MAX" '
   # Each row: table | step | max N | mean … | at window …
@@ -42,8 +43,7 @@ echo "$COUNTS" | awk -F' [|] ' -v m="$MODEL_MAX" -v c="$CONTROL_MAX" '
     }
     if (bad) { print "BUDGET EXCEEDED: instructions per step" > "/dev/stderr"; exit 1 }
   }'
-for image in "cargo fw:target/thumbv7em-none-eabihf/firmware/mre-firmware" \
-  "cargo fw-nucleo:target/nucleo/thumbv7em-none-eabihf/firmware/mre-firmware"; do
+for image in "cargo fw:$FW" "cargo fw-nucleo:$NUCLEO"; do
   llvm-size -A "${image#*:}" | awk -v name="${image%%:*}" -v f="$FLASH_MAX" -v r="$RAM_MAX" '
     $1 ~ /^\.(vector_table|text|rodata|data)$/ { flash += $2 }
     $1 ~ /^\.(data|bss|uninit)$/ { ram += $2 }

@@ -30,10 +30,9 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 ALL=0
 [ "${1:-}" = --all ] && ALL=1
-TARGET_DIR=target/pil-bench
-cargo build --profile firmware -q -p mre-firmware --bin mre-firmware --target thumbv7em-none-eabihf \
-  --no-default-features --features pil,bench --target-dir "$TARGET_DIR"
-ELF=$TARGET_DIR/thumbv7em-none-eabihf/firmware/mre-firmware
+. firmware/bench/image.sh
+ELF=$(firmware_image pil-bench build --profile firmware -p mre-firmware --bin mre-firmware \
+  --target thumbv7em-none-eabihf --no-default-features --features pil,bench)
 . firmware/bench/trace.sh
 # A "Stopped execution of TB chain before" line means the traced block did
 # not run (an interrupt came first); it is traced again when it does.

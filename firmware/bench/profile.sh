@@ -10,7 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 N=${1:?window index}
 MODE=${2:-functions}
-ELF=target/pil-bench/thumbv7em-none-eabihf/firmware/mre-firmware
+ELF=${CARGO_TARGET_DIR:-target}/images/pil-bench/mre-firmware
 PCS=$(mktemp)
 TRACE_CLEANUP=$PCS
 . firmware/bench/trace.sh

@@ -13,13 +13,13 @@
 # Usage: bash firmware/bench/reset_icount.sh   (from the repository root)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-cargo fw-pil -q
-cargo fw -q
+. firmware/bench/image.sh
+PIL=$(firmware_image fw-pil fw-pil)
+FW=$(firmware_image fw fw)
 NM=$(command -v llvm-nm || command -v arm-none-eabi-nm || command -v rust-nm)
 TRACE=$(mktemp)
 trap 'rm -f "$TRACE"' EXIT
-for image in pil:target/pil/thumbv7em-none-eabihf/firmware/mre-firmware \
-             b-l475e-iot01a:target/thumbv7em-none-eabihf/firmware/mre-firmware; do
+for image in "pil:$PIL" "b-l475e-iot01a:$FW"; do
   name=${image%%:*}
   ELF=${image#*:}
   pc=$(printf '%016x' "0x$("$NM" "$ELF" | awk '$3=="mre_coil_pin_safe" {print $1}')")

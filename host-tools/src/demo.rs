@@ -326,26 +326,19 @@ pub fn run_demo(options: &DemoOptions) -> Result<Vec<DemoStep>> {
 /// for, so every text output's staging path is rewritten to `out`.
 fn name_the_published_folder(staging: &Path, out: &Path) -> Result<()> {
     const TEXT: [&str; 8] = ["md", "html", "json", "toml", "csv", "rs", "txt", "svg"];
-    // The staging folder as steps may have spelled it: absolute, canonical, as given.
-    let mut spellings: Vec<(String, String)> = Vec::new();
-    let forms = |p: &Path| {
-        [
-            std::path::absolute(p).ok(),
-            std::fs::canonicalize(p).ok(),
-            Some(p.to_path_buf()),
-        ]
-    };
+    // The staging folder as steps may have spelled it (absolute, canonical, as
+    // given), each with the published folder in the same form.
     let out_abs = std::path::absolute(out).unwrap_or_else(|_| out.to_path_buf());
-    for (staged, published) in
-        forms(staging)
-            .into_iter()
-            .zip([Some(out_abs.clone()), Some(out_abs), Some(out.to_path_buf())])
-    {
-        if let (Some(staged), Some(published)) = (staged, published) {
-            let pair = (staged.display().to_string(), published.display().to_string());
-            if !spellings.contains(&pair) {
-                spellings.push(pair);
-            }
+    let mut spellings: Vec<(String, String)> = Vec::new();
+    for (staged, published) in [
+        (std::path::absolute(staging).ok(), &out_abs),
+        (std::fs::canonicalize(staging).ok(), &out_abs),
+        (Some(staging.to_path_buf()), &out.to_path_buf()),
+    ] {
+        let Some(staged) = staged else { continue };
+        let pair = (staged.display().to_string(), published.display().to_string());
+        if !spellings.contains(&pair) {
+            spellings.push(pair);
         }
     }
     let mut folders = vec![staging.to_path_buf()];

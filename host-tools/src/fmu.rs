@@ -14,9 +14,10 @@
 //!   model file it came from (for people; the library reads only the page).
 //!
 //! The libraries: `$MRE_FMU_LIB_DIR` if set; else, in a source checkout,
-//! `cargo build --release` of the two `cdylib` crates into `target/fmu`
-//! (its own target folder, so it never waits on a running `cargo test`);
-//! else the folder of the running `mre`.
+//! `cargo build --release` of the two `cdylib` crates into the workspace's
+//! target folder, sharing the host build's dependencies, their libraries
+//! copied to `<target>/fmu-libraries` (crate::cargo_build); else the folder of
+//! the running `mre`.
 use crate::atomic_write::write_atomic_with;
 use anyhow::{anyhow, bail, Context, Result};
 use mre_core::control::ControlConfig;
@@ -209,40 +210,34 @@ pub fn library_dir() -> Result<PathBuf> {
     )
 }
 
-/// `cargo build --release` of both FMU crates into `target/fmu`.
+/// The FMU crates' library names (`[lib] name` of host-tools/fmu/damper and …/controller).
+const LIBRARY_TARGETS: [&str; 2] = ["mre_damper", "mre_controller"];
+
+/// `cargo build --release` of both FMU crates into the workspace's target
+/// folder (crate::cargo_build), their libraries copied to `<target>/fmu-libraries`.
 fn build_libraries(root: &Path) -> Result<PathBuf> {
-    let target = root.join("target/fmu");
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let status = Command::new(cargo)
-        .current_dir(root)
-        .env("CARGO_TARGET_DIR", &target)
-        .args([
-            "build",
-            "--release",
-            "--quiet",
-            "-p",
-            "mre-fmu-damper",
-            "-p",
-            "mre-fmu-controller",
-        ])
-        .status()
-        .context("cannot run cargo to build the FMU libraries")?;
-    if !status.success() {
-        bail!(
-            "building the FMU libraries failed (cargo build --release -p mre-fmu-damper -p mre-fmu-controller: {status}); \
-             its output above names the cause"
-        );
-    }
-    let release = target.join("release");
-    if let Err(why) = build_windows_libraries(root, &target, &release) {
+    let packages = ["-p", "mre-fmu-damper", "-p", "mre-fmu-controller"];
+    let linux = crate::cargo_build::build_and_copy(
+        root,
+        &[&["build", "--release"][..], &packages[..]].concat(),
+        "the FMU libraries",
+        &LIBRARY_TARGETS,
+        |f| f.extension().is_some_and(|e| e == "so"),
+        // <target>/release/libmre_damper.so → <target>/fmu-libraries
+        |lib| lib.ancestors().nth(2).unwrap_or(root).join("fmu-libraries"),
+    )?;
+    let Some(folder) = linux.first().and_then(|lib| lib.parent()).map(Path::to_path_buf) else {
+        bail!("building the FMU libraries reported no library");
+    };
+    if let Err(why) = build_windows_libraries(root, &folder) {
         eprintln!("note: no Windows binaries in the FMUs: {why}");
     }
-    Ok(release)
+    Ok(folder)
 }
 
 /// Cross-builds both FMU crates for Windows x86_64 (MinGW-w64) and copies
-/// the DLLs into `release/x86_64-windows/`; `Err` says what is missing.
-fn build_windows_libraries(root: &Path, target: &Path, release: &Path) -> std::result::Result<(), String> {
+/// the DLLs into `folder/x86_64-windows/`; `Err` says what is missing.
+fn build_windows_libraries(root: &Path, folder: &Path) -> std::result::Result<(), String> {
     let found = |program: &str, arg: &str| {
         Command::new(program)
             .arg(arg)
@@ -265,32 +260,23 @@ fn build_windows_libraries(root: &Path, target: &Path, release: &Path) -> std::r
             "the Rust target {WINDOWS_TARGET} is not installed (rustup target add {WINDOWS_TARGET})"
         ));
     }
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let status = Command::new(cargo)
-        .current_dir(root)
-        .env("CARGO_TARGET_DIR", target)
-        .args([
+    crate::cargo_build::build_and_copy(
+        root,
+        &[
             "build",
             "--release",
-            "--quiet",
             "--target",
             WINDOWS_TARGET,
             "-p",
             "mre-fmu-damper",
             "-p",
             "mre-fmu-controller",
-        ])
-        .status()
-        .map_err(|e| format!("cannot run cargo: {e}"))?;
-    if !status.success() {
-        return Err(format!("cargo build --target {WINDOWS_TARGET} failed ({status})"));
-    }
-    let out = release.join(WINDOWS_PLATFORM);
-    std::fs::create_dir_all(&out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
-    for kind in [Kind::Damper, Kind::Controller] {
-        let name = windows_library_file(kind);
-        let from = target.join(WINDOWS_TARGET).join("release").join(&name);
-        std::fs::copy(&from, out.join(&name)).map_err(|e| format!("cannot copy {}: {e}", from.display()))?;
-    }
-    Ok(())
+        ],
+        &format!("the FMU libraries for {WINDOWS_TARGET}"),
+        &LIBRARY_TARGETS,
+        |f| f.extension().is_some_and(|e| e == "dll"),
+        |_| folder.join(WINDOWS_PLATFORM),
+    )
+    .map(|_| ())
+    .map_err(|e| format!("{e:#}"))
 }

@@ -1,6 +1,7 @@
 //! `mre` host tools: everything that needs `std`. Each command is a library
 //! function here; `main.rs` only parses arguments.
 pub mod atomic_write;
+pub mod cargo_build;
 pub mod compare;
 pub mod control_bench;
 pub mod dataset;

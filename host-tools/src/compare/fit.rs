@@ -14,7 +14,7 @@ use super::tracks::Track;
 use crate::dataset::Role;
 use crate::fit::gsa::{minimize_batch, GsaParams, GsaResultN};
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
-use nalgebra_lm::{storage::Owned, DMatrix, DVector, Dyn};
+use nalgebra::{storage::Owned, DMatrix, DVector, Dyn};
 use rayon::prelude::*;
 
 /// How much work a nonlinear fit gets.

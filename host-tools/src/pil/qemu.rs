@@ -71,40 +71,16 @@ pub fn workspace_root() -> PathBuf {
         .unwrap_or_default()
 }
 
-/// Where `cargo fw-pil` puts the image, or `$MRE_PIL_ELF`.
-pub fn default_elf() -> PathBuf {
-    match std::env::var_os("MRE_PIL_ELF") {
-        Some(p) => PathBuf::from(p),
-        None => workspace_root().join("target/pil/thumbv7em-none-eabihf/firmware/mre-firmware"),
-    }
-}
-
-/// Builds the PIL image (`cargo fw-pil`, its own target dir, so it never
-/// waits on the lock of a running `cargo test`). Returns its path.
+/// Builds the PIL image (`cargo fw-pil`). Returns its path
+/// (`target/images/fw-pil/mre-firmware`; crate::cargo_build).
 pub fn build_firmware() -> Result<PathBuf> {
-    build_variant("fw-pil", "target/pil")
+    crate::cargo_build::firmware_image(&workspace_root(), "fw-pil")
 }
 
 /// Builds the PIL image with the boards' RTT logger, its buffer full and
 /// block-if-full (`cargo fw-pil-rtt`). Returns its path.
 pub fn build_firmware_rtt() -> Result<PathBuf> {
-    build_variant("fw-pil-rtt", "target/pil-rtt")
-}
-
-/// Runs the cargo alias `alias` (.cargo/config.toml), whose target dir is `target_dir`.
-fn build_variant(alias: &str, target_dir: &str) -> Result<PathBuf> {
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let status = Command::new(cargo)
-        .current_dir(workspace_root())
-        .args([alias, "--quiet"])
-        .status()
-        .with_context(|| format!("running cargo {alias}"))?;
-    if !status.success() {
-        bail!("cargo {alias} failed: {status}");
-    }
-    Ok(workspace_root()
-        .join(target_dir)
-        .join("thumbv7em-none-eabihf/firmware/mre-firmware"))
+    crate::cargo_build::firmware_image(&workspace_root(), "fw-pil-rtt")
 }
 
 /// The address of the firmware's symbol `name` (a `#[no_mangle]` static),

@@ -4,15 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
-fn mre() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_mre"));
-    c.current_dir(repo());
-    c
-}
+use crate::mre_cli::{mre, repo};
 
 fn help(sub: &str) -> String {
     let out = mre().args([sub, "--help"]).output().unwrap();

@@ -1,13 +1,7 @@
 //! What a user of the `mre` binary sees: the HTML page beside a report,
 //! no progress output when stderr is not a terminal, shell completions.
-use std::path::Path;
-use std::process::Command;
 
-fn mre() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_mre"));
-    c.current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join(".."));
-    c
-}
+use crate::mre_cli::mre;
 
 #[test]
 fn validate_writes_a_page_whose_numbers_are_the_json_ones() {

@@ -8,6 +8,7 @@ mod diagnose_support;
 mod fmu_support;
 #[path = "../support/mat_v5.rs"]
 mod mat_v5;
+mod mre_cli;
 
 mod atomic_outputs;
 mod branch_rule;

@@ -6,7 +6,7 @@
 //! passes, except under CI (`CI` set), where it fails. Issue 39.
 //!
 //! `MRE_REHOST_ELF` / `MRE_REHOST_NUCLEO_ELF` name prebuilt images (else
-//! they are built here: `cargo fw --target-dir target/rehost`, `cargo fw-nucleo`).
+//! they are built here: `cargo fw`, `cargo fw-nucleo`, copied to `target/images/`).
 use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
 use mre_core::flash_table::{store, RamPage};
 use mre_core::frame::{config_frames, encode_config, CommandFrame, CONFIG_MAX_WORDS, FRAME_LEN};
@@ -41,18 +41,9 @@ fn rehost_available() -> bool {
     false
 }
 
-fn build(args: &[&str], out: &str) -> PathBuf {
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let status = Command::new(cargo)
-        .current_dir(workspace_root())
-        .args(args)
-        .arg("--quiet")
-        .status()
-        .expect("running cargo");
-    assert!(status.success(), "cargo {args:?} failed");
-    workspace_root()
-        .join(out)
-        .join("thumbv7em-none-eabihf/firmware/mre-firmware")
+fn build(alias: &str) -> PathBuf {
+    mre_host::cargo_build::firmware_image(&workspace_root(), alias)
+        .unwrap_or_else(|e| panic!("cargo {alias}: {e:#}"))
 }
 
 /// The two board images, built once per test binary.
@@ -63,13 +54,13 @@ fn image(board: &str) -> PathBuf {
         "b-l475e-iot01a" => B_L475
             .get_or_init(|| match std::env::var_os("MRE_REHOST_ELF") {
                 Some(p) => p.into(),
-                None => build(&["fw", "--target-dir", "target/rehost"], "target/rehost"),
+                None => build("fw"),
             })
             .clone(),
         _ => NUCLEO
             .get_or_init(|| match std::env::var_os("MRE_REHOST_NUCLEO_ELF") {
                 Some(p) => p.into(),
-                None => build(&["fw-nucleo"], "target/nucleo"),
+                None => build("fw-nucleo"),
             })
             .clone(),
     }
