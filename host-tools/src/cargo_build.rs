@@ -79,7 +79,11 @@ pub fn build_and_copy(
         .filter(|f| keep(f))
         .collect();
     let Some(first) = files.first() else {
-        bail!("cargo {} reported no file of {}", args.join(" "), target_names.join(", "));
+        bail!(
+            "cargo {} reported no file of {}",
+            args.join(" "),
+            target_names.join(", ")
+        );
     };
     let dir = into(first);
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;

@@ -105,13 +105,7 @@ pub struct LeftOut {
 /// What the data set lacks for a comparison at all: fit recordings, and fit
 /// currents on both sides of every held-out one (its loops are interpolated).
 fn what_is_missing(tracks: &[tracks::Track], hold_out_a: &[f64]) -> Option<String> {
-    let mut fit_a: Vec<f64> = tracks
-        .iter()
-        .filter(|t| t.role == Role::Fit)
-        .map(|t| t.current_a)
-        .collect();
-    fit_a.sort_by(f64::total_cmp);
-    fit_a.dedup();
+    let fit_a = crate::dataset::distinct_currents_a(tracks.iter().filter(|t| t.role == Role::Fit).map(|t| t.current_a));
     let (Some(&lo), Some(&hi)) = (fit_a.first(), fit_a.last()) else {
         return Some("no recording is left to fit once the held-out currents are set aside".into());
     };

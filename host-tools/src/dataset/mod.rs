@@ -99,3 +99,12 @@ pub struct Dataset {
 
 // Writing data sets (`dataset.toml` + CSV files), atomically.
 pub mod write;
+
+/// The distinct coil currents among `currents_a`, ascending (two currents
+/// closer than a nanoampere are one: they are the same setting written twice).
+pub fn distinct_currents_a(currents_a: impl IntoIterator<Item = f64>) -> Vec<f64> {
+    let mut sorted: Vec<f64> = currents_a.into_iter().collect();
+    sorted.sort_by(f64::total_cmp);
+    sorted.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    sorted
+}

@@ -277,14 +277,6 @@ pub fn run_fit(
     run_fit_with_installation(dataset_dir, options, hold_out_a, &[], out)
 }
 
-/// The held-out currents as the model file records them: ascending, once each.
-fn sorted_currents(currents_a: &[f64]) -> Vec<f64> {
-    let mut sorted = currents_a.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    sorted.dedup();
-    sorted
-}
-
 /// [`run_fit`] with `--installation KEY=VALUE` options over what the data
 /// set's metadata says (`crate::installation`); the model file's
 /// `[installation]` is the result.
@@ -300,7 +292,7 @@ pub fn run_fit_with_installation(
     let stated = crate::installation::StatedInstallation::from_dataset(&ds).with_options(installation_options)?;
     let mut run = fit_dataset(&ds, options)?;
     run.model = run.model.with_installation(stated);
-    run.model.model.held_out_current_a = sorted_currents(hold_out_a);
+    run.model.model.held_out_current_a = crate::dataset::distinct_currents_a(hold_out_a.iter().copied());
     model_file::write(out, &run.model)?;
     Ok(run)
 }

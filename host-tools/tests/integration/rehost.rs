@@ -42,8 +42,7 @@ fn rehost_available() -> bool {
 }
 
 fn build(alias: &str) -> PathBuf {
-    mre_host::cargo_build::firmware_image(&workspace_root(), alias)
-        .unwrap_or_else(|e| panic!("cargo {alias}: {e:#}"))
+    mre_host::cargo_build::firmware_image(&workspace_root(), alias).unwrap_or_else(|e| panic!("cargo {alias}: {e:#}"))
 }
 
 /// The two board images, built once per test binary.
