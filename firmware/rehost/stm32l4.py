@@ -29,6 +29,16 @@ from unicorn.arm_const import *
 
 SYSCLK = 80_000_000
 SLICE = 200
+# SRAM1 (.data, .bss, .uninit) and SRAM2 (the stack alone, memory.x).
+SRAM1, SRAM1_SIZE = 0x20000000, 96 * 1024
+SRAM2, SRAM2_SIZE = 0x10000000, 32 * 1024
+# Reserved address space between the 1 MiB flash and SRAM2 (RM0351 memory
+# map): an access is a bus error (a BusFault, escalated to HardFault: no
+# configurable fault handler is enabled), not a test failure. A stack that
+# overflows SRAM2 runs into it.
+RESERVED_BELOW_SRAM2 = (0x08100000, SRAM2)
+# SRAM2 is painted with this byte at power-on: the stack's high-water mark.
+STACK_PAINT = 0xA5
 
 
 class Unmodelled(Exception):
@@ -657,6 +667,8 @@ class Chip:
         self.dw_words = {}
         self.sleeps = 0
         self.fault_log = []
+        self.bus_errors = []        # (cycle, address, pc): accesses to reserved space
+        self.stacking_faults = []   # (cycle, exception, sp): an exception frame that could not be pushed
         self.ecc_bad = set()        # flash offsets (8-byte aligned) with a double-ECC error
         self.csr_flags = csr_flags | 0x600
         self.coil_history = []      # (cycle, duty or None for pin low / 'pin-low')
@@ -674,7 +686,9 @@ class Chip:
         uc.mem_map(0x08000000, 0xFF000, UC_PROT_READ | UC_PROT_EXEC)
         uc.mem_write(0x08000000, bytes(self.flash_mem[:0xFF000]))
         uc.mmio_map(0x080FF000, 0x1000, self.table_read, None, self.table_write, None)
-        uc.mem_map(0x20000000, 96 * 1024, UC_PROT_ALL)
+        uc.mem_map(SRAM1, SRAM1_SIZE, UC_PROT_ALL)
+        uc.mem_map(SRAM2, SRAM2_SIZE, UC_PROT_ALL)
+        uc.mem_write(SRAM2, bytes([STACK_PAINT]) * SRAM2_SIZE)
         # System memory: VREFINT_CAL at 0x1FFF75AA (datasheet DS10969 §3.15.1)
         uc.mmio_map(0x1FFF7000, 0x1000, self.sysmem_read, None, self.bad_write, "system memory")
         # EXC_RETURN landing page (see `exception_return`).
@@ -725,6 +739,7 @@ class Chip:
         self.stop_reason = None
         self.pending_return = None
         self.cpu_fault = None
+        self.lockup = None          # the cycle the core locked up (a fault in HardFault or NMI)
         self.power_on()
 
     def power_on(self):
@@ -759,6 +774,11 @@ class Chip:
 
     # -- memory -------------------------------------------------------------------
     def unmapped(self, uc, access, address, size, value, user):
+        if RESERVED_BELOW_SRAM2[0] <= address < RESERVED_BELOW_SRAM2[1]:
+            # A bus error (precise here): HardFault at this instruction.
+            self.bus_errors.append((self.cycles, address, uc.reg_read(UC_ARM_REG_PC)))
+            self.stop_reason = "fault"
+            return False
         self.violation(f"unmapped access {access} at {address:#010x} (size {size}) pc {uc.reg_read(UC_ARM_REG_PC):#x}")
         return False
 
@@ -1092,7 +1112,17 @@ class Chip:
         if fp:
             s = [uc.reg_read(UC_ARM_REG_S0 + k) for k in range(16)]
             data += struct.pack("<16I", *s) + struct.pack("<II", uc.reg_read(UC_ARM_REG_FPSCR), 0)
-        uc.mem_write(aligned, data)
+        if self.in_ram(aligned, len(data)):
+            uc.mem_write(aligned, data)
+        else:
+            # The frame's push is a bus error (STKERR). Entering HardFault,
+            # the handler still runs with the pushes lost (Cortex-M3/M4 TRM
+            # "Hard Fault": "if a corrupted stack causes a fault, the fault
+            # handler still executes even though the stack pushes for the
+            # handler failed"); any other exception escalates to HardFault,
+            # whose frame fails the same way.
+            self.stacking_faults.append((self.cycles, exc, aligned))
+            exc = 3
         uc.reg_write(UC_ARM_REG_SP, aligned)
         exc_return = 0xFFFFFFF1 if self.active else 0xFFFFFFF9
         if fp:
@@ -1103,6 +1133,20 @@ class Chip:
         self.active.append((exc, None))
         self.pc = vector | 1
         self.log.append((self.cycles, "enter", exc))
+
+    @staticmethod
+    def in_ram(addr, n):
+        return any(base <= addr and addr + n <= base + size
+                   for base, size in ((SRAM1, SRAM1_SIZE), (SRAM2, SRAM2_SIZE)))
+
+    def stack_high_water(self):
+        """Bytes of SRAM2 (the stack) ever written since power-on: from the
+        lowest byte that lost its paint up to the top."""
+        ram = bytes(self.uc.mem_read(SRAM2, SRAM2_SIZE))
+        for k, b in enumerate(ram):
+            if b != STACK_PAINT:
+                return SRAM2_SIZE - k
+        return 0
 
     def exc_return_hook(self, uc, address, size, user):
         self.pending_return = address | 1
@@ -1157,12 +1201,26 @@ class Chip:
         uc = self.uc
         self.stop_reason = None
         start = self.cycles
+        if self.lockup is not None:
+            # Lockup (ARMv7-M ARM B1.5.15): the core executes nothing until
+            # a reset; the peripherals (PWM, watchdog) run on.
+            self.cycles += budget
+            for p in self.periph.values():
+                p.tick(budget)
+            if self.pending_reset is not None:
+                csr = self.pending_reset
+                self.pending_reset = None
+                self.csr_flags = csr & 0xFF000000
+                self.build_reset()
+            return
         try:
             uc.emu_start(self.pc, 0xFFFFFFFF, count=budget)
         except UcError as e:
             pc = uc.reg_read(UC_ARM_REG_PC)
             before = struct.unpack("<H", uc.mem_read(pc - 2, 2))[0] if pc >= 0x08000002 else 0
-            if before in (0xBF20, 0xBF30):
+            if self.stop_reason == "fault":
+                pass                            # a bus error: `unmapped` noted it
+            elif before in (0xBF20, 0xBF30):
                 # Unicorn halts on WFE/WFI (and reports the next instruction
                 # invalid): the core sleeps for the rest of the slice.
                 self.sleeps += 1
@@ -1183,7 +1241,13 @@ class Chip:
             self.exception_return(self.pending_return)
         if self.stop_reason == "fault":
             self.cpu_fault = None
-            self.take(3)
+            if any(e in (2, 3) for e, _ in self.active):
+                # A fault at HardFault's or NMI's priority cannot escalate:
+                # lockup (ARMv7-M ARM B1.5.15).
+                self.lockup = self.cycles
+                self.fault_log.append((self.cycles, "lockup", self.pc))
+            else:
+                self.take(3)
         if not (uc.reg_read(UC_ARM_REG_XPSR) & 0x0600FC00):
             exc = self.next_exception()
             if exc is not None:
@@ -1193,9 +1257,13 @@ class Chip:
         flash, ecc, csr = self.flash_mem, self.ecc_bad, self.csr_flags
         resets, violations, log, cycles = self.resets, self.violations, self.log, self.cycles
         history, shunt, vin = self.coil_history, self.shunt_a, self.vin
-        ram = bytes(self.uc.mem_read(0x20000000, 96 * 1024))
+        ram = bytes(self.uc.mem_read(SRAM1, SRAM1_SIZE))
+        ram2 = bytes(self.uc.mem_read(SRAM2, SRAM2_SIZE))
+        bus_errors, stacking_faults = self.bus_errors, self.stacking_faults
         self.build()
-        self.uc.mem_write(0x20000000, ram)
+        self.uc.mem_write(SRAM1, ram)
+        self.uc.mem_write(SRAM2, ram2)
+        self.bus_errors, self.stacking_faults = bus_errors, stacking_faults
         self.rcc.v[0x94] = (self.rcc.v[0x94] & 0x00FFFFFF) | csr
         self.flash_mem, self.ecc_bad = flash, ecc
         self.resets, self.violations, self.log, self.cycles = resets, violations, log, cycles

@@ -124,6 +124,31 @@ core::arch::global_asm!(
     ".size __pre_init, . - __pre_init",
 );
 
+// The HardFault vector of every image, ahead of the board's handler
+// (`mre_hard_fault`, each board's): MSP back to the top of the stack first.
+// The stack lies alone in SRAM2 with reserved address space below it
+// (`memory.x`, firmware/README.md "Stack guard"), so an overflow faults at
+// its first push past the bottom (a bus error, escalated to HardFault). The
+// exception entry's own stacking then fails too, and the core still enters
+// this handler (ARMv7-M: a stacking fault on HardFault entry does not lock
+// up, the handler runs with the stack pushes lost), but with SP below the
+// stack: a Rust prologue's first push there would fault at HardFault's
+// priority, which locks the core up. A reset MSP gives the handler a whole
+// stack; it never returns, so what the old stack held is not needed.
+// cortex-m-rt's `#[exception] HardFault` (its trampoline) is not used.
+core::arch::global_asm!(
+    ".section .HardFault.user,\"ax\",%progbits",
+    ".global HardFault",
+    ".type HardFault,%function",
+    ".thumb_func",
+    "HardFault:",
+    "ldr r0, =_stack_start",
+    "msr msp, r0",
+    "b mre_hard_fault",
+    ".ltorg",
+    ".size HardFault, . - HardFault",
+);
+
 /// Faults the control task had latched at the end of its last period: the
 /// status LED's blink code and the fault handlers' over-current check.
 pub static LATCHED_FAULTS: core::sync::atomic::AtomicU32 = core::sync::atomic::AtomicU32::new(0);

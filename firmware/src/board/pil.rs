@@ -481,8 +481,10 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
     halt()
 }
 
-#[cortex_m_rt::exception]
-unsafe fn HardFault(_frame: &cortex_m_rt::ExceptionFrame) -> ! {
+/// The HardFault handler, entered from `HardFault` (`board/mod.rs`) on a
+/// fresh stack.
+#[no_mangle]
+extern "C" fn mre_hard_fault() -> ! {
     super::coil_safe_from_a_fault(&mut PilCoil);
     halt()
 }

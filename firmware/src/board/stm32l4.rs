@@ -766,8 +766,10 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
     wait_for_the_watchdog()
 }
 
-#[cortex_m_rt::exception]
-unsafe fn HardFault(_frame: &cortex_m_rt::ExceptionFrame) -> ! {
+/// The HardFault handler, entered from `HardFault` (`board/mod.rs`) on a
+/// fresh stack: a stack overflow ends here too.
+#[no_mangle]
+extern "C" fn mre_hard_fault() -> ! {
     cortex_m::interrupt::disable();
     coil_safe_from_a_fault();
     wait_for_the_watchdog()

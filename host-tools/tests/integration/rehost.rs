@@ -155,6 +155,21 @@ fn panic_and_hardfault_mask_interrupts_hold_the_safe_state_and_reset_by_the_watc
     }
 }
 
+/// The stack guard (memory.x: the stack alone in SRAM2, reserved address
+/// space below it): a deliberate overflow (the control interrupt entered
+/// with 32 bytes of stack left) faults at the stack's bottom into HardFault,
+/// which holds the fail-safe with interrupts masked until the watchdog
+/// resets; without the guard the overflow runs into .bss unnoticed.
+#[test]
+fn a_stack_overflow_faults_at_the_stack_bottom_into_the_safe_state() {
+    if !rehost_available() {
+        return;
+    }
+    for board in BOARDS {
+        scenario(board, "stack-overflow", &[]);
+    }
+}
+
 #[test]
 fn a_hung_thread_task_ends_in_a_watchdog_reset_into_the_fail_safe() {
     if !rehost_available() {
