@@ -28,7 +28,7 @@ LSB = 1 / 4000
 OVER_CURRENT = 1 << 16
 CURRENT_SENSE = 1 << 17
 CSR = {
-    # RM0351 §6.4.29 RCC_CSR reset flags: LPWR 31, WWDG 30, IWDG 29, SFT 28,
+    # RM0351 §6.4.30 RCC_CSR reset flags: LPWR 31, WWDG 30, IWDG 29, SFT 28,
     # BOR 27, PIN 26. NRST pulses on every reset, so PINRSTF accompanies all;
     # a power-on sets BORRSTF too (and reads like a brown-out).
     "power-on": (1 << 27) | (1 << 26),
