@@ -497,7 +497,8 @@ impl ImpactLaw {
         // command gives `expected_n`, the difference is the model's error.
         if self.expected_n > 0.0 {
             let measured_n = self.weight_n - self.mass_per_period_kg_s * (v_m_s - self.last_v_m_s);
-            let error_n = self.force_error_n + self.cfg.observer_gain * (self.expected_n - measured_n - self.force_error_n);
+            let error_n =
+                self.force_error_n + self.cfg.observer_gain * (self.expected_n - measured_n - self.force_error_n);
             self.force_error_n = math::clamp(error_n, -FORCE_ERROR_LIMIT_N, FORCE_ERROR_LIMIT_N);
         }
         self.last_v_m_s = v_m_s;
@@ -562,7 +563,9 @@ impl ImpactLaw {
                 wanted_a
             }
             // Idle between impacts with a lagging coil: pre-energise.
-            Branch::Extension if self.coil_tau_s > 0.0 && x_mm <= CONTACT_MM => Self::idle_armed_a(&self.cfg, &self.arming),
+            Branch::Extension if self.coil_tau_s > 0.0 && x_mm <= CONTACT_MM => {
+                Self::idle_armed_a(&self.cfg, &self.arming)
+            }
             Branch::Extension => {
                 flags |= Flags::REBOUND;
                 match self.cfg.rebound {
