@@ -181,6 +181,16 @@ impl ControlConfig {
     }
 }
 
+impl crate::installation::InstallationTarget for ControlConfig {
+    fn law_mut(&mut self) -> &mut LawConfig {
+        &mut self.law
+    }
+
+    fn set_v_sensor_full_scale_m_s(&mut self, full_scale_m_s: f32) {
+        self.v_sensor_full_scale_m_s = full_scale_m_s;
+    }
+}
+
 /// Counters for the periodic defmt statistics. Cycle figures are fed by the
 /// board ([`Controller::record_step_cycles`]); they stay 0 where no cycle
 /// counter exists (QEMU).

@@ -15,30 +15,20 @@
 // Float arithmetic is not linted (IEEE: no panics).
 #![deny(clippy::arithmetic_side_effects)]
 
-pub mod arming;
 pub mod boot;
 pub mod calibration;
 pub mod control;
-pub mod estimate;
-pub mod flags;
 pub mod flash_table;
 pub mod frame;
 pub mod generated_table;
-pub mod installation;
-pub mod inverse;
-pub mod law;
 pub mod limits;
-pub mod math;
-pub mod model;
-pub mod order;
 pub mod overcurrent;
 pub mod pacing;
-pub mod saturation;
 pub mod status;
-pub mod table;
 pub mod upload;
 pub mod watchdog;
 
-pub use flags::Flags;
-pub use model::Branch;
-pub use table::{CurrentEntry, Quartic, Table, TableError};
+// The algorithm (issue 40): its modules under their old paths, so
+// `mre_core::table` and `crate::law` keep naming the same items.
+pub use mre_algorithm::{arming, estimate, flags, installation, inverse, law, math, model, order, saturation, table};
+pub use mre_algorithm::{Branch, CurrentEntry, Flags, Quartic, Table, TableError};
