@@ -1,11 +1,16 @@
-//! The MRE damper control core: pure `no_std` logic, f32, no heap, no panics.
+//! The MRE damper runtime (`mre_core`): one control period over I/O traits
+//! (`control`), fault latching, over-current and sense monitoring, boot
+//! decisions and the power-on self-test, watchdog check-ins, calibration,
+//! pacing and the status LED's codes; the board's hard limits. For now it
+//! also holds the PIL frames, the upload receiver and the table page codec
+//! (`frame`, `upload`, `flash_table`; the protocol crate of issue 40 is the
+//! next step).
 //!
-//! The firmware binary and the host tools (`mre`) both link this crate, so the
-//! host simulates exactly the arithmetic that runs on the board.
-//!
-//! Data flow of one control period:
-//! `estimate` (velocity from displacement) → `law` (target force for the impact)
-//! → `inverse` (current that gives that force, via `model` and `table`) → coil.
+//! May not: touch hardware or registers, allocate, panic, or hold `unsafe`
+//! code; a board implements the I/O traits. Depends on the algorithm
+//! (`mre_algorithm`, re-exported under its old paths: `mre_core::table`, ...)
+//! and on no board. The board image and the host tools link it, so the host
+//! runs the board's code.
 #![cfg_attr(not(test), no_std)]
 // Pure logic: unsafe code belongs to the board layer (firmware/src/board/).
 #![forbid(unsafe_code)]
@@ -20,6 +25,9 @@ pub mod calibration;
 pub mod control;
 pub mod flash_table;
 pub mod frame;
+// The table the image flies, written by `mre tables` beside the image
+// (firmware/src/generated_table.rs).
+#[path = "../../src/generated_table.rs"]
 pub mod generated_table;
 pub mod limits;
 pub mod overcurrent;
