@@ -30,8 +30,8 @@ mod fw {
     use embassy_sync::blocking_mutex::raw::CriticalSectionRawMutex;
     use embassy_sync::channel::Channel;
     use mre_core::control::{Controller, Stats, DEFAULT_RATE_HZ};
-    use mre_core::frame::LinkStats;
-    use mre_core::upload::TableSource;
+    use mre_protocol::frame::LinkStats;
+    use mre_protocol::upload::TableSource;
 
     // Log lines carry embassy-time's µs since boot.
     defmt::timestamp!("{=u64:us}", embassy_time::Instant::now().as_micros());
@@ -156,7 +156,7 @@ mod fw {
         // A rejected table is not fatal: the controller latches TABLE_FAULT
         // and commands the fail-safe current every period. An uploaded table
         // (flash page, `mre upload`) is preferred; an erased, torn or invalid
-        // page falls back to the built-in one (`mre_core::upload`).
+        // page falls back to the built-in one (`mre_protocol::upload`).
         let boot = board::boot_table(&mut board, &flown::IMAGE, RATE_HZ);
         match (&boot.source, &boot.table) {
             (TableSource::Uploaded, Ok(t)) => defmt::info!(

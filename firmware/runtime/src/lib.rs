@@ -1,10 +1,9 @@
 //! The MRE damper runtime (`mre_core`): one control period over I/O traits
 //! (`control`), fault latching, over-current and sense monitoring, boot
 //! decisions and the power-on self-test, watchdog check-ins, calibration,
-//! pacing and the status LED's codes; the board's hard limits. For now it
-//! also holds the PIL frames, the upload receiver and the table page codec
-//! (`frame`, `upload`, `flash_table`; the protocol crate of issue 40 is the
-//! next step).
+//! pacing and the status LED's codes; the board's hard limits. The frames,
+//! the upload receiver and the table page codec are the protocol crate's
+//! (`mre_protocol`), which depends on this one.
 //!
 //! May not: touch hardware or registers, allocate, panic, or hold `unsafe`
 //! code; a board implements the I/O traits. Depends on the algorithm
@@ -23,8 +22,6 @@
 pub mod boot;
 pub mod calibration;
 pub mod control;
-pub mod flash_table;
-pub mod frame;
 // The table the image flies, written by `mre tables` beside the image
 // (firmware/src/generated_table.rs).
 #[path = "../../src/generated_table.rs"]
@@ -33,7 +30,6 @@ pub mod limits;
 pub mod overcurrent;
 pub mod pacing;
 pub mod status;
-pub mod upload;
 pub mod watchdog;
 
 // The algorithm (issue 40): its modules under their old paths, so

@@ -40,8 +40,8 @@ use mre_core::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
 
 /// Whether the damper is at rest, for the table upload: written by the
 /// control task after each step, read on an upload's commit.
-pub static UPLOAD_GATE: mre_core::upload::SharedUploadGate = mre_core::upload::SharedUploadGate::new();
-use mre_core::frame::LinkStats;
+pub static UPLOAD_GATE: mre_protocol::upload::SharedUploadGate = mre_protocol::upload::SharedUploadGate::new();
+use mre_protocol::frame::LinkStats;
 use mre_core::law::Command;
 
 /// What the control task needs from a board's I/O besides the core's sensor
@@ -209,7 +209,7 @@ pub fn coil_pin_low() {
 }
 
 /// The PIL frame link's counters in a log line (nothing on hardware).
-pub struct LinkSummary(pub Option<mre_core::frame::LinkStats>);
+pub struct LinkSummary(pub Option<mre_protocol::frame::LinkStats>);
 impl defmt::Format for LinkSummary {
     fn format(&self, f: defmt::Formatter<'_>) {
         if let Some(s) = &self.0 {

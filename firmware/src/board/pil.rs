@@ -6,7 +6,7 @@
 //! clock: MSI 4 MHz after reset), and defmt goes out over semihosting.
 //! The control task and the core are the same code as on hardware; only
 //! the I/O below differs: each sample frame from the host is one control
-//! period, and each period answers with one command frame (`mre_core::frame`).
+//! period, and each period answers with one command frame (`mre_protocol::frame`).
 use core::cell::{Cell, RefCell};
 use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use core::task::Waker;
@@ -23,15 +23,15 @@ use embassy_time::Timer;
 use embassy_time_driver::Driver;
 use embassy_time_queue_utils::Queue;
 use mre_core::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
-use mre_core::flash_table::RamPage;
-use mre_core::frame::{
+use mre_protocol::flash_table::RamPage;
+use mre_protocol::frame::{
     CommandFrame, FrameError, Incoming, LinkStats, SampleFrame, SampleReceiver, END_OF_RUN_SEQ, FRAME_LEN,
     INJECT_HARDFAULT_SEQ, INJECT_PANIC_SEQ, PING_SEQ,
 };
 use mre_core::law::Command;
 use mre_core::overcurrent::Sense;
 use mre_core::table::TableImage;
-use mre_core::upload::{choose_boot_table, BootTable, UploadReceiver};
+use mre_protocol::upload::{choose_boot_table, BootTable, UploadReceiver};
 use mre_core::Flags;
 
 pub const NAME: &str = "PIL (QEMU b-l475e-iot01a)";
@@ -274,8 +274,8 @@ impl super::BoardIo for Io {
                         let Some(result) = self.upload.on_chunk(chunk, &mut self.page, at_rest) else {
                             continue;
                         };
-                        // The answer says why (mre_core::upload::CommitAnswer).
-                        let (stored, reply) = (result.is_ok(), mre_core::upload::answer(&result));
+                        // The answer says why (mre_protocol::upload::CommitAnswer).
+                        let (stored, reply) = (result.is_ok(), mre_protocol::upload::answer(&result));
                         let flown = match result {
                             Ok((table, cfg)) => match Controller::new(cfg, Ok(table)) {
                                 Ok(new_ctl) => {

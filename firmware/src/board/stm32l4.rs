@@ -630,7 +630,7 @@ impl super::BoardIo for Io {
     }
 
     /// No frame link on hardware.
-    fn link_stats(&self) -> Option<mre_core::frame::LinkStats> {
+    fn link_stats(&self) -> Option<mre_protocol::frame::LinkStats> {
         None
     }
 

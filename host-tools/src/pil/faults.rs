@@ -42,7 +42,7 @@ use crate::plant::closed_loop::setup_for;
 use crate::plant::stepper::{simulate, CurrentSource};
 use anyhow::{anyhow, bail, ensure, Context, Result};
 use mre_core::control::{ControlConfig, Controller};
-use mre_core::frame::{encode_config, CommandFrame, SampleFrame, CONFIG_MAX_WORDS, FRAME_LEN};
+use mre_protocol::frame::{encode_config, CommandFrame, SampleFrame, CONFIG_MAX_WORDS, FRAME_LEN};
 use mre_core::Flags;
 use rand::{Rng, SeedableRng};
 use serde::Serialize;

@@ -4,7 +4,7 @@
 use super::ControlBackend;
 use anyhow::{bail, Context, Result};
 use mre_core::control::ControlConfig;
-use mre_core::frame::{
+use mre_protocol::frame::{
     config_frames, encode_config, CommandFrame, SampleFrame, CONFIG_MAX_WORDS, END_OF_RUN_SEQ, FRAME_LEN, HELLO_SEQ,
     SYNC,
 };

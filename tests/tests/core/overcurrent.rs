@@ -2,7 +2,7 @@
 //! at boot, and the fault's path into the controller's fail-safe.
 use mre_core::calibration::{rest_offset, CalError, I_SENSE_REST};
 use mre_core::control::{ControlConfig, Controller};
-use mre_core::frame::{CommandFrame, SampleFrame};
+use mre_protocol::frame::{CommandFrame, SampleFrame};
 use mre_core::law::LawConfig;
 use mre_core::overcurrent::{
     OverCurrent, Sense, SenseMonitor, SenseVerdict, COIL_RATING_A, STALE_PERIODS, STUCK_DRIVEN_A, STUCK_PERIODS,
