@@ -22,8 +22,8 @@
 //! number older than the last accepted one, are rejected and counted; a
 //! repeat of the last sequence is reported as [`FrameError::Duplicate`] so
 //! the firmware can re-send its last answer (the host retries on timeout).
-use mre_core::flags::Flags;
 use crc::{Crc, CRC_32_ISO_HDLC};
+use mre_core::flags::Flags;
 
 pub const FRAME_LEN: usize = 24;
 pub const SYNC: [u8; 2] = [0xA5, 0x5A];

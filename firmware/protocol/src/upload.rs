@@ -17,15 +17,15 @@
 //!
 //! Boot then picks the table with [`choose_boot_table`]: a valid page first,
 //! else the built-in image.
-use mre_core::control::{ControlConfig, ControlConfigError, Controller};
 use crate::flash_table::{load, store, PageError, TablePage};
 use crate::frame::{
     CommandFrame, ConfigBlobError, ConfigChunk, ConfigCollector, Incoming, SampleReceiver, FRAME_LEN, PING_SEQ,
 };
+use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
+use mre_core::control::{ControlConfig, ControlConfigError, Controller};
 use mre_core::law::Command;
 use mre_core::table::{Table, TableError, TableImage};
 use mre_core::Flags;
-use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 
 /// Why an upload was not stored.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

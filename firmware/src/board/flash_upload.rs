@@ -12,7 +12,8 @@ use super::stm32l4::Board;
 /// as an offset into the flash. It lies in bank 2 and the image in bank 1
 /// (memory.x ends FLASH at the bank boundary): the L4's read-while-write lets
 /// the control loop keep running from bank 1 while the page is erased and written.
-const TABLE_PAGE_OFFSET: u32 = mre_protocol::flash_table::TABLE_PAGE_ADDRESS - mre_protocol::flash_table::FLASH_BASE_ADDRESS;
+const TABLE_PAGE_OFFSET: u32 =
+    mre_protocol::flash_table::TABLE_PAGE_ADDRESS - mre_protocol::flash_table::FLASH_BASE_ADDRESS;
 
 /// embassy-stm32's async flash driver: on the L4 its erase and write wait
 /// for the FLASH interrupt instead of holding a critical section (the

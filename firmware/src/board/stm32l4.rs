@@ -799,3 +799,60 @@ unsafe fn NonMaskableInt() {
     coil_safe_from_a_fault();
     wait_for_the_watchdog()
 }
+
+impl super::Board for Board {
+    const NAME: &'static str = NAME;
+    type Io = Io;
+    type Status = Status;
+
+    fn init(rate_hz: u32) -> (Self, Status) {
+        init(rate_hz)
+    }
+
+    fn core_clock_hz() -> u32 {
+        core_clock_hz()
+    }
+
+    #[inline(always)]
+    fn cycles() -> u32 {
+        cycles()
+    }
+
+    fn boot_table(
+        &mut self,
+        built_in: &mre_core::table::TableImage<'_>,
+        rate_hz: u32,
+    ) -> mre_protocol::upload::BootTable {
+        super::flash_upload::boot_table(self, built_in, rate_hz)
+    }
+
+    fn spawn_uplink(&mut self, spawner: &embassy_executor::Spawner) {
+        super::flash_upload::spawn_uplink(spawner, self)
+    }
+
+    fn self_test(&self, table_crc_holds: bool) -> mre_core::boot::SelfTest {
+        Board::self_test(self, table_crc_holds)
+    }
+
+    fn hold_fail_safe(&mut self) {
+        Board::hold_fail_safe(self)
+    }
+
+    fn start(&mut self) {
+        Board::start(self)
+    }
+
+    fn halt_fail_safe(self) -> ! {
+        halt_fail_safe(self)
+    }
+
+    #[inline(always)]
+    fn io(&mut self) -> &mut Io {
+        &mut self.io
+    }
+
+    #[inline(always)]
+    fn feed_watchdog(&mut self) {
+        self.watchdog.pet();
+    }
+}
