@@ -12,9 +12,9 @@ use crate::pil::link::PilLink;
 use crate::table_file::read_flash_table;
 use anyhow::{anyhow, bail, Context, Result};
 use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
-use mre_protocol::frame::{encode_config, CONFIG_MAX_WORDS};
 use mre_core::table::Table;
 use mre_core::Flags;
+use mre_protocol::frame::{encode_config, CONFIG_MAX_WORDS};
 use std::path::Path;
 use std::time::Duration;
 

@@ -9,8 +9,8 @@
 use super::link::PilLink;
 use super::qemu::Qemu;
 use super::tests::{firmware, qemu_or_skip};
-use mre_protocol::frame::{SampleFrame, INJECT_HARDFAULT_SEQ, INJECT_PANIC_SEQ};
 use mre_core::Flags;
+use mre_protocol::frame::{SampleFrame, INJECT_HARDFAULT_SEQ, INJECT_PANIC_SEQ};
 use std::time::Duration;
 
 /// The documented fail-safe (firmware/README.md): 2 A, the paper's stiffest

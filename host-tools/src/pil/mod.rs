@@ -21,10 +21,10 @@ mod tests;
 
 use anyhow::{bail, Result};
 use mre_core::control::{ControlConfig, Controller, DEFAULT_RATE_HZ};
-use mre_protocol::frame::{CommandFrame, SampleFrame};
 use mre_core::law::Command;
 use mre_core::table::Table;
 use mre_core::Flags;
+use mre_protocol::frame::{CommandFrame, SampleFrame};
 
 /// One control period: a plant sample in, the controller's answer out.
 pub trait ControlBackend {

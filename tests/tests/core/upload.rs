@@ -5,12 +5,12 @@
 //! (`host-tools/src/pil/tests.rs`, `upload_over_qemu_serial_*`); QEMU has no
 //! flash controller, so the page logic is tested here, behind `TablePage`.
 use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
-use mre_protocol::flash_table::{PageError, RamPage, TablePage};
-use mre_protocol::frame::{config_frames, encode_config, CommandFrame, ConfigBlobError, CONFIG_MAX_WORDS, FRAME_LEN};
 use mre_core::generated_table::GENERATED_TABLE;
 use mre_core::table::{Table, PAPER_TABLE4_ENTRIES};
-use mre_protocol::upload::{answer, choose_boot_table, PortEvent, TableSource, UploadError, UploadPort};
 use mre_core::Flags;
+use mre_protocol::flash_table::{PageError, RamPage, TablePage};
+use mre_protocol::frame::{config_frames, encode_config, CommandFrame, ConfigBlobError, CONFIG_MAX_WORDS, FRAME_LEN};
+use mre_protocol::upload::{answer, choose_boot_table, PortEvent, TableSource, UploadError, UploadPort};
 
 /// Not the built-in table: Table 4 with a doubled stroke.
 fn other_table() -> Table {
