@@ -6,7 +6,6 @@ use embassy_stm32::usart::BufferedUart;
 use mre_core::table::TableImage;
 use mre_protocol::upload::{choose_boot_table, BootTable};
 
-use super::stm32l4::Board;
 
 /// The flash page reserved for an uploaded table (`memory.x`'s `TABLE_PAGE`),
 /// as an offset into the flash. It lies in bank 2 and the image in bank 1
@@ -156,8 +155,8 @@ impl Uplink {
 
 /// The table boot flies: the flash page if it holds a valid upload, else
 /// the image's own (`mre_protocol::upload::choose_boot_table`).
-pub fn boot_table(board: &mut Board, built_in: &TableImage<'_>, rate_hz: u32) -> BootTable {
-    match board.uplink.as_mut() {
+pub fn boot_table(uplink: &mut Option<Uplink>, built_in: &TableImage<'_>, rate_hz: u32) -> BootTable {
+    match uplink.as_mut() {
         Some(up) => choose_boot_table(&mut up.page, built_in, rate_hz),
         // Only after `spawn_uplink`, which `main` calls later.
         None => choose_boot_table(&mut mre_protocol::flash_table::RamPage::erased(), built_in, rate_hz),
@@ -165,8 +164,8 @@ pub fn boot_table(board: &mut Board, built_in: &TableImage<'_>, rate_hz: u32) ->
 }
 
 /// Starts the upload receiver (thread mode, below the control task).
-pub fn spawn_uplink(spawner: &embassy_executor::Spawner, board: &mut Board) {
-    let Some(Uplink { uart: Some(uart), page }) = board.uplink.take() else {
+pub fn spawn_uplink(spawner: &embassy_executor::Spawner, uplink: &mut Option<Uplink>) {
+    let Some(Uplink { uart: Some(uart), page }) = uplink.take() else {
         return;
     };
     if cfg!(feature = "uploads-disabled") {

@@ -181,8 +181,8 @@ pub struct Io {
 pub struct Board {
     pub io: Io,
     pub watchdog: IndependentWatchdog<'static, IWDG>,
-    /// Taken by [`super::flash_upload::spawn_uplink`].
-    pub(super) uplink: Option<Uplink>,
+    /// Read by `boot_table`, taken by `spawn_uplink` (`flash_upload`).
+    uplink: Option<Uplink>,
     /// Power-on self-test results from `init` (`mre_core::boot::SelfTest`).
     sense_converts: bool,
     pwm_reads_back: bool,
@@ -823,11 +823,11 @@ impl super::Board for Board {
         built_in: &mre_core::table::TableImage<'_>,
         rate_hz: u32,
     ) -> mre_protocol::upload::BootTable {
-        super::flash_upload::boot_table(self, built_in, rate_hz)
+        super::flash_upload::boot_table(&mut self.uplink, built_in, rate_hz)
     }
 
     fn spawn_uplink(&mut self, spawner: &embassy_executor::Spawner) {
-        super::flash_upload::spawn_uplink(spawner, self)
+        super::flash_upload::spawn_uplink(spawner, &mut self.uplink)
     }
 
     fn self_test(&self, table_crc_holds: bool) -> mre_core::boot::SelfTest {
