@@ -6,7 +6,6 @@ use embassy_stm32::usart::BufferedUart;
 use mre_core::table::TableImage;
 use mre_protocol::upload::{choose_boot_table, BootTable};
 
-
 /// The flash page reserved for an uploaded table (`memory.x`'s `TABLE_PAGE`),
 /// as an offset into the flash. It lies in bank 2 and the image in bank 1
 /// (memory.x ends FLASH at the bank boundary): the L4's read-while-write lets
