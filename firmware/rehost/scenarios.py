@@ -17,7 +17,7 @@ import os
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from stm32l4 import Chip, SYSCLK  # noqa: E402
-from unicorn.arm_const import UC_ARM_REG_R0, UC_ARM_REG_PRIMASK  # noqa: E402
+from unicorn.arm_const import UC_ARM_REG_R0, UC_ARM_REG_PRIMASK, UC_ARM_REG_SP  # noqa: E402
 
 PERIOD = SYSCLK // 10_000          # one control period (10 kHz)
 MS = SYSCLK // 1000
@@ -28,7 +28,7 @@ LSB = 1 / 4000
 OVER_CURRENT = 1 << 16
 CURRENT_SENSE = 1 << 17
 CSR = {
-    # RM0351 §6.4.29 RCC_CSR reset flags: LPWR 31, WWDG 30, IWDG 29, SFT 28,
+    # RM0351 §6.4.30 RCC_CSR reset flags: LPWR 31, WWDG 30, IWDG 29, SFT 28,
     # BOR 27, PIN 26. NRST pulses on every reset, so PINRSTF accompanies all;
     # a power-on sets BORRSTF too (and reads like a brown-out).
     "power-on": (1 << 27) | (1 << 26),
@@ -240,6 +240,56 @@ def scenario_fault(args, kind, over_current_first=False):
     return f"coil {expected:.4f} with PRIMASK set, watchdog reset after {chip.resets[0][0] - start} cycles"
 
 
+def stack_bottom(chip):
+    """The stack's lowest address: `_stack_end` (memory.x), else, in an
+    image without the guard, the end of the statics (cortex-m-rt's default
+    stack ends there)."""
+    for name in ("_stack_end", "__euninit"):
+        if name in chip.elf.symbols:
+            return chip.elf.symbols[name][0]
+    raise KeyError("no _stack_end or __euninit symbol")
+
+
+def scenario_stack_overflow(args):
+    """A deliberate overflow: the control interrupt entered with 32 bytes of
+    stack left (SP moved to the stack's bottom + 32 at its first
+    instruction), so its own calls run past the bottom. With the guard
+    (memory.x: the stack alone in SRAM2, reserved space below) the first push
+    past the bottom is a bus error -> HardFault -> the coil at the fail-safe,
+    interrupts masked, a watchdog reset; without it the pushes land in
+    .bss/.data and nothing notices."""
+    chip = boot(args)
+    run_periods(chip, 20)
+    used = chip.stack_high_water()
+    run_periods(chip, 1)                    # now at the control interrupt's first instruction
+    bottom = stack_bottom(chip)
+    chip.uc.reg_write(UC_ARM_REG_SP, bottom + 32)
+    start = chip.cycles
+    chip.run(MS // 2, until=lambda: bool(chip.bus_errors))
+    check(chip.bus_errors, f"stack overflow: no fault within 0.5 ms: the stack ran below {bottom:#010x} "
+                           f"into {'.bss/.data' if bottom >= 0x20000000 else 'memory'} unnoticed")
+    _t, addr, _pc = chip.bus_errors[0]
+    check(bottom - 64 <= addr < bottom, f"stack overflow: bus error at {addr:#010x}, not at the stack's "
+                                        f"bottom {bottom:#010x}")
+    chip.run(MS // 2)
+    check([e for e in chip.log if e[0] >= start and e[1] == "enter" and e[2] == 3], "stack overflow: no HardFault")
+    check(chip.uc.reg_read(UC_ARM_REG_PRIMASK) & 1, "stack overflow: interrupts not masked")
+    check(near(duty_now(chip), DUTY_2A), f"stack overflow: coil at {chip.coil_state()}, expected {DUTY_2A}")
+    n = periods(chip)
+    chip.run(10 * MS, until=lambda: bool(chip.resets))
+    check(periods(chip) == n, "stack overflow: the control interrupt ran after the fault")
+    check(chip.resets and chip.resets[0][1] == "IWDG", f"stack overflow: no watchdog reset: {chip.resets}")
+    t_reset = chip.resets[0][0]
+    check(t_reset - start <= 6 * MS, f"stack overflow: the watchdog reset {t_reset - start} cycles later")
+    chip.run(5 * MS)
+    after = after_pre_init([(t, s) for t, s in chip.coil_history if t >= t_reset])
+    drives = [s for _t, s in after if isinstance(s, float) and s > 0]
+    check(drives and near(drives[0], DUTY_1A), f"stack overflow: after the watchdog reset the coil went {after}")
+    return (f"bus error at {addr:#010x} (stack bottom {bottom:#010x}), HardFault, coil {DUTY_2A:.4f} with "
+            f"PRIMASK set, watchdog reset after {t_reset - start} cycles; stack high-water mark before it "
+            f"{used} bytes")
+
+
 def scenario_hung_task(args):
     chip = boot(args)
     run_periods(chip, 20)
@@ -284,6 +334,8 @@ def main():
         detail = scenario_fault(args, "panic")
     elif s == "hardfault-after-over-current":
         detail = scenario_fault(args, "hardfault", over_current_first=True)
+    elif s == "stack-overflow":
+        detail = scenario_stack_overflow(args)
     elif s == "hung-task":
         detail = scenario_hung_task(args)
     else:

@@ -1,8 +1,7 @@
 """The real board image (`cargo fw`, `cargo fw-nucleo`) on a Cortex-M4 in the
 Unicorn engine, with STM32L4 peripheral models written from the reference
-manual RM0351 (Rev 9). Each model cites the section it encodes (section numbers
-as remembered from RM0351 Rev 9's layout, not checked against the document here;
-offsets and bits as stm32-metapac 21 and embassy-stm32 0.6.0 use them). Every read or
+manual RM0351 (Rev 9). Each model cites the section it encodes; offsets and bits
+are as stm32-metapac 21 and embassy-stm32 0.6.0 use them. Every read or
 write the firmware makes to an address no model claims stops the run and fails
 the test (`Unmodelled`). What is a model and what is real: the CPU (Unicorn's
 QEMU-derived Thumb-2/FPU core) runs the real image, bit for bit what `cargo fw`
@@ -14,6 +13,23 @@ Why the `unicorn` Python package: a pip wheel with the engine prebuilt (no
 cmake or C toolchain step on CI), and the peripheral models are plain Python
 callbacks on MMIO regions; the `unicorn-engine` crate builds the C engine with
 cmake at `cargo build` time.
+
+Section numbers: RM0351 itself could not be opened here. The chapter numbers
+are corroborated by independent citations found in public code (search, not
+the manual): §2.2.2 memory map, §3.3.7 flash programming, §3.3.3 read access
+latency (so ECC is §3.3.2), §3.7 FLASH registers, §6.4.16/§6.4.17
+RCC_AHB1ENR/AHB2ENR, §13 NVIC, §15 CRC, §18 ADC (§18.4.32 in the functional
+description), §31 TIM2-5 (§31.4.6 EGR, §31.4.8 CCMR1 output mode, §31.4.11
+CCER), §36 IWDG (§36.4 registers), §40 USART (§40.5.4, §40.8 registers), §48
+DBG. Corrected from the first version, which cited from memory: IWDG §32 ->
+§36, ECC §3.3.3 -> §3.3.2, RCC_CSR §6.4.29 -> §6.4.30, FLASH_KEYR §3.7.2 ->
+§3.7.3, FLASH_ECCR §3.7.4 -> §3.7.7, ADC SQR1/JSQR/JDR1 §18.7.9/12/16 ->
+§18.7.11/16/18, PWR_SR2 §5.4.7 -> §5.4.6, USART ISR/ICR/RDR/TDR §40.8.10-13
+-> §40.8.8-11, CC1E §31.4.9 -> §31.4.11. Register subsections (§x.y.N) are
+numbered by RM0351's convention of one subsection per register in offset
+order, anchored on the corroborated ones; they and the functional-description
+subsections (§3.3.5, §5.4.1, §6.1.2, §6.4.1/3, §8.3.1, §8.4.x, §18.4.6-21,
+§18.7.x, §31.3.x, §36.3.x, §40.5.5) are unverified against the manual.
 
 Timing model: one instruction is one cycle of the 80 MHz core clock. The run
 advances in slices of at most `SLICE` instructions; timers, ADC conversions
@@ -29,6 +45,16 @@ from unicorn.arm_const import *
 
 SYSCLK = 80_000_000
 SLICE = 200
+# SRAM1 (.data, .bss, .uninit) and SRAM2 (the stack alone, memory.x).
+SRAM1, SRAM1_SIZE = 0x20000000, 96 * 1024
+SRAM2, SRAM2_SIZE = 0x10000000, 32 * 1024
+# Reserved address space between the 1 MiB flash and SRAM2 (RM0351 memory
+# map): an access is a bus error (a BusFault, escalated to HardFault: no
+# configurable fault handler is enabled), not a test failure. A stack that
+# overflows SRAM2 runs into it.
+RESERVED_BELOW_SRAM2 = (0x08100000, SRAM2)
+# SRAM2 is painted with this byte at power-on: the stack's high-water mark.
+STACK_PAINT = 0xA5
 
 
 class Unmodelled(Exception):
@@ -95,7 +121,7 @@ class Regs:
 class Rcc(Regs):
     """RM0351 §6.4 RCC registers. Ready flags follow their enables at once:
     CR (§6.4.1) HSIRDY = HSION, MSIRDY = MSION, PLLRDY = PLLON; CFGR (§6.4.3)
-    SWS = SW; CSR (§6.4.29) LSIRDY = LSION, RMVF clears the reset flags
+    SWS = SW; CSR (§6.4.30) LSIRDY = LSION, RMVF clears the reset flags
     (bits 24..31), which persist across every reset but power-on."""
     name = "RCC"
     regs = {0x00: ("CR", 0x63), 0x04: ("ICSCR", 0x10000000), 0x08: ("CFGR", 0), 0x0C: ("PLLCFGR", 0x1000),
@@ -132,7 +158,7 @@ class Rcc(Regs):
 
 
 class Pwr(Regs):
-    """RM0351 §5.4 PWR: CR1 VOS (§5.4.1); SR2 (§5.4.7) VOSF and REGLPF read 0
+    """RM0351 §5.4 PWR: CR1 VOS (§5.4.1); SR2 (§5.4.6) VOSF and REGLPF read 0
     (the regulator is always settled in this model)."""
     name = "PWR"
     regs = {0x00: ("CR1", 0x200), 0x04: ("CR2", 0), 0x08: ("CR3", 0x8000), 0x0C: ("CR4", 0), 0x10: ("SR1", 0),
@@ -141,15 +167,15 @@ class Pwr(Regs):
 
 class Flash(Regs):
     """RM0351 §3.7 FLASH registers, §3.3.5-3.3.7 unlock, erase, program.
-    KEYR (§3.7.2): 0x45670123 then 0xCDEF89AB clears LOCK (CR bit 31); a wrong
+    KEYR (§3.7.3): 0x45670123 then 0xCDEF89AB clears LOCK (CR bit 31); a wrong
     key locks until reset. CR (§3.7.6): PER, PNB[10:3], BKER (bit 11), STRT
     (bit 16) erases a page; PG (bit 0) with a 64-bit double word written to
     flash programs it (bits can only be cleared). SR (§3.7.5): EOP (bit 0),
     errors OPERR 1, PROGERR 3, WRPERR 4, PGAERR 5, SIZERR 6, PGSERR 7, MISERR 8,
     FASTERR 9, RDERR 14, OPTVERR 15, write 1 to clear; BSY 16. EOPIE (CR bit
-    24) and ERRIE (bit 25) raise the FLASH interrupt (IRQ 4). ECCR (§3.7.4):
+    24) and ERRIE (bit 25) raise the FLASH interrupt (IRQ 4). ECCR (§3.7.7):
     ECCD bit 31 (write 1 to clear), BK_ECC bit 19, ADDR_ECC 18:0; a double ECC
-    error on a read raises NMI (§3.3.3)."""
+    error on a read raises NMI (§3.3.2)."""
     name = "FLASH"
     regs = {0x00: ("ACR", 0x600), 0x04: ("PDKEYR", 0), 0x08: ("KEYR", 0), 0x0C: ("OPTKEYR", 0),
             0x10: ("SR", 0), 0x14: ("CR", 0xC0000000), 0x18: ("ECCR", 0), 0x20: ("OPTR", 0xFFEFF8AA)}
@@ -363,10 +389,10 @@ class Adc(Regs):
     - §18.4.9 ADEN sets ADRDY (ISR bit 0) after t_STAB; ADDIS clears ADEN.
     - §18.7.3 JADSTART: "software is allowed to set JADSTART only when ADEN =
       1 and ADDIS = 0": with ADEN = 0 the write is ignored. With JADSTART set
-      and JEXTEN != 0, each trigger JEXTSEL (JSQR §18.7.12; 4 = TIM3_CH4,
-      §18.4.19 table 'injected triggers') converts JSQ1: JDR1 (§18.7.16) and
+      and JEXTEN != 0, each trigger JEXTSEL (JSQR §18.7.16; 4 = TIM3_CH4,
+      §18.4.19 table 'injected triggers') converts JSQ1: JDR1 (§18.7.18) and
       JEOC (ISR bit 5) and JEOS (bit 6).
-    - ADSTART converts SQ1 (SQR1 §18.7.9) into DR; EOC (bit 2), EOS (bit 3).
+    - ADSTART converts SQ1 (SQR1 §18.7.11) into DR; EOC (bit 2), EOS (bit 3).
     ISR flags clear by writing 1 (§18.7.1)."""
     regs = {0x00: ("ISR", 0), 0x04: ("IER", 0), 0x08: ("CR", 0x20000000), 0x0C: ("CFGR", 0x80000000),
             0x10: ("CFGR2", 0), 0x14: ("SMPR1", 0), 0x18: ("SMPR2", 0), 0x20: ("TR1", 0x0FFF0000),
@@ -496,9 +522,9 @@ class AdcCommon(Regs):
 
 
 class Iwdg(Regs):
-    """RM0351 §32.7 IWDG: KR (§32.7.1) 0xCCCC starts (forces the LSI on),
+    """RM0351 §36.4 IWDG: KR (§36.4.1) 0xCCCC starts (forces the LSI on),
     0xAAAA reloads RLR into the counter, 0x5555 unlocks PR/RLR/WINR; PR
-    (§32.7.2) divider 4 << PR; RLR (§32.7.3, reset 0xFFF); SR (§32.7.4) PVU,
+    (§36.4.2) divider 4 << PR; RLR (§36.4.3, reset 0xFFF); SR (§36.4.4) PVU,
     RVU, WVU read 0 (updates take effect at once). The counter runs from the
     32 kHz LSI; reaching 0 resets the chip with IWDGRSTF (RCC_CSR bit 29)."""
     name = "IWDG"
@@ -554,8 +580,8 @@ class Iwdg(Regs):
 
 class Usart(Regs):
     """RM0351 §40.8 USART registers (§40.8.1 CR1 UE 0, RE 2, TE 3, RXNEIE 5,
-    TCIE 6, TXEIE 7; ISR §40.8.10 RXNE 5, TC 6, TXE 7, ORE 3; RDR §40.8.12,
-    TDR §40.8.13; ICR §40.8.11). Transmission is instant: TDR's byte lands in
+    TCIE 6, TXEIE 7; ISR §40.8.8 RXNE 5, TC 6, TXE 7, ORE 3; RDR §40.8.10,
+    TDR §40.8.11; ICR §40.8.9). Transmission is instant: TDR's byte lands in
     `tx`, TXE and TC stay set. `rx_push` delivers bytes one at a time (RXNE)."""
     regs = {0x00: ("CR1", 0), 0x04: ("CR2", 0), 0x08: ("CR3", 0), 0x0C: ("BRR", 0), 0x10: ("GTPR", 0),
             0x14: ("RTOR", 0), 0x18: ("RQR", 0), 0x1C: ("ISR", 0xC0), 0x20: ("ICR", 0), 0x24: ("RDR", 0),
@@ -579,7 +605,7 @@ class Usart(Regs):
 
     def feed(self):
         """One byte per frame time into RDR (RXNE; a byte not read before the
-        next arrives sets ORE, §40.5.5), then IDLE (ISR bit 4, §40.8.10)
+        next arrives sets ORE, §40.5.5), then IDLE (ISR bit 4, §40.8.8)
         one frame after the last byte."""
         isr = self.v[0x1C]
         if self.v[0x00] & 5 != 5:
@@ -657,6 +683,8 @@ class Chip:
         self.dw_words = {}
         self.sleeps = 0
         self.fault_log = []
+        self.bus_errors = []        # (cycle, address, pc): accesses to reserved space
+        self.stacking_faults = []   # (cycle, exception, sp): an exception frame that could not be pushed
         self.ecc_bad = set()        # flash offsets (8-byte aligned) with a double-ECC error
         self.csr_flags = csr_flags | 0x600
         self.coil_history = []      # (cycle, duty or None for pin low / 'pin-low')
@@ -674,7 +702,9 @@ class Chip:
         uc.mem_map(0x08000000, 0xFF000, UC_PROT_READ | UC_PROT_EXEC)
         uc.mem_write(0x08000000, bytes(self.flash_mem[:0xFF000]))
         uc.mmio_map(0x080FF000, 0x1000, self.table_read, None, self.table_write, None)
-        uc.mem_map(0x20000000, 96 * 1024, UC_PROT_ALL)
+        uc.mem_map(SRAM1, SRAM1_SIZE, UC_PROT_ALL)
+        uc.mem_map(SRAM2, SRAM2_SIZE, UC_PROT_ALL)
+        uc.mem_write(SRAM2, bytes([STACK_PAINT]) * SRAM2_SIZE)
         # System memory: VREFINT_CAL at 0x1FFF75AA (datasheet DS10969 §3.15.1)
         uc.mmio_map(0x1FFF7000, 0x1000, self.sysmem_read, None, self.bad_write, "system memory")
         # EXC_RETURN landing page (see `exception_return`).
@@ -725,6 +755,7 @@ class Chip:
         self.stop_reason = None
         self.pending_return = None
         self.cpu_fault = None
+        self.lockup = None          # the cycle the core locked up (a fault in HardFault or NMI)
         self.power_on()
 
     def power_on(self):
@@ -749,7 +780,7 @@ class Chip:
     def reset(self, cause):
         """A system reset (RM0351 §6.1.2): every peripheral to its reset
         state, SRAM1 kept (the runtime rewrites .data/.bss), the flash kept,
-        RCC_CSR's reset flags ORed (§6.4.29: an internal reset also pulses
+        RCC_CSR's reset flags ORed (§6.4.30: an internal reset also pulses
         NRST, so PINRSTF accompanies it)."""
         flag = {"IWDG": 1 << 29, "SFT": 1 << 28, "PIN": 0}[cause]
         self.resets.append((self.cycles, cause))
@@ -759,6 +790,11 @@ class Chip:
 
     # -- memory -------------------------------------------------------------------
     def unmapped(self, uc, access, address, size, value, user):
+        if RESERVED_BELOW_SRAM2[0] <= address < RESERVED_BELOW_SRAM2[1]:
+            # A bus error (precise here): HardFault at this instruction.
+            self.bus_errors.append((self.cycles, address, uc.reg_read(UC_ARM_REG_PC)))
+            self.stop_reason = "fault"
+            return False
         self.violation(f"unmapped access {access} at {address:#010x} (size {size}) pc {uc.reg_read(UC_ARM_REG_PC):#x}")
         return False
 
@@ -778,7 +814,7 @@ class Chip:
     def table_read(self, uc, off, size, user):
         o = 0xFF000 + off
         if (o & ~7) in self.ecc_bad:
-            # §3.3.3: double ECC error on read: ECCD, BK_ECC, ADDR_ECC, NMI.
+            # §3.3.2: double ECC error on read: ECCD, BK_ECC, ADDR_ECC, NMI.
             eccr = self.flash.v[0x18]
             if not eccr & (1 << 31):
                 bank_off = o - 0x80000
@@ -914,7 +950,7 @@ class Chip:
             af = (g.v[0x20] >> 16) & 0xF
             t = self.tim3
             if af != 2 or not t.v[0x00] & 1 or not t.v[0x20] & 1:
-                # OC1 disabled: the pin at its pull (§8.3.1, §31.4.9 CC1E).
+                # OC1 disabled: the pin at its pull (§8.3.1, §31.4.11 CC1E).
                 pull = (g.v[0x0C] >> 8) & 3
                 return {1: 1.0, 2: 0.0}.get(pull, "floating")
             arr = t.v[0x2C] & 0xFFFF
@@ -1092,7 +1128,17 @@ class Chip:
         if fp:
             s = [uc.reg_read(UC_ARM_REG_S0 + k) for k in range(16)]
             data += struct.pack("<16I", *s) + struct.pack("<II", uc.reg_read(UC_ARM_REG_FPSCR), 0)
-        uc.mem_write(aligned, data)
+        if self.in_ram(aligned, len(data)):
+            uc.mem_write(aligned, data)
+        else:
+            # The frame's push is a bus error (STKERR). Entering HardFault,
+            # the handler still runs with the pushes lost (Cortex-M3/M4 TRM
+            # "Hard Fault": "if a corrupted stack causes a fault, the fault
+            # handler still executes even though the stack pushes for the
+            # handler failed"); any other exception escalates to HardFault,
+            # whose frame fails the same way.
+            self.stacking_faults.append((self.cycles, exc, aligned))
+            exc = 3
         uc.reg_write(UC_ARM_REG_SP, aligned)
         exc_return = 0xFFFFFFF1 if self.active else 0xFFFFFFF9
         if fp:
@@ -1103,6 +1149,20 @@ class Chip:
         self.active.append((exc, None))
         self.pc = vector | 1
         self.log.append((self.cycles, "enter", exc))
+
+    @staticmethod
+    def in_ram(addr, n):
+        return any(base <= addr and addr + n <= base + size
+                   for base, size in ((SRAM1, SRAM1_SIZE), (SRAM2, SRAM2_SIZE)))
+
+    def stack_high_water(self):
+        """Bytes of SRAM2 (the stack) ever written since power-on: from the
+        lowest byte that lost its paint up to the top."""
+        ram = bytes(self.uc.mem_read(SRAM2, SRAM2_SIZE))
+        for k, b in enumerate(ram):
+            if b != STACK_PAINT:
+                return SRAM2_SIZE - k
+        return 0
 
     def exc_return_hook(self, uc, address, size, user):
         self.pending_return = address | 1
@@ -1157,12 +1217,26 @@ class Chip:
         uc = self.uc
         self.stop_reason = None
         start = self.cycles
+        if self.lockup is not None:
+            # Lockup (ARMv7-M ARM B1.5.15): the core executes nothing until
+            # a reset; the peripherals (PWM, watchdog) run on.
+            self.cycles += budget
+            for p in self.periph.values():
+                p.tick(budget)
+            if self.pending_reset is not None:
+                csr = self.pending_reset
+                self.pending_reset = None
+                self.csr_flags = csr & 0xFF000000
+                self.build_reset()
+            return
         try:
             uc.emu_start(self.pc, 0xFFFFFFFF, count=budget)
         except UcError as e:
             pc = uc.reg_read(UC_ARM_REG_PC)
             before = struct.unpack("<H", uc.mem_read(pc - 2, 2))[0] if pc >= 0x08000002 else 0
-            if before in (0xBF20, 0xBF30):
+            if self.stop_reason == "fault":
+                pass                            # a bus error: `unmapped` noted it
+            elif before in (0xBF20, 0xBF30):
                 # Unicorn halts on WFE/WFI (and reports the next instruction
                 # invalid): the core sleeps for the rest of the slice.
                 self.sleeps += 1
@@ -1183,7 +1257,13 @@ class Chip:
             self.exception_return(self.pending_return)
         if self.stop_reason == "fault":
             self.cpu_fault = None
-            self.take(3)
+            if any(e in (2, 3) for e, _ in self.active):
+                # A fault at HardFault's or NMI's priority cannot escalate:
+                # lockup (ARMv7-M ARM B1.5.15).
+                self.lockup = self.cycles
+                self.fault_log.append((self.cycles, "lockup", self.pc))
+            else:
+                self.take(3)
         if not (uc.reg_read(UC_ARM_REG_XPSR) & 0x0600FC00):
             exc = self.next_exception()
             if exc is not None:
@@ -1193,9 +1273,13 @@ class Chip:
         flash, ecc, csr = self.flash_mem, self.ecc_bad, self.csr_flags
         resets, violations, log, cycles = self.resets, self.violations, self.log, self.cycles
         history, shunt, vin = self.coil_history, self.shunt_a, self.vin
-        ram = bytes(self.uc.mem_read(0x20000000, 96 * 1024))
+        ram = bytes(self.uc.mem_read(SRAM1, SRAM1_SIZE))
+        ram2 = bytes(self.uc.mem_read(SRAM2, SRAM2_SIZE))
+        bus_errors, stacking_faults = self.bus_errors, self.stacking_faults
         self.build()
-        self.uc.mem_write(0x20000000, ram)
+        self.uc.mem_write(SRAM1, ram)
+        self.uc.mem_write(SRAM2, ram2)
+        self.bus_errors, self.stacking_faults = bus_errors, stacking_faults
         self.rcc.v[0x94] = (self.rcc.v[0x94] & 0x00FFFFFF) | csr
         self.flash_mem, self.ecc_bad = flash, ecc
         self.resets, self.violations, self.log, self.cycles = resets, violations, log, cycles

@@ -24,14 +24,14 @@ mod board;
 
 #[cfg(target_os = "none")]
 mod fw {
-    use crate::board::{self, BoardIo, StatusIo};
+    use crate::board::{self, Board, BoardIo, StatusIo};
     use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
     use embassy_executor::Spawner;
     use embassy_sync::blocking_mutex::raw::CriticalSectionRawMutex;
     use embassy_sync::channel::Channel;
     use mre_core::control::{Controller, Stats, DEFAULT_RATE_HZ};
-    use mre_core::frame::LinkStats;
-    use mre_core::upload::TableSource;
+    use mre_protocol::frame::LinkStats;
+    use mre_protocol::upload::TableSource;
 
     // Log lines carry embassy-time's µs since boot.
     defmt::timestamp!("{=u64:us}", embassy_time::Instant::now().as_micros());
@@ -146,18 +146,18 @@ mod fw {
     async fn main(spawner: Spawner) {
         // The coil pin is already low (`__pre_init`, board/mod.rs); `init`
         // commands the fail-safe as the reset cause decides.
-        let (mut board, status) = board::init(RATE_HZ);
+        let (mut board, status) = board::Selected::init(RATE_HZ);
         defmt::info!(
             "mre-firmware on {=str}, core clock {=u32} Hz",
-            board::NAME,
-            board::core_clock_hz()
+            board::Selected::NAME,
+            board::Selected::core_clock_hz()
         );
 
         // A rejected table is not fatal: the controller latches TABLE_FAULT
         // and commands the fail-safe current every period. An uploaded table
         // (flash page, `mre upload`) is preferred; an erased, torn or invalid
-        // page falls back to the built-in one (`mre_core::upload`).
-        let boot = board::boot_table(&mut board, &flown::IMAGE, RATE_HZ);
+        // page falls back to the built-in one (`mre_protocol::upload`).
+        let boot = board.boot_table(&flown::IMAGE, RATE_HZ);
         match (&boot.source, &boot.table) {
             (TableSource::Uploaded, Ok(t)) => defmt::info!(
                 "table uploaded (flash page) format v{=u16}: {=usize} currents, CRC {=u32:#010x} OK",
@@ -206,28 +206,28 @@ mod fw {
                 // The installed coil's fail-safe from here on (init, the
                 // halt, the fault handlers): never above its rating.
                 board::set_failsafe_current_a(cfg.law.failsafe_current_a);
-                board.hold_fail_safe();
+                Board::hold_fail_safe(&mut board);
                 cfg
             }
             Err(e) => {
                 // Only a build with a bad RATE_HZ gets here: hold the coil at
                 // the fail-safe duty and let the watchdog (never fed) reset.
                 defmt::error!("control config refused: {=str}", config_error_name(&e));
-                board::halt_fail_safe(board)
+                board.halt_fail_safe()
             }
         };
         let mut ctl = match Controller::new(cfg, table) {
             Ok(c) => c,
             Err(e) => {
                 defmt::error!("controller refused config: {=str}", config_error_name(&e));
-                board::halt_fail_safe(board)
+                board.halt_fail_safe()
             }
         };
         // Power-on self-test before arming: one clear report either way; a
         // failed check latches its fault so the controller never arms and
         // holds the fail-safe (the LED blinks the fault's code, every
         // command frame and stats line carries it).
-        let self_test = board.self_test(table_crc_holds);
+        let self_test = Board::self_test(&board, table_crc_holds);
         match self_test.first_failure() {
             None => defmt::info!("self-test passed: current sense converts, PWM duty reads back, table CRC holds"),
             Some(why) => {
@@ -259,7 +259,7 @@ mod fw {
         // Every supervised task starts on time.
         check_in(STATUS_TASK);
         check_in(LOG_TASK);
-        board::spawn_uplink(&spawner, &mut board);
+        board.spawn_uplink(&spawner);
         match status_task(status) {
             Ok(token) => spawner.spawn(token),
             Err(_) => defmt::error!("status task already running"),
@@ -420,12 +420,12 @@ mod fw {
     }
 
     #[embassy_executor::task]
-    async fn control_task(mut ctl: Controller, mut board: board::Board) {
+    async fn control_task(mut ctl: Controller, mut board: board::Selected) {
         let mut last = ctl.stats();
         let mut known_faults = ctl.latched();
-        board.start();
+        Board::start(&mut board);
         loop {
-            let missed = board.io.next_period(&mut ctl).await;
+            let missed = board.io().next_period(&mut ctl).await;
             if missed > 0 {
                 post(Event::Missed {
                     ticks: missed,
@@ -435,25 +435,25 @@ mod fw {
             // The shunt at mid on-time of the last PWM period, checked before
             // the step: an over-current already removes this period's drive,
             // a stale or stuck channel latches CURRENT_SENSE.
-            ctl.check_coil_current(board.io.coil_current());
+            ctl.check_coil_current(board.io().coil_current());
             // Latched faults published as soon as latched (not at the end
             // of the period): a fault handler that runs mid-period must see
             // an over-current latched this period and keep the drive off.
             LATCHED.store(ctl.latched().0, Ordering::Relaxed);
-            let t0 = board::cycles();
-            let cmd = ctl.step_io(&mut board.io);
-            ctl.record_step_cycles(board::cycles().wrapping_sub(t0));
+            let t0 = board::Selected::cycles();
+            let cmd = ctl.step_io(board.io());
+            ctl.record_step_cycles(board::Selected::cycles().wrapping_sub(t0));
             LATCHED.store(ctl.latched().0, Ordering::Relaxed);
             board::UPLOAD_GATE.observe(&ctl, &cmd);
-            let overran = board.io.finish_period(&cmd, &ctl);
-            if let Some(c) = board.io.take_deferred_calibration() {
+            let overran = board.io().finish_period(&cmd, &ctl);
+            if let Some(c) = board.io().take_deferred_calibration() {
                 post(Event::Calibrated(c));
             }
             ctl.end_period(overran);
             // Fed here only, and only while the thread-mode tasks check in:
             // a stalled control loop or a hung task must reset the chip.
             if thread_tasks_on_time() {
-                board.watchdog.pet();
+                board.feed_watchdog();
             }
             if overran {
                 post(Event::Overrun {
@@ -482,7 +482,7 @@ mod fw {
                 post(Event::Stats {
                     stats: s,
                     new_periods: s.periods.wrapping_sub(last.periods),
-                    link: board.io.link_stats(),
+                    link: board.io().link_stats(),
                 });
                 #[cfg(all(feature = "bench", feature = "hw"))]
                 crate::board::bench_model_step(ctl.table());

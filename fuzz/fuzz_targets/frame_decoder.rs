@@ -6,7 +6,7 @@
 //! ignored, so a frame may carry any bytes there.)
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use mre_core::frame::{CommandFrame, ConfigChunk, Incoming, SampleFrame, SampleReceiver, FRAME_LEN};
+use mre_protocol::frame::{CommandFrame, ConfigChunk, Incoming, SampleFrame, SampleReceiver, FRAME_LEN};
 use mre_tests::crc32_reference;
 
 fn sent(data: &[u8], frame: &Incoming) -> bool {

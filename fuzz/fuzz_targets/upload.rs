@@ -8,11 +8,11 @@
 //! by field against the wiring's numbers (firmware/README.md, "Hard limits").
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use mre_core::flash_table::{load, RamPage};
-use mre_core::frame::{
+use mre_protocol::flash_table::{load, RamPage};
+use mre_protocol::frame::{
     decode_config, encode_config, ConfigChunk, ConfigCollector, Incoming, SampleReceiver, CONFIG_MAX_WORDS,
 };
-use mre_core::upload::{PortEvent, UploadPort};
+use mre_protocol::upload::{PortEvent, UploadPort};
 
 fuzz_target!(|data: &[u8]| {
     let words: Vec<u32> = data

@@ -5,16 +5,16 @@
 //! (firmware/README.md, "Uploaded tables"). The PIL image in QEMU takes the
 //! same upload on USART1 and flies it at once.
 //!
-//! The bytes are the PIL protocol's config frames (`mre_core::frame`), so
-//! the firmware's receiver (`mre_core::upload`) is the code the host tests
+//! The bytes are the PIL protocol's config frames (`mre_protocol::frame`), so
+//! the firmware's receiver (`mre_protocol::upload`) is the code the host tests
 //! and the fuzz target (`fuzz/fuzz_targets/upload.rs`) exercise.
 use crate::pil::link::PilLink;
 use crate::table_file::read_flash_table;
 use anyhow::{anyhow, bail, Context, Result};
 use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
-use mre_core::frame::{encode_config, CONFIG_MAX_WORDS};
 use mre_core::table::Table;
 use mre_core::Flags;
+use mre_protocol::frame::{encode_config, CONFIG_MAX_WORDS};
 use std::path::Path;
 use std::time::Duration;
 
@@ -67,7 +67,7 @@ pub fn check_board_limits(cfg: &ControlConfig) -> Result<()> {
 /// What a board's answer to a commit says, as a sentence.
 pub fn refusal(code: u16) -> String {
     use mre_core::limits::BOARD;
-    use mre_core::upload::{CommitAnswer, REST_BEFORE_UPLOAD_S};
+    use mre_protocol::upload::{CommitAnswer, REST_BEFORE_UPLOAD_S};
     match CommitAnswer::from_code(code) {
         Some(CommitAnswer::NotAtRest) => format!(
             "the board did not store the upload because the damper was not at rest (armed, idle and still for {REST_BEFORE_UPLOAD_S} s); retry when it is still"
@@ -185,11 +185,11 @@ mod tests {
 
     #[test]
     fn the_board_s_reasons_read_as_sentences() {
-        use mre_core::upload::{answer, CommitAnswer, UploadError};
-        let code = |r| mre_core::frame::CommandFrame::decode(&answer(&r)).unwrap().rejected;
+        use mre_protocol::upload::{answer, CommitAnswer, UploadError};
+        let code = |r| mre_protocol::frame::CommandFrame::decode(&answer(&r)).unwrap().rejected;
         assert!(refusal(code(Err(UploadError::NotAtRest))).contains("not at rest"));
         let limit = mre_core::limits::Limit::XValidMax;
-        let r = Err(UploadError::Refused(mre_core::frame::ConfigBlobError::OutOfLimits(
+        let r = Err(UploadError::Refused(mre_protocol::frame::ConfigBlobError::OutOfLimits(
             limit,
         )));
         assert_eq!(CommitAnswer::from_code(code(r)), Some(CommitAnswer::OutOfLimits(limit)));

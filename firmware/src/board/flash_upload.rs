@@ -1,18 +1,17 @@
 //! The table upload on the STM32L4 boards: the flash page behind
-//! `mre_core::flash_table::TablePage` and the task that answers `mre upload`
-//! on the ST-LINK VCP (`mre_core::upload`).
+//! `mre_protocol::flash_table::TablePage` and the task that answers `mre upload`
+//! on the ST-LINK VCP (`mre_protocol::upload`).
 use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use embassy_stm32::usart::BufferedUart;
 use mre_core::table::TableImage;
-use mre_core::upload::{choose_boot_table, BootTable};
-
-use super::stm32l4::Board;
+use mre_protocol::upload::{choose_boot_table, BootTable};
 
 /// The flash page reserved for an uploaded table (`memory.x`'s `TABLE_PAGE`),
 /// as an offset into the flash. It lies in bank 2 and the image in bank 1
 /// (memory.x ends FLASH at the bank boundary): the L4's read-while-write lets
 /// the control loop keep running from bank 1 while the page is erased and written.
-const TABLE_PAGE_OFFSET: u32 = mre_core::flash_table::TABLE_PAGE_ADDRESS - mre_core::flash_table::FLASH_BASE_ADDRESS;
+const TABLE_PAGE_OFFSET: u32 =
+    mre_protocol::flash_table::TABLE_PAGE_ADDRESS - mre_protocol::flash_table::FLASH_BASE_ADDRESS;
 
 /// embassy-stm32's async flash driver: on the L4 its erase and write wait
 /// for the FLASH interrupt instead of holding a critical section (the
@@ -48,8 +47,8 @@ impl embassy_stm32::interrupt::typelevel::Handler<embassy_stm32::interrupt::type
 /// Whether FLASH_ECCR's failing address (bank `bk_ecc`, offset `addr_ecc`
 /// in that bank) lies in the table page (bank 2, its last page).
 pub fn in_table_page(bk_ecc: bool, addr_ecc: u32) -> bool {
-    let in_bank = TABLE_PAGE_OFFSET - mre_core::flash_table::FLASH_BANK_BYTES;
-    bk_ecc && (in_bank..in_bank + mre_core::flash_table::PAGE_BYTES as u32).contains(&addr_ecc)
+    let in_bank = TABLE_PAGE_OFFSET - mre_protocol::flash_table::FLASH_BANK_BYTES;
+    bk_ecc && (in_bank..in_bank + mre_protocol::flash_table::PAGE_BYTES as u32).contains(&addr_ecc)
 }
 
 /// The NMI handler saw a double-ECC error in the table page.
@@ -59,7 +58,7 @@ pub fn note_table_page_ecc() {
 
 /// Errors of the operation just finished: those the capture kept and
 /// those still in FLASH_SR (an operation that raised no interrupt).
-fn take_flash_errors() -> Result<(), mre_core::flash_table::FlashError> {
+fn take_flash_errors() -> Result<(), mre_protocol::flash_table::FlashError> {
     let sr = embassy_stm32::pac::FLASH.sr().read().0 & FLASH_SR_ERROR_MASK;
     let seen = FLASH_SR_ERRORS.swap(0, Ordering::Relaxed) | sr;
     if seen == 0 {
@@ -69,7 +68,7 @@ fn take_flash_errors() -> Result<(), mre_core::flash_table::FlashError> {
         embassy_stm32::pac::FLASH
             .sr()
             .write_value(embassy_stm32::pac::flash::regs::Sr(sr));
-        Err(mre_core::flash_table::FlashError)
+        Err(mre_protocol::flash_table::FlashError)
     }
 }
 
@@ -79,32 +78,32 @@ struct FlashPage {
     data_cache_was_on: bool,
 }
 
-impl mre_core::flash_table::TablePage for FlashPage {
+impl mre_protocol::flash_table::TablePage for FlashPage {
     /// A read that raised a double-ECC NMI (a torn page) fails: boot then
     /// flies the built-in table.
-    fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), mre_core::flash_table::FlashError> {
+    fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), mre_protocol::flash_table::FlashError> {
         TABLE_PAGE_ECC.store(false, Ordering::Relaxed);
         self.flash
             .blocking_read(TABLE_PAGE_OFFSET + offset as u32, buf)
-            .map_err(|_| mre_core::flash_table::FlashError)?;
+            .map_err(|_| mre_protocol::flash_table::FlashError)?;
         if TABLE_PAGE_ECC.swap(false, Ordering::Relaxed) {
-            return Err(mre_core::flash_table::FlashError);
+            return Err(mre_protocol::flash_table::FlashError);
         }
         Ok(())
     }
 
-    fn erase(&mut self) -> Result<(), mre_core::flash_table::FlashError> {
-        let end = TABLE_PAGE_OFFSET + mre_core::flash_table::PAGE_BYTES as u32;
+    fn erase(&mut self) -> Result<(), mre_protocol::flash_table::FlashError> {
+        let end = TABLE_PAGE_OFFSET + mre_protocol::flash_table::PAGE_BYTES as u32;
         FLASH_SR_ERRORS.store(0, Ordering::Relaxed);
         embassy_futures::block_on(self.flash.erase(TABLE_PAGE_OFFSET, end))
-            .map_err(|_| mre_core::flash_table::FlashError)?;
+            .map_err(|_| mre_protocol::flash_table::FlashError)?;
         take_flash_errors()
     }
 
-    fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), mre_core::flash_table::FlashError> {
+    fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), mre_protocol::flash_table::FlashError> {
         FLASH_SR_ERRORS.store(0, Ordering::Relaxed);
         embassy_futures::block_on(self.flash.write(TABLE_PAGE_OFFSET + offset as u32, data))
-            .map_err(|_| mre_core::flash_table::FlashError)?;
+            .map_err(|_| mre_protocol::flash_table::FlashError)?;
         take_flash_errors()
     }
 
@@ -154,18 +153,18 @@ impl Uplink {
 }
 
 /// The table boot flies: the flash page if it holds a valid upload, else
-/// the image's own (`mre_core::upload::choose_boot_table`).
-pub fn boot_table(board: &mut Board, built_in: &TableImage<'_>, rate_hz: u32) -> BootTable {
-    match board.uplink.as_mut() {
+/// the image's own (`mre_protocol::upload::choose_boot_table`).
+pub fn boot_table(uplink: &mut Option<Uplink>, built_in: &TableImage<'_>, rate_hz: u32) -> BootTable {
+    match uplink.as_mut() {
         Some(up) => choose_boot_table(&mut up.page, built_in, rate_hz),
         // Only after `spawn_uplink`, which `main` calls later.
-        None => choose_boot_table(&mut mre_core::flash_table::RamPage::erased(), built_in, rate_hz),
+        None => choose_boot_table(&mut mre_protocol::flash_table::RamPage::erased(), built_in, rate_hz),
     }
 }
 
 /// Starts the upload receiver (thread mode, below the control task).
-pub fn spawn_uplink(spawner: &embassy_executor::Spawner, board: &mut Board) {
-    let Some(Uplink { uart: Some(uart), page }) = board.uplink.take() else {
+pub fn spawn_uplink(spawner: &embassy_executor::Spawner, uplink: &mut Option<Uplink>) {
+    let Some(Uplink { uart: Some(uart), page }) = uplink.take() else {
         return;
     };
     if cfg!(feature = "uploads-disabled") {
@@ -186,7 +185,7 @@ pub fn spawn_uplink(spawner: &embassy_executor::Spawner, board: &mut Board) {
 #[embassy_executor::task]
 async fn upload_task(mut uart: BufferedUart<'static>, mut page: FlashPage) {
     use embedded_io_async::{Read, Write};
-    use mre_core::upload::{PortEvent, UploadPort};
+    use mre_protocol::upload::{PortEvent, UploadPort};
     defmt::info!("table upload: listening on the ST-LINK VCP (115200 8N1)");
     let mut port = UploadPort::new();
     let mut buf = [0u8; 32];

@@ -4,11 +4,8 @@
 //!   hardware, shared STM32L4 code in `stm32l4.rs`, pins in one table each;
 //! - `pil`: QEMU's `b-l475e-iot01a` machine, samples and commands over USART1.
 //!
-//! Every layer exports the same items, named below (no glob): `NAME`,
-//! `Board { io, watchdog }` (`io` implements [`BoardIo`]), `Status`
-//! ([`StatusIo`]), `init(rate_hz)`, `Board::start`, `boot_table` (the
-//! uploaded table or the built-in one), `spawn_uplink` (the table upload
-//! receiver), `core_clock_hz`, `cycles` and `halt_fail_safe`.
+//! Every board implements the [`Board`] trait; the image picks one in
+//! [`Selected`].
 #[cfg(all(feature = "hw", feature = "pil"))]
 compile_error!("enable one board: `pil` needs `--no-default-features`");
 #[cfg(all(feature = "board-b-l475e-iot01a", feature = "board-nucleo-l476rg"))]
@@ -21,28 +18,71 @@ pub mod log_drops;
 #[cfg(feature = "hw")]
 mod flash_upload;
 #[cfg(feature = "hw")]
-pub use flash_upload::{boot_table, spawn_uplink};
-#[cfg(feature = "hw")]
 mod stm32l4;
 #[cfg(all(feature = "hw", feature = "bench"))]
 pub use stm32l4::bench_model_step;
-#[cfg(feature = "hw")]
-pub use stm32l4::{core_clock_hz, cycles, halt_fail_safe, init, Board, Status, NAME};
 
 #[cfg(feature = "pil")]
 mod pil;
 #[cfg(all(feature = "pil", feature = "bench"))]
 pub use pil::icount;
+
+/// The board this image runs on: the one place the image picks it (by the
+/// board feature). A new board is one module implementing [`Board`] and one
+/// line here.
+#[cfg(feature = "hw")]
+pub type Selected = stm32l4::Board;
 #[cfg(feature = "pil")]
-pub use pil::{boot_table, core_clock_hz, cycles, halt_fail_safe, init, spawn_uplink, Board, Status, NAME};
+pub type Selected = pil::Board;
+/// The selected board's status LED and button.
+pub type Status = <Selected as Board>::Status;
+
+/// Everything the image calls on a board (issue 40): bring-up, the boot
+/// table, the upload receiver, the self-test, the safe states, the control
+/// task's I/O and watchdog. Implemented by `stm32l4::Board` (B-L475E-IOT01A
+/// and NUCLEO-L476RG: one STM32L4 layer, pins per board) and `pil::Board`
+/// (QEMU). Embassy tasks cannot be generic, so the image names the
+/// implementation through [`Selected`].
+pub trait Board: Sized {
+    /// The board's name in the boot log.
+    const NAME: &'static str;
+    /// Sensors, coil and pacing (the core's I/O traits).
+    type Io: BoardIo;
+    type Status: StatusIo;
+    /// Clocks, peripherals, the reset cause's first coil command and
+    /// calibration (firmware/README.md, "Reset paths").
+    fn init(rate_hz: u32) -> (Self, Self::Status);
+    fn core_clock_hz() -> u32;
+    /// A free-running cycle counter (0 where there is none).
+    fn cycles() -> u32;
+    /// The uploaded table if its page holds a valid one, else `built_in`.
+    fn boot_table(
+        &mut self,
+        built_in: &mre_core::table::TableImage<'_>,
+        rate_hz: u32,
+    ) -> mre_protocol::upload::BootTable;
+    /// Starts the table upload receiver (a no-op where there is none).
+    fn spawn_uplink(&mut self, spawner: &embassy_executor::Spawner);
+    /// The power-on self-test's results.
+    fn self_test(&self, table_crc_holds: bool) -> mre_core::boot::SelfTest;
+    /// The installed fail-safe duty, re-commanded once the table is known.
+    fn hold_fail_safe(&mut self);
+    /// Right before the first period (the watchdog's running timeout).
+    fn start(&mut self);
+    /// A fatal fault at boot: hold the fail-safe, never return.
+    fn halt_fail_safe(self) -> !;
+    fn io(&mut self) -> &mut Self::Io;
+    /// Feeds the watchdog (the control task, after every step).
+    fn feed_watchdog(&mut self);
+}
 
 use mre_core::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
 
 /// Whether the damper is at rest, for the table upload: written by the
 /// control task after each step, read on an upload's commit.
-pub static UPLOAD_GATE: mre_core::upload::SharedUploadGate = mre_core::upload::SharedUploadGate::new();
-use mre_core::frame::LinkStats;
+pub static UPLOAD_GATE: mre_protocol::upload::SharedUploadGate = mre_protocol::upload::SharedUploadGate::new();
 use mre_core::law::Command;
+use mre_protocol::frame::LinkStats;
 
 /// What the control task needs from a board's I/O besides the core's sensor
 /// and coil traits: the period's pacing and the PIL link's counters.
@@ -90,8 +130,8 @@ pub trait StatusIo {
 // sets the output low (BSRR.BR4) before making PB4 an output with a
 // pull-down, so the pin never drives high. Off (0 A) is the only state a
 // bare GPIO can hold; `init` then starts the fail-safe duty as the reset
-// cause decides (`mre_core::boot::BootPlan`). RM0351 §6.4.17 (RCC_AHB2ENR),
-// §8.4 (GPIO registers), section numbers unverified; the addresses and bits
+// cause decides (`mre_core::boot::BootPlan`). RM0351 §6.4.17 (RCC_AHB2ENR,
+// corroborated by a public citation), §8.4 (GPIO registers, unverified); the addresses and bits
 // match ST's CMSIS `stm32l475xx.h` V1.3.1: RCC 0x4002_1000 + AHB2ENR 0x4C,
 // GPIOBEN bit 1, GPIOB 0x4800_0400, PUPDR 0x0C, BSRR 0x18. Instructions from the reset vector to here:
 // `firmware/bench/reset_icount.sh`.
@@ -122,6 +162,31 @@ core::arch::global_asm!(
     "bx lr",
     ".ltorg",
     ".size __pre_init, . - __pre_init",
+);
+
+// The HardFault vector of every image, ahead of the board's handler
+// (`mre_hard_fault`, each board's): MSP back to the top of the stack first.
+// The stack lies alone in SRAM2 with reserved address space below it
+// (`memory.x`, firmware/README.md "Stack guard"), so an overflow faults at
+// its first push past the bottom (a bus error, escalated to HardFault). The
+// exception entry's own stacking then fails too, and the core still enters
+// this handler (ARMv7-M: a stacking fault on HardFault entry does not lock
+// up, the handler runs with the stack pushes lost), but with SP below the
+// stack: a Rust prologue's first push there would fault at HardFault's
+// priority, which locks the core up. A reset MSP gives the handler a whole
+// stack; it never returns, so what the old stack held is not needed.
+// cortex-m-rt's `#[exception] HardFault` (its trampoline) is not used.
+core::arch::global_asm!(
+    ".section .HardFault.user,\"ax\",%progbits",
+    ".global HardFault",
+    ".type HardFault,%function",
+    ".thumb_func",
+    "HardFault:",
+    "ldr r0, =_stack_start",
+    "msr msp, r0",
+    "b mre_hard_fault",
+    ".ltorg",
+    ".size HardFault, . - HardFault",
 );
 
 /// Faults the control task had latched at the end of its last period: the
@@ -184,7 +249,7 @@ pub fn coil_pin_low() {
 }
 
 /// The PIL frame link's counters in a log line (nothing on hardware).
-pub struct LinkSummary(pub Option<mre_core::frame::LinkStats>);
+pub struct LinkSummary(pub Option<mre_protocol::frame::LinkStats>);
 impl defmt::Format for LinkSummary {
     fn format(&self, f: defmt::Formatter<'_>) {
         if let Some(s) = &self.0 {

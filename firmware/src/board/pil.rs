@@ -6,7 +6,7 @@
 //! clock: MSI 4 MHz after reset), and defmt goes out over semihosting.
 //! The control task and the core are the same code as on hardware; only
 //! the I/O below differs: each sample frame from the host is one control
-//! period, and each period answers with one command frame (`mre_core::frame`).
+//! period, and each period answers with one command frame (`mre_protocol::frame`).
 use core::cell::{Cell, RefCell};
 use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use core::task::Waker;
@@ -23,16 +23,16 @@ use embassy_time::Timer;
 use embassy_time_driver::Driver;
 use embassy_time_queue_utils::Queue;
 use mre_core::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
-use mre_core::flash_table::RamPage;
-use mre_core::frame::{
-    CommandFrame, FrameError, Incoming, LinkStats, SampleFrame, SampleReceiver, END_OF_RUN_SEQ, FRAME_LEN,
-    INJECT_HARDFAULT_SEQ, INJECT_PANIC_SEQ, PING_SEQ,
-};
 use mre_core::law::Command;
 use mre_core::overcurrent::Sense;
 use mre_core::table::TableImage;
-use mre_core::upload::{choose_boot_table, BootTable, UploadReceiver};
 use mre_core::Flags;
+use mre_protocol::flash_table::RamPage;
+use mre_protocol::frame::{
+    CommandFrame, FrameError, Incoming, LinkStats, SampleFrame, SampleReceiver, END_OF_RUN_SEQ, FRAME_LEN,
+    INJECT_HARDFAULT_SEQ, INJECT_PANIC_SEQ, PING_SEQ,
+};
+use mre_protocol::upload::{choose_boot_table, BootTable, UploadReceiver};
 
 pub const NAME: &str = "PIL (QEMU b-l475e-iot01a)";
 /// MSI after reset; nothing here changes the clock tree.
@@ -274,8 +274,8 @@ impl super::BoardIo for Io {
                         let Some(result) = self.upload.on_chunk(chunk, &mut self.page, at_rest) else {
                             continue;
                         };
-                        // The answer says why (mre_core::upload::CommitAnswer).
-                        let (stored, reply) = (result.is_ok(), mre_core::upload::answer(&result));
+                        // The answer says why (mre_protocol::upload::CommitAnswer).
+                        let (stored, reply) = (result.is_ok(), mre_protocol::upload::answer(&result));
                         let flown = match result {
                             Ok((table, cfg)) => match Controller::new(cfg, Ok(table)) {
                                 Ok(new_ctl) => {
@@ -481,8 +481,10 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
     halt()
 }
 
-#[cortex_m_rt::exception]
-unsafe fn HardFault(_frame: &cortex_m_rt::ExceptionFrame) -> ! {
+/// The HardFault handler, entered from `HardFault` (`board/mod.rs`) on a
+/// fresh stack.
+#[no_mangle]
+extern "C" fn mre_hard_fault() -> ! {
     super::coil_safe_from_a_fault(&mut PilCoil);
     halt()
 }
@@ -490,6 +492,59 @@ unsafe fn HardFault(_frame: &cortex_m_rt::ExceptionFrame) -> ! {
 fn halt() -> ! {
     loop {
         cortex_m::asm::nop();
+    }
+}
+
+impl super::Board for Board {
+    const NAME: &'static str = NAME;
+    type Io = Io;
+    type Status = Status;
+
+    fn init(rate_hz: u32) -> (Self, Status) {
+        init(rate_hz)
+    }
+
+    fn core_clock_hz() -> u32 {
+        core_clock_hz()
+    }
+
+    #[inline(always)]
+    fn cycles() -> u32 {
+        cycles()
+    }
+
+    fn boot_table(&mut self, built_in: &TableImage<'_>, rate_hz: u32) -> BootTable {
+        boot_table(self, built_in, rate_hz)
+    }
+
+    fn spawn_uplink(&mut self, spawner: &embassy_executor::Spawner) {
+        spawn_uplink(spawner, self)
+    }
+
+    fn self_test(&self, table_crc_holds: bool) -> mre_core::boot::SelfTest {
+        Board::self_test(self, table_crc_holds)
+    }
+
+    fn hold_fail_safe(&mut self) {
+        Board::hold_fail_safe(self)
+    }
+
+    fn start(&mut self) {
+        Board::start(self)
+    }
+
+    fn halt_fail_safe(self) -> ! {
+        halt_fail_safe(self)
+    }
+
+    #[inline(always)]
+    fn io(&mut self) -> &mut Io {
+        &mut self.io
+    }
+
+    #[inline(always)]
+    fn feed_watchdog(&mut self) {
+        self.watchdog.pet();
     }
 }
 

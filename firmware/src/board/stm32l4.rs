@@ -108,7 +108,7 @@ const JEXTEN_RISING: u8 = 1;
 /// 50 periods at 10 kHz: long enough for the 1 Hz stats log, short enough
 /// that a hung control loop releases the coil to the reset state quickly.
 /// Set by [`Board::start`]: IWDG_PR = 0 (/4), IWDG_RLR = 39, (39 + 1) × 4 /
-/// 32 kHz = 5 ms (RM0351 §32.3.2, §32.7.2-3).
+/// 32 kHz = 5 ms (RM0351 §36.3.2, §36.4.2-3).
 const WATCHDOG_PR: u8 = 0;
 const WATCHDOG_RLR: u16 = 39;
 /// Boot, from reset to the first period, is about 2.4 M instructions in
@@ -181,8 +181,8 @@ pub struct Io {
 pub struct Board {
     pub io: Io,
     pub watchdog: IndependentWatchdog<'static, IWDG>,
-    /// Taken by [`super::flash_upload::spawn_uplink`].
-    pub(super) uplink: Option<Uplink>,
+    /// Read by `boot_table`, taken by `spawn_uplink` (`flash_upload`).
+    uplink: Option<Uplink>,
     /// Power-on self-test results from `init` (`mre_core::boot::SelfTest`).
     sense_converts: bool,
     pwm_reads_back: bool,
@@ -210,7 +210,7 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
     embassy_stm32::pac::RCC.csr().modify(|w| w.set_rmvf(true));
     // Supervised from here: the IWDG started at its reset configuration
     // (PR /4, RLR 0xFFF: 512 ms on the 32 kHz LSI, which the start forces
-    // on; RM0351 §32.3 "IWDG functional description", §32.7 registers)
+    // on; RM0351 §36.3 "IWDG functional description", §36.4 registers)
     // before the clock set-up and the ADC busy-waits; narrowed to
     // `WATCHDOG_TIMEOUT_US` right after `embassy_stm32::init`.
     start_watchdog();
@@ -350,7 +350,7 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
     )
 }
 
-/// KR = 0xCCCC: starts the IWDG (a no-op when it runs). RM0351 §32.7.1
+/// KR = 0xCCCC: starts the IWDG (a no-op when it runs). RM0351 §36.4.1
 /// IWDG_KR; the key is ST's LL driver's `LL_IWDG_KEY_ENABLE`.
 fn start_watchdog() {
     embassy_stm32::pac::IWDG
@@ -390,7 +390,7 @@ impl Board {
     pub fn start(&mut self) {
         self.io.ticker.reset();
         self.io.pacer = Pacer::start(Instant::now().as_ticks(), self.io.period.as_ticks());
-        // The 5 ms period of the running loop (RM0351 §32.3.4: KR = 0x5555
+        // The 5 ms period of the running loop (RM0351 §36.3.4: KR = 0x5555
         // unlocks PR and RLR; the new values load at the next reload).
         use embassy_stm32::pac::iwdg::vals::{Key, Pr};
         let iwdg = embassy_stm32::pac::IWDG;
@@ -477,8 +477,9 @@ impl Io {
         // CC4E: the channel 4 compare output enabled (RM0351 §31.4.11,
         // TIMx_CCER), so OC4REF's edge reaches the ADC as TIM3_CH4. CH4 has
         // no pin mapped to AF2 here, so nothing is driven.
-        // The RM0351 section numbers in this function and in `coil_current`
-        // are unverified (RM0351 could not be consulted here). The bits are
+        // RM0351 §31.4.11 and chapter 18 (ADC) are corroborated by public
+        // citations; the ADC subsections here are not (firmware/rehost/
+        // stm32l4.py says which are). The bits are
         // checked against ST's CMSIS `stm32l475xx.h` V1.3.1 and LL ADC driver
         // (vendored in github.com/nickfox-taterli/stm32l4_disco_test,
         // 21e0a73): TIM_CCER_CC4E bit 12, ADC_CFGR_JQDIS bit 31, ADC_ISR_JEOC
@@ -629,7 +630,7 @@ impl super::BoardIo for Io {
     }
 
     /// No frame link on hardware.
-    fn link_stats(&self) -> Option<mre_core::frame::LinkStats> {
+    fn link_stats(&self) -> Option<mre_protocol::frame::LinkStats> {
         None
     }
 
@@ -731,7 +732,7 @@ impl super::FaultCoil for Tim3Coil {
 /// `BootPlan` (watchdog: the fail-safe at once).
 fn coil_safe_from_a_fault() {
     super::coil_safe_from_a_fault(&mut Tim3Coil);
-    // IWDG_KR = 0xCCCC starts the watchdog (RM0351 §32.4.1, §32.7.1, section
+    // IWDG_KR = 0xCCCC starts the watchdog (RM0351 §36.3, §36.4.1, section
     // numbers unverified; the key is ST's LL driver's LL_IWDG_KEY_ENABLE).
     embassy_stm32::pac::IWDG
         .kr()
@@ -766,15 +767,17 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
     wait_for_the_watchdog()
 }
 
-#[cortex_m_rt::exception]
-unsafe fn HardFault(_frame: &cortex_m_rt::ExceptionFrame) -> ! {
+/// The HardFault handler, entered from `HardFault` (`board/mod.rs`) on a
+/// fresh stack: a stack overflow ends here too.
+#[no_mangle]
+extern "C" fn mre_hard_fault() -> ! {
     cortex_m::interrupt::disable();
     coil_safe_from_a_fault();
     wait_for_the_watchdog()
 }
 
 /// NMI. A flash double-ECC error in the table page (an upload torn by power
-/// loss; RM0351 §3.3.3 "Error code correction": ECCD in FLASH_ECCR, the
+/// loss; RM0351 §3.3.2 "Error code correction": ECCD in FLASH_ECCR, the
 /// failing bank and address in BK_ECC and ADDR_ECC, an NMI raised) is
 /// cleared (ECCD, write 1) and noted, and the interrupted page read
 /// returns: `flash_upload` then refuses the page and boot flies the
@@ -795,4 +798,61 @@ unsafe fn NonMaskableInt() {
     cortex_m::interrupt::disable();
     coil_safe_from_a_fault();
     wait_for_the_watchdog()
+}
+
+impl super::Board for Board {
+    const NAME: &'static str = NAME;
+    type Io = Io;
+    type Status = Status;
+
+    fn init(rate_hz: u32) -> (Self, Status) {
+        init(rate_hz)
+    }
+
+    fn core_clock_hz() -> u32 {
+        core_clock_hz()
+    }
+
+    #[inline(always)]
+    fn cycles() -> u32 {
+        cycles()
+    }
+
+    fn boot_table(
+        &mut self,
+        built_in: &mre_core::table::TableImage<'_>,
+        rate_hz: u32,
+    ) -> mre_protocol::upload::BootTable {
+        super::flash_upload::boot_table(&mut self.uplink, built_in, rate_hz)
+    }
+
+    fn spawn_uplink(&mut self, spawner: &embassy_executor::Spawner) {
+        super::flash_upload::spawn_uplink(spawner, &mut self.uplink)
+    }
+
+    fn self_test(&self, table_crc_holds: bool) -> mre_core::boot::SelfTest {
+        Board::self_test(self, table_crc_holds)
+    }
+
+    fn hold_fail_safe(&mut self) {
+        Board::hold_fail_safe(self)
+    }
+
+    fn start(&mut self) {
+        Board::start(self)
+    }
+
+    fn halt_fail_safe(self) -> ! {
+        halt_fail_safe(self)
+    }
+
+    #[inline(always)]
+    fn io(&mut self) -> &mut Io {
+        &mut self.io
+    }
+
+    #[inline(always)]
+    fn feed_watchdog(&mut self) {
+        self.watchdog.pet();
+    }
 }

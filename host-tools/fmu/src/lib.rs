@@ -2,7 +2,7 @@
 //!
 //! Both evaluate through `mre_core`, the code the board runs. An FMU carries
 //! its table and installation as `resources/table.page`: the 2 KiB flash
-//! page the board stores after `mre upload` (`mre_core::flash_table`), read
+//! page the board stores after `mre upload` (`mre_protocol::flash_table`), read
 //! back through the core's own loader (magic, CRC, table and configuration
 //! validation) when the FMU is instantiated.
 //!

@@ -1,8 +1,8 @@
 //! `resources/table.page`: the table and the control configuration as the
 //! board's flash page holds them.
 use mre_core::control::ControlConfig;
-use mre_core::flash_table::{self, RamPage, PAGE_BYTES};
 use mre_core::Table;
+use mre_protocol::flash_table::{self, RamPage, PAGE_BYTES};
 use std::path::Path;
 
 /// The resource file both FMUs read.

@@ -9,8 +9,8 @@
 use super::link::PilLink;
 use super::qemu::Qemu;
 use super::tests::{firmware, qemu_or_skip};
-use mre_core::frame::{SampleFrame, INJECT_HARDFAULT_SEQ, INJECT_PANIC_SEQ};
 use mre_core::Flags;
+use mre_protocol::frame::{SampleFrame, INJECT_HARDFAULT_SEQ, INJECT_PANIC_SEQ};
 use std::time::Duration;
 
 /// The documented fail-safe (firmware/README.md): 2 A, the paper's stiffest
@@ -38,7 +38,7 @@ fn at_rest(seq: u32, coil_current_a: Option<f32>) -> SampleFrame {
 }
 
 /// Sends the injecting sample and returns the handler's report.
-fn inject(link: &mut PilLink, seq: u32) -> mre_core::frame::CommandFrame {
+fn inject(link: &mut PilLink, seq: u32) -> mre_protocol::frame::CommandFrame {
     link.set_answer_timeout(Duration::from_secs(10)).unwrap();
     link.send_raw(&at_rest(seq, None).encode()).unwrap();
     let report = link

@@ -4,12 +4,12 @@
 use super::ControlBackend;
 use anyhow::{bail, Context, Result};
 use mre_core::control::ControlConfig;
-use mre_core::frame::{
+use mre_core::table::Table;
+use mre_core::Flags;
+use mre_protocol::frame::{
     config_frames, encode_config, CommandFrame, SampleFrame, CONFIG_MAX_WORDS, END_OF_RUN_SEQ, FRAME_LEN, HELLO_SEQ,
     SYNC,
 };
-use mre_core::table::Table;
-use mre_core::Flags;
 use std::io::{ErrorKind, Read, Write};
 use std::net::TcpStream;
 use std::path::Path;

@@ -5,7 +5,7 @@
 //!
 //! - [`qemu`] finds QEMU and the `pil` firmware image, starts it, and
 //!   connects to its USART1 socket.
-//! - [`link`] exchanges frames (`mre_core::frame`, the firmware's own code).
+//! - [`link`] exchanges frames (`mre_protocol::frame`, the firmware's own code).
 //! - [`ControlBackend`] is one control period: [`link::PilLink`] runs it in
 //!   the firmware, [`InProcess`] runs the same core code linked into the host.
 //! - [`run_lockstep`] drives a [`Plant`] with a backend and records every
@@ -21,10 +21,10 @@ mod tests;
 
 use anyhow::{bail, Result};
 use mre_core::control::{ControlConfig, Controller, DEFAULT_RATE_HZ};
-use mre_core::frame::{CommandFrame, SampleFrame};
 use mre_core::law::Command;
 use mre_core::table::Table;
 use mre_core::Flags;
+use mre_protocol::frame::{CommandFrame, SampleFrame};
 
 /// One control period: a plant sample in, the controller's answer out.
 pub trait ControlBackend {

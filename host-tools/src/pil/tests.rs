@@ -336,7 +336,7 @@ fn coil_pin_is_driven_low_first_thing_at_boot() {
 // (`PilLink::serial`: open the port raw, ping until a hello) as with a real
 // board. QEMU has no flash controller: these tests cover the transfer and the
 // firmware's receiver; the PIL image stores the upload on a RAM page through
-// the same `mre_core::upload` code, whose flash page logic is tested on the
+// the same `mre_protocol::upload` code, whose flash page logic is tested on the
 // host (`tests/tests/core/upload.rs`, `tests/tests/core/flash_table.rs`).
 
 fn start_on_pty() -> Option<(Qemu, PathBuf)> {
@@ -347,7 +347,7 @@ fn start_on_pty() -> Option<(Qemu, PathBuf)> {
 #[test]
 fn upload_over_qemu_serial_is_flown_and_a_corrupt_upload_is_refused() {
     use crate::upload::{run_upload, upload_payload};
-    use mre_core::frame::{config_frames, encode_config, CONFIG_MAX_WORDS};
+    use mre_protocol::frame::{config_frames, encode_config, CONFIG_MAX_WORDS};
     let Some((qemu, pty)) = start_on_pty() else { return };
     let model = super::qemu::workspace_root().join("models/drop-none.toml");
     // `mre upload --port PTY models/drop-none.toml`, the CLI's own function.
@@ -418,7 +418,7 @@ fn largest_table() -> Table {
 #[test]
 fn the_largest_table_round_trips_and_out_of_limit_or_moving_uploads_are_refused_over_qemu_serial() {
     use crate::upload::{run_upload, upload_over};
-    use mre_core::frame::{encode_config, CONFIG_MAX_WORDS};
+    use mre_protocol::frame::{encode_config, CONFIG_MAX_WORDS};
     let Some((qemu, pty)) = start_on_pty() else { return };
     // `mre upload --port PTY largest.toml`: the 8-entry every-term table.
     let table = largest_table();
@@ -463,8 +463,8 @@ fn the_largest_table_round_trips_and_out_of_limit_or_moving_uploads_are_refused_
     let answer = link.send_config_words(&words[..n]).unwrap();
     assert!(answer.flags.contains(Flags::TABLE_FAULT), "{answer:?}");
     assert_eq!(
-        mre_core::upload::CommitAnswer::from_code(answer.rejected),
-        Some(mre_core::upload::CommitAnswer::NotAtRest)
+        mre_protocol::upload::CommitAnswer::from_code(answer.rejected),
+        Some(mre_protocol::upload::CommitAnswer::NotAtRest)
     );
     finish(qemu, link);
 }

@@ -62,7 +62,7 @@ fn the_default_image_and_the_default_simulation_share_one_installation() {
     // The image derives its configuration from the table's installation:
     // the same configuration, value for value.
     assert_eq!(
-        mre_core::upload::installed_config(&table, DEFAULT_RATE_HZ).unwrap(),
+        mre_protocol::upload::installed_config(&table, DEFAULT_RATE_HZ).unwrap(),
         image
     );
     for e in table.entries() {

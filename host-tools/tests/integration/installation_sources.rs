@@ -280,9 +280,9 @@ fn the_controller_of_sim_pil_fmu_and_bench_control_plans_with_the_files_installa
     let cfg = mre_host::pil::sim::control_config(&setup).unwrap();
     assert_eq!((cfg.law.mass_kg, cfg.law.stroke_max_mm), (3.0, 9.0));
     let table = Table::paper().unwrap().carrying(LAB).unwrap();
-    let mut words = [0u32; mre_core::frame::CONFIG_MAX_WORDS];
-    let n = mre_core::frame::encode_config(&table, &cfg, &mut words);
-    let (flown_table, flown_cfg) = mre_core::frame::decode_config(&words[..n]).unwrap();
+    let mut words = [0u32; mre_protocol::frame::CONFIG_MAX_WORDS];
+    let n = mre_protocol::frame::encode_config(&table, &cfg, &mut words);
+    let (flown_table, flown_cfg) = mre_protocol::frame::decode_config(&words[..n]).unwrap();
     assert_eq!(*flown_table.installation(), LAB);
     assert_eq!(flown_cfg, cfg, "the board flies what the host simulates");
 

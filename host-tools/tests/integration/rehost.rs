@@ -8,11 +8,11 @@
 //! `MRE_REHOST_ELF` / `MRE_REHOST_NUCLEO_ELF` name prebuilt images (else
 //! they are built here: `cargo fw`, `cargo fw-nucleo`, copied to `target/images/`).
 use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
-use mre_core::flash_table::{store, RamPage};
-use mre_core::frame::{config_frames, encode_config, CommandFrame, CONFIG_MAX_WORDS, FRAME_LEN};
 use mre_core::installation::{Installation, DEFAULT_INSTALLATION};
 use mre_core::table::{CurrentEntry, ModelTerms, Quartic, Table};
 use mre_core::Flags;
+use mre_protocol::flash_table::{store, RamPage};
+use mre_protocol::frame::{config_frames, encode_config, CommandFrame, CONFIG_MAX_WORDS, FRAME_LEN};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
@@ -142,6 +142,21 @@ fn panic_and_hardfault_mask_interrupts_hold_the_safe_state_and_reset_by_the_watc
         for name in ["panic", "hardfault", "hardfault-after-over-current"] {
             scenario(board, name, &[]);
         }
+    }
+}
+
+/// The stack guard (memory.x: the stack alone in SRAM2, reserved address
+/// space below it): a deliberate overflow (the control interrupt entered
+/// with 32 bytes of stack left) faults at the stack's bottom into HardFault,
+/// which holds the fail-safe with interrupts masked until the watchdog
+/// resets; without the guard the overflow runs into .bss unnoticed.
+#[test]
+fn a_stack_overflow_faults_at_the_stack_bottom_into_the_safe_state() {
+    if !rehost_available() {
+        return;
+    }
+    for board in BOARDS {
+        scenario(board, "stack-overflow", &[]);
     }
 }
 

@@ -189,7 +189,7 @@ proptest! {
 #[test]
 fn a_version_2_table_uploads_to_the_pil_firmware_with_its_terms() {
     use mre_core::control::ControlConfig;
-    use mre_core::frame::{decode_config, encode_config, CONFIG_MAX_WORDS};
+    use mre_protocol::frame::{decode_config, encode_config, CONFIG_MAX_WORDS};
     let table = augmented();
     let cfg = ControlConfig::at_rate(10_000).unwrap();
     let mut words = [0u32; CONFIG_MAX_WORDS];

@@ -1,12 +1,12 @@
 //! The uploaded-table flash page, over a RAM page that behaves like STM32L4
 //! flash (erase to 0xFF, 8-byte aligned writes that can only clear bits).
 use mre_core::control::ControlConfig;
-use mre_core::flash_table::{load, store, FlashError, PageError, TablePage, WRITE_ALIGN};
 use mre_core::table::{Table, PAPER_TABLE4_ENTRIES};
+use mre_protocol::flash_table::{load, store, FlashError, PageError, TablePage, WRITE_ALIGN};
 
 /// The core's RAM page, asserting alignment and able to lose power mid-write.
 struct RamPage {
-    page: mre_core::flash_table::RamPage,
+    page: mre_protocol::flash_table::RamPage,
     bytes: Vec<u8>,
     /// Stop after this many written bytes (a power cut mid-write).
     cut_after: Option<usize>,
@@ -14,7 +14,7 @@ struct RamPage {
 
 impl RamPage {
     fn erased() -> Self {
-        let page = mre_core::flash_table::RamPage::erased();
+        let page = mre_protocol::flash_table::RamPage::erased();
         Self {
             bytes: page.bytes.to_vec(),
             page,
@@ -108,7 +108,7 @@ fn a_torn_or_corrupt_page_is_refused() {
 /// `TABLE_PAGE` region must be the page the firmware writes.
 #[test]
 fn the_linker_keeps_the_image_in_bank_1_and_names_the_table_page() {
-    use mre_core::flash_table::{FLASH_BANK_BYTES, FLASH_BASE_ADDRESS, PAGE_BYTES, TABLE_PAGE_ADDRESS};
+    use mre_protocol::flash_table::{FLASH_BANK_BYTES, FLASH_BASE_ADDRESS, PAGE_BYTES, TABLE_PAGE_ADDRESS};
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../memory.x")).unwrap();
     let region = |name: &str| -> (u32, u32) {
         let line = text
@@ -135,7 +135,7 @@ fn the_linker_keeps_the_image_in_bank_1_and_names_the_table_page() {
 
 /// Records the page operations in order, optionally failing the write.
 struct RecordingPage {
-    page: mre_core::flash_table::RamPage,
+    page: mre_protocol::flash_table::RamPage,
     calls: Vec<&'static str>,
     fail_write: bool,
 }
@@ -172,7 +172,7 @@ fn the_data_cache_is_off_around_erase_and_program_and_reset_before_the_read_back
     let (table, cfg) = uploaded();
     for fail_write in [false, true] {
         let mut page = RecordingPage {
-            page: mre_core::flash_table::RamPage::erased(),
+            page: mre_protocol::flash_table::RamPage::erased(),
             calls: Vec::new(),
             fail_write,
         };

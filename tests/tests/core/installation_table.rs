@@ -2,14 +2,14 @@
 //! derives its law and fault configuration from it within its hard limits.
 //! Older formats still load, with `DEFAULT_INSTALLATION`.
 use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
-use mre_core::flash_table::RamPage;
-use mre_core::frame::{decode_config, encode_config, ConfigBlobError, CONFIG_MAX_WORDS};
 use mre_core::installation::{Installation, DEFAULT_INSTALLATION, FIELD_COUNT};
 use mre_core::table::{
     CurrentEntry, ModelTerms, Quartic, Table, TableError, TableImage, FORMAT_VERSION_1, FORMAT_VERSION_2,
     FORMAT_VERSION_3,
 };
-use mre_core::upload::{choose_boot_table, installed_config, TableSource};
+use mre_protocol::flash_table::RamPage;
+use mre_protocol::frame::{decode_config, encode_config, ConfigBlobError, CONFIG_MAX_WORDS};
+use mre_protocol::upload::{choose_boot_table, installed_config, TableSource};
 
 /// A lab's rig within the board's limits: a 3 kg striker, 9 mm of stroke,
 /// a 1.5 A coil, impacts of 1–3 m/s.

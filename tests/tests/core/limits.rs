@@ -4,10 +4,10 @@
 //! not read from the code: a 2 A coil, a 0–25 mm displacement sensor whose ADC
 //! rails read −2.8 and 27.8 mm (0.3 mm kept inside each), fault counts that latch within an impact.
 use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
-use mre_core::frame::{decode_config, encode_config, ConfigBlobError, CONFIG_MAX_WORDS};
 use mre_core::law::ReboundPolicy;
 use mre_core::limits::Limit;
 use mre_core::table::Table;
+use mre_protocol::frame::{decode_config, encode_config, ConfigBlobError, CONFIG_MAX_WORDS};
 use proptest::prelude::*;
 
 fn blob(cfg: &ControlConfig) -> Vec<u32> {

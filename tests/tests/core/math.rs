@@ -1,4 +1,4 @@
-//! The core's own exp/ln/tanh/atanh (firmware/src/math.rs) against std's
+//! The core's own exp/ln/tanh/atanh (firmware/algorithm/src/math.rs) against std's
 //! f64 functions: the saturation term's forward and inverse rely on them
 //! agreeing to ~1e-6 without a refinement step.
 use mre_core::math;

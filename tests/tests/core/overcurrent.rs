@@ -2,7 +2,6 @@
 //! at boot, and the fault's path into the controller's fail-safe.
 use mre_core::calibration::{rest_offset, CalError, I_SENSE_REST};
 use mre_core::control::{ControlConfig, Controller};
-use mre_core::frame::{CommandFrame, SampleFrame};
 use mre_core::law::LawConfig;
 use mre_core::overcurrent::{
     OverCurrent, Sense, SenseMonitor, SenseVerdict, COIL_RATING_A, STALE_PERIODS, STUCK_DRIVEN_A, STUCK_PERIODS,
@@ -10,6 +9,7 @@ use mre_core::overcurrent::{
 };
 use mre_core::table::Table;
 use mre_core::Flags;
+use mre_protocol::frame::{CommandFrame, SampleFrame};
 
 // The trip level sits above the coil's rating, within 25 % of it.
 const _: () = assert!(TRIP_A > COIL_RATING_A && TRIP_A <= 1.25 * COIL_RATING_A);

@@ -1,5 +1,5 @@
 //! The saturated inverse's map from a segment fraction back to current
-//! (firmware/src/saturation.rs): where a segment is fitted, the f32
+//! (firmware/algorithm/src/saturation.rs): where a segment is fitted, the f32
 //! polynomial lies within its stated bound of the exact map
 //! `i0 + I_s·(atanh(w0 + t·Δw) − atanh(w0))`, computed here in f64 with
 //! std's atanh (independent of the core's math), on a fine grid of t.

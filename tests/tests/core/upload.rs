@@ -1,16 +1,16 @@
-//! Table upload (host side of the firmware's receiver, `mre_core::upload`):
+//! Table upload (host side of the firmware's receiver, `mre_protocol::upload`):
 //! the bytes `mre upload` sends, through the receiver the boards and the PIL
 //! image run, onto a RAM page with flash semantics, then the boot decision.
 //! The transfer over a serial port is tested in QEMU
 //! (`host-tools/src/pil/tests.rs`, `upload_over_qemu_serial_*`); QEMU has no
 //! flash controller, so the page logic is tested here, behind `TablePage`.
 use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
-use mre_core::flash_table::{PageError, RamPage, TablePage};
-use mre_core::frame::{config_frames, encode_config, CommandFrame, ConfigBlobError, CONFIG_MAX_WORDS, FRAME_LEN};
 use mre_core::generated_table::GENERATED_TABLE;
 use mre_core::table::{Table, PAPER_TABLE4_ENTRIES};
-use mre_core::upload::{answer, choose_boot_table, PortEvent, TableSource, UploadError, UploadPort};
 use mre_core::Flags;
+use mre_protocol::flash_table::{PageError, RamPage, TablePage};
+use mre_protocol::frame::{config_frames, encode_config, CommandFrame, ConfigBlobError, CONFIG_MAX_WORDS, FRAME_LEN};
+use mre_protocol::upload::{answer, choose_boot_table, PortEvent, TableSource, UploadError, UploadPort};
 
 /// Not the built-in table: Table 4 with a doubled stroke.
 fn other_table() -> Table {
@@ -145,14 +145,14 @@ fn the_receiver_reports_why_a_commit_failed() {
 /// A page that accepts the erase but fails every write (a worn or locked page).
 struct FailingPage(RamPage);
 impl TablePage for FailingPage {
-    fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), mre_core::flash_table::FlashError> {
+    fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), mre_protocol::flash_table::FlashError> {
         self.0.read(offset, buf)
     }
-    fn erase(&mut self) -> Result<(), mre_core::flash_table::FlashError> {
+    fn erase(&mut self) -> Result<(), mre_protocol::flash_table::FlashError> {
         self.0.erase()
     }
-    fn write(&mut self, _: usize, _: &[u8]) -> Result<(), mre_core::flash_table::FlashError> {
-        Err(mre_core::flash_table::FlashError)
+    fn write(&mut self, _: usize, _: &[u8]) -> Result<(), mre_protocol::flash_table::FlashError> {
+        Err(mre_protocol::flash_table::FlashError)
     }
 }
 
@@ -207,7 +207,7 @@ fn a_torn_page_falls_back_to_the_built_in_table() {
 
 #[test]
 fn a_ping_is_answered_with_a_hello_and_never_stored() {
-    use mre_core::frame::{SampleFrame, PING_SEQ};
+    use mre_protocol::frame::{SampleFrame, PING_SEQ};
     let ping = SampleFrame::ping();
     // The protocol's ping: a sample frame with sequence 0.
     assert_eq!((ping.seq, PING_SEQ), (0, 0));
@@ -316,7 +316,7 @@ fn a_word_missing_past_bit_127_is_noticed() {
 /// What the board answers to a commit it did not store while the damper moves.
 #[test]
 fn an_upload_in_motion_is_refused_untouched_and_accepted_at_rest() {
-    use mre_core::upload::CommitAnswer;
+    use mre_protocol::upload::CommitAnswer;
     let table = other_table();
     let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
     let fr = frames(&blob(&table, &cfg));
@@ -353,7 +353,7 @@ fn an_upload_in_motion_is_refused_untouched_and_accepted_at_rest() {
 #[test]
 fn every_commit_answer_reads_back_as_itself() {
     use mre_core::limits::Limit;
-    use mre_core::upload::CommitAnswer;
+    use mre_protocol::upload::CommitAnswer;
     let mut all = vec![
         CommitAnswer::Stored,
         CommitAnswer::Incomplete,
@@ -377,7 +377,7 @@ fn every_commit_answer_reads_back_as_itself() {
 #[test]
 fn the_upload_gate_opens_only_after_half_a_second_at_rest() {
     use mre_core::control::Controller;
-    use mre_core::upload::UploadGate;
+    use mre_protocol::upload::UploadGate;
     let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
     let mut ctl = Controller::new(cfg, Table::from_image(&GENERATED_TABLE)).unwrap();
     let mut gate = UploadGate::new();
@@ -424,16 +424,16 @@ struct SilentlyFailingPage {
     program_fails: bool,
 }
 impl TablePage for SilentlyFailingPage {
-    fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), mre_core::flash_table::FlashError> {
+    fn read(&mut self, offset: usize, buf: &mut [u8]) -> Result<(), mre_protocol::flash_table::FlashError> {
         self.page.read(offset, buf)
     }
-    fn erase(&mut self) -> Result<(), mre_core::flash_table::FlashError> {
+    fn erase(&mut self) -> Result<(), mre_protocol::flash_table::FlashError> {
         if !self.erase_fails {
             self.page.erase()?;
         }
         Ok(())
     }
-    fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), mre_core::flash_table::FlashError> {
+    fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), mre_protocol::flash_table::FlashError> {
         if !self.program_fails {
             self.page.write(offset, data)?;
         }
@@ -451,7 +451,7 @@ fn an_erase_or_program_error_reported_as_success_is_refused() {
     let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
     // An earlier upload of Table 4 is on the page.
     let mut old = RamPage::erased();
-    mre_core::flash_table::store(&mut old, &Table::paper().unwrap(), &cfg).unwrap();
+    mre_protocol::flash_table::store(&mut old, &Table::paper().unwrap(), &cfg).unwrap();
     let paper_crc = Table::paper().unwrap().crc32();
     for (erase_fails, program_fails) in [(true, false), (false, true), (true, true)] {
         let mut page = SilentlyFailingPage {

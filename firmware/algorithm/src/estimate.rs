@@ -94,6 +94,7 @@ impl AlphaBeta {
     /// Feeds one displacement sample; returns the velocity estimate (m/s).
     /// A non-finite sample, or one beyond ±`MAX_ABS_X_MM`, is skipped
     /// (prediction only) and flagged, so the estimate stays finite.
+    #[inline]
     pub fn update(&mut self, z_mm: f32) -> (f32, Flags) {
         // One comparison on the hot path (false for NaN and ±inf); which
         // fault it is only matters when there is one.
@@ -128,6 +129,7 @@ impl AlphaBeta {
         self.x_mm
     }
 
+    #[inline]
     pub fn velocity_m_s(&self) -> f32 {
         self.v_m_s
     }

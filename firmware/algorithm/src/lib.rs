@@ -1,13 +1,16 @@
-//! The MRE damper control core: pure `no_std` logic, f32, no heap, no panics.
+//! The paper's algorithm: the force table and its forward model, the inverse
+//! (which current gives a force), the impact law with arming before contact,
+//! and the velocity estimator. What the board flies and what the host tools,
+//! the simulator and the FMUs link for the physics.
 //!
-//! The firmware binary and the host tools (`mre`) both link this crate, so the
-//! host simulates exactly the arithmetic that runs on the board.
+//! May not: do I/O, touch hardware, allocate, panic, or hold `unsafe` code;
+//! it knows nothing of boards, frames, flash or faults beyond the flags a
+//! period's decision carries. Depends on no other crate of the firmware.
 //!
 //! Data flow of one control period:
 //! `estimate` (velocity from displacement) → `law` (target force for the impact)
 //! → `inverse` (current that gives that force, via `model` and `table`) → coil.
 #![cfg_attr(not(test), no_std)]
-// Pure logic: unsafe code belongs to the board layer (firmware/src/board/).
 #![forbid(unsafe_code)]
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::indexing_slicing)]
 // Integer arithmetic says what happens at its edge (checked, saturating or
@@ -16,28 +19,16 @@
 #![deny(clippy::arithmetic_side_effects)]
 
 pub mod arming;
-pub mod boot;
-pub mod calibration;
-pub mod control;
 pub mod estimate;
 pub mod flags;
-pub mod flash_table;
-pub mod frame;
-pub mod generated_table;
 pub mod installation;
 pub mod inverse;
 pub mod law;
-pub mod limits;
 pub mod math;
 pub mod model;
 pub mod order;
-pub mod overcurrent;
-pub mod pacing;
 pub mod saturation;
-pub mod status;
 pub mod table;
-pub mod upload;
-pub mod watchdog;
 
 pub use flags::Flags;
 pub use model::Branch;

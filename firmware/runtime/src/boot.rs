@@ -1,6 +1,6 @@
 //! Boot facts decoded from raw register values, so the decoding is tested on
-//! the host: why the chip reset (STM32L4 `RCC_CSR`, RM0351 §6.4.29, section
-//! unverified; flag bits 24..31 as in ST's CMSIS `stm32l475xx.h`), and what
+//! the host: why the chip reset (STM32L4 `RCC_CSR`, RM0351 §6.4.30, numbered
+//! from the register order, unverified; flag bits 24..31 as in ST's CMSIS `stm32l475xx.h`), and what
 //! the board does first about it ([`BootPlan`], firmware/README.md "Reset
 //! paths").
 

@@ -289,6 +289,9 @@ pub struct ImpactLaw {
     /// The τ `coil_alpha` was computed for, and `1 − e^{−T/τ}`.
     coil_tau_s: f32,
     coil_alpha: f32,
+    /// `coil_alpha < 1`: the coil lags (one byte test a period, not a
+    /// float comparison; kept by `set_coil_tau`).
+    lag: bool,
     /// The model's force at the last compression plan's current (N): what
     /// the sensor-delay prediction decelerates with, one period old.
     model_force_n: f32,
@@ -338,6 +341,7 @@ impl ImpactLaw {
             coil_a: cfg.armed_current_a,
             coil_tau_s: 0.0,
             coil_alpha: 1.0,
+            lag: false,
             model_force_n: 0.0,
             last_v_m_s: 0.0,
             weight_n: cfg.mass_kg * cfg.gravity_m_s2,
@@ -471,23 +475,34 @@ impl ImpactLaw {
     }
 
     /// One period: sampled displacement and velocity in, coil command out.
+    /// Derives what the law needs from `table` first when it has not yet
+    /// ([`ImpactLaw::prepare`]).
     pub fn step(&mut self, table: &Table, x_mm: f32, v_m_s: f32) -> Command {
+        self.prepare(table);
+        self.step_prepared(table, x_mm, v_m_s)
+    }
+
+    /// [`ImpactLaw::step`] for a law already [`ImpactLaw::prepare`]d for
+    /// `table` that flies no other (the controller: its table is fixed at
+    /// construction): the period without the check that the table is the
+    /// prepared one (7 instructions a control step).
+    #[inline]
+    pub fn step_prepared(&mut self, table: &Table, x_mm: f32, v_m_s: f32) -> Command {
         if !self.inputs_plausible(x_mm, v_m_s) {
             let input_faults = self.check_inputs(x_mm, v_m_s);
             return self.fail_safe(input_faults);
         }
-        let cfg = self.cfg;
         // Force observer: over the last period the mass decelerated by
         // Δv/T, so the plant gave m·(g − Δv/T); where the model said the
         // command gives `expected_n`, the difference is the model's error.
         if self.expected_n > 0.0 {
             let measured_n = self.weight_n - self.mass_per_period_kg_s * (v_m_s - self.last_v_m_s);
-            let error_n = self.force_error_n + cfg.observer_gain * (self.expected_n - measured_n - self.force_error_n);
+            let error_n =
+                self.force_error_n + self.cfg.observer_gain * (self.expected_n - measured_n - self.force_error_n);
             self.force_error_n = math::clamp(error_n, -FORCE_ERROR_LIMIT_N, FORCE_ERROR_LIMIT_N);
         }
         self.last_v_m_s = v_m_s;
         let delay_s = table.terms().sensor_delay_s;
-        self.prepare(table);
         let (x_mm, v_m_s) = if delay_s > 0.0 {
             self.predict(table, x_mm, v_m_s, delay_s)
         } else {
@@ -516,8 +531,8 @@ impl ImpactLaw {
                 // and, at a held current, the force grows with x: plan for
                 // where the period ends, so the force peaks at the target
                 // instead of past it.
-                let x_mm = x_mm + v_m_s * cfg.period_s * 1.0e3;
-                let remaining_mm = cfg.stroke_max_mm - x_mm;
+                let x_mm = x_mm + v_m_s * self.cfg.period_s * 1.0e3;
+                let remaining_mm = self.cfg.stroke_max_mm - x_mm;
                 // Not `f32::max`: that is a libcall on the target; the
                 // remaining stroke is finite here (the inputs were checked).
                 let planned_mm = if remaining_mm < TERMINAL_MM {
@@ -527,7 +542,7 @@ impl ImpactLaw {
                     remaining_mm
                 };
                 // Finite and at least TERMINAL_MM: the inputs were checked.
-                let force_n = stopping_force_within_n(cfg.mass_kg, self.weight_n, v_m_s, planned_mm);
+                let force_n = stopping_force_within_n(self.cfg.mass_kg, self.weight_n, v_m_s, planned_mm);
                 target_force_n = force_n;
                 let ask_n = force_n + self.force_error_n;
                 // Finite, |v| ≤ v_valid_max (checked above, far below the viscous
@@ -535,31 +550,33 @@ impl ImpactLaw {
                 let r = table.plan_current_v(x_mm, v_m_s, ask_n);
                 flags |= r.flags;
                 self.model_force_n = r.force_n;
-                let wanted_a = if self.coil_alpha < 1.0 {
+                let (wanted_a, capped) = if self.lag {
                     self.anticipate(r.current_a)
                 } else {
-                    r.current_a
+                    (r.current_a, false)
                 };
                 // The observer compares only where the model sets the force:
                 // the inverse inside the table, the look-ahead not capping.
-                if wanted_a == r.current_a && !r.flags.intersects(Flags::SATURATED_HIGH.union(Flags::SATURATED_LOW)) {
+                if !capped && !r.flags.intersects(Flags::SATURATED_HIGH.union(Flags::SATURATED_LOW)) {
                     expected_n = ask_n;
                 }
                 wanted_a
             }
             // Idle between impacts with a lagging coil: pre-energise.
-            Branch::Extension if self.coil_tau_s > 0.0 && x_mm <= CONTACT_MM => Self::idle_armed_a(&cfg, &self.arming),
+            Branch::Extension if self.coil_tau_s > 0.0 && x_mm <= CONTACT_MM => {
+                Self::idle_armed_a(&self.cfg, &self.arming)
+            }
             Branch::Extension => {
                 flags |= Flags::REBOUND;
-                match cfg.rebound {
-                    ReboundPolicy::Minimum => cfg.current_min_a,
+                match self.cfg.rebound {
+                    ReboundPolicy::Minimum => self.cfg.current_min_a,
                     ReboundPolicy::Fixed { current_a } => current_a,
                     ReboundPolicy::Hold => self.last_compression_current_a,
                 }
             }
         };
 
-        let clamped_a = math::clamp(wanted_a, cfg.current_min_a, cfg.current_max_a);
+        let clamped_a = math::clamp(wanted_a, self.cfg.current_min_a, self.cfg.current_max_a);
         // The model's force is delivered only if the coil gets the command:
         // not where the output clamp or the slew limit changes it. A NaN
         // (or infinite) wanted current differs from its clamp too: it
@@ -578,10 +595,10 @@ impl ImpactLaw {
         // The result stays in the output range: it lies between `clamped_a`
         // and the last command, and every command (fail-safe included) is
         // in that range. One test of the coil model for both.
-        let (current_a, drive_a) = if self.coil_alpha < 1.0 {
+        let (current_a, drive_a) = if self.lag {
             (clamped_a, self.drive_for(clamped_a))
         } else {
-            let max_step_a = cfg.slew_a_per_s * cfg.period_s;
+            let max_step_a = self.cfg.slew_a_per_s * self.cfg.period_s;
             let slewed_a = math::clamp(
                 clamped_a,
                 self.last_current_a - max_step_a,
@@ -666,6 +683,7 @@ impl ImpactLaw {
         } else {
             1.0
         };
+        self.lag = self.coil_alpha < 1.0;
         self.lead_periods = LEAD_TAU * tau_s / self.cfg.period_s;
     }
 
@@ -676,14 +694,15 @@ impl ImpactLaw {
     /// current extrapolated along its change over the last period (`Δ/T`
     /// periods on), clamped to the output range: no model evaluation. The
     /// first period of a compression has no trend and is not capped.
+    /// Also says whether it capped (the observer then compares nothing).
     #[inline(always)]
-    fn anticipate(&mut self, now_a: f32) -> f32 {
+    fn anticipate(&mut self, now_a: f32) -> (f32, bool) {
         let prev_a = self.last_plan_a;
         self.last_plan_a = now_a;
         let has_trend = self.planned_last;
         self.planned_last = true;
         if !has_trend {
-            return now_a;
+            return (now_a, false);
         }
         let cfg = &self.cfg;
         let ahead_a = math::clamp(
@@ -693,9 +712,9 @@ impl ImpactLaw {
         );
         let bound_a = cfg.drive_min_a + (ahead_a - cfg.drive_min_a) * LEAD_GROWTH;
         if bound_a < now_a {
-            bound_a
+            (bound_a, true)
         } else {
-            now_a
+            (now_a, false)
         }
     }
 

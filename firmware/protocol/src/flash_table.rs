@@ -15,10 +15,10 @@
 //! erased, torn (CRC) or refused by the blob's own validation
 //! (`Table::from_image`, `ControlConfig::validate`). The board implements
 //! [`TablePage`] over embassy-stm32's flash; the host tests over RAM.
-use crate::control::ControlConfig;
 use crate::frame::{decode_config, encode_config, ConfigBlobError, CONFIG_MAX_WORDS};
-use crate::table::Table;
 use crc::{Crc, CRC_32_ISO_HDLC};
+use mre_core::control::ControlConfig;
+use mre_core::table::Table;
 
 pub const MAGIC: u32 = u32::from_le_bytes(*b"MRET");
 pub const PAGE_FORMAT: u32 = 1;

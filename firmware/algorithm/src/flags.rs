@@ -91,12 +91,14 @@ impl Flags {
 
 impl core::ops::BitOr for Flags {
     type Output = Flags;
+    #[inline]
     fn bitor(self, rhs: Flags) -> Flags {
         self.union(rhs)
     }
 }
 
 impl core::ops::BitOrAssign for Flags {
+    #[inline]
     fn bitor_assign(&mut self, rhs: Flags) {
         self.insert(rhs);
     }

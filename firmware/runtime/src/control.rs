@@ -181,6 +181,16 @@ impl ControlConfig {
     }
 }
 
+impl crate::installation::InstallationTarget for ControlConfig {
+    fn law_mut(&mut self) -> &mut LawConfig {
+        &mut self.law
+    }
+
+    fn set_v_sensor_full_scale_m_s(&mut self, full_scale_m_s: f32) {
+        self.v_sensor_full_scale_m_s = full_scale_m_s;
+    }
+}
+
 /// Counters for the periodic defmt statistics. Cycle figures are fed by the
 /// board ([`Controller::record_step_cycles`]); they stay 0 where no cycle
 /// counter exists (QEMU).
@@ -408,7 +418,7 @@ impl Controller {
 
         let mut cmd = match &self.table {
             Some(_) if at_full_scale && !self.latched.is_fault() => self.law.fail_safe(Flags::SENSOR_RANGE),
-            Some(table) if !self.latched.is_fault() => self.law.step(table, x_mm, v_m_s),
+            Some(table) if !self.latched.is_fault() => self.law.step_prepared(table, x_mm, v_m_s),
             _ if self.latched.contains(Flags::OVER_CURRENT) => self.law.drive_off(self.latched),
             _ => self.law.fail_safe(self.latched),
         };
@@ -456,11 +466,15 @@ impl Controller {
         // A changed reading (the usual case) settles it without the speed.
         let unchanged = x_mm.to_bits() == self.last_x_mm.to_bits();
         self.last_x_mm = x_mm;
+        if !unchanged {
+            self.unchanged_moving = 0;
+            return;
+        }
         let moving = match v_measured_m_s {
             Some(v) => v.is_finite() && math::abs(v) >= self.cfg.stuck_min_speed_m_s,
             None => false,
         };
-        if unchanged && moving {
+        if moving {
             self.unchanged_moving = self.unchanged_moving.saturating_add(1);
             if self.unchanged_moving >= self.cfg.stuck_samples {
                 self.latch(Flags::SENSOR_STUCK);
