@@ -18,6 +18,10 @@ fmi3Error with a log line and the process lives (run in a child process, so
 an abort shows as its exit status); setting an output or a calculated
 parameter and a doStep with a bad step or from another time return fmi3Error;
 the dependency count of each output equals the model description's.
+Units and ranges (issue 43 item 6): every unit has a BaseUnit (the ampere
+A="1"); every input a min, max and a nominal on its type; a value set out of
+its range or NaN returns fmi3Warning with a warning in the log naming the
+variable, and the output stays finite.
 Exits non-zero on any failure.
 """
 import csv
@@ -60,6 +64,17 @@ def validate(path):
             check(unit in units, f"{path.name}: {v.name} has an SI unit ({unit})")
             if v.name != "time":
                 check(bool(v.description), f"{path.name}: {v.name} has a description")
+    for u in md.unitDefinitions:
+        check(u.baseUnit is not None, f"{path.name}: unit {u.name} has a BaseUnit")
+        if u.name == "A":
+            check(u.baseUnit is not None and u.baseUnit.A == 1, f"{path.name}: the ampere's BaseUnit is A=1")
+    for v in md.modelVariables:
+        if v.causality == "input":
+            t = types.get(v.declaredType.name) if v.declaredType else None
+            check(v.min is not None and v.max is not None and float(v.min) < float(v.max),
+                  f"{path.name}: input {v.name} has a range [{v.min}, {v.max}]")
+            check(t is not None and t.nominal is not None and float(t.nominal) > 0,
+                  f"{path.name}: input {v.name} has a nominal ({t.nominal if t else None})")
     check(md.defaultExperiment is not None and md.defaultExperiment.stepSize is not None,
           f"{path.name}: default experiment with a step size")
     return md
@@ -317,6 +332,33 @@ def contract_check(sim_dir):
           "damper.fmu: force_n depends on displacement_m, velocity_m_s and current_a in the XML")
 
 
+WARNING = 1  # fmi3Warning
+
+
+def range_check(path, output):
+    """Out-of-range and NaN inputs: fmi3Warning, a warning logged naming the input, a finite output."""
+    log = []
+    f = Fmu(path, log=log)
+    u = f.fmu
+    inputs = [v for v in f.md.modelVariables if v.causality == "input"]
+    for v in inputs:
+        for what, value in [("NaN", float("nan")), ("above max", float(v.max) * 10 + 1.0)]:
+            n = len(log)
+            vr = (ctypes.c_uint32 * 1)(v.valueReference)
+            x = (ctypes.c_double * 1)(value)
+            status = u.fmi3SetFloat64(u.component, vr, 1, x, 1)
+            warned = [m for s, m in log[n:] if s == WARNING and v.name in m]
+            check(status == WARNING and warned,
+                  f"{path.name}: {v.name} {what} -> status {status} (fmi3Warning = 1), logged {warned[:1]}")
+            if output == "force_n":
+                check(math.isfinite(f.get(output)), f"{path.name}: {output} stays finite with {v.name} {what}")
+            # Back in range: OK again.
+            start = (ctypes.c_double * 1)(float(v.start or 0.0))
+            check(u.fmi3SetFloat64(u.component, vr, 1, start, 1) == 0,
+                  f"{path.name}: {v.name} back at its start value is OK")
+    f.close()
+
+
 def main():
     root = Path(sys.argv[1])
     validate(root / "every-term" / "damper.fmu")
@@ -327,6 +369,8 @@ def main():
     closed_loop(root / "sim", json.load(open(root / "sim.json")))
     reset_check(root / "sim" / "controller.fmu")
     contract_check(root / "sim")
+    range_check(root / "sim" / "damper.fmu", "force_n")
+    range_check(root / "sim" / "controller.fmu", "coil_command_a")
     print(f"{len(failures)} failed" if failures else "all FMPy checks passed")
     return 1 if failures else 0
 
