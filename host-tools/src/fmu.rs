@@ -193,7 +193,7 @@ fn describe_for(kind: Kind, source: &str, table: &Table, cfg: &ControlConfig) ->
             model_name: format!("mre impact controller ({source})"),
             description: format!(
                 "MRE impact controller as the board runs it at {} Hz with {source} (CRC-32 {:#010x}): \
-                 {} kg within {} mm of stroke; measured displacement and velocity in, coil command out",
+                 {} kg within {} mm of stroke; measured displacement and velocity in, commanded coil current and drive voltage out",
                 cfg.rate_hz,
                 table.crc32(),
                 cfg.law.mass_kg,

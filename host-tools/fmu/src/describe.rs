@@ -41,13 +41,15 @@ impl Kind {
 
 /// Unit of a variable from its name's suffix (longest first), as
 /// `(suffix, declared type, unit, SI base exponents kg, m, s, A)`.
-const UNITS: [(&str, &str, &str, [i32; 4]); 6] = [
+const UNITS: [(&str, &str, &str, [i32; 4]); 8] = [
     ("_m_s", "Velocity", "m/s", [0, 1, -1, 0]),
     ("_kg", "Mass", "kg", [1, 0, 0, 0]),
     ("_m", "Length", "m", [0, 1, 0, 0]),
     ("_s", "Time", "s", [0, 0, 1, 0]),
     ("_a", "Current", "A", [0, 0, 0, 1]),
     ("_n", "Force", "N", [1, 1, -2, 0]),
+    ("_v", "Voltage", "V", [1, 2, -3, -1]),
+    ("_ohm", "Resistance", "Ohm", [1, 2, -3, -2]),
 ];
 
 fn unit_of(name: &str) -> Option<&'static (&'static str, &'static str, &'static str, [i32; 4])> {

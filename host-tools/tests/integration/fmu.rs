@@ -86,8 +86,15 @@ fn controller_commands_what_the_board_controller_commands() {
     let damper = mre_fmu(&model, dir.path(), true);
     let import: Fmi3Import =
         fmi::import::from_path(mre_host::fmu::controller_path(&damper)).expect("the fmi crate imports controller.fmu");
-    let [x, v, u, period] =
-        ["displacement_m", "velocity_m_s", "coil_command_a", "control_period_s"].map(|n| vr(&import, n));
+    let [x, v, u, period, coil, volts] = [
+        "displacement_m",
+        "velocity_m_s",
+        "coil_command_a",
+        "control_period_s",
+        "coil_current_a",
+        "drive_voltage_v",
+    ]
+    .map(|n| vr(&import, n));
     let mut cs = import
         .instantiate_cs("controller", false, false, false, false, &[])
         .unwrap();
