@@ -408,7 +408,7 @@ fn the_fmu_documents_itself_and_its_generation() {
         ]
         .iter()
         .copied()
-        .chain(names.iter().map(|n| *n))
+        .chain(names.iter().copied())
         {
             assert!(html.contains(needle), "{}: index.html lacks {needle:?}", fmu.display());
         }
