@@ -439,3 +439,29 @@ fn generation_dates_by_hand() {
     assert!(generation_date(Some("yesterday")).is_err());
     assert!(generation_date(None).unwrap().ends_with('Z'));
 }
+
+#[test]
+fn the_same_source_date_epoch_writes_the_same_fmu() {
+    // Reproducible builds: with SOURCE_DATE_EPOCH fixed, two runs write identical bytes
+    // (zip entries carry no time of their own; the date is the variable's).
+    let dir = tempfile::tempdir().unwrap();
+    let model = dir.path().join("every-term.toml");
+    std::fs::write(&model, mre_host::table_file::table_to_toml(&every_term_table())).unwrap();
+    let write = |name: &str, epoch: &str| {
+        let out = dir.path().join(name);
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_mre"))
+            .args(["fmu", "--quiet", "--out"])
+            .arg(&out)
+            .arg(&model)
+            .env("SOURCE_DATE_EPOCH", epoch)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read(out).unwrap()
+    };
+    let first = write("a.fmu", "1700000000");
+    // A second apart: a date taken from the clock would differ.
+    std::thread::sleep(std::time::Duration::from_millis(1100));
+    assert_eq!(first, write("b.fmu", "1700000000"), "same epoch, same bytes");
+    assert_ne!(first, write("c.fmu", "1700000001"), "the date is in the FMU");
+}
