@@ -236,8 +236,9 @@ fn fmus(out: &Path) -> Result<DemoStep> {
          (damper: Co-Simulation and Model Exchange; controller: Co-Simulation) for {}, evaluated by the \
          board's control core.\n\n\
          - damper: `displacement_m` (m), `velocity_m_s` (m/s), `current_a` (A) in; `force_n` (N) out.\n\
-         - controller: measured `displacement_m`, `velocity_m_s` in; `coil_command_a` (A) out, one control tick \
-         per `control_period_s` (the board's 10 kHz).\n\n\
+         - controller: measured `displacement_m`, `velocity_m_s` in; `coil_current_a` (A, the commanded coil \
+         current: wire it to the damper's `current_a`), `drive_voltage_v` (V) and `coil_command_a` (the law's \
+         drive over the coil resistance) out, one control tick per `control_period_s` (the board's 10 kHz).\n\n\
          docs/fmu.md in the repository shows how to use them in OpenModelica, Simulink and FMPy.\n",
         links.join(" and "),
         crate::fmu::PLATFORM

@@ -11,7 +11,12 @@
 //!   `x86_64-windows/` folder,
 //! - `resources/table.page`: the table and the control configuration as the
 //!   board's flash page (`mre_fmu::page`), and `resources/model.toml`, the
-//!   model file it came from (for people; the library reads only the page).
+//!   model file it came from (for people; the library reads only the page),
+//! - `documentation/index.html`: the model, its variables with units and
+//!   ranges, the source data set, the table's CRC and how to wire it.
+//!
+//! `generationDateAndTime` is `$SOURCE_DATE_EPOCH` when set (reproducible
+//! builds), else the time of writing.
 //!
 //! The libraries: `$MRE_FMU_LIB_DIR` if set; else, in a source checkout,
 //! `cargo build --release` of the two `cdylib` crates into the workspace's
@@ -92,8 +97,12 @@ pub fn run_fmu_with(request: &FmuRequest, libraries: &Path) -> Result<Vec<PathBu
     if request.controller {
         kinds.push((Kind::Controller, controller_path(&request.out)));
     }
+    let date = generation_date(std::env::var("SOURCE_DATE_EPOCH").ok().as_deref())?;
+    let provenance = Provenance::of(&text);
     for (kind, path) in &kinds {
-        let describe = describe_for(*kind, &source, &table, &cfg);
+        let mut describe = describe_for(*kind, &source, &table, &cfg);
+        describe.generation_date_and_time = Some(date.clone());
+        let html = documentation(*kind, &describe, &source, &provenance, &table, &cfg);
         let xml = mre_fmu::describe::model_description(*kind, &describe).map_err(|e| anyhow!(e))?;
         let library = libraries.join(library_file(*kind));
         let binary =
@@ -111,14 +120,58 @@ pub fn run_fmu_with(request: &FmuRequest, libraries: &Path) -> Result<Vec<PathBu
             }
         };
         write_atomic_with(path, |buf| {
-            pack(buf, *kind, &xml, &binary, windows.as_deref(), &page, &text)
+            pack(buf, *kind, &xml, &binary, windows.as_deref(), &page, &text, &html)
         })?;
     }
     Ok(kinds.into_iter().map(|(_, p)| p).collect())
 }
 
+/// The FMU's `version`: mre's, and the table's CRC (which identifies the model).
+pub fn fmu_version(table: &Table) -> String {
+    format!("{}+table.{:08x}", env!("CARGO_PKG_VERSION"), table.crc32())
+}
+
+/// `generationDateAndTime` (ISO 8601, UTC, to the second): `source_date_epoch`
+/// (seconds since 1970, the reproducible-builds convention) if given, else now.
+pub fn generation_date(source_date_epoch: Option<&str>) -> Result<String> {
+    let seconds = match source_date_epoch {
+        Some(text) => text
+            .trim()
+            .parse::<i64>()
+            .with_context(|| format!("SOURCE_DATE_EPOCH={text:?} is not a whole number of seconds"))?,
+        None => std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| i64::try_from(d.as_secs()).unwrap_or(i64::MAX)),
+    };
+    let (days, secs) = (seconds.div_euclid(86_400), seconds.rem_euclid(86_400));
+    let (y, m, d) = civil_from_days(days);
+    Ok(format!(
+        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z",
+        secs / 3600,
+        secs % 3600 / 60,
+        secs % 60
+    ))
+}
+
+/// The proleptic Gregorian date of `days` since 1970-01-01 (H. Hinnant's
+/// `civil_from_days`: eras of 400 years from 0000-03-01).
+fn civil_from_days(days: i64) -> (i64, i64, i64) {
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z.rem_euclid(146_097);
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    (yoe + era * 400 + i64::from(m <= 2), m, d)
+}
+
 fn describe_for(kind: Kind, source: &str, table: &Table, cfg: &ControlConfig) -> Describe {
     let (lo, hi) = table.current_range_a();
+    let ranges = mre_fmu::ranges::input_ranges(kind, table);
+    let version = fmu_version(table);
+    let generation_tool = format!("mre {} (rust-fmi fmi-export 0.3)", env!("CARGO_PKG_VERSION"));
     match kind {
         Kind::Damper => Describe {
             model_name: format!("mre damper ({source})"),
@@ -131,12 +184,16 @@ fn describe_for(kind: Kind, source: &str, table: &Table, cfg: &ControlConfig) ->
             ),
             stop_time_s: 0.05,
             step_size_s: f64::from(cfg.period_s()),
+            ranges,
+            version,
+            generation_tool,
+            generation_date_and_time: None,
         },
         Kind::Controller => Describe {
             model_name: format!("mre impact controller ({source})"),
             description: format!(
                 "MRE impact controller as the board runs it at {} Hz with {source} (CRC-32 {:#010x}): \
-                 {} kg within {} mm of stroke; measured displacement and velocity in, coil command out",
+                 {} kg within {} mm of stroke; measured displacement and velocity in, commanded coil current and drive voltage out",
                 cfg.rate_hz,
                 table.crc32(),
                 cfg.law.mass_kg,
@@ -144,8 +201,127 @@ fn describe_for(kind: Kind, source: &str, table: &Table, cfg: &ControlConfig) ->
             ),
             stop_time_s: 0.05,
             step_size_s: f64::from(cfg.period_s()),
+            ranges,
+            version,
+            generation_tool,
+            generation_date_and_time: None,
         },
     }
+}
+
+/// Where the model file says its table came from (`[model]` of `mre fit`'s files).
+#[derive(Clone, Debug, Default)]
+struct Provenance {
+    dataset: Option<String>,
+    input_sha256: Option<String>,
+    method: Option<String>,
+}
+
+impl Provenance {
+    fn of(model_toml: &str) -> Self {
+        let model = model_toml
+            .parse::<toml::Table>()
+            .ok()
+            .and_then(|t| t.get("model").and_then(|m| m.as_table()).cloned())
+            .unwrap_or_default();
+        let text = |key: &str| model.get(key).and_then(|v| v.as_str()).map(str::to_owned);
+        Provenance {
+            dataset: text("dataset"),
+            input_sha256: text("input_sha256"),
+            method: text("method"),
+        }
+    }
+}
+
+fn escape_html(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// `documentation/index.html` of `kind`: what an engineer needs to load it
+/// without this repository (the model, the variables with units and declared
+/// ranges, the data it came from, the table's CRC, the wiring).
+fn documentation(
+    kind: Kind,
+    describe: &Describe,
+    source: &str,
+    provenance: &Provenance,
+    table: &Table,
+    cfg: &ControlConfig,
+) -> String {
+    let e = escape_html;
+    let mut rows = String::new();
+    for v in mre_fmu::describe::variables(kind) {
+        let range = describe.ranges.iter().find(|r| r.name == v.name).map_or_else(
+            || "–".to_owned(),
+            |r| format!("{} … {} (nominal {})", r.min, r.max, r.nominal),
+        );
+        rows += &format!(
+            "<tr><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+            e(&v.name),
+            v.causality,
+            v.unit.unwrap_or("–"),
+            e(&range),
+            e(&v.description)
+        );
+    }
+    let unknown = || "not recorded in the model file".to_owned();
+    let terms = table.terms();
+    let (lo, hi) = table.current_range_a();
+    let wiring = match kind {
+        Kind::Damper => format!(
+            "<p>Connect the vehicle's damper compression (m, positive into the damper, 0 at first contact) to \
+             <code>displacement_m</code>, its rate (m/s, positive compressing) to <code>velocity_m_s</code>, \
+             and the coil current to <code>current_a</code>; apply <code>force_n</code> to the impacting mass \
+             (positive resisting compression). The coil current lags its drive by <code>coil_tau_s</code> \
+             ({} s): with <code>controller.fmu</code>, pass its drive through a first-order lag of that time \
+             constant (limited to the driver's range) before <code>current_a</code>, or feed \
+             <code>current_a</code> directly when the coil has no lag. Co-Simulation: any step (the force is \
+             an algebraic function of the inputs); the default experiment steps at {} s.</p>",
+            terms.coil_tau_s, describe.step_size_s
+        ),
+        Kind::Controller => format!(
+            "<p>Feed the measured compression (m) and its rate (m/s) to <code>displacement_m</code> and \
+             <code>velocity_m_s</code> and step with the control period, <code>control_period_s</code> = {} s \
+             (the board's {} Hz); the outputs hold between ticks. Close the loop through the coil: its \
+             drive goes through the coil's lag (τ = {} s, from the damper's <code>coil_tau_s</code>) to the \
+             damper's <code>current_a</code>. The law plans for {} kg within {} mm of stroke.</p>",
+            describe.step_size_s, cfg.rate_hz, terms.coil_tau_s, cfg.law.mass_kg, cfg.law.stroke_max_mm
+        ),
+    };
+    let out_of_range = "<p>Inputs outside their declared range, and NaN or infinite inputs, make \
+        <code>fmi3SetFloat64</code> return <code>fmi3Warning</code> with a log message (enable logging to see \
+        it). The value is still used as the board's core uses it: the damper clamps the displacement to each \
+        tabulated current's fitted stroke and the current to the table; a NaN displacement counts as the \
+        stroke's start, a NaN current as the lowest, a NaN velocity as the extension branch without viscous \
+        force. The controller passes them to its sensor checks, which latch its fail-safe current.</p>";
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head><meta charset=\"utf-8\"><title>{title}</title></head>\n<body>\n\
+         <h1>{title}</h1>\n<p>{description}</p>\n\
+         <h2>Variables</h2>\n<table border=\"1\">\n<tr><th>Name</th><th>Causality</th><th>Unit</th>\
+         <th>Declared range</th><th>Description</th></tr>\n{rows}</table>\n{out_of_range}\n\
+         <h2>Wiring</h2>\n{wiring}\n\
+         <h2>Source</h2>\n<ul>\n<li>Model file: <code>{source}</code> (in this FMU as \
+         <code>resources/model.toml</code>; the library reads <code>resources/table.page</code>, the board's \
+         flash page)</li>\n<li>Data set: {dataset}</li>\n<li>Data set SHA-256: <code>{sha}</code></li>\n\
+         <li>Fit method: {method}</li>\n<li>Table: format {format}, {n} currents {lo}–{hi} A, CRC-32 \
+         <code>{crc:#010x}</code></li>\n</ul>\n\
+         <p>FMU version {version}, generated by {tool} at {date}.</p>\n</body>\n</html>\n",
+        title = e(&describe.model_name),
+        description = e(&describe.description),
+        source = e(source),
+        dataset = e(&provenance.dataset.clone().unwrap_or_else(unknown)),
+        sha = e(&provenance.input_sha256.clone().unwrap_or_else(unknown)),
+        method = e(&provenance.method.clone().unwrap_or_else(unknown)),
+        format = table.version(),
+        n = table.entries().len(),
+        crc = table.crc32(),
+        version = e(&describe.version),
+        tool = e(&describe.generation_tool),
+        date = e(describe.generation_date_and_time.as_deref().unwrap_or("")),
+    )
 }
 
 /// The shared library's file name on this platform.
@@ -158,6 +334,7 @@ pub fn windows_library_file(kind: Kind) -> String {
     format!("{}.dll", kind.model_identifier())
 }
 
+#[allow(clippy::too_many_arguments)]
 fn pack(
     buf: &mut Vec<u8>,
     kind: Kind,
@@ -166,6 +343,7 @@ fn pack(
     windows: Option<&[u8]>,
     page: &[u8],
     model_toml: &str,
+    html: &str,
 ) -> Result<()> {
     let mut zip = zip::ZipWriter::new(std::io::Cursor::new(buf));
     let deflate = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
@@ -174,6 +352,7 @@ fn pack(
         (format!("binaries/{PLATFORM}/{}.so", kind.model_identifier()), binary),
         (format!("resources/{}", mre_fmu::page::PAGE_FILE), page),
         ("resources/model.toml".to_owned(), model_toml.as_bytes()),
+        ("documentation/index.html".to_owned(), html.as_bytes()),
     ];
     if let Some(dll) = windows {
         files.push((

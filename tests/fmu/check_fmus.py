@@ -2,7 +2,8 @@
 """FMPy checks of mre's FMUs (issue 28). Run by host-tools/tests/integration/fmu_fmpy.rs,
 which writes the FMUs and the reference data into DIR:
 
-  every-term/damper.fmu    a model file with every format-2 term
+  every-term/damper.fmu, every-term/controller.fmu
+                           a model file with every format-2 term (coil tau 2 ms)
   trace.csv                a bundled drop recording's x, v with a current sweep,
                            and the core's force at each sample (mre_core in Rust)
   sim/damper.fmu, sim/controller.fmu, sim.json
@@ -18,6 +19,10 @@ fmi3Error with a log line and the process lives (run in a child process, so
 an abort shows as its exit status); setting an output or a calculated
 parameter and a doStep with a bad step or from another time return fmi3Error;
 the dependency count of each output equals the model description's.
+Units and ranges (issue 43 item 6): every unit has a BaseUnit (the ampere
+A="1"); every input a min, max and a nominal on its type; a value set out of
+its range or NaN returns fmi3Warning with a warning in the log naming the
+variable, and the output stays finite.
 Exits non-zero on any failure.
 """
 import csv
@@ -60,6 +65,17 @@ def validate(path):
             check(unit in units, f"{path.name}: {v.name} has an SI unit ({unit})")
             if v.name != "time":
                 check(bool(v.description), f"{path.name}: {v.name} has a description")
+    for u in md.unitDefinitions:
+        check(u.baseUnit is not None, f"{path.name}: unit {u.name} has a BaseUnit")
+        if u.name == "A":
+            check(u.baseUnit is not None and u.baseUnit.A == 1, f"{path.name}: the ampere's BaseUnit is A=1")
+    for v in md.modelVariables:
+        if v.causality == "input":
+            t = types.get(v.declaredType.name) if v.declaredType else None
+            check(v.min is not None and v.max is not None and float(v.min) < float(v.max),
+                  f"{path.name}: input {v.name} has a range [{v.min}, {v.max}]")
+            check(t is not None and t.nominal is not None and float(t.nominal) > 0,
+                  f"{path.name}: input {v.name} has a nominal ({t.nominal if t else None})")
     check(md.defaultExperiment is not None and md.defaultExperiment.stepSize is not None,
           f"{path.name}: default experiment with a step size")
     return md
@@ -129,6 +145,8 @@ def closed_loop(sim_dir, sim):
     x, v, t = 0.0, sim["impact_velocity_m_s"], 0.0
     current = sim["initial_current_a"]
     peak_force, max_stroke = 0.0, 0.0
+    coil_gap, drive_gap = 0.0, 0.0
+    ohm = ctl.get("coil_resistance_ohm")
 
     def force(xm, vm, i):
         # The mass touches the damper only at x > 0, and the damper only pushes.
@@ -145,6 +163,8 @@ def closed_loop(sim_dir, sim):
         ctl.set(displacement_m=x, velocity_m_s=v)
         ctl.fmu.doStep(t, period)
         command = ctl.get("coil_command_a")
+        coil_fmu = ctl.get("coil_current_a")
+        drive_gap = max(drive_gap, abs(ctl.get("drive_voltage_v") - command * ohm))
         done = False
         for _ in range(substeps):
             if tau is None:
@@ -163,11 +183,17 @@ def closed_loop(sim_dir, sim):
             if x < 0.0 and v < 0.0:
                 done = True
                 break
+        if not done:
+            # The FMU's coil current at the tick's end against the lag integrated here.
+            coil_gap = max(coil_gap, abs(coil_fmu - current))
         damper.fmu.doStep(t0, period)
         if done:
             break
     damper.close()
     ctl.close()
+    check(coil_gap <= 1e-6, f"closed loop: controller's coil_current_a is the coil current the loop integrates "
+                            f"(worst {coil_gap:.3g} A)")
+    check(drive_gap <= 1e-9, f"closed loop: drive_voltage_v = coil_command_a x {ohm} ohm (worst {drive_gap:.3g} V)")
     for what, fmpy_value, mre_value in [
         ("peak force (N)", peak_force, sim["peak_force_n"]),
         ("stroke (mm)", max_stroke, sim["max_stroke_mm"]),
@@ -206,6 +232,31 @@ def commands(ctl, period, inputs):
         ctl.fmu.doStep(k * period, period)
         got.append((ctl.get("coil_command_a"), ctl.get("target_force_n")))
     return got
+
+
+def coil_check(every_dir):
+    """controller.fmu's coil_current_a is its drive through the coil's lag, integrated here
+    exactly (u + (i - u) e^(-T/tau) per tick, tau the damper's coil_tau_s), from the idle
+    current it holds before the first tick; drive_voltage_v is the drive times R."""
+    damper = Fmu(every_dir / "damper.fmu")
+    tau = damper.get("coil_tau_s")
+    damper.close()
+    ctl = Fmu(every_dir / "controller.fmu")
+    period, ohm = ctl.get("control_period_s"), ctl.get("coil_resistance_ohm")
+    coil = ctl.get("coil_current_a")
+    check(tau > 0 and coil == ctl.get("coil_command_a"), f"coil: tau {tau} s, idle current {coil} A before the first tick")
+    worst, lag_seen = 0.0, 0.0
+    for k, (x, v) in enumerate(drop_inputs(60)):
+        ctl.set(displacement_m=x, velocity_m_s=v)
+        ctl.fmu.doStep(k * period, period)
+        u = ctl.get("coil_command_a")
+        coil = u + (coil - u) * math.exp(-period / tau)
+        worst = max(worst, abs(ctl.get("coil_current_a") - coil))
+        lag_seen = max(lag_seen, abs(u - coil))
+        check(ctl.get("drive_voltage_v") == u * ohm, f"coil: tick {k}: drive_voltage_v = coil_command_a x {ohm} ohm")
+    ctl.close()
+    check(lag_seen > 0.1, f"coil: the drive leads the current (up to {lag_seen:.3g} A): the check sees the lag")
+    check(worst <= 1e-9, f"coil: coil_current_a is the drive through tau = {tau} s (worst {worst:.3g} A)")
 
 
 def reset_check(controller_path):
@@ -317,6 +368,33 @@ def contract_check(sim_dir):
           "damper.fmu: force_n depends on displacement_m, velocity_m_s and current_a in the XML")
 
 
+WARNING = 1  # fmi3Warning
+
+
+def range_check(path, output):
+    """Out-of-range and NaN inputs: fmi3Warning, a warning logged naming the input, a finite output."""
+    log = []
+    f = Fmu(path, log=log)
+    u = f.fmu
+    inputs = [v for v in f.md.modelVariables if v.causality == "input"]
+    for v in inputs:
+        for what, value in [("NaN", float("nan")), ("above max", float(v.max) * 10 + 1.0)]:
+            n = len(log)
+            vr = (ctypes.c_uint32 * 1)(v.valueReference)
+            x = (ctypes.c_double * 1)(value)
+            status = u.fmi3SetFloat64(u.component, vr, 1, x, 1)
+            warned = [m for s, m in log[n:] if s == WARNING and v.name in m]
+            check(status == WARNING and warned,
+                  f"{path.name}: {v.name} {what} -> status {status} (fmi3Warning = 1), logged {warned[:1]}")
+            if output == "force_n":
+                check(math.isfinite(f.get(output)), f"{path.name}: {output} stays finite with {v.name} {what}")
+            # Back in range: OK again.
+            start = (ctypes.c_double * 1)(float(v.start or 0.0))
+            check(u.fmi3SetFloat64(u.component, vr, 1, start, 1) == 0,
+                  f"{path.name}: {v.name} back at its start value is OK")
+    f.close()
+
+
 def main():
     root = Path(sys.argv[1])
     validate(root / "every-term" / "damper.fmu")
@@ -326,7 +404,10 @@ def main():
     trace_check(root / "every-term" / "damper.fmu", root / "trace.csv", me=True)
     closed_loop(root / "sim", json.load(open(root / "sim.json")))
     reset_check(root / "sim" / "controller.fmu")
+    coil_check(root / "every-term")
     contract_check(root / "sim")
+    range_check(root / "sim" / "damper.fmu", "force_n")
+    range_check(root / "sim" / "controller.fmu", "coil_command_a")
     print(f"{len(failures)} failed" if failures else "all FMPy checks passed")
     return 1 if failures else 0
 

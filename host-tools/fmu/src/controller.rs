@@ -8,13 +8,19 @@
 //! the last tick's command (zero-order hold, as the coil driver holds it).
 //! A communication step of `T` (the default experiment's) gives one tick per
 //! step; a longer step reuses its inputs for each tick in it.
+//!
+//! Outputs: `coil_command_a` is the law's command as the core returns it
+//! (with a coil τ the drive over R, kept under its old name); the FMU adds
+//! `drive_voltage_v` (that times R) and `coil_current_a`, the coil current
+//! the drive gives through the lag `1 − e^{−T/τ}` per tick, for importers
+//! that wire a current into the damper (#43 item 5).
 use fmi::fmi3::{Fmi3Error, Fmi3Res};
 use fmi_export::fmi3::{CSDoStepResult, Context, DefaultLoggingCategory, UserModel};
 use fmi_export::FmuModel;
 use mre_core::control;
 use mre_core::law::ImpactLaw;
 
-/// MRE impact controller as the board runs it (mre_core::control::Controller at the board's control rate): measured displacement and velocity in, coil command out
+/// MRE impact controller as the board runs it (mre_core::control::Controller at the board's control rate): measured displacement and velocity in, commanded coil current and drive voltage out
 #[derive(FmuModel, Default, Debug)]
 #[model(model_exchange = false, co_simulation = true, user_model = false)]
 pub struct Controller {
@@ -24,7 +30,7 @@ pub struct Controller {
     /// Measured compression velocity (m/s), positive while compressing
     #[variable(causality = Input, variability = Continuous, start = 0.0)]
     pub velocity_m_s: f64,
-    /// Coil command (A) held until the next control tick: the coil current, or with a coil time constant the drive voltage over the coil resistance
+    /// The command as the board's law returns it (A), held until the next tick: the drive voltage over the coil resistance (drive_voltage_v / R); equal to coil_current_a when the coil has no time constant. Kept for existing wiring: feed the damper coil_current_a
     #[variable(causality = Output, variability = Discrete, initial = Calculated)]
     pub coil_command_a: f64,
     /// Force the law asked for at the last tick (N); 0 when rebounding or fail-safe
@@ -42,6 +48,18 @@ pub struct Controller {
     /// Usable stroke the law stops the mass within (m)
     #[variable(causality = CalculatedParameter, variability = Fixed, initial = Calculated)]
     pub stroke_max_m: f64,
+    /// Commanded coil current (A): what the coil carries at the end of the tick under the drive, by the model file's coil time constant (first-order lag from the previous tick's); wire it to the damper's current_a
+    #[variable(causality = Output, variability = Discrete, initial = Calculated)]
+    pub coil_current_a: f64,
+    /// Drive voltage across the coil (V) held until the next tick: coil_command_a times the installation's coil resistance
+    #[variable(causality = Output, variability = Discrete, initial = Calculated)]
+    pub drive_voltage_v: f64,
+    /// Coil resistance of the installation (ohm): drive_voltage_v = coil_command_a times it
+    #[variable(causality = CalculatedParameter, variability = Fixed, initial = Calculated)]
+    pub coil_resistance_ohm: f64,
+    /// The coil's lag per tick, 1 - exp(-T/tau) (1: no lag).
+    #[variable(skip = true)]
+    coil_alpha: f64,
     #[variable(skip = true)]
     core: Option<control::Controller>,
     /// Control ticks run so far, and the time of tick 0 (s).
@@ -58,6 +76,8 @@ impl Controller {
         self.core = None;
         self.ticks = 0;
         self.coil_command_a = 0.0;
+        self.coil_current_a = 0.0;
+        self.drive_voltage_v = 0.0;
         self.target_force_n = 0.0;
         self.flags = 0;
     }
@@ -70,12 +90,27 @@ impl Controller {
                     .map_err(|e| format!("the page's law configuration was refused: {e:?}"))?;
                 let core = control::Controller::new(cfg, Ok(table))
                     .map_err(|e| format!("the page's control configuration was refused: {e:?}"))?;
-                Ok((core, idle_a, cfg))
+                Ok((
+                    core,
+                    idle_a,
+                    cfg,
+                    table.terms().coil_tau_s,
+                    table.installation().coil_resistance_ohm,
+                ))
             });
             match loaded {
-                Ok((core, idle_a, cfg)) => {
-                    // Before its first tick the coil holds the idle current.
+                Ok((core, idle_a, cfg, tau_s, ohm)) => {
+                    // Before its first tick the coil holds the idle current, settled.
                     self.coil_command_a = f64::from(idle_a);
+                    self.coil_current_a = f64::from(idle_a);
+                    self.coil_resistance_ohm = f64::from(ohm);
+                    self.drive_voltage_v = f64::from(idle_a) * self.coil_resistance_ohm;
+                    let period_s = f64::from(cfg.period_s());
+                    self.coil_alpha = if tau_s > 0.0 {
+                        1.0 - (-period_s / f64::from(tau_s)).exp()
+                    } else {
+                        1.0
+                    };
                     self.control_period_s = f64::from(cfg.period_s());
                     self.mass_kg = f64::from(cfg.law.mass_kg);
                     self.stroke_max_m = f64::from(cfg.law.stroke_max_mm) * 1.0e-3;
@@ -128,15 +163,23 @@ impl UserModel for Controller {
         // Ticks before `end_s`, less a nanosecond of rounding in the sum of steps.
         let due = ((end_s - self.start_s - 1.0e-9) / period_s).ceil().max(0.0) as u64;
         let mut ticks = self.ticks;
-        let core = self.core(&*context)?;
+        // Loaded first: loading sets the coil's lag and its idle current.
+        self.core(&*context)?;
+        let (alpha, mut coil_a) = (self.coil_alpha, self.coil_current_a);
+        let core = self.core.as_mut().ok_or(Fmi3Error::Error)?;
         let mut last = None;
         while ticks < due {
-            last = Some(core.step_sample(x_mm, Some(v_m_s)));
+            let cmd = core.step_sample(x_mm, Some(v_m_s));
+            // The coil follows each tick's drive through its first-order lag.
+            coil_a += alpha * (f64::from(cmd.current_a) - coil_a);
+            last = Some(cmd);
             ticks += 1;
         }
+        self.coil_current_a = coil_a;
         self.ticks = ticks;
         if let Some(cmd) = last {
             self.coil_command_a = f64::from(cmd.current_a);
+            self.drive_voltage_v = self.coil_command_a * self.coil_resistance_ohm;
             self.target_force_n = f64::from(cmd.target_force_n);
             self.flags = cmd.flags.0;
         }

@@ -3,9 +3,10 @@
 //! has no unit, and fmi-schema 0.8's `Float64` variable no `unit`
 //! attribute): every float variable gets a declared type whose unit is the
 //! SI unit its name ends in, with the unit definitions, the interface
-//! elements and a default experiment. The ampere is declared by name only:
-//! fmi-schema 0.8 names its `BaseUnit` exponent `a` where FMI 3.0 has `A`,
-//! so `a` fails FMPy's schema validation and `A` the `fmi` crate's reader.
+//! elements and a default experiment. Every unit has its `BaseUnit` (the
+//! ampere's exponent written `A`, as FMI 3.0 names it, by the workspace's
+//! fmi-schema copy: host-tools/fmu/fmi-schema/PATCHED.md). Inputs carry
+//! `min`/`max` ([`crate::ranges`]); their quantities' types a `nominal`.
 use fmi::schema::fmi3::{
     BaseUnit, DefaultExperiment, Float64Type, Fmi3CoSimulation, Fmi3ModelDescription, Fmi3ModelExchange, Fmi3Unit,
     TypeDefinition, TypeDefinitions, UnitDefinitions, Variable,
@@ -40,13 +41,15 @@ impl Kind {
 
 /// Unit of a variable from its name's suffix (longest first), as
 /// `(suffix, declared type, unit, SI base exponents kg, m, s, A)`.
-const UNITS: [(&str, &str, &str, [i32; 4]); 6] = [
+const UNITS: [(&str, &str, &str, [i32; 4]); 8] = [
     ("_m_s", "Velocity", "m/s", [0, 1, -1, 0]),
     ("_kg", "Mass", "kg", [1, 0, 0, 0]),
     ("_m", "Length", "m", [0, 1, 0, 0]),
     ("_s", "Time", "s", [0, 0, 1, 0]),
     ("_a", "Current", "A", [0, 0, 0, 1]),
     ("_n", "Force", "N", [1, 1, -2, 0]),
+    ("_v", "Voltage", "V", [1, 2, -3, -1]),
+    ("_ohm", "Resistance", "Ohm", [1, 2, -3, -2]),
 ];
 
 fn unit_of(name: &str) -> Option<&'static (&'static str, &'static str, &'static str, [i32; 4])> {
@@ -125,6 +128,13 @@ pub struct Describe {
     /// Default experiment: stop time and step (s).
     pub stop_time_s: f64,
     pub step_size_s: f64,
+    /// The inputs' declared ranges (`min`, `max`; `nominal` on their types).
+    pub ranges: Vec<crate::ranges::InputRange>,
+    /// The FMU's `version` and `generationTool`.
+    pub version: String,
+    pub generation_tool: String,
+    /// `generationDateAndTime` (ISO 8601, UTC).
+    pub generation_date_and_time: Option<String>,
 }
 
 /// The model description of `kind`, as XML.
@@ -144,6 +154,10 @@ pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, Stri
             }
             let unit = unit_of(&f.name).ok_or_else(|| format!("internal: variable {} has no unit suffix", f.name))?;
             f.declared_type = Some(unit.1.to_string());
+            if let Some(r) = describe.ranges.iter().find(|r| r.name == f.name) {
+                f.min = Some(r.min);
+                f.max = Some(r.max);
+            }
             if !used.contains(&unit) {
                 used.push(unit);
             }
@@ -165,11 +179,11 @@ pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, Stri
         .iter()
         .map(|(_, _, unit, [kg, m, s, a])| Fmi3Unit {
             name: (*unit).to_string(),
-            // The ampere by name only (see the module docs).
-            base_unit: (*a == 0).then(|| BaseUnit {
+            base_unit: Some(BaseUnit {
                 kg: (*kg != 0).then_some(*kg),
                 m: (*m != 0).then_some(*m),
                 s: (*s != 0).then_some(*s),
+                a: (*a != 0).then_some(*a),
                 ..Default::default()
             }),
             ..Default::default()
@@ -177,11 +191,18 @@ pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, Stri
         .collect();
     let types = used
         .iter()
-        .map(|(_, name, unit, _)| {
+        .map(|(suffix, name, unit, _)| {
+            // An input's nominal on its quantity's type (fmi-schema's variable has no `nominal`).
+            let nominal = describe
+                .ranges
+                .iter()
+                .find(|r| unit_of(r.name).is_some_and(|u| u.0 == *suffix))
+                .map(|r| r.nominal);
             TypeDefinition::Float64(Float64Type {
                 name: (*name).to_string(),
                 quantity: Some((*name).to_string()),
                 unit: Some((*unit).to_string()),
+                nominal,
                 ..Default::default()
             })
         })
@@ -192,7 +213,9 @@ pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, Stri
         model_name: describe.model_name.clone(),
         instantiation_token: token.to_string(),
         description: Some(describe.description.clone()),
-        generation_tool: Some(format!("mre {} (rust-fmi fmi-export 0.3)", env!("CARGO_PKG_VERSION"))),
+        version: Some(describe.version.clone()),
+        generation_tool: Some(describe.generation_tool.clone()),
+        generation_date_and_time: describe.generation_date_and_time.clone(),
         license: Some("MIT OR Apache-2.0".to_string()),
         model_exchange: (kind == Kind::Damper).then(|| Fmi3ModelExchange {
             model_identifier: id.clone(),
@@ -224,4 +247,37 @@ pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, Stri
         ..Default::default()
     };
     fmi::schema::serialize(&md, false).map_err(|e| format!("cannot write the model description: {e}"))
+}
+
+/// One variable as the documentation lists it.
+#[derive(Clone, Debug)]
+pub struct Listed {
+    pub name: String,
+    /// `input`, `output` or `calculatedParameter`.
+    pub causality: &'static str,
+    /// The SI unit (`flags` has none).
+    pub unit: Option<&'static str>,
+    pub description: String,
+}
+
+/// `kind`'s variables in value-reference order, without the independent `time`.
+pub fn variables(kind: Kind) -> Vec<Listed> {
+    use fmi::schema::fmi3::Causality;
+    metadata(kind)
+        .model_variables
+        .iter_abstract()
+        .filter(|v| v.name() != "time")
+        .map(|v| Listed {
+            name: v.name().to_owned(),
+            causality: match v.causality() {
+                Causality::Input => "input",
+                Causality::Output => "output",
+                Causality::CalculatedParameter => "calculatedParameter",
+                Causality::Parameter => "parameter",
+                _ => "local",
+            },
+            unit: unit_of(v.name()).map(|u| u.2),
+            description: v.description().unwrap_or_default().to_owned(),
+        })
+        .collect()
 }

@@ -9,6 +9,9 @@
 //! - setting a variable that is not an input or a parameter, and a `doStep`
 //!   with a step that is not a positive number or from another time than
 //!   the instance's, return `fmi3Error` (fmi-export accepts them);
+//! - `fmi3SetFloat64` of an input outside its declared range, or NaN or
+//!   infinite, returns `fmi3Warning` with a log line per value (the value is
+//!   kept and handled by the model, [`crate::ranges`]);
 //! - the dependency functions answer from the model structure the XML
 //!   declares ([`crate::describe::dependencies`]), not fmi-export's 0.
 //!
@@ -43,6 +46,80 @@ pub fn log_error<M: Exported>(instance: b::fmi3Instance, args: std::fmt::Argumen
         inst.context()
             .log(Fmi3Error::Error.into(), M::LoggingCategory::default(), args);
     }
+}
+
+/// Logs a warning through the instance's logger (if the instance exists).
+pub fn log_warning<M: Exported>(instance: b::fmi3Instance, args: std::fmt::Arguments<'_>) {
+    if let Some(inst) = unsafe { (instance as *const Instance<M>).as_ref() } {
+        inst.context()
+            .log(fmi::fmi3::Fmi3Res::Warning.into(), M::LoggingCategory::default(), args);
+    }
+}
+
+/// Declared input ranges by resource folder and FMU (read from the page once per folder).
+type RangeCache = Vec<((Kind, std::path::PathBuf), Vec<(u32, crate::ranges::InputRange)>)>;
+static RANGES: Mutex<RangeCache> = Mutex::new(Vec::new());
+
+/// The instance's input ranges with their value references; empty when its
+/// page cannot be read (initialisation reports that).
+fn input_ranges<M: Exported>(instance: b::fmi3Instance) -> Vec<(u32, crate::ranges::InputRange)> {
+    let Some(inst) = (unsafe { (instance as *const Instance<M>).as_ref() }) else {
+        return Vec::new();
+    };
+    let key = (M::KIND, inst.context().resource_path().clone());
+    let mut cache = RANGES.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, ranges)) = cache.iter().find(|(k, _)| *k == key) {
+        return ranges.clone();
+    }
+    let Ok((table, _)) = crate::page::load(&key.1) else {
+        return Vec::new();
+    };
+    let meta = M::build_toplevel_metadata();
+    let ranges: Vec<(u32, crate::ranges::InputRange)> = crate::ranges::input_ranges(M::KIND, &table)
+        .into_iter()
+        .filter_map(|r| {
+            meta.model_variables
+                .iter_abstract()
+                .find(|v| v.name() == r.name)
+                .map(|v| (v.value_reference(), r))
+        })
+        .collect();
+    cache.push((key, ranges.clone()));
+    ranges
+}
+
+/// After a successful set: `fmi3Warning` and a log line for each value out
+/// of its input's declared range or not finite, else `status` unchanged.
+///
+/// # Safety
+/// `vrs` and `values` hold `n` elements (the set succeeded on them).
+pub unsafe fn check_ranges<M: Exported>(
+    instance: b::fmi3Instance,
+    vrs: *const b::fmi3ValueReference,
+    values: *const f64,
+    n: usize,
+    status: b::fmi3Status,
+) -> b::fmi3Status {
+    if status != b::fmi3Status_fmi3OK || n == 0 || vrs.is_null() || values.is_null() {
+        return status;
+    }
+    let ranges = input_ranges::<M>(instance);
+    let (vrs, values) = unsafe {
+        (
+            std::slice::from_raw_parts(vrs, n),
+            std::slice::from_raw_parts(values, n),
+        )
+    };
+    let mut result = status;
+    for (vr, value) in vrs.iter().zip(values) {
+        if let Some((_, range)) = ranges.iter().find(|(r, _)| r == vr) {
+            if let Some(why) = crate::ranges::complaint(range, *value) {
+                log_warning::<M>(instance, format_args!("fmi3SetFloat64: {why}"));
+                result = b::fmi3Status_fmi3Warning;
+            }
+        }
+    }
+    result
 }
 
 /// Runs one C call: a panic becomes `fmi3Error` and a log line.
@@ -382,7 +459,6 @@ macro_rules! export_fmu {
         }
 
         $crate::__mre_fmi_getset! { $ty;
-            "fmi3GetFloat64" fmi3_get_float64, "fmi3SetFloat64" fmi3_set_float64: fmi3b::fmi3Float64;
             "fmi3GetFloat32" fmi3_get_float32, "fmi3SetFloat32" fmi3_set_float32: fmi3b::fmi3Float32;
             "fmi3GetInt64" fmi3_get_int64, "fmi3SetInt64" fmi3_set_int64: fmi3b::fmi3Int64;
             "fmi3GetInt32" fmi3_get_int32, "fmi3SetInt32" fmi3_set_int32: fmi3b::fmi3Int32;
@@ -397,6 +473,23 @@ macro_rules! export_fmu {
         }
 
         $crate::__mre_fmi_fns! { $ty;
+            "fmi3GetFloat64" fn fmi3_get_float64(instance: fmi3b::fmi3Instance, vrs: *const fmi3b::fmi3ValueReference,
+                n_vrs: usize, values: *mut fmi3b::fmi3Float64, n_values: usize)
+                => <$ty as ::fmi_export::fmi3::Fmi3Common>::fmi3_get_float64(instance, vrs, n_vrs, values, n_values);
+            // Inputs and parameters only; an input out of its declared range warns.
+            "fmi3SetFloat64" fn fmi3_set_float64(instance: fmi3b::fmi3Instance, vrs: *const fmi3b::fmi3ValueReference,
+                n_vrs: usize, values: *const fmi3b::fmi3Float64, n_values: usize)
+                => {
+                    static SETTABLE: ::std::sync::OnceLock<Vec<u32>> = ::std::sync::OnceLock::new();
+                    match $crate::export::check_settable::<$ty>(&SETTABLE, instance, "fmi3SetFloat64", vrs, n_vrs) {
+                        Ok(()) => {
+                            let status = <$ty as ::fmi_export::fmi3::Fmi3Common>::fmi3_set_float64(
+                                instance, vrs, n_vrs, values, n_values);
+                            $crate::export::check_ranges::<$ty>(instance, vrs, values, n_vrs.min(n_values), status)
+                        }
+                        Err(status) => status,
+                    }
+                };
             "fmi3SetDebugLogging" fn fmi3_set_debug_logging(instance: fmi3b::fmi3Instance, on: fmi3b::fmi3Boolean,
                 n: usize, categories: *const fmi3b::fmi3String)
                 => <$ty as ::fmi_export::fmi3::Fmi3Common>::fmi3_set_debug_logging(instance, on, n, categories);

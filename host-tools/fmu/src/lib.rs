@@ -15,6 +15,7 @@ pub mod damper;
 pub mod describe;
 pub mod export;
 pub mod page;
+pub mod ranges;
 
 pub use controller::Controller;
 pub use damper::Damper;

@@ -86,8 +86,15 @@ fn controller_commands_what_the_board_controller_commands() {
     let damper = mre_fmu(&model, dir.path(), true);
     let import: Fmi3Import =
         fmi::import::from_path(mre_host::fmu::controller_path(&damper)).expect("the fmi crate imports controller.fmu");
-    let [x, v, u, period] =
-        ["displacement_m", "velocity_m_s", "coil_command_a", "control_period_s"].map(|n| vr(&import, n));
+    let [x, v, u, period, coil, volts] = [
+        "displacement_m",
+        "velocity_m_s",
+        "coil_command_a",
+        "control_period_s",
+        "coil_current_a",
+        "drive_voltage_v",
+    ]
+    .map(|n| vr(&import, n));
     let mut cs = import
         .instantiate_cs("controller", false, false, false, false, &[])
         .unwrap();
@@ -112,6 +119,10 @@ fn controller_commands_what_the_board_controller_commands() {
         let expected = board.step_sample((s.x_mm * 1e-3 * 1e3) as f32, Some(s.v_m_s as f32));
         let command = get(&mut cs, u);
         assert_eq!(command, f64::from(expected.current_a), "tick at {t} s");
+        // This model file has no coil τ (the command is the current) and the default
+        // installation's 4 Ω coil.
+        assert_eq!(get(&mut cs, coil), command, "coil current at {t} s");
+        assert_eq!(get(&mut cs, volts), command * 4.0, "drive voltage at {t} s");
         assert!(
             !expected.flags.is_fault(),
             "the drop should fly without a fault ({:?})",
@@ -247,4 +258,210 @@ fn every_binary_exports_every_fmi3_function() {
             assert_eq!(file.architecture(), object::Architecture::X86_64, "{name}");
         }
     }
+}
+
+#[test]
+fn damper_declares_units_and_ranges_and_warns_out_of_range() {
+    use fmi::fmi3::Fmi3Res;
+    use fmi::schema::fmi3::{TypeDefinition, Variable};
+    let dir = tempfile::tempdir().unwrap();
+    let model = dir.path().join("every-term.toml");
+    std::fs::write(&model, mre_host::table_file::table_to_toml(&every_term_table())).unwrap();
+    let fmu = mre_fmu(&model, dir.path(), false);
+    let import: Fmi3Import = fmi::import::from_path(&fmu).unwrap();
+    let md = import.model_description();
+
+    // The ampere with its dimension (FMI 3.0: <BaseUnit A="1"/>).
+    let units = &md.unit_definitions.as_ref().expect("unit definitions").units;
+    let ampere = units.iter().find(|u| u.name == "A").expect("unit A");
+    let base = ampere.base_unit.as_ref().expect("A has a BaseUnit");
+    assert_eq!((base.a, base.kg, base.m, base.s), (Some(1), None, None, None));
+    let newton = units
+        .iter()
+        .find(|u| u.name == "N")
+        .and_then(|u| u.base_unit.as_ref())
+        .unwrap();
+    assert_eq!((newton.kg, newton.m, newton.s), (Some(1), Some(1), Some(-2)));
+
+    // Table 4 by hand: every stroke starts at 0, the longest ends at 1.1531 mm (0 A);
+    // currents 0–2 A; the default installation's fastest impact 2.5 m/s.
+    let x_max_m = f64::from(1.1531f32) * 1e-3;
+    let expected = [
+        ("displacement_m", 0.0, x_max_m),
+        ("velocity_m_s", -2.5, 2.5),
+        ("current_a", 0.0, 2.0),
+    ];
+    for (name, min, max) in expected {
+        let v = md
+            .model_variables
+            .variables
+            .iter()
+            .find_map(|v| match v {
+                Variable::Float64(f) if f.name == name => Some(f),
+                _ => None,
+            })
+            .unwrap();
+        assert_eq!((v.min, v.max), (Some(min), Some(max)), "{name}");
+    }
+    let nominal = |ty: &str| {
+        md.type_definitions
+            .as_ref()
+            .unwrap()
+            .type_definitions
+            .iter()
+            .find_map(|t| match t {
+                TypeDefinition::Float64(f) if f.name == ty => f.nominal,
+                _ => None,
+            })
+    };
+    assert_eq!(nominal("Length"), Some(x_max_m));
+    assert_eq!(nominal("Velocity"), Some(2.5));
+    assert_eq!(nominal("Current"), Some(2.0));
+
+    let [x, v, i, f] = ["displacement_m", "velocity_m_s", "current_a", "force_n"].map(|n| vr(&import, n));
+    let mut cs = import
+        .instantiate_cs("damper", false, false, false, false, &[])
+        .unwrap();
+    cs.enter_initialization_mode(None, 0.0, None).unwrap();
+    cs.exit_initialization_mode().unwrap();
+    let mut force_at = |inputs: [f64; 3]| -> (Fmi3Res, f64) {
+        let status = cs.set_float64(&[x, v, i], &inputs).unwrap();
+        (status, get(&mut cs, f))
+    };
+    let (status, _) = force_at([0.5e-3, 1.0, 1.0]);
+    assert_eq!(status, Fmi3Res::OK, "inputs inside their ranges");
+    // Expectations by hand from the core's rules: NaN x counts as each stroke's start
+    // (0 for every entry), x beyond every stroke as each stroke's end (as 1 m does), a
+    // current above the table as its top (2 A), an infinite one as the lowest (0 A), a
+    // NaN velocity as the extension branch without viscous force (as v = 0).
+    let cases = [
+        ("NaN displacement", [f64::NAN, 1.0, 1.0], Some([0.0, 1.0, 1.0])),
+        ("12 m (mm meant)", [12.0, 1.0, 1.0], None),
+        ("5 A", [0.5e-3, 1.0, 5.0], Some([0.5e-3, 1.0, 2.0])),
+        (
+            "infinite current",
+            [0.5e-3, 1.0, f64::INFINITY],
+            Some([0.5e-3, 1.0, 0.0]),
+        ),
+        ("NaN velocity", [0.5e-3, f64::NAN, 1.0], Some([0.5e-3, 0.0, 1.0])),
+        ("-3 m/s", [0.5e-3, -3.0, 0.0], None),
+    ];
+    for (what, bad, same_as) in cases {
+        let (status, force) = force_at(bad);
+        assert_eq!(status, Fmi3Res::Warning, "{what}: fmi3SetFloat64 warns");
+        assert!(force.is_finite(), "{what}: force {force}");
+        if let Some(reference) = same_as {
+            let (status, expected) = force_at(reference);
+            assert_eq!(status, Fmi3Res::OK, "{what}: the reference {reference:?} is in range");
+            assert_eq!(force, expected, "{what}: handled as {reference:?}");
+        }
+    }
+    // Beyond every stroke: each entry at its end, as at 1 m (itself out of range).
+    let (_, at_12_m) = force_at([12.0, 1.0, 1.0]);
+    let (_, at_1_m) = force_at([1.0, 1.0, 1.0]);
+    assert_eq!(at_12_m, at_1_m);
+    let (_, at_stroke_end) = force_at([0.9e-3, 1.0, 1.0]);
+    assert_ne!(
+        at_12_m, at_stroke_end,
+        "the clamp check needs a force that varies with x"
+    );
+}
+
+#[test]
+fn the_fmu_documents_itself_and_its_generation() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = repo().join("models/drop-full-stroke.toml");
+    let table = mre_host::table_file::read_table_file(&model).unwrap();
+    let out = dir.path().join("damper.fmu");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_mre"))
+        .args(["fmu", "--quiet", "--controller", "--out"])
+        .arg(&out)
+        .arg(&model)
+        .env("SOURCE_DATE_EPOCH", "1000000000")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let crc = format!("{:#010x}", table.crc32());
+    for (fmu, names) in [
+        (
+            out.clone(),
+            &["displacement_m", "velocity_m_s", "current_a", "force_n"][..],
+        ),
+        (
+            mre_host::fmu::controller_path(&out),
+            &["displacement_m", "velocity_m_s", "coil_command_a", "flags"][..],
+        ),
+    ] {
+        let mut zip = zip::ZipArchive::new(std::fs::File::open(&fmu).unwrap()).unwrap();
+        let mut html = String::new();
+        zip.by_name("documentation/index.html")
+            .expect("documentation/index.html in the FMU")
+            .read_to_string(&mut html)
+            .unwrap();
+        // The model file's [model] dataset line, its table's CRC, every named variable.
+        for needle in [
+            "synthetic drop impact, 5.5 kg, seed 108",
+            "afdee8e7499416880df4e6c7c6dc27b54bf9d6ce633cb1f6f78b23a8f4f1685e",
+            &crc,
+            "fmi3Warning",
+            "Wiring",
+        ]
+        .iter()
+        .copied()
+        .chain(names.iter().copied())
+        {
+            assert!(html.contains(needle), "{}: index.html lacks {needle:?}", fmu.display());
+        }
+        let mut xml = String::new();
+        zip.by_name("modelDescription.xml")
+            .unwrap()
+            .read_to_string(&mut xml)
+            .unwrap();
+        let md: fmi::schema::fmi3::Fmi3ModelDescription = fmi::schema::deserialize(&xml).unwrap();
+        // 10⁹ s after the epoch, by hand: 11 574 days (2001-09-09) and 6 400 s (01:46:40).
+        assert_eq!(md.generation_date_and_time.as_deref(), Some("2001-09-09T01:46:40Z"));
+        assert_eq!(
+            md.version.as_deref(),
+            Some(format!("{}+table.{:08x}", env!("CARGO_PKG_VERSION"), table.crc32()).as_str())
+        );
+        assert!(md.generation_tool.as_deref().is_some_and(|t| t.starts_with("mre ")));
+    }
+}
+
+#[test]
+fn generation_dates_by_hand() {
+    use mre_host::fmu::generation_date;
+    assert_eq!(generation_date(Some("0")).unwrap(), "1970-01-01T00:00:00Z");
+    // 2000-02-29 (a leap day of a year divisible by 400): 11 016 days.
+    assert_eq!(generation_date(Some("951782400")).unwrap(), "2000-02-29T00:00:00Z");
+    // One second before 2025: 20 089 days less a second.
+    assert_eq!(generation_date(Some("1735689599")).unwrap(), "2024-12-31T23:59:59Z");
+    assert!(generation_date(Some("yesterday")).is_err());
+    assert!(generation_date(None).unwrap().ends_with('Z'));
+}
+
+#[test]
+fn the_same_source_date_epoch_writes_the_same_fmu() {
+    // Reproducible builds: with SOURCE_DATE_EPOCH fixed, two runs write identical bytes
+    // (zip entries carry no time of their own; the date is the variable's).
+    let dir = tempfile::tempdir().unwrap();
+    let model = dir.path().join("every-term.toml");
+    std::fs::write(&model, mre_host::table_file::table_to_toml(&every_term_table())).unwrap();
+    let write = |name: &str, epoch: &str| {
+        let out = dir.path().join(name);
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_mre"))
+            .args(["fmu", "--quiet", "--out"])
+            .arg(&out)
+            .arg(&model)
+            .env("SOURCE_DATE_EPOCH", epoch)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read(out).unwrap()
+    };
+    let first = write("a.fmu", "1700000000");
+    // A second apart: a date taken from the clock would differ.
+    std::thread::sleep(std::time::Duration::from_millis(1100));
+    assert_eq!(first, write("b.fmu", "1700000000"), "same epoch, same bytes");
+    assert_ne!(first, write("c.fmu", "1700000001"), "the date is in the FMU");
 }

@@ -34,7 +34,7 @@ fn fmpy_validates_evaluates_and_closes_the_loop() {
     std::fs::create_dir_all(&every).unwrap();
     let table = every_term_table();
     std::fs::write(every.join("model.toml"), mre_host::table_file::table_to_toml(&table)).unwrap();
-    mre_fmu(&every.join("model.toml"), &every, false);
+    mre_fmu(&every.join("model.toml"), &every, true);
     let mut csv = String::from("displacement_m,velocity_m_s,current_a,force_core_n\n");
     for s in trace() {
         csv += &format!(
