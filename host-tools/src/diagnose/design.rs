@@ -196,6 +196,32 @@ pub struct Terms {
     pub settings: Settings,
 }
 
+impl Terms {
+    /// Every term of `self`, plus those of `other` that `self` lacks: the
+    /// joint model of terms chosen one at a time.
+    pub fn merged(self, other: Terms) -> Terms {
+        let stop = if self.end_stop_x_mm.is_some() { self } else { other };
+        let mut settings = self.settings;
+        for &e in Effect::VOCABULARY.iter() {
+            if settings.get(e).is_none() {
+                settings = settings.with(e, other.settings.get(e));
+            }
+        }
+        Terms {
+            delay_s: self.delay_s.or(other.delay_s),
+            viscous: self.viscous.or(other.viscous),
+            end_stop_x_mm: stop.end_stop_x_mm,
+            end_stop_lower: stop.end_stop_lower,
+            softening: self.softening.or(other.softening),
+            saturation_i_a: self.saturation_i_a.or(other.saturation_i_a),
+            coil_lag_s: self.coil_lag_s.or(other.coil_lag_s),
+            memory_mm: self.memory_mm.or(other.memory_mm),
+            friction_v0_m_s: self.friction_v0_m_s.or(other.friction_v0_m_s),
+            settings,
+        }
+    }
+}
+
 /// Searched values of terms, one per vocabulary word (`inertia`'s presence,
 /// a new term's value), in a fixed-size `Copy` set so [`Terms`] stays `Copy`.
 /// Kept in vocabulary order, so two equal sets compare equal.

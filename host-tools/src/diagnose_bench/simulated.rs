@@ -85,12 +85,7 @@ pub fn run_drop_case(effect: &str, seed: u64, plan: &SynthPlan, opts: &DiagnoseO
             .find(|f| f.effect == truth)
             .map_or(1.0, |f| f.heldout_improvement_nested)
     });
-    let first_round = d
-        .selection
-        .rounds
-        .first()
-        .map(|r| r.tested.iter().filter_map(|c| c.effect.map(|e| (e, c.ratio))).collect())
-        .unwrap_or_default();
+    let first_round = d.selection.candidates.iter().map(|c| (c.effect, c.gain.ratio)).collect();
     Ok(BenchCase {
         first_round,
         seed,

@@ -43,12 +43,6 @@ pub fn of(effect: Effect) -> Option<&'static dyn Term> {
     REGISTRY.iter().copied().find(|t| t.effect() == effect)
 }
 
-/// The candidates forward selection adds to the reference model (the
-/// reference's own term, tested first, is not among them).
-pub fn candidates() -> impl Iterator<Item = &'static dyn Term> {
-    REGISTRY.iter().copied().filter(|t| !t.is_reference())
-}
-
 /// A block of linear design columns a term adds.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Block {
@@ -77,7 +71,8 @@ pub type Value = (String, f64, String);
 pub trait Term: Sync {
     /// Its vocabulary word.
     fn effect(&self) -> Effect;
-    /// The reference model's own term, tested before the candidates.
+    /// The reference term: its value is chosen first, and every other
+    /// term's on top of it ([`super::library`]).
     fn is_reference(&self) -> bool {
         false
     }
@@ -119,11 +114,6 @@ pub trait Term: Sync {
     /// The fitted term is physical (checked before it is accepted).
     fn physical(&self, _layout: &Layout, _t: &Terms, _sol: &Solution) -> bool {
         true
-    }
-    /// The term scales each recording as a whole, so the per-recording gain
-    /// route can judge it ([`super::scale`]).
-    fn scale_route(&self, _t: &Terms) -> bool {
-        false
     }
     /// Its parameters in a fitted model.
     fn parameters(&self, prep: &Prepared, layout: &Layout, t: &Terms, sol: &Solution) -> Vec<Value>;

@@ -64,9 +64,6 @@ impl Term for StressSoftening {
     }
     /// Over a run order it scales whole recordings: the per-recording gains
     /// can judge it.
-    fn scale_route(&self, t: &Terms) -> bool {
-        matches!(t.softening, Some(SofteningLaw::Sequence { .. }))
-    }
     fn parameters(&self, _prep: &Prepared, _layout: &Layout, t: &Terms, sol: &Solution) -> Vec<Value> {
         match t.softening {
             Some(SofteningLaw::Sequence { n0 }) => vec![
