@@ -95,7 +95,9 @@ pub fn build(prep: &Prepared, th: &Thresholds) -> Result<Built> {
         .filter(|t| t.is_reference())
         .filter_map(|&t| choose(prep, t, &Terms::default()).map(|own| (t, own)))
         .collect();
-    let on = reference.iter().fold(Terms::default(), |acc, (_, own)| acc.merged(*own));
+    let on = reference
+        .iter()
+        .fold(Terms::default(), |acc, (_, own)| acc.merged(*own));
     let others: Vec<(&'static dyn Term, Terms)> = testable
         .par_iter()
         .filter(|t| !t.is_reference())
@@ -181,7 +183,14 @@ pub fn build(prep: &Prepared, th: &Thresholds) -> Result<Built> {
                 .iter()
                 .filter(|b| b.term.effect() == t.effect())
                 .flat_map(|b| {
-                    let end = d.layout.blocks.iter().map(|q| q.at).filter(|&a| a > b.at).min().unwrap_or(p0);
+                    let end = d
+                        .layout
+                        .blocks
+                        .iter()
+                        .map(|q| q.at)
+                        .filter(|&a| a > b.at)
+                        .min()
+                        .unwrap_or(p0);
                     b.at..end
                 })
                 .collect()

@@ -153,9 +153,24 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
     named.sort_by(|a, b| b.gain.ratio.total_cmp(&a.gain.ratio));
     for c in named {
         // The final model without this term: what the evidence compares.
-        let without = terms::of(c.effect).map_or(selection.final_model.terms, |t| t.removed_from(&selection.final_model.terms));
+        let without = terms::of(c.effect).map_or(selection.final_model.terms, |t| {
+            t.removed_from(&selection.final_model.terms)
+        });
         let pred_before = predictions(&prep, &cv::score(&prep, &[without])?);
-        let n_samples: usize = prep.fit_indices().iter().map(|&i| selection.final_model.n[i]).sum::<usize>().max(1);
+        // The term's variants on the rest of the final model: its searched
+        // parameters' intervals re-choose among them.
+        let around = match terms::of(c.effect) {
+            Some(t) if !t.searched().is_empty() => {
+                cv::score_refined(&prep, t.variants(&prep, &without), &|best| t.refinements(&prep, best))?.variant_sse
+            }
+            _ => selection.final_model.variant_sse.clone(),
+        };
+        let n_samples: usize = prep
+            .fit_indices()
+            .iter()
+            .map(|&i| selection.final_model.n[i])
+            .sum::<usize>()
+            .max(1);
         findings.push(Finding {
             effect: c.effect,
             parameters: parameters::with_intervals(
@@ -163,7 +178,7 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
                 c.effect,
                 &selection.final_model.terms,
                 &selection.final_model.solution,
-                &selection.final_model.variant_sse,
+                &around,
                 opts.parameter_resamples,
                 opts.thresholds.seed,
             )?,

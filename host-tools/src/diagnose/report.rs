@@ -466,7 +466,7 @@ fn interval_sentence(resamples: usize) -> String {
     let sd = (b * 0.025 * 0.975).sqrt();
     format!(
         "Parameter intervals: 95 % percentile bootstrap over the fit recordings (resampled within each \
-         current), {resamples} resamples ({} for a model with softening, each a 1-D search); searched \
+         current), {resamples} resamples ({} for a model with a parameter solved by a 1-D search, such as a softening depth); searched \
          parameters re-choose among the scored variants in {} resamples. Each bound is about the {rank:.0}th \
          value from its end; Monte Carlo error of that rank ±{sd:.1} (binomial), so another seed moves a bound \
          by about {sd:.0} neighbouring resampled values.",

@@ -33,6 +33,9 @@ pub struct Candidate {
     pub gain: HeldOutRatio,
     /// The same ratio with the rest of the model chosen on all data.
     pub gain_plain: f64,
+    /// Held-out RMSE ratio over the fit recordings of the refitted final
+    /// model without → with the term, in its real form (NaN unless named).
+    pub refit_gain: f64,
     /// `‖(I − P_Q) c‖ / ‖c‖` of its most separable column `c`, `P_Q` the
     /// projection on the quartics: below [`super::verdict::COLLINEAR_SHARE`]
     /// the baseline can bend to absorb it.
@@ -156,10 +159,26 @@ pub fn select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
                 named: inclusion >= th.min_inclusion && gain.ratio >= th.min_nested_gain,
                 gain,
                 gain_plain,
+                refit_gain: f64::NAN,
                 outside_baseline: sparse::share_outside(&lib, c.group, &quartics),
             }
         })
         .collect();
+    if std::env::var_os("MRE_DEBUG_SELECT").is_some() {
+        for c in &candidates {
+            eprintln!(
+                "DEBUG {} lin={} incl={:.2} share={:.3} gain={:.3} plain={:.3} outside={:.2} named={}",
+                c.effect.name(),
+                c.linearised,
+                c.inclusion,
+                c.share,
+                c.gain.ratio,
+                c.gain_plain,
+                c.outside_baseline,
+                c.named
+            );
+        }
+    }
     let mut selection = Selection {
         final_model: baseline.clone(),
         baseline,
@@ -197,9 +216,36 @@ pub fn select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
                 }
             }
         }
-        if !dropped {
-            selection.final_model = model;
-            break;
+        if dropped {
+            continue;
+        }
+        // Validated on the refitted model: a linearised regressor has a free
+        // coefficient and can stand for more than its term, so each named
+        // term must also gain by the gate with its real form in the refit
+        // (held out, over the fit recordings); the weakest that does not is
+        // dropped and the rest refitted.
+        let fit = prep.fit_indices();
+        let heldout = |m: &Scored| fit.iter().map(|&i| m.heldout_sse[i]).sum::<f64>();
+        let with = heldout(&model);
+        let mut weakest: Option<(usize, f64)> = None;
+        for (k, c) in selection.candidates.iter_mut().enumerate().filter(|(_, c)| c.named) {
+            let Some(t) = super::terms::of(c.effect) else { continue };
+            let without = score(prep, &[t.removed_from(&model.terms)])?;
+            c.refit_gain = (heldout(&without) / with.max(1e-300)).sqrt();
+            if c.refit_gain < th.min_nested_gain && weakest.is_none_or(|(_, g)| c.refit_gain < g) {
+                weakest = Some((k, c.refit_gain));
+            }
+        }
+        if let Some((k, _)) = weakest {
+            selection.candidates[k].named = false;
+            continue;
+        }
+        selection.final_model = model;
+        break;
+    }
+    if std::env::var_os("MRE_DEBUG_SELECT").is_some() {
+        for c in selection.candidates.iter().filter(|c| !c.refit_gain.is_nan()) {
+            eprintln!("DEBUG refit {} {:.3} named={}", c.effect.name(), c.refit_gain, c.named);
         }
     }
     Ok(selection)

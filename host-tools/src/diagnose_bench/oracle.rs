@@ -149,12 +149,7 @@ fn verdict(prep: &Prepared, before: &Scored, after: Scored, th: &Thresholds, amp
 /// scored below 1, worse than nothing, in 8 of 10 cases), so it is given in the model's own form
 /// instead: `truth` is `reference` plus the term at its true nonlinear
 /// parameter (n0), its amplitude (Δ) solved per fold as every candidate's is.
-pub fn oracle_terms(
-    prep: &Prepared,
-    reference: &Terms,
-    truth: &Terms,
-    th: &Thresholds,
-) -> Result<Oracle> {
+pub fn oracle_terms(prep: &Prepared, reference: &Terms, truth: &Terms, th: &Thresholds) -> Result<Oracle> {
     let before = cv::score(prep, &[*reference])?;
     let after = cv::score(prep, &[*truth])?;
     let delta = after.solution.delta;

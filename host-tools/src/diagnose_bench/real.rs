@@ -427,13 +427,7 @@ pub fn run_real_bench(
             }
             _ => (
                 oracle(&d.prep, reference, &added, &opts.thresholds, Amplitude::Shared)?,
-                oracle(
-                    &d.prep,
-                    reference,
-                    &added,
-                    &opts.thresholds,
-                    Amplitude::PerCurrent,
-                )?,
+                oracle(&d.prep, reference, &added, &opts.thresholds, Amplitude::PerCurrent)?,
             ),
         };
         let found: Vec<Effect> = d.findings.iter().map(|f| f.effect).collect();

@@ -85,7 +85,12 @@ pub fn run_drop_case(effect: &str, seed: u64, plan: &SynthPlan, opts: &DiagnoseO
             .find(|f| f.effect == truth)
             .map_or(1.0, |f| f.heldout_improvement_nested)
     });
-    let first_round = d.selection.candidates.iter().map(|c| (c.effect, c.gain.ratio)).collect();
+    let first_round = d
+        .selection
+        .candidates
+        .iter()
+        .map(|c| (c.effect, c.gain.ratio))
+        .collect();
     Ok(BenchCase {
         first_round,
         seed,

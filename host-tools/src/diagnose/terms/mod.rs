@@ -15,6 +15,7 @@ use super::prepared::Prepared;
 use crate::vocabulary::Effect;
 
 mod coil_lag;
+mod coulomb_friction;
 mod end_stop;
 mod hysteresis_memory;
 mod inertia;
@@ -36,6 +37,7 @@ pub static REGISTRY: &[&dyn Term] = &[
     &inertia::Inertia,
     &coil_lag::CoilLag,
     &hysteresis_memory::HysteresisMemory,
+    &coulomb_friction::CoulombFriction,
 ];
 
 /// The term of a vocabulary effect (`None` for `none`).
@@ -66,6 +68,23 @@ pub struct Sample {
 
 /// `(name, value, unit)` of one parameter.
 pub type Value = (String, f64, String);
+
+/// The final model as the v2 table holds it (`--model-out`), for each term
+/// to write itself into ([`Term::write_table`]).
+#[derive(Clone, Debug)]
+pub struct TableParts {
+    /// Per current: compression and extension powers x⁰..x⁴.
+    pub quartics: Vec<[[f64; super::design::QUARTIC_TERMS]; 2]>,
+    /// Per current: the stroke its fit recordings cover (mm).
+    pub stroke_mm: Vec<(f64, f64)>,
+    /// The factor every fitted coefficient is written at ([`Term::table_scale`]).
+    pub scale: f64,
+    /// The fastest recorded speed (m/s).
+    pub fastest_m_s: f64,
+    pub terms: mre_core::table::ModelTerms,
+    /// `[diagnose]` metadata: `(key, value)`.
+    pub metadata: Vec<(String, f64)>,
+}
 
 /// One vocabulary effect as a model term.
 pub trait Term: Sync {
@@ -114,6 +133,22 @@ pub trait Term: Sync {
     /// The fitted term is physical (checked before it is accepted).
     fn physical(&self, _layout: &Layout, _t: &Terms, _sol: &Solution) -> bool {
         true
+    }
+    /// The factor the table writes every fitted coefficient at (softening:
+    /// the damper as the latest recording found it).
+    fn table_scale(&self, _prep: &Prepared, _t: &Terms, _sol: &Solution) -> f64 {
+        1.0
+    }
+    /// Writes the fitted term into the table (`--model-out`); a term the
+    /// table cannot carry writes nothing (DIAGNOSE.md says which).
+    fn write_table(
+        &self,
+        _layout: &Layout,
+        _t: &Terms,
+        _sol: &Solution,
+        _parts: &mut TableParts,
+    ) -> anyhow::Result<()> {
+        Ok(())
     }
     /// Its parameters in a fitted model.
     fn parameters(&self, prep: &Prepared, layout: &Layout, t: &Terms, sol: &Solution) -> Vec<Value>;
@@ -188,6 +223,16 @@ mod tests {
         }
         // One reference term, tested before the candidates.
         assert_eq!(REGISTRY.iter().filter(|t| t.is_reference()).count(), 1);
+        // Every term's word is its own, and a model holding every term fits
+        // the settings.
+        for (k, t) in REGISTRY.iter().enumerate() {
+            assert!(
+                REGISTRY[..k].iter().all(|o| o.effect() != t.effect()),
+                "{}",
+                t.effect().name()
+            );
+        }
+        assert!(REGISTRY.len() <= crate::diagnose::design::SETTINGS_CAPACITY);
     }
 
     #[test]
