@@ -164,21 +164,6 @@ pub fn select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
             }
         })
         .collect();
-    if std::env::var_os("MRE_DEBUG_SELECT").is_some() {
-        for c in &candidates {
-            eprintln!(
-                "DEBUG {} lin={} incl={:.2} share={:.3} gain={:.3} plain={:.3} outside={:.2} named={}",
-                c.effect.name(),
-                c.linearised,
-                c.inclusion,
-                c.share,
-                c.gain.ratio,
-                c.gain_plain,
-                c.outside_baseline,
-                c.named
-            );
-        }
-    }
     let mut selection = Selection {
         final_model: baseline.clone(),
         baseline,
@@ -242,11 +227,6 @@ pub fn select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
         }
         selection.final_model = model;
         break;
-    }
-    if std::env::var_os("MRE_DEBUG_SELECT").is_some() {
-        for c in selection.candidates.iter().filter(|c| !c.refit_gain.is_nan()) {
-            eprintln!("DEBUG refit {} {:.3} named={}", c.effect.name(), c.refit_gain, c.named);
-        }
     }
     Ok(selection)
 }
