@@ -33,8 +33,8 @@ pub struct Candidate {
     pub gain: HeldOutRatio,
     /// The same ratio with the rest of the model chosen on all data.
     pub gain_plain: f64,
-    /// Held-out RMSE ratio over the fit recordings of the refitted final
-    /// model without → with the term, in its real form (NaN unless named).
+    /// Held-out RMSE ratio over the library's recordings of the refitted
+    /// final model without → with the term, in its real form (NaN unless named).
     pub refit_gain: f64,
     /// `‖(I − P_Q) c‖ / ‖c‖` of its most separable column `c`, `P_Q` the
     /// projection on the quartics: below [`super::verdict::COLLINEAR_SHARE`]
@@ -207,10 +207,15 @@ pub fn select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
         // Validated on the refitted model: a linearised regressor has a free
         // coefficient and can stand for more than its term, so each named
         // term must also gain by the gate with its real form in the refit
-        // (held out, over the fit recordings); the weakest that does not is
+        // (held out); the weakest that does not is
         // dropped and the rest refitted.
-        let fit = prep.fit_indices();
-        let heldout = |m: &Scored| fit.iter().map(|&i| m.heldout_sse[i]).sum::<f64>();
+        // Over the library's recordings: the validate ones too when they are
+        // evidence (a coil lag changes nothing else).
+        let mut pool = prep.fit_indices();
+        if prep.validate_evidence {
+            pool.extend(prep.validate_indices());
+        }
+        let heldout = |m: &Scored| pool.iter().map(|&i| m.heldout_sse[i]).sum::<f64>();
         let with = heldout(&model);
         let mut weakest: Option<(usize, f64)> = None;
         for (k, c) in selection.candidates.iter_mut().enumerate().filter(|(_, c)| c.named) {
