@@ -123,31 +123,34 @@ pub fn build(prep: &Prepared, th: &Thresholds) -> Result<Built> {
         // Each validate recording read as evidence is a fold of its own.
         fold_of[i] = Some(prep.recs[i].fold.unwrap_or(prep.n_folds + j));
     }
-    // The linearised regressors, each about the fit of the quartics *with*
-    // the term alone: `A_t·β_t − A_q·β_t`, what the term changes in that
-    // fit's prediction. When the term is there, `y ≈ A_q·β_t + 1·column`,
-    // so no other group needs to stand in for it. (Linearised about the
-    // joint fit without it, the column came from quartics, memory and
-    // damping already bent towards a delay, and they kept their share;
-    // about the joint fit with it, the column carried their parts too.)
+    // The linearised regressors, each about the fit of the reference model
+    // (quartics and `hysteresis_memory`) *with* the term: `A_t·β_t − A_r·β_t`,
+    // what the term changes in that fit's prediction. When the term is
+    // there, `y ≈ A_r·β_t + 1·column`, so no other group needs to stand in
+    // for it. (About the joint fit without it, the column came from groups
+    // already bent towards a delay, and they kept their share; about the
+    // quartics alone, a delay on a hysteretic law left most of the lag to
+    // the memory basis and was missed on every MTS campaign tried.)
     let lin_terms: Vec<Terms> = chosen
         .iter()
         .zip(&linearised)
         .filter(|(_, l)| **l)
         .map(|((_, own), _)| *own)
         .collect();
-    let quartics = if lin_terms.is_empty() {
+    let reference = if lin_terms.is_empty() {
         None
     } else {
-        Some(Designs::build(prep, &Terms::default()))
+        Some(Designs::build(prep, &on))
     };
     // Each with the samples its own model scores (a delay moves the
     // branch-ambiguous samples at each turn-around).
     let lin_cols: Vec<Linearised> = lin_terms
         .par_iter()
         .map(|own| -> Result<Linearised> {
-            let dq = quartics.as_ref().ok_or_else(|| anyhow::anyhow!("no quartic design"))?;
-            let dt = Designs::build(prep, own);
+            let dq = reference
+                .as_ref()
+                .ok_or_else(|| anyhow::anyhow!("no reference design"))?;
+            let dt = Designs::build(prep, &on.merged(*own));
             let sol = dt.solve(prep, &fit)?;
             let mut without = sol.clone();
             without.delta = 0.0;
