@@ -2,31 +2,34 @@
 //! effect, shared by the synthesiser (which conceals an effect,
 //! [`crate::plant::effects`]) and `mre diagnose` (which names what it finds).
 //! The names are a contract: reports, keys and scripts rely on them.
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-/// One word of the vocabulary, without parameters. The declaration order is
-/// the order findings and candidates sort in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Effect {
-    ViscousDamping,
-    SensorDelay,
-    StressSoftening,
-    EndStop,
-    MagneticSaturation,
-    Inertia,
-    CoilLag,
+/// One word of the vocabulary, without parameters: its name. A word, not an
+/// enum, so that a diagnosis term declares its own (`diagnose::terms`, one
+/// file and one registry line) without editing this file; the words below
+/// are those the synthesiser can conceal too.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Effect(&'static str);
+
+#[allow(non_upper_case_globals)]
+impl Effect {
+    pub const ViscousDamping: Effect = Effect("viscous_damping");
+    pub const SensorDelay: Effect = Effect("sensor_delay");
+    pub const StressSoftening: Effect = Effect("stress_softening");
+    pub const EndStop: Effect = Effect("end_stop");
+    pub const MagneticSaturation: Effect = Effect("magnetic_saturation");
+    pub const Inertia: Effect = Effect("inertia");
+    pub const CoilLag: Effect = Effect("coil_lag");
     /// Rate-independent hysteresis with memory (turn-around memory, with dry
     /// friction / yield as its limiting case).
-    HysteresisMemory,
+    pub const HysteresisMemory: Effect = Effect("hysteresis_memory");
     /// No missing physics: what a synthesised plant without an effect
     /// conceals.
-    None,
-}
+    pub const None: Effect = Effect("none");
 
-impl Effect {
-    /// Every word, in declaration order. (Not `ALL`: diagnose's candidates
-    /// are the terms registered in `diagnose::terms::REGISTRY`.)
+    /// The synthesiser's words, in the order findings and candidates sort
+    /// in. (Not every word: diagnose's candidates are the terms registered
+    /// in `diagnose::terms::REGISTRY`, which may add their own.)
     pub const VOCABULARY: [Effect; 9] = [
         Effect::ViscousDamping,
         Effect::SensorDelay,
@@ -39,22 +42,54 @@ impl Effect {
         Effect::None,
     ];
 
-    pub fn name(self) -> &'static str {
-        match self {
-            Effect::ViscousDamping => "viscous_damping",
-            Effect::SensorDelay => "sensor_delay",
-            Effect::StressSoftening => "stress_softening",
-            Effect::EndStop => "end_stop",
-            Effect::MagneticSaturation => "magnetic_saturation",
-            Effect::Inertia => "inertia",
-            Effect::CoilLag => "coil_lag",
-            Effect::HysteresisMemory => "hysteresis_memory",
-            Effect::None => "none",
-        }
+    /// A word of a diagnosis term's own (snake_case, as a report key).
+    pub const fn new(name: &'static str) -> Effect {
+        Effect(name)
     }
 
+    pub fn name(self) -> &'static str {
+        self.0
+    }
+
+    /// The word named `name`: the synthesiser's, or a registered term's.
     pub fn from_name(name: &str) -> Option<Effect> {
-        Effect::VOCABULARY.into_iter().find(|e| e.name() == name)
+        Effect::VOCABULARY
+            .into_iter()
+            .chain(crate::diagnose::terms::REGISTRY.iter().map(|t| t.effect()))
+            .find(|e| e.name() == name)
+    }
+
+    /// Position in [`Effect::VOCABULARY`] (a term's own word after them).
+    fn rank(self) -> usize {
+        Effect::VOCABULARY
+            .iter()
+            .position(|e| *e == self)
+            .unwrap_or(Effect::VOCABULARY.len())
+    }
+}
+
+impl PartialOrd for Effect {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Effect {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        (self.rank(), self.0).cmp(&(other.rank(), other.0))
+    }
+}
+
+impl Serialize for Effect {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.0)
+    }
+}
+
+impl<'de> Deserialize<'de> for Effect {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(d)?;
+        Effect::from_name(&name).ok_or_else(|| serde::de::Error::custom(format!("unknown effect `{name}`")))
     }
 }
 

@@ -351,7 +351,7 @@ pub fn score_refined(
     let terms = variants[chosen];
     let searched = usize::from(ok.len() > 1);
     let layout = super::design::Layout::new(prep.currents_a.len(), &terms);
-    let n_params = layout.n_cols + searched + usize::from(terms.softening.is_some());
+    let n_params = layout.n_cols + searched + terms.solved_scalars();
     Ok(Scored {
         terms,
         solution: ev(chosen).full.clone(),

@@ -196,11 +196,46 @@ pub struct Terms {
     pub settings: Settings,
 }
 
+impl Terms {
+    /// Parameters the solve finds outside the linear columns (the softening
+    /// depth Δ, by its 1-D search in [`Designs::solve_in`]).
+    pub fn solved_scalars(&self) -> usize {
+        usize::from(self.softening.is_some())
+    }
+
+    /// Every term of `self`, plus those of `other` that `self` lacks: the
+    /// joint model of terms chosen one at a time.
+    pub fn merged(self, other: Terms) -> Terms {
+        let stop = if self.end_stop_x_mm.is_some() { self } else { other };
+        let mut settings = self.settings;
+        for (e, v) in other.settings.0.iter().flatten() {
+            if settings.get(*e).is_none() {
+                settings = settings.with(*e, Some(*v));
+            }
+        }
+        Terms {
+            delay_s: self.delay_s.or(other.delay_s),
+            viscous: self.viscous.or(other.viscous),
+            end_stop_x_mm: stop.end_stop_x_mm,
+            end_stop_lower: stop.end_stop_lower,
+            softening: self.softening.or(other.softening),
+            saturation_i_a: self.saturation_i_a.or(other.saturation_i_a),
+            coil_lag_s: self.coil_lag_s.or(other.coil_lag_s),
+            memory_mm: self.memory_mm.or(other.memory_mm),
+            friction_v0_m_s: self.friction_v0_m_s.or(other.friction_v0_m_s),
+            settings,
+        }
+    }
+}
+
+/// Terms a [`Settings`] can hold at once (the registry's length at most).
+pub const SETTINGS_CAPACITY: usize = 16;
+
 /// Searched values of terms, one per vocabulary word (`inertia`'s presence,
 /// a new term's value), in a fixed-size `Copy` set so [`Terms`] stays `Copy`.
 /// Kept in vocabulary order, so two equal sets compare equal.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Settings([Option<(Effect, f64)>; Effect::VOCABULARY.len()]);
+pub struct Settings([Option<(Effect, f64)>; SETTINGS_CAPACITY]);
 
 impl Settings {
     /// The value set for `effect`'s term, if it is in the model.
@@ -214,7 +249,8 @@ impl Settings {
         entries.extend(value.map(|v| (effect, v)));
         entries.sort_by_key(|(e, _)| *e);
         let mut out = Settings::default();
-        // One entry per word at most, so the vocabulary's length always fits.
+        // One entry per term at most, and the registry fits the capacity
+        // (a test in `terms` checks it).
         for (slot, entry) in out.0.iter_mut().zip(entries) {
             *slot = Some(entry);
         }
@@ -252,9 +288,7 @@ impl std::fmt::Debug for Placed {
 pub struct Layout {
     pub n_currents: usize,
     pub blocks: Vec<Placed>,
-    /// The viscous and end stop blocks (read by the model writer).
-    pub viscous_at: Option<usize>,
-    pub end_stop_at: Option<usize>,
+    /// The memory basis block (its columns are built here, not by a shape).
     pub memory_at: Option<usize>,
     pub n_cols: usize,
 }
@@ -278,17 +312,10 @@ impl Layout {
                 };
             }
         }
-        let at = |e: Effect, block: Block| {
-            blocks
-                .iter()
-                .find(|p| p.term.effect() == e && p.block == block)
-                .map(|p| p.at)
-        };
+        let at = |block: Block| blocks.iter().find(|p| p.block == block).map(|p| p.at);
         Layout {
             n_currents,
-            viscous_at: at(Effect::ViscousDamping, Block::PerCurrent),
-            end_stop_at: at(Effect::EndStop, Block::PerCurrent),
-            memory_at: at(Effect::HysteresisMemory, Block::MemoryBasis),
+            memory_at: at(Block::MemoryBasis),
             blocks,
             n_cols: n,
         }

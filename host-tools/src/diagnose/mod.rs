@@ -4,30 +4,28 @@
 //!
 //! Stages, each using only those before it: [`prepared`] (channels, folds,
 //! branches; on the primitives of [`signals`]) → [`baseline`] (the paper's
-//! model) → [`locate`] (where the residual sits) → [`candidates`] (one term
-//! per word of [`crate::vocabulary`], each a plug-in of [`terms`], built by
-//! [`design`]) → [`select`]
-//! (forward selection on held-out data: scored by [`cv`], judged by
-//! [`acceptance`] and [`support`], the winner's ratio nested by [`heldout`]) →
-//! [`parameters`] (values and intervals) → [`report`] (with what stays
-//! [`unexplained`]).
+//! model) → [`locate`] (where the residual sits) → [`library`] (one joint
+//! design: the quartics and every identifiable term of [`terms`], its value
+//! chosen by [`cv`], its columns built by [`design`]) → [`select`] (group
+//! STLSQ of [`sparse`], ensemble inclusion and nested held-out gain, gated
+//! by the two numbers of [`acceptance`]) → [`verdict`] → [`parameters`]
+//! (values and intervals) → [`report`] (with what stays [`unexplained`]).
 pub mod acceptance;
 pub mod baseline;
 pub mod candidates;
 pub mod cv;
 pub mod design;
 pub mod heldout;
+pub mod library;
 pub mod locate;
 pub mod model_out;
 pub mod parameters;
 pub mod plots;
 pub mod prepared;
 pub mod report;
-pub mod scale;
 pub mod select;
 pub mod signals;
 pub mod sparse;
-pub mod support;
 pub mod terms;
 pub mod unexplained;
 pub mod verdict;
@@ -78,27 +76,27 @@ impl DiagnoseOptions {
     }
 }
 
-/// An accepted effect with its evidence.
+/// A named effect with its evidence.
 #[derive(Clone, Debug)]
 pub struct Finding {
     pub effect: Effect,
     pub parameters: std::collections::BTreeMap<String, parameters::Param>,
     pub evidence: String,
+    /// Held-out RMSE over the library's recordings without → with the term
+    /// (nested: the rest of the model chosen without each fold).
     pub rmse_n_before: f64,
     pub rmse_n_after: f64,
-    /// Held-out RMSE ratio of the round's winner: carries the winner's
-    /// selection bias (the headline is `heldout_improvement_nested`).
+    /// The same ratio with the rest of the model chosen on all data.
     pub heldout_improvement: f64,
-    /// The headline: the same ratio with the choice between effects nested,
-    /// each held-out unit scored by the candidate chosen without it
-    /// ([`heldout::nested_ratio`]).
+    /// The headline: the nested ratio ([`select::Candidate::gain`]).
     pub heldout_improvement_nested: f64,
     /// 95 % bootstrap interval of `heldout_improvement_nested`, over the
-    /// same recordings (every recording, held out).
+    /// same recordings.
     pub ratio_ci95: [f64; 2],
-    /// The per-recording held-out SSEs both come from.
+    /// Share of the ensemble's fits that kept it.
+    pub inclusion_probability: f64,
+    /// The per-recording held-out SSEs the nested ratio comes from.
     pub nested: heldout::HeldOutRatio,
-    pub delta_bic: f64,
 }
 
 /// Everything the diagnosis found, for the report writers.
@@ -143,80 +141,57 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
     };
     let baseline_pred = baseline::predict_all(&prep, &baseline_table);
     let loc = locate::locate(&prep, &baseline_pred);
-    let selection = select::forward_select(&prep, &opts.thresholds)?;
+    let selection = select::select(&prep, &opts.thresholds)?;
+    let final_pred = if selection.candidates.iter().any(|c| c.named) {
+        predictions(&prep, &selection.final_model)
+    } else {
+        baseline_pred.clone()
+    };
     let mut findings = Vec::new();
-    let finding = |effect: Effect,
-                   c: &acceptance::Comparison,
-                   nested: heldout::HeldOutRatio,
-                   before: &Scored,
-                   after: &Scored,
-                   variant_sse|
-     -> Result<Finding> {
-        let pred_before = predictions(&prep, before);
-        let pred_after = predictions(&prep, after);
-        Ok(Finding {
-            effect,
+    // The strongest first: ranked by nested held-out gain.
+    let mut named: Vec<&select::Candidate> = selection.candidates.iter().filter(|c| c.named).collect();
+    named.sort_by(|a, b| b.gain.ratio.total_cmp(&a.gain.ratio));
+    for c in named {
+        // The final model without this term: what the evidence compares.
+        let without = terms::of(c.effect).map_or(selection.final_model.terms, |t| {
+            t.removed_from(&selection.final_model.terms)
+        });
+        let pred_before = predictions(&prep, &cv::score(&prep, &[without])?);
+        // The term's variants on the rest of the final model: its searched
+        // parameters' intervals re-choose among them.
+        let around = match terms::of(c.effect) {
+            Some(t) if !t.searched().is_empty() => {
+                cv::score_refined(&prep, t.variants(&prep, &without), &|best| t.refinements(&prep, best))?.variant_sse
+            }
+            _ => selection.final_model.variant_sse.clone(),
+        };
+        let n_samples: usize = prep
+            .fit_indices()
+            .iter()
+            .map(|&i| selection.final_model.n[i])
+            .sum::<usize>()
+            .max(1);
+        findings.push(Finding {
+            effect: c.effect,
             parameters: parameters::with_intervals(
                 &prep,
-                effect,
+                c.effect,
                 &selection.final_model.terms,
                 &selection.final_model.solution,
-                variant_sse,
+                &around,
                 opts.parameter_resamples,
                 opts.thresholds.seed,
             )?,
-            evidence: evidence_for(&prep, effect, &pred_before, &pred_after, c),
-            rmse_n_before: c.rmse_before_n,
-            rmse_n_after: c.rmse_after_n,
-            heldout_improvement: c.ratio,
-            heldout_improvement_nested: nested.ratio,
-            ratio_ci95: nested.ci95,
-            nested,
-            delta_bic: c.delta_bic,
-        })
-    };
-    // Rate-independent hysteresis memory, when accepted, is the first finding
-    // (the reference every other candidate was tested against). Its held-out
-    // figure is its share on top of every other accepted effect when there
-    // are any; it is left out when that share no longer passes.
-    if let Some(first) = selection.memory.as_ref().filter(|c| c.accepted) {
-        let kept = match &selection.memory_share {
-            Some(share) => share.accepted.then_some(share),
-            None => Some(first),
-        };
-        if let Some(c) = kept {
-            let effect = Effect::HysteresisMemory;
-            // One candidate, no choice between effects to nest.
-            findings.push(finding(
-                effect,
-                c,
-                heldout::HeldOutRatio::over_every_recording(
-                    c.sse_before.clone(),
-                    c.sse_after.clone(),
-                    &opts.thresholds,
-                ),
-                &selection.baseline,
-                &selection.reference,
-                &first.scored.variant_sse,
-            )?);
-        }
-    }
-    let mut before = selection.reference.clone();
-    for round in &selection.rounds {
-        let Some(k) = round.accepted else { break };
-        let c = &round.tested[k];
-        let Some(effect) = c.effect else { break };
-        let nested = round.nested_ratio.clone().unwrap_or_else(|| {
-            heldout::HeldOutRatio::over_every_recording(c.sse_before.clone(), c.sse_after.clone(), &opts.thresholds)
+            evidence: evidence_for(&prep, c, &pred_before, &final_pred),
+            rmse_n_before: (c.gain.sse_before.iter().sum::<f64>() / n_samples as f64).sqrt(),
+            rmse_n_after: (c.gain.sse_after.iter().sum::<f64>() / n_samples as f64).sqrt(),
+            heldout_improvement: c.gain_plain,
+            heldout_improvement_nested: c.gain.ratio,
+            ratio_ci95: c.gain.ci95,
+            inclusion_probability: c.inclusion,
+            nested: c.gain.clone(),
         });
-        findings.push(finding(effect, c, nested, &before, &c.scored, &c.scored.variant_sse)?);
-        before = c.scored.clone();
     }
-    let final_pred = if findings.is_empty() {
-        baseline_pred.clone()
-    } else {
-        predictions(&prep, &selection.final_model)
-    };
     let scored_mask: Vec<Vec<bool>> = prep
         .recs
         .iter()
@@ -242,13 +217,8 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
     })
 }
 
-fn evidence_for(
-    prep: &Prepared,
-    effect: Effect,
-    pred_before: &[Vec<f64>],
-    pred_after: &[Vec<f64>],
-    c: &acceptance::Comparison,
-) -> String {
+fn evidence_for(prep: &Prepared, c: &select::Candidate, pred_before: &[Vec<f64>], pred_after: &[Vec<f64>]) -> String {
+    let effect = c.effect;
     let loc = locate::locate(prep, pred_before);
     let (mut res, mut term) = (Vec::new(), Vec::new());
     // Where the added term acts: recordings ranked by the RMS change it makes.
@@ -279,15 +249,14 @@ fn evidence_for(
         .map(|(n, r)| format!("; residual correlates with {n} (r = {r:+.2})"))
         .unwrap_or_default();
     format!(
-        "held-out RMSE {:.3} → {:.3} N; {:.2}× over the recordings the decision reads (95 % bootstrap over \
-         those recordings {:.2}–{:.2}×), ΔBIC {:.0}; \
-         residual before: {}{}; the added term acts most on {} and explains the residual with r = {:.2}",
-        c.rmse_before_n,
-        c.rmse_after_n,
-        c.ratio_pool,
-        c.ratio_ci95[0],
-        c.ratio_ci95[1],
-        c.delta_bic,
+        "kept by {:.0} % of the ensemble's fits; {:.2}× held out, nested (95 % bootstrap over the recordings \
+         {:.2}–{:.2}×; {:.2}× with the rest of the model chosen on all data); \
+         residual before: {}{}; the term acts most on {} and explains the residual with r = {:.2}",
+        100.0 * c.inclusion,
+        c.gain.ratio,
+        c.gain.ci95[0],
+        c.gain.ci95[1],
+        c.gain_plain,
         locate::describe(&loc),
         follows,
         acts_on.join(", "),

@@ -3,38 +3,29 @@
 //! installation (format 3): the data set's metadata and `--installation`
 //! options over the defaults (`crate::installation`).
 //!
-//! What the v2 table holds, from the final model's terms:
-//! - the per-current branch quartics (fitted with every accepted term);
-//! - `viscous_n_s_per_m`: `c(I)·v`; a saturating `c·v0·tanh(v/v0)` is
-//!   written as its secant slope at the fastest recorded speed;
-//! - `saturation_current_a`: the `tanh(I/I_s)` interpolation variable;
-//! - `coil_tau_s`: the coil lag, which the law inverts.
-//!
-//! Folded in rather than carried: stress softening scales the quartics and
-//! viscous terms by the softening factor of the latest recording (the damper
-//! as it is now); an end stop `k_e(I)·max(0, x − x_e)²` (or its mirror at the
-//! extension end) is added to each
-//! quartic by a least-squares refit over its stroke.
-//!
-//! Not carried: a delay between the recorded force and displacement channels
-//! is compensated in the quartics (fitted at `x(t − τ)`) and written as
-//! metadata only, because the controller does not read the force channel
-//! (`sensor_delay_s` stays 0: it means the controller's own x/v samples lag);
-//! load-cell inertia (a scale in a free drop) and turn-around memory (the
-//! core has one quartic per branch) are left out.
-use super::design::{end_stop_shape, Layout, Viscous, QUARTIC_TERMS};
+//! The table holds the per-current branch quartics (fitted with every named
+//! term) scaled by each term's [`Term::table_scale`]; then each term of the
+//! final model writes itself in ([`Term::write_table`]): a coefficient of
+//! the core's model terms, a change to the quartics, or `[diagnose]`
+//! metadata. What each term writes, and what no table can carry, is listed
+//! in `docs/effects.md`.
+use super::design::{Layout, QUARTIC_TERMS};
 use super::report::{write_all, ReportJson};
+use super::terms::{TableParts, Term, REGISTRY};
 use super::{diagnose, DiagnoseOptions, Diagnosis};
 use crate::dataset::Dataset;
 use crate::installation::StatedInstallation;
-use crate::linalg::solve;
 use anyhow::{anyhow, Result};
 use mre_core::table::{CurrentEntry, ModelTerms, Quartic, Table, MAX_CURRENTS};
-use nalgebra::{DMatrix, DVector};
 use std::path::Path;
 
 /// The final model as a version 2 table (without its installation).
 pub fn final_table(d: &Diagnosis) -> Result<Table> {
+    table_and_metadata(d).map(|(t, _)| t)
+}
+
+/// The table and the `[diagnose]` metadata the final model's terms write.
+fn table_and_metadata(d: &Diagnosis) -> Result<(Table, Vec<(String, f64)>)> {
     let prep = &d.prep;
     let model = &d.selection.final_model;
     let terms = &model.terms;
@@ -46,29 +37,19 @@ pub fn final_table(d: &Diagnosis) -> Result<Table> {
             prep.currents_a.len()
         ));
     }
-    // The damper as the latest recording found it.
-    let softening = match terms.softening {
-        Some(law) => {
-            let g = prep
-                .recs
-                .iter()
-                .map(|r| law.covariate(r))
-                .fold(f64::NEG_INFINITY, f64::max);
-            let g = if g.is_finite() { g } else { 0.0 };
-            1.0 - sol.delta * g
-        }
-        None => 1.0,
-    };
-    let fastest_m_s = prep
-        .recs
-        .iter()
-        .flat_map(|r| r.v_m_s.iter())
-        .fold(0.0f64, |m, v| m.max(v.abs()));
-    let mut entries = Vec::new();
-    let mut mt = ModelTerms {
-        saturation_current_a: terms.saturation_i_a.unwrap_or(0.0) as f32,
-        coil_tau_s: terms.coil_lag_s.unwrap_or(0.0) as f32,
-        ..ModelTerms::NONE
+    let present: Vec<&'static dyn Term> = REGISTRY.iter().copied().filter(|t| t.present_in(terms)).collect();
+    let scale: f64 = present.iter().map(|t| t.table_scale(prep, terms, sol)).product();
+    let mut parts = TableParts {
+        quartics: Vec::new(),
+        stroke_mm: Vec::new(),
+        scale,
+        fastest_m_s: prep
+            .recs
+            .iter()
+            .flat_map(|r| r.v_m_s.iter())
+            .fold(0.0f64, |m, v| m.max(v.abs())),
+        terms: ModelTerms::NONE,
+        metadata: Vec::new(),
     };
     for (k, &current_a) in prep.currents_a.iter().enumerate() {
         let xs = prep
@@ -80,68 +61,37 @@ pub fn final_table(d: &Diagnosis) -> Result<Table> {
         if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
             return Err(anyhow!("{current_a} A: no fitted stroke"));
         }
-        // x⁰..x⁴ as fitted, scaled by the softening factor.
+        parts.stroke_mm.push((lo, hi));
+        // x⁰..x⁴ as fitted, at the table's scale.
         let powers = |comp: bool| -> [f64; QUARTIC_TERMS] {
-            std::array::from_fn(|p| softening * sol.beta[layout.quartic_col(k, comp, p)])
+            std::array::from_fn(|p| scale * sol.beta[layout.quartic_col(k, comp, p)])
         };
-        let with_end_stop = |p: [f64; QUARTIC_TERMS]| -> Result<Quartic> {
-            let p = match (terms.end_stop_x_mm, layout.end_stop_at) {
-                (Some(x_e), Some(at)) => {
-                    add_end_stop(p, softening * sol.beta[at + k], x_e, terms.end_stop_lower, lo, hi)?
-                }
-                _ => p,
-            };
-            // The core stores the highest power first.
-            Ok(Quartic::new(std::array::from_fn(|i| p[QUARTIC_TERMS - 1 - i] as f32)))
-        };
-        entries.push(CurrentEntry {
+        parts.quartics.push([powers(true), powers(false)]);
+    }
+    for t in &present {
+        t.write_table(&layout, terms, sol, &mut parts)?;
+    }
+    // The core stores the highest power first.
+    let quartic = |p: &[f64; QUARTIC_TERMS]| Quartic::new(std::array::from_fn(|i| p[QUARTIC_TERMS - 1 - i] as f32));
+    let entries: Vec<CurrentEntry> = prep
+        .currents_a
+        .iter()
+        .zip(parts.quartics.iter().zip(&parts.stroke_mm))
+        .map(|(&current_a, (q, &(lo, hi)))| CurrentEntry {
             current_a: current_a as f32,
-            compression: with_end_stop(powers(true))?,
-            extension: with_end_stop(powers(false))?,
+            compression: quartic(&q[0]),
+            extension: quartic(&q[1]),
             x_min_mm: lo as f32,
             x_max_mm: hi as f32,
-        });
-        if let (Some(visc), Some(at)) = (terms.viscous, layout.viscous_at) {
-            let c = softening * sol.beta[at + k];
-            let slope = match visc {
-                Viscous::Linear => c,
-                Viscous::Saturating { v0_m_s } if fastest_m_s > 0.0 => {
-                    c * v0_m_s * (fastest_m_s / v0_m_s).tanh() / fastest_m_s
-                }
-                Viscous::Saturating { .. } => c,
-            };
-            mt.viscous_n_s_per_m[k] = slope as f32;
-        }
-    }
-    Table::with_terms(&entries, mt).map_err(|e| anyhow!("final model: {e}"))
-}
-
-/// `p(x) + k_e·`[`end_stop_shape`] projected onto a quartic by least squares
-/// on 200 points over `[lo, hi]` (powers x⁰..x⁴).
-fn add_end_stop(
-    p: [f64; QUARTIC_TERMS],
-    k_e: f64,
-    x_e: f64,
-    lower: bool,
-    lo: f64,
-    hi: f64,
-) -> Result<[f64; QUARTIC_TERMS]> {
-    const N: usize = 200;
-    let x = |r: usize| lo + (hi - lo) * r as f64 / (N - 1) as f64;
-    let a = DMatrix::from_fn(N, QUARTIC_TERMS, |r, c| x(r).powi(c as i32));
-    let y = DVector::from_fn(N, |r, _| {
-        let xr = x(r);
-        let q: f64 = p.iter().rev().fold(0.0, |acc, c| acc * xr + c);
-        q + k_e * end_stop_shape(xr, x_e, lower)
-    });
-    let fit = solve(&a, &y)?;
-    Ok(std::array::from_fn(|i| fit.coeffs[i]))
+        })
+        .collect();
+    let table = Table::with_terms(&entries, parts.terms).map_err(|e| anyhow!("final model: {e}"))?;
+    Ok((table, parts.metadata))
 }
 
 /// The model file: `[model]` provenance, the identified values as metadata
 /// (`[diagnose]`), then the table (`[terms]`, `[[current]]`).
 pub fn model_file_text(d: &Diagnosis, table: &Table, dataset_name: &str, input_sha256: &str) -> String {
-    let terms = &d.selection.final_model.terms;
     let found: Vec<String> = d.findings.iter().map(|f| format!("{:?}", f.effect.name())).collect();
     let mut s = String::new();
     s.push_str("# Written by `mre diagnose --model-out`: the diagnosis's final model as a table file.\n");
@@ -149,11 +99,10 @@ pub fn model_file_text(d: &Diagnosis, table: &Table, dataset_name: &str, input_s
     s.push_str(&format!(
         "\n[model]\ndataset = {dataset_name:?}\ninput_sha256 = {input_sha256:?}\nmethod = \"diagnose\"\n"
     ));
-    s.push_str(&format!(
-        "\n[diagnose]\neffects = [{}]\nforce_channel_delay_s = {:?}\n",
-        found.join(", "),
-        terms.delay_s.unwrap_or(0.0)
-    ));
+    s.push_str(&format!("\n[diagnose]\neffects = [{}]\n", found.join(", ")));
+    for (key, value) in table_and_metadata(d).map(|(_, m)| m).unwrap_or_default() {
+        s.push_str(&format!("{key} = {value:?}\n"));
+    }
     let table_text = crate::table_file::table_to_toml(table);
     // `format_version` (the first line) must stay a top-level key, before any [table].
     let (version_line, tables) = table_text.split_at(table_text.find('\n').map_or(0, |i| i + 1));

@@ -66,7 +66,7 @@ pub fn with_intervals(
     let designs = Designs::build(prep, terms);
     let fit = prep.fit_indices();
     // Each softening fit is a 1-D search of solves: fewer resamples keep it quick.
-    let resamples_linear = if terms.softening.is_some() {
+    let resamples_linear = if terms.solved_scalars() > 0 {
         resamples.div_ceil(4)
     } else {
         resamples

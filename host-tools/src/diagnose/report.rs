@@ -280,9 +280,9 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
     for (k, (e, f)) in json.effects.iter().zip(&d.findings).enumerate() {
         let _ = writeln!(
             s,
-            "{}. **{}**: {:.2}× held out with the choice between effects nested (95 % CI {:.2}–{:.2}×, \
-             resampling the same recordings); held-out RMSE {:.3} → {:.3} N ({:.2}× before nesting the \
-             choice); ΔBIC {:.0}",
+            "{}. **{}**: {:.2}× held out, nested: the rest of the model chosen without each held-out fold (95 % CI {:.2}–{:.2}×, \
+             resampling the same recordings); held-out RMSE {:.3} → {:.3} N ({:.2}× with the rest of the \
+             model chosen on all data); inclusion probability {:.2}",
             k + 1,
             e.name,
             e.heldout_improvement_nested,
@@ -291,7 +291,7 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
             e.rmse_n_before,
             e.rmse_n_after,
             e.heldout_improvement,
-            f.delta_bic
+            f.inclusion_probability
         );
         let term = super::terms::of(f.effect);
         for (n, p) in &e.parameters {
@@ -338,138 +338,49 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
         s,
         "\n![residual map](residual_map.png)\n\n![residual vs covariates](residual_covariates.png)\n"
     );
-    let _ = writeln!(s, "## Candidates tested (forward selection)\n");
-    let bic_gate = if d.thresholds.max_delta_bic.is_finite() {
-        format!(", and ΔBIC < {:.0}", d.thresholds.max_delta_bic)
-    } else {
-        " (ΔBIC, on the autocorrelation-corrected sample count, is shown but not a gate)".to_string()
-    };
+    let th = &d.thresholds;
+    let sel = &d.selection;
+    let _ = writeln!(s, "## Candidates: one joint sparse fit\n");
     let _ = writeln!(
         s,
-        "Accept only if the held-out RMSE ratio is ≥ {:.2} and its 95 % bootstrap lower bound (resampling \
-         recordings) ≥ {:.2}, or every held-out scoring unit improves — whole cross-validation folds of fit \
-         recordings, or each validate recording for a term that only changes how validate currents are \
-         predicted; at least {} units, a sign test at p ≤ 2^−{} — and the ratio is ≥ {:.2}, or every unit but \
-         one at a ratio ≥ {:.2}; this second route only for vocabulary terms and while the model's held-out RMSE is ≥ {}× the force noise; or, for \
-         vocabulary terms while that RMSE is ≥ {}× the noise, judged on the term's support (the samples where \
-         its held-out prediction changes by more than 2× the noise and the change's RMS): ratio there ≥ {:.2}, \
-         a paired z ≥ {:.1} with autocorrelation-corrected sample counts, ≥ {:.0} % of at least {} support \
-         recordings improving, and the ratio over the pool ≥ {:.2}. Each decision reads only its pool: the fit \
-         recordings, or the validate recordings for a term that only changes their prediction{bic_gate}.\n",
-        d.thresholds.min_ratio,
-        d.thresholds.min_ratio_lo,
-        d.thresholds.min_consistent_units,
-        d.thresholds.min_consistent_units,
-        d.thresholds.min_ratio_consistent,
-        d.thresholds.min_ratio_all_but_one,
-        d.thresholds.consistent_min_residual_over_noise,
-        d.thresholds.local_min_residual_over_noise,
-        d.thresholds.min_local_ratio,
-        d.thresholds.min_local_z,
-        100.0 * d.thresholds.min_local_unit_share,
-        d.thresholds.min_local_units,
-        d.thresholds.min_local_pool_ratio
+        "Every identifiable term sits in one library with the per-current branch quartics ({} columns over {} \
+         recordings); each term's searched value was chosen first, on its own, by grouped cross-validation. \
+         Group STLSQ keeps a term whose contribution is ≥ {:.0} % of what the quartics alone leave. A term is \
+         named when it is kept by ≥ {:.0} % of {} fits on complementary half-samples of the recordings \
+         (inclusion probability) **and** its nested held-out RMSE ratio without → with it is ≥ {:.2}× (the rest \
+         of the model chosen without the held-out fold). Stability bound on wrongly included terms at that \
+         inclusion: {:.2} expected (q²/((2π − 1)·p)).\n",
+        sel.n_columns,
+        sel.n_recordings,
+        100.0 * th.sparsity,
+        100.0 * th.min_inclusion,
+        sel.ensemble_fits,
+        th.min_nested_gain,
+        sel.false_inclusion_bound
     );
-    if d.selection
-        .rounds
-        .iter()
-        .flat_map(|r| &r.tested)
-        .any(|c| c.scale.is_some())
-    {
-        let _ = writeln!(
-            s,
-            "`stress_softening` over the run order may also pass on each recording's scale: the gain that maps the \
-             current model's held-out prediction onto the recording, fitted as `a(I)·(1 − Δ·(1 − e^(−(n−1)/n0)))` \
-             against a level per current (an F test); accepted when at most {:.1} % of {} simulated gain sets \
-             without softening (each level's mean plus Student-t scatter at the gains' own RMS, same run order) \
-             give as large an F. Every recording with a run order contributes its gain, validate ones included.\n",
-            100.0 * d.thresholds.max_scale_p,
-            d.thresholds.scale_simulations
-        );
-    }
-    if let Some(m) = &d.selection.memory {
-        let t = &m.scored.terms;
-        let form = match (t.memory_mm, t.friction_v0_m_s) {
-            (Some(dm), Some(v0)) => {
-                format!("turn-around memory (δ = {dm:.3} mm) and a yield force f(I)·tanh(v/v0), v0 = {v0:.4} m/s")
-            }
-            (Some(dm), None) => format!("turn-around memory (δ = {dm:.3} mm)"),
-            (None, Some(v0)) => format!("a yield force f(I)·tanh(v/v0), v0 = {v0:.4} m/s"),
-            (None, None) => "no memory term".to_string(),
-        };
-        let _ = writeln!(
-            s,
-            "`hysteresis_memory`, tested first as the reference: the paper's branch quartics cannot make the \
-             unloading curve depend on where loading turned around, nor make the force change sign over a \
-             stroke after each turn-around (a yield force or dry friction), whatever the speed. Terms: \
-             `e^(−|x − x_r|/(m·δ))·x_r^p` per current and branch after each reversal at x_r, and/or \
-             `f(I)·tanh(v/v0)` with a knee v0 under which the term is the same at every speed tested (growth \
-             from the slowest to the fastest test below √(v_max/v_min)). Chosen: {form}. Held-out RMSE {:.3} → \
-             {:.3} N ({:.3}× over every recording; {:.3}× over the fit recordings the decision reads, 95 % CI \
-             {:.3}–{:.3}, ΔBIC {:.0}): **{}**. Candidates are tested against this reference.\n",
-            m.rmse_before_n,
-            m.rmse_after_n,
-            m.ratio,
-            m.ratio_pool,
-            m.ratio_ci95[0],
-            m.ratio_ci95[1],
-            m.delta_bic,
-            if m.accepted { "included" } else { "not included" },
-        );
-        if let Some(share) = &d.selection.memory_share {
-            let _ = writeln!(
-                s,
-                "Tested again on top of every other accepted effect (its own share): held-out RMSE {:.3} → \
-                 {:.3} N ({:.3}× over every recording; {:.3}× over the fit recordings the decision reads, \
-                 95 % CI {:.3}–{:.3}): **{}**.\n",
-                share.rmse_before_n,
-                share.rmse_after_n,
-                share.ratio,
-                share.ratio_pool,
-                share.ratio_ci95[0],
-                share.ratio_ci95[1],
-                if share.accepted {
-                    "kept"
-                } else {
-                    "dropped (it stood in for an effect found later)"
-                },
-            );
-        }
-    }
     let _ = writeln!(
         s,
-        "| round | candidate | held-out RMSE before → after (N) | ratio (every recording) | ratio over the decision pool | its 95 % CI | scoring units improved | on its support: ratio, share, recordings improved, z | ΔBIC | accepted |"
+        "| candidate | chosen form | inclusion probability | nested held-out gain (95 % CI) | gain, rest chosen on all data | share outside the quartics' span | named |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
-    for (k, r) in d.selection.rounds.iter().enumerate() {
-        for (j, c) in r.tested.iter().enumerate() {
-            let _ = writeln!(
-                s,
-                "| {} | {} | {:.3} → {:.3} | {:.3} | {:.3} | {:.3}–{:.3} | {}/{} | {:.3}, {:.0} %, {}/{}, {:.1} | {:.0} | {} |",
-                k + 1,
-                c.effect.map_or("turn-around memory", |e| e.name()),
-                c.rmse_before_n,
-                c.rmse_after_n,
-                c.ratio,
-                c.ratio_pool,
-                c.ratio_ci95[0],
-                c.ratio_ci95[1],
-                c.units_improved,
-                c.n_units,
-                c.local.ratio,
-                100.0 * c.local.share,
-                c.local.units_improved,
-                c.local.n_units,
-                c.local.z,
-                c.delta_bic,
-                match (r.accepted == Some(j), c.route) {
-                    (true, Some(route)) => format!("**yes** ({route})"),
-                    (true, None) => "**yes**".to_string(),
-                    (false, Some(route)) => format!("passed ({route}), ranked lower"),
-                    (false, None) => "no".to_string(),
-                }
-            );
-        }
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+    for c in &sel.candidates {
+        let form = super::terms::of(c.effect)
+            .and_then(|t| t.describe(&c.own))
+            .unwrap_or_default();
+        let _ = writeln!(
+            s,
+            "| {} | {}{} | {:.2} | {:.3} ({:.3}–{:.3}) | {:.3} | {:.2} | {} |",
+            c.effect.name(),
+            form,
+            if c.linearised { " (linearised)" } else { "" },
+            c.inclusion,
+            c.gain.ratio,
+            c.gain.ci95[0],
+            c.gain.ci95[1],
+            c.gain_plain,
+            c.outside_baseline,
+            if c.named { "**yes**" } else { "no" }
+        );
     }
     let _ = writeln!(s, "\n## Not identifiable from this data set\n");
     for n in &json.not_identifiable {
@@ -555,7 +466,7 @@ fn interval_sentence(resamples: usize) -> String {
     let sd = (b * 0.025 * 0.975).sqrt();
     format!(
         "Parameter intervals: 95 % percentile bootstrap over the fit recordings (resampled within each \
-         current), {resamples} resamples ({} for a model with softening, each a 1-D search); searched \
+         current), {resamples} resamples ({} for a model with a parameter solved by a 1-D search, such as a softening depth); searched \
          parameters re-choose among the scored variants in {} resamples. Each bound is about the {rank:.0}th \
          value from its end; Monte Carlo error of that rank ±{sd:.1} (binomial), so another seed moves a bound \
          by about {sd:.0} neighbouring resampled values.",

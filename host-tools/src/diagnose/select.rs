@@ -1,148 +1,237 @@
-//! Forward selection: effects join the model one at a time, each round
-//! scoring every candidate on the current model out of sample
-//! ([`super::cv`]) and adding the best of those accepted
-//! ([`super::acceptance`]), with its held-out ratio nested
-//! ([`super::heldout`]).
-use super::acceptance::{compare, Comparison, Thresholds};
-use super::candidates::{self, Effect};
-use super::cv::{score, score_refined, Scored};
-use super::design::Terms;
-use super::heldout::{nested_ratio, HeldOutRatio};
+//! The select stage: group STLSQ over the joint library ([`super::library`],
+//! [`super::sparse`]), each term's inclusion probability over an ensemble
+//! of complementary half-samples of the recordings, and its nested held-out
+//! gain. A term is named when both pass ([`Thresholds::min_inclusion`],
+//! [`Thresholds::min_nested_gain`]); the named terms are then refitted as
+//! one model and scored out of sample ([`super::cv`]).
+use super::acceptance::Thresholds;
+use super::candidates::Effect;
+use super::cv::{score, Scored};
+use super::design::{Layout, Terms};
+use super::heldout::HeldOutRatio;
+use super::library::{self, Built};
 use super::prepared::Prepared;
+use super::sparse::{self, group_stlsq, least_squares, Library};
 use anyhow::Result;
+use rayon::prelude::*;
 
-/// One round of forward selection: every candidate tested on the current model.
+/// One term's evidence.
 #[derive(Clone, Debug)]
-pub struct Round {
-    pub tested: Vec<Comparison>,
-    /// Index into `tested` of the accepted candidate, if any.
-    pub accepted: Option<usize>,
-    /// The accepted candidate's held-out ratio with the choice between
-    /// candidates nested (see [`nested_ratio`]), and its interval.
-    pub nested_ratio: Option<HeldOutRatio>,
+pub struct Candidate {
+    pub effect: Effect,
+    /// The term alone at its chosen value.
+    pub own: Terms,
+    /// It entered the library as one linearised regressor.
+    pub linearised: bool,
+    /// Share of the ensemble's fits that kept it.
+    pub inclusion: f64,
+    /// Its contribution in the full-data fit, over what the quartics alone
+    /// leave unexplained.
+    pub share: f64,
+    /// Held-out SSE per library recording without → with the term, the rest
+    /// of the model chosen without that recording's fold (nested).
+    pub gain: HeldOutRatio,
+    /// The same ratio with the rest of the model chosen on all data.
+    pub gain_plain: f64,
+    /// Held-out RMSE ratio over the library's recordings of the refitted
+    /// final model without → with the term, in its real form (NaN unless named).
+    pub refit_gain: f64,
+    /// `‖(I − P_Q) c‖ / ‖c‖` of its most separable column `c`, `P_Q` the
+    /// projection on the quartics: below [`super::verdict::COLLINEAR_SHARE`]
+    /// the baseline can bend to absorb it.
+    pub outside_baseline: f64,
+    pub named: bool,
 }
 
-/// The result of forward selection.
+/// The result of the selection.
 #[derive(Clone, Debug)]
 pub struct Selection {
+    /// The paper's model, scored out of sample.
     pub baseline: Scored,
-    /// The turn-around memory test (reference = baseline + memory if accepted).
-    pub memory: Option<Comparison>,
-    pub reference: Scored,
-    pub rounds: Vec<Round>,
-    /// `hysteresis_memory` tested again on top of every other accepted
-    /// effect (the final model without it → with it): its own share of the
-    /// held-out improvement. When it no longer passes, it was standing in for
-    /// an effect found later (a delay shifts every turn-around) and is
-    /// dropped from the final model.
-    pub memory_share: Option<Comparison>,
+    /// The paper's model with every named term, scored out of sample.
     pub final_model: Scored,
-    /// Effects the data cannot identify, with what would.
+    pub candidates: Vec<Candidate>,
     pub not_identifiable: Vec<(Effect, String)>,
+    /// Fits in the inclusion ensemble.
+    pub ensemble_fits: usize,
+    /// The stability bound on the expected number of wrongly included
+    /// terms ([`sparse::stability_bound`]) at [`Thresholds::min_inclusion`].
+    pub false_inclusion_bound: f64,
+    /// Library recordings and columns.
+    pub n_recordings: usize,
+    pub n_columns: usize,
 }
 
-/// Adds effects one at a time, the best-scoring significant one first, until
-/// no candidate passes the test.
-pub fn forward_select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
-    let baseline = score(prep, &[Terms::default()])?;
-    // The reference: the paper's model, plus turn-around memory if the data
-    // show it (a structural limit of one quartic per branch, not missing
-    // physics from the vocabulary). Candidates are tested against it.
-    let memory = score(prep, &candidates::memory_variants(prep))
-        .map_err(|e| {
-            eprintln!(
-                "note: turn-around memory was not tested, so candidates are tested against the paper's model alone: {e:#}"
-            )
+impl Selection {
+    /// The candidate of `effect`, if it was in the library.
+    pub fn candidate(&self, effect: Effect) -> Option<&Candidate> {
+        self.candidates.iter().find(|c| c.effect == effect)
+    }
+}
+
+/// Held-out SSE per library recording, without and with each optional group
+/// (rows: groups), the rest of the model chosen by `kept_for(fold)` on the
+/// fold's training recordings.
+fn heldout_sse(
+    lib: &Library,
+    folds: &[(usize, Vec<usize>)],
+    recs: &[usize],
+    kept_for: &(dyn Fn(&[usize]) -> Vec<bool> + Sync),
+) -> Vec<(Vec<f64>, Vec<f64>)> {
+    let n_groups = lib.groups.len();
+    let per_fold: Vec<Vec<(Vec<f64>, Vec<f64>)>> = folds
+        .par_iter()
+        .map(|(_, test)| {
+            let train: Vec<usize> = recs.iter().copied().filter(|r| !test.contains(r)).collect();
+            let rows = lib.rows_of(&train);
+            let kept = kept_for(&rows);
+            let mut out = vec![(vec![0.0; recs.len()], vec![0.0; recs.len()]); n_groups];
+            for (g, slot) in out.iter_mut().enumerate().filter(|(g, _)| !lib.groups[*g].always) {
+                for (with, sse) in [(false, &mut slot.0), (true, &mut slot.1)] {
+                    let mut k = kept.clone();
+                    k[g] = with;
+                    let beta = least_squares(lib, &rows, &k);
+                    for (rec, e) in lib.sse_by_recording(&beta) {
+                        if test.contains(&rec) {
+                            if let Some(j) = recs.iter().position(|&r| r == rec) {
+                                sse[j] += e;
+                            }
+                        }
+                    }
+                }
+            }
+            out
         })
-        .ok()
-        .map(|after| compare(prep, &baseline, after, Some(Effect::HysteresisMemory), th));
-    let reference = match &memory {
-        Some(c) if c.accepted => c.scored.clone(),
-        _ => baseline.clone(),
-    };
-    let mut current = reference.clone();
-    let mut rounds = Vec::new();
-    let mut not_identifiable = Vec::new();
-    let mut testable = Vec::new();
-    let mut untested: Vec<Effect> = Vec::new();
-    for e in super::terms::candidates().map(|t| t.effect()) {
-        match candidates::identifiable(prep, e, th) {
-            Ok(()) => testable.push(e),
-            Err(needs) => not_identifiable.push((e, needs)),
+        .collect();
+    (0..n_groups)
+        .map(|g| {
+            let mut without = vec![0.0; recs.len()];
+            let mut with = vec![0.0; recs.len()];
+            for f in &per_fold {
+                for j in 0..recs.len() {
+                    without[j] += f[g].0[j];
+                    with[j] += f[g].1[j];
+                }
+            }
+            (without, with)
+        })
+        .collect()
+}
+
+/// Selects the terms (see the module docs).
+pub fn select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
+    let baseline = score(prep, &[Terms::default()])?;
+    let Built {
+        lib,
+        candidates: built,
+        not_identifiable,
+        fold_of,
+    } = library::build(prep, th)?;
+    let recs = lib.recordings();
+    let mut folds: Vec<(usize, Vec<usize>)> = Vec::new();
+    for &r in &recs {
+        let f = fold_of[r].unwrap_or(usize::MAX);
+        match folds.iter_mut().find(|(k, _)| *k == f) {
+            Some((_, members)) => members.push(r),
+            None => folds.push((f, vec![r])),
         }
     }
+    let all_rows: Vec<usize> = (0..lib.y.len()).collect();
+    let full = group_stlsq(&lib, &all_rows, th.sparsity);
+    let ensemble = sparse::ensemble(&lib, th.sparsity, th.ensemble_pairs, th.seed);
+    let nested = heldout_sse(&lib, &folds, &recs, &|rows| group_stlsq(&lib, rows, th.sparsity).kept);
+    let plain = heldout_sse(&lib, &folds, &recs, &|_| full.kept.clone());
+    let quartics: Vec<usize> = (0..lib.groups.len()).filter(|&g| lib.groups[g].always).collect();
+    let candidates: Vec<Candidate> = built
+        .iter()
+        .map(|c| {
+            let (without, with) = nested[c.group].clone();
+            let gain = HeldOutRatio::over_every_recording(without, with, th);
+            let (pw, pi) = &plain[c.group];
+            let gain_plain = (pw.iter().sum::<f64>() / pi.iter().sum::<f64>().max(1e-300)).sqrt();
+            let inclusion = ensemble.inclusion[c.group];
+            Candidate {
+                effect: c.term.effect(),
+                own: c.own,
+                linearised: c.linearised,
+                inclusion,
+                share: full.share[c.group],
+                named: inclusion >= th.min_inclusion && gain.ratio >= th.min_nested_gain,
+                gain,
+                gain_plain,
+                refit_gain: f64::NAN,
+                outside_baseline: sparse::share_outside(&lib, c.group, &quartics),
+            }
+        })
+        .collect();
+    let mut selection = Selection {
+        final_model: baseline.clone(),
+        baseline,
+        candidates,
+        not_identifiable,
+        ensemble_fits: ensemble.fits,
+        false_inclusion_bound: sparse::stability_bound(
+            ensemble.mean_kept,
+            lib.groups.iter().filter(|g| !g.always).count(),
+            th.min_inclusion,
+        ),
+        n_recordings: recs.len(),
+        n_columns: lib.a.ncols(),
+    };
+    // The named terms as one model; a term whose refit is not physical
+    // (a net negative damping, a stop pulling) is not named.
     loop {
-        let todo: Vec<Effect> = testable
+        let terms = selection
+            .candidates
             .iter()
-            .copied()
-            .filter(|e| !super::terms::of(*e).is_some_and(|t| t.present_in(&current.terms)))
-            .collect();
-        if todo.is_empty() {
+            .filter(|c| c.named)
+            .fold(Terms::default(), |acc, c| acc.merged(c.own));
+        if terms == Terms::default() {
+            selection.final_model = selection.baseline.clone();
             break;
         }
-        let mut tested = Vec::new();
-        // Candidates carry the current terms at their full-data values in
-        // every fold, while `current`'s own held-out errors came from each
-        // fold's choice: compared with that, every candidate would gain the
-        // same few per cent. So they are compared with the current terms
-        // fixed the same way.
-        let before = if rounds.is_empty() && memory.as_ref().is_none_or(|m| !m.accepted) {
-            current.clone()
-        } else {
-            score(prep, &[current.terms])?
-        };
-        for e in todo {
-            let variants = candidates::variants(prep, &current.terms, e);
-            let refine = |best: &Terms| candidates::refinements(prep, best, e);
-            match score_refined(prep, variants, &refine) {
-                Ok(after) => tested.push(compare(prep, &before, after, Some(e), th)),
-                // Once per effect and run, as a sentence.
-                Err(why) if !untested.contains(&e) => {
-                    eprintln!("note: {} was not tested: {why:#}", e.name());
-                    untested.push(e);
+        let model = score(prep, &[terms])?;
+        let layout = Layout::new(prep.currents_a.len(), &model.terms);
+        let mut dropped = false;
+        for c in selection.candidates.iter_mut().filter(|c| c.named) {
+            if let Some(t) = super::terms::of(c.effect) {
+                if !t.physical(&layout, &model.terms, &model.solution) {
+                    c.named = false;
+                    dropped = true;
                 }
-                Err(_) => {}
             }
         }
-        let accepted = (0..tested.len())
-            .filter(|&i| tested[i].accepted)
-            .max_by(|&a, &b| tested[a].ratio_pool.total_cmp(&tested[b].ratio_pool));
-        let next = accepted.map(|i| tested[i].scored.clone());
-        let nested_ratio = accepted.map(|w| nested_ratio(prep, &tested, w, th));
-        rounds.push(Round {
-            tested,
-            accepted,
-            nested_ratio,
-        });
-        match next {
-            Some(s) => current = s,
-            None => break,
+        if dropped {
+            continue;
         }
-    }
-    let mut memory_share = None;
-    let others_accepted = rounds.iter().any(|r| r.accepted.is_some());
-    if memory.as_ref().is_some_and(|m| m.accepted) && others_accepted {
-        let without =
-            super::terms::of(Effect::HysteresisMemory).map_or(current.terms, |t| t.removed_from(&current.terms));
-        let share = compare(
-            prep,
-            &score(prep, &[without])?,
-            current.clone(),
-            Some(Effect::HysteresisMemory),
-            th,
-        );
-        if !share.accepted {
-            current = score(prep, &[without])?;
+        // Validated on the refitted model: a linearised regressor has a free
+        // coefficient and can stand for more than its term, so each named
+        // term must also gain by the gate with its real form in the refit
+        // (held out); the weakest that does not is
+        // dropped and the rest refitted.
+        // Over the library's recordings: the validate ones too when they are
+        // evidence (a coil lag changes nothing else).
+        let mut pool = prep.fit_indices();
+        if prep.validate_evidence {
+            pool.extend(prep.validate_indices());
         }
-        memory_share = Some(share);
+        let heldout = |m: &Scored| pool.iter().map(|&i| m.heldout_sse[i]).sum::<f64>();
+        let with = heldout(&model);
+        let mut weakest: Option<(usize, f64)> = None;
+        for (k, c) in selection.candidates.iter_mut().enumerate().filter(|(_, c)| c.named) {
+            let Some(t) = super::terms::of(c.effect) else { continue };
+            let without = score(prep, &[t.removed_from(&model.terms)])?;
+            c.refit_gain = (heldout(&without) / with.max(1e-300)).sqrt();
+            if c.refit_gain < th.min_nested_gain && weakest.is_none_or(|(_, g)| c.refit_gain < g) {
+                weakest = Some((k, c.refit_gain));
+            }
+        }
+        if let Some((k, _)) = weakest {
+            selection.candidates[k].named = false;
+            continue;
+        }
+        selection.final_model = model;
+        break;
     }
-    Ok(Selection {
-        baseline,
-        memory,
-        reference,
-        rounds,
-        memory_share,
-        final_model: current,
-        not_identifiable,
-    })
+    Ok(selection)
 }

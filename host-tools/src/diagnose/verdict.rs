@@ -5,15 +5,13 @@
 //! not. It is only made when the final held-out residual is near the noise,
 //! or when the data were able to test: enough folds for the sign test, held-
 //! out recordings inside the stroke the baseline was fitted on, no candidate
-//! with a large held-out gain that failed a rule, and no candidate whose
+//! that passed one of the two gates but not the other, and no candidate whose
 //! columns the baseline can already bend to. Otherwise the verdict is
 //! `inconclusive` and names why.
 use super::acceptance::Thresholds;
-use super::design::Designs;
 use super::prepared::Prepared;
 use super::select::Selection;
 use super::unexplained::force_noise_n;
-use nalgebra::DMatrix;
 
 /// A candidate whose column keeps less than this share of its norm outside
 /// the baseline's span is collinear with the baseline: the quartics absorb it,
@@ -72,7 +70,7 @@ pub fn decide(prep: &Prepared, selection: &Selection, n_findings: usize, th: &Th
         };
     }
     // Near the noise there is nothing left to find, however little data.
-    if residual_over_noise < th.consistent_min_residual_over_noise {
+    if residual_over_noise < th.none_max_residual_over_noise {
         return VerdictReport {
             verdict: Verdict::None,
             residual_over_noise,
@@ -83,7 +81,7 @@ pub fn decide(prep: &Prepared, selection: &Selection, n_findings: usize, th: &Th
     reasons.extend(too_few_folds(prep, th));
     reasons.extend(outside_stroke(prep));
     reasons.extend(rejected_gains(selection, th));
-    reasons.extend(collinear(prep, selection));
+    reasons.extend(collinear(selection));
     VerdictReport {
         verdict: if reasons.is_empty() {
             Verdict::None
@@ -106,22 +104,23 @@ fn fit_rmse_n(prep: &Prepared, selection: &Selection) -> f64 {
     (sse / n.max(1) as f64).sqrt()
 }
 
-/// The sign test over folds cannot reach its level with fewer folds than
-/// `min_consistent_units`, and a fold's training set shrinks with each one.
+/// With few folds each is a large share of the data: the rest of the model
+/// is chosen on too little to stand for what it would be on all of it, and
+/// the held-out gain rests on a handful of recordings.
 fn too_few_folds(prep: &Prepared, th: &Thresholds) -> Option<Reason> {
     let n_fit = prep.fit_indices().len();
-    (prep.n_folds < th.min_consistent_units).then(|| Reason {
+    (prep.n_folds < th.min_folds).then(|| Reason {
         code: "too_few_folds",
         detail: format!(
-            "{n_fit} fit recordings in {} cross-validation folds: the every-fold sign test needs at least {} \
-             (p ≤ 2^−{}), so a real effect could not pass it",
-            prep.n_folds, th.min_consistent_units, th.min_consistent_units
+            "{n_fit} fit recordings in {} cross-validation folds, fewer than the {} a nested held-out gain \
+             needs",
+            prep.n_folds, th.min_folds
         ),
         experiment: format!(
             "record at least {} tests (more amplitudes and frequencies at each current), so that {} folds \
              can be held out",
-            th.min_consistent_units.saturating_sub(n_fit) + n_fit,
-            th.min_consistent_units
+            th.min_folds.max(n_fit),
+            th.min_folds
         ),
     })
 }
@@ -163,28 +162,27 @@ fn outside_stroke(prep: &Prepared) -> Option<Reason> {
     })
 }
 
-/// A first-round candidate that gained as much as the large route asks but
-/// failed a rule (its interval, its support, its physical check).
+/// A candidate that passed one gate and not the other: a large held-out
+/// gain without a stable inclusion, or a stable inclusion without the gain.
 fn rejected_gains(selection: &Selection, th: &Thresholds) -> Vec<Reason> {
-    let Some(round) = selection.rounds.first() else {
-        return Vec::new();
-    };
-    round
-        .tested
+    selection
+        .candidates
         .iter()
-        .filter(|c| !c.accepted && c.ratio >= th.min_ratio)
+        .filter(|c| !c.named && (c.gain.ratio >= th.min_nested_gain || c.inclusion >= th.min_inclusion))
         .filter_map(|c| {
-            let term = super::terms::of(c.effect?)?;
+            let term = super::terms::of(c.effect)?;
             Some(Reason {
                 code: "rejected_gain",
                 detail: format!(
-                    "{} gained {:.2}× held out ({:.2}× over the decision pool, 95 % {:.2}–{:.2}×) but failed the \
-                     acceptance rules",
-                    term.effect().name(),
-                    c.ratio,
-                    c.ratio_pool,
-                    c.ratio_ci95[0],
-                    c.ratio_ci95[1]
+                    "{} gained {:.2}× held out (nested, 95 % {:.2}–{:.2}×; gate {:.2}×) with inclusion \
+                     probability {:.2} (gate {:.2})",
+                    c.effect.name(),
+                    c.gain.ratio,
+                    c.gain.ci95[0],
+                    c.gain.ci95[1],
+                    th.min_nested_gain,
+                    c.inclusion,
+                    th.min_inclusion
                 ),
                 experiment: term.deciding_experiment().into(),
             })
@@ -192,95 +190,24 @@ fn rejected_gains(selection: &Selection, th: &Thresholds) -> Vec<Reason> {
         .collect()
 }
 
-/// First-round candidates whose columns lie mostly in the baseline's span.
-fn collinear(prep: &Prepared, selection: &Selection) -> Vec<Reason> {
-    let Some(round) = selection.rounds.first() else {
-        return Vec::new();
-    };
-    round
-        .tested
+/// Candidates whose columns lie mostly in the baseline's span.
+fn collinear(selection: &Selection) -> Vec<Reason> {
+    selection
+        .candidates
         .iter()
+        .filter(|c| !c.named && c.outside_baseline < COLLINEAR_SHARE)
         .filter_map(|c| {
-            let term = super::terms::of(c.effect?)?;
-            let share = share_outside_baseline_span(prep, &Designs::build(prep, &c.scored.terms), term)?;
-            (share < COLLINEAR_SHARE).then(|| Reason {
+            let term = super::terms::of(c.effect)?;
+            Some(Reason {
                 code: "collinear",
                 detail: format!(
                     "{}: only {:.1} % of its column's norm lies outside the span of the per-current branch \
                      quartics (the baseline can bend to absorb it)",
-                    term.effect().name(),
-                    100.0 * share
+                    c.effect.name(),
+                    100.0 * c.outside_baseline
                 ),
                 experiment: term.deciding_experiment().into(),
             })
         })
         .collect()
-}
-
-/// `‖(I − P_Q) c‖ / ‖c‖` for the term's own columns `c` stacked over the fit
-/// recordings' fitted samples, `P_Q` the projection on the quartic columns;
-/// the largest over the term's columns (its most separable one). `None` when
-/// the term adds no linear column (it transforms the inputs).
-pub fn share_outside_baseline_span(prep: &Prepared, d: &Designs, term: &dyn super::terms::Term) -> Option<f64> {
-    let n_quartic = d.layout.n_cols - d.layout.extra_cols();
-    let own: Vec<usize> = d
-        .layout
-        .blocks
-        .iter()
-        .filter(|p| p.term.effect() == term.effect())
-        .flat_map(|p| {
-            let width = d
-                .layout
-                .blocks
-                .iter()
-                .map(|q| q.at)
-                .filter(|&a| a > p.at)
-                .min()
-                .unwrap_or(d.layout.n_cols)
-                - p.at;
-            p.at..p.at + width
-        })
-        .collect();
-    if own.is_empty() {
-        return None;
-    }
-    let rows: Vec<(usize, usize)> = prep
-        .fit_indices()
-        .into_iter()
-        .flat_map(|i| {
-            let mask = &d.recs[i].mask;
-            (0..mask.len()).filter(move |&t| mask[t]).map(move |t| (i, t))
-        })
-        .collect();
-    let cols: Vec<usize> = (0..n_quartic).chain(own.iter().copied()).collect();
-    let mut a = DMatrix::<f64>::zeros(rows.len(), cols.len());
-    for (row, &(i, t)) in rows.iter().enumerate() {
-        let rd = &d.recs[i];
-        for (local, &g) in rd.cols.iter().enumerate() {
-            if let Some(k) = cols.iter().position(|&c| c == g) {
-                a[(row, k)] = rd.a[(t, local)];
-            }
-        }
-    }
-    // An orthonormal basis of the quartics' span by SVD, dropping directions
-    // below round-off (currents without data leave zero columns).
-    let svd = a.columns(0, n_quartic).into_owned().svd(true, false);
-    let u = svd.u?;
-    let s_max = svd.singular_values.max();
-    let keep: Vec<usize> = (0..svd.singular_values.len())
-        .filter(|&k| svd.singular_values[k] > 1e-10 * s_max)
-        .collect();
-    let q = u.select_columns(&keep);
-    let mut best: Option<f64> = None;
-    for k in n_quartic..cols.len() {
-        let c = a.column(k).into_owned();
-        let norm = c.norm();
-        if norm <= 0.0 {
-            continue;
-        }
-        let resid = &c - &q * (q.transpose() * &c);
-        let share = resid.norm() / norm;
-        best = Some(best.map_or(share, |b: f64| b.max(share)));
-    }
-    best
 }

@@ -107,17 +107,15 @@ pub fn run(
             .collect();
         let accepted_by = d
             .selection
-            .rounds
+            .candidates
             .iter()
-            .filter_map(|r| r.accepted.map(|k| &r.tested[k]))
-            .map(|t| {
+            .filter(|c| c.named)
+            .map(|c| {
                 format!(
-                    "{} by {} (pool {:.3}×, {}/{} units)",
-                    t.effect.map_or("memory", |e| e.name()),
-                    t.route.unwrap_or("?"),
-                    t.ratio_pool,
-                    t.units_improved,
-                    t.n_units
+                    "{} (inclusion {:.2}, nested {:.3}×)",
+                    c.effect.name(),
+                    c.inclusion,
+                    c.gain.ratio
                 )
             })
             .collect();

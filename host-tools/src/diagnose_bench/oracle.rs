@@ -4,11 +4,11 @@
 //! The reference model as `diagnose` fits it (the paper's quartics plus the
 //! turn-around memory it accepted, same folds, same validate current) gets
 //! the injected added force, normalised to unit RMS, as one extra design
-//! column with a free amplitude, and is judged against the reference by the
-//! same comparison and acceptance routes as every candidate
-//! ([`acceptance::compare`]). An injection the oracle cannot get accepted is not
-//! identifiable in these recordings with this model class, whatever a
-//! candidate's search does: a miss there is no fault of the candidate.
+//! column with a free amplitude, and is judged by the held-out gain gate
+//! every named term must pass ([`Thresholds::min_nested_gain`]). An injection
+//! whose oracle does not pass it is not identifiable in these recordings with
+//! this model class, whatever a candidate's search does: a miss there is no
+//! fault of the candidate.
 //!
 //! A column no fit recording touches (an injection that only changes the
 //! validate recordings, e.g. saturation at interpolated currents) cannot be
@@ -18,17 +18,12 @@
 //!
 //! Softening scales the measured force, so its column would carry each
 //! held-out recording's own force; its oracle is the softening law at the
-//! true n0 instead ([`oracle_terms`]), which the scale route can judge.
-//!
-//! Not available to the column oracle: the scale route (`stress_softening` over a
-//! run order judged on per-recording gains), which needs the softening law
-//! in the model terms, not a fixed column.
-use crate::diagnose::acceptance::{self, Thresholds};
+//! true n0 instead ([`oracle_terms`]).
+use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::cv::{self, Scored};
 use crate::diagnose::design::{Designs, Terms};
 use crate::diagnose::prepared::{scored, Prepared};
 use crate::diagnose::signals::current_weights;
-use crate::vocabulary::Effect;
 use anyhow::Result;
 use nalgebra::{DMatrix, DVector};
 
@@ -41,14 +36,8 @@ pub struct Oracle {
     pub held_out_ratio: f64,
     /// The same ratio over every recording.
     pub held_out_ratio_all: f64,
-    /// The comparison on the column's support ([`crate::diagnose::support`]): ratio,
-    /// share of the samples, paired z.
-    pub support_ratio: f64,
-    pub support_share: f64,
-    pub support_z: f64,
-    /// The acceptance route the oracle passes (`large`, `consistent`,
-    /// `local`), or `None`: not identifiable by the routes.
-    pub route: Option<String>,
+    /// The held-out ratio passes the gain gate ([`Thresholds::min_nested_gain`]).
+    pub passes_gain: bool,
     /// In-sample RMSE ratio over the fit recordings (full fits): whether
     /// the shape gains anything even where nothing is held out.
     pub in_sample_ratio: f64,
@@ -60,7 +49,7 @@ pub struct Oracle {
 
 impl Oracle {
     pub fn identifiable(&self) -> bool {
-        self.route.is_some()
+        self.passes_gain
     }
 }
 
@@ -83,12 +72,11 @@ pub enum Amplitude {
 }
 
 /// The oracle for `added` (per recording and sample, N) on top of the
-/// `reference` terms, judged as `effect`'s candidate would be.
+/// `reference` terms, judged by the gain gate.
 pub fn oracle(
     prep: &Prepared,
     reference: &Terms,
     added: &[Vec<f64>],
-    effect: Effect,
     th: &Thresholds,
     amplitude: Amplitude,
 ) -> Result<Oracle> {
@@ -126,20 +114,30 @@ pub fn oracle(
     } else {
         validate_only(prep, &before, &column)
     };
-    Ok(verdict(prep, &before, after, effect, th, amplitude.abs()))
+    Ok(verdict(prep, &before, after, th, amplitude.abs()))
 }
 
 /// `after` judged against `before` as `effect`'s candidate would be.
-fn verdict(prep: &Prepared, before: &Scored, after: Scored, effect: Effect, th: &Thresholds, amplitude: f64) -> Oracle {
+fn verdict(prep: &Prepared, before: &Scored, after: Scored, th: &Thresholds, amplitude: f64) -> Oracle {
     let in_sample_ratio = (before.fit_sse / after.fit_sse.max(1e-300)).sqrt();
-    let c = acceptance::compare(prep, before, after, Some(effect), th);
+    let ratio_over = |idx: &[usize]| {
+        let b: f64 = idx.iter().map(|&i| before.heldout_sse[i]).sum();
+        let a: f64 = idx.iter().map(|&i| after.heldout_sse[i]).sum();
+        (b / a.max(1e-300)).sqrt()
+    };
+    // The decision pool: fit recordings, or the validate ones for a column
+    // only they carry.
+    let pool = if after.insample_on_validate {
+        prep.validate_indices()
+    } else {
+        prep.fit_indices()
+    };
+    let all: Vec<usize> = (0..prep.recs.len()).collect();
+    let held_out_ratio = ratio_over(&pool);
     Oracle {
-        held_out_ratio: c.ratio_pool,
-        held_out_ratio_all: c.ratio,
-        support_ratio: c.local.ratio,
-        support_share: c.local.share,
-        support_z: c.local.z,
-        route: c.route.map(str::to_string),
+        held_out_ratio,
+        held_out_ratio_all: ratio_over(&all),
+        passes_gain: held_out_ratio >= th.min_nested_gain,
         in_sample_ratio,
         amplitude_rms_n: amplitude,
     }
@@ -151,17 +149,11 @@ fn verdict(prep: &Prepared, before: &Scored, after: Scored, effect: Effect, th: 
 /// scored below 1, worse than nothing, in 8 of 10 cases), so it is given in the model's own form
 /// instead: `truth` is `reference` plus the term at its true nonlinear
 /// parameter (n0), its amplitude (Δ) solved per fold as every candidate's is.
-pub fn oracle_terms(
-    prep: &Prepared,
-    reference: &Terms,
-    truth: &Terms,
-    effect: Effect,
-    th: &Thresholds,
-) -> Result<Oracle> {
+pub fn oracle_terms(prep: &Prepared, reference: &Terms, truth: &Terms, th: &Thresholds) -> Result<Oracle> {
     let before = cv::score(prep, &[*reference])?;
     let after = cv::score(prep, &[*truth])?;
     let delta = after.solution.delta;
-    Ok(verdict(prep, &before, after, effect, th, delta))
+    Ok(verdict(prep, &before, after, th, delta))
 }
 
 /// One column per tabulated current: each recording's column times its

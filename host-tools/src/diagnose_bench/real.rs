@@ -415,26 +415,19 @@ pub fn run_real_bench(
         let d = diagnose(&injected, opts)?;
         let seconds = start.elapsed().as_secs_f64();
         let added = added_force_n(ds, &injected);
-        let reference = &d.selection.reference.terms;
+        let reference = &reference_terms(&d.selection);
         let (oracle, oracle_per_current) = match (effect, injection.parameters.get("tests_n0")) {
             (Effect::StressSoftening, Some(&n0)) => {
                 let truth = Terms {
                     softening: Some(SofteningLaw::Sequence { n0 }),
                     ..*reference
                 };
-                let o = oracle_terms(&d.prep, reference, &truth, effect, &opts.thresholds)?;
+                let o = oracle_terms(&d.prep, reference, &truth, &opts.thresholds)?;
                 (o.clone(), o)
             }
             _ => (
-                oracle(&d.prep, reference, &added, effect, &opts.thresholds, Amplitude::Shared)?,
-                oracle(
-                    &d.prep,
-                    reference,
-                    &added,
-                    effect,
-                    &opts.thresholds,
-                    Amplitude::PerCurrent,
-                )?,
+                oracle(&d.prep, reference, &added, &opts.thresholds, Amplitude::Shared)?,
+                oracle(&d.prep, reference, &added, &opts.thresholds, Amplitude::PerCurrent)?,
             ),
         };
         let found: Vec<Effect> = d.findings.iter().map(|f| f.effect).collect();
@@ -450,34 +443,23 @@ pub fn run_real_bench(
                 .iter()
                 .find(|f| f.effect == truth)
                 .map(|f| f.heldout_improvement_nested),
-            tested: d
+            tested: vec![d
                 .selection
-                .rounds
+                .candidates
                 .iter()
-                .map(|r| {
-                    r.tested
-                        .iter()
-                        .map(|c| {
-                            format!(
-                                "{} {:.3}; pool {:.3} [{:.3}, {:.3}] {}/{} units; support {:.3} share {:.3} {}/{} rec z {:.1}{}",
-                                c.effect.map_or("memory", |e| e.name()),
-                                c.ratio,
-                                c.ratio_pool,
-                                c.ratio_ci95[0],
-                                c.ratio_ci95[1],
-                                c.units_improved,
-                                c.n_units,
-                                c.local.ratio,
-                                c.local.share,
-                                c.local.units_improved,
-                                c.local.n_units,
-                                c.local.z,
-                                c.route.map(|r| format!(" accepted ({r})")).unwrap_or_default()
-                            ) + &scale_note(c, &d.prep.validate_indices())
-                        })
-                        .collect()
+                .map(|c| {
+                    format!(
+                        "{} inclusion {:.2}; nested {:.3} [{:.3}, {:.3}]; plain {:.3}{}",
+                        c.effect.name(),
+                        c.inclusion,
+                        c.gain.ratio,
+                        c.gain.ci95[0],
+                        c.gain.ci95[1],
+                        c.gain_plain,
+                        if c.named { " named" } else { "" }
+                    )
                 })
-                .collect(),
+                .collect()],
             injection,
             found,
             new_found,
@@ -492,33 +474,12 @@ pub fn run_real_bench(
     Ok(summarize(&ds.name, untouched, cases))
 }
 
-/// The scale route's numbers for `stress_softening` (all gains; fit
-/// recordings' only), and each recording's gain as `index:run order:level:gain`
-/// (read by `bench/softening_oracle.py`).
-fn scale_note(c: &crate::diagnose::acceptance::Comparison, validate: &[usize]) -> String {
-    match (&c.scale, c.scale_test) {
-        (Some(s), Some(t)) => {
-            let f = s.test(validate);
-            let gains: Vec<String> = s
-                .gains
-                .iter()
-                .map(|g| format!("{}:{}:{}:{:.5}", g.index, g.sequence, g.level, g.gain))
-                .collect();
-            format!(
-                "; scale {:.3} p {:.4} (n {}, Δ {:.3}, n0 {}); fit-only {:.3} p {:.4}; F {:.2}; gains {}",
-                t.ratio,
-                t.p,
-                t.n,
-                t.depth,
-                t.n0,
-                f.ratio,
-                f.p,
-                t.f,
-                gains.join(",")
-            )
-        }
-        _ => String::new(),
-    }
+/// The reference the oracle is compared against: the paper's model plus
+/// `hysteresis_memory` when it was named (as `diagnose` found it).
+fn reference_terms(sel: &crate::diagnose::select::Selection) -> Terms {
+    sel.candidate(Effect::HysteresisMemory)
+        .filter(|c| c.named)
+        .map_or_else(Terms::default, |c| c.own)
 }
 
 fn rate(cases: &[&RealCase], ok: impl Fn(&RealCase) -> bool) -> f64 {

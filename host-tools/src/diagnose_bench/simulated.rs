@@ -87,10 +87,10 @@ pub fn run_drop_case(effect: &str, seed: u64, plan: &SynthPlan, opts: &DiagnoseO
     });
     let first_round = d
         .selection
-        .rounds
-        .first()
-        .map(|r| r.tested.iter().filter_map(|c| c.effect.map(|e| (e, c.ratio))).collect())
-        .unwrap_or_default();
+        .candidates
+        .iter()
+        .map(|c| (c.effect, c.gain.ratio))
+        .collect();
     Ok(BenchCase {
         first_round,
         seed,

@@ -144,7 +144,7 @@ fn variants_that_cannot_be_fitted_are_one_sentence_not_a_dump() {
     assert!(out.status.success(), "{stderr}");
     let notes: Vec<&str> = stderr.lines().filter(|l| l.starts_with("note:")).collect();
     assert_eq!(notes.len(), 1, "one note, for turn-around memory:\n{stderr}");
-    assert!(notes[0].contains("turn-around memory was not tested"), "{stderr}");
+    assert!(notes[0].contains("hysteresis_memory was not tested"), "{stderr}");
     assert!(notes[0].contains("rank deficient"), "the reason is given: {stderr}");
     for dump in ["{", "}", "Some(", "None", "Terms"] {
         assert!(!stderr.contains(dump), "stderr holds `{dump}`:\n{stderr}");

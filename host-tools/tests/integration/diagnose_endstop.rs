@@ -52,7 +52,10 @@ fn fitted_k(ds: &Dataset, x_e: f64, lower: bool) -> Vec<f64> {
     };
     let d = Designs::build(&prep, &terms);
     let sol = d.solve(&prep, &prep.fit_indices()).unwrap();
-    let at = d.layout.end_stop_at.expect("a stop column per current");
+    let at = d
+        .layout
+        .at(mre_host::vocabulary::Effect::EndStop, 0)
+        .expect("a stop column per current");
     (0..prep.currents_a.len()).map(|k| sol.beta[at + k]).collect()
 }
 

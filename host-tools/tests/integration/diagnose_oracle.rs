@@ -90,14 +90,13 @@ fn set(added: &dyn Fn(Role, usize) -> f64) -> (Dataset, Vec<Vec<f64>>) {
     )
 }
 
-fn run(added: &dyn Fn(Role, usize) -> f64, effect: Effect) -> mre_host::diagnose_bench::oracle::Oracle {
+fn run(added: &dyn Fn(Role, usize) -> f64, _effect: Effect) -> mre_host::diagnose_bench::oracle::Oracle {
     let (ds, injected) = set(added);
     let prep = prepare(&ds, &FoldPlan::Stratified { k: 3 }, &[]).unwrap();
     oracle(
         &prep,
         &Terms::default(),
         &injected,
-        effect,
         &Thresholds::default(),
         Amplitude::Shared,
     )
@@ -113,7 +112,7 @@ fn the_oracle_recovers_a_column_that_is_exactly_the_misfit() {
     assert!((o.held_out_ratio_all - 2.0).abs() < 0.02, "{o:?}");
     // The amplitude is the injected RMS (the column has unit RMS).
     assert!((o.amplitude_rms_n - K_N).abs() < 0.01 * K_N, "{o:?}");
-    assert_eq!(o.route.as_deref(), Some("large"), "{o:?}");
+    assert!(o.passes_gain, "{o:?}");
 }
 
 #[test]
@@ -137,5 +136,5 @@ fn on_none_the_oracle_gains_nothing() {
     let o = run(&|_, _| 0.0, Effect::None);
     assert_eq!(o.held_out_ratio, 1.0, "{o:?}");
     assert_eq!(o.held_out_ratio_all, 1.0, "{o:?}");
-    assert!(o.route.is_none(), "{o:?}");
+    assert!(!o.passes_gain, "{o:?}");
 }

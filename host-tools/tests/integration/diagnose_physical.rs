@@ -163,7 +163,10 @@ fn a_wrong_signed_damping_coefficient_is_held_at_zero_and_said() {
     };
     let designs = Designs::build(&prep, &terms);
     let sol = designs.solve(&prep, &prep.fit_indices()).expect("solved");
-    let at = designs.layout.viscous_at.expect("viscous columns");
+    let at = designs
+        .layout
+        .at(mre_host::vocabulary::Effect::ViscousDamping, 0)
+        .expect("viscous columns");
     // Currents in table order: 0 A, 1 A.
     assert_eq!(sol.beta[at + 1], 0.0, "c(1 A) held at its bound");
     assert_eq!(sol.at_bound, vec![at + 1]);

@@ -1,6 +1,6 @@
 //! No decision reads a `validate` recording: replace the validate
 //! recordings' forces with anything, and every decision (which terms are
-//! tested, which routes pass, which effects are accepted) and every fitted
+//! in the library, their inclusion and held-out gains, which are named) and every fitted
 //! parameter and interval stays bit-identical. Only the figures scored on
 //! the validate recordings (held-out checks) may move.
 use mre_host::dataset::{Dataset, Role};
@@ -12,28 +12,12 @@ use std::path::Path;
 fn decisions(d: &Diagnosis) -> Vec<String> {
     let s = &d.selection;
     let mut out = vec![format!("baseline table {:?}", d.baseline_table)];
-    out.push(format!(
-        "memory accepted {:?} route {:?} pool ratio {:?}",
-        s.memory.as_ref().map(|m| m.accepted),
-        s.memory.as_ref().map(|m| m.route),
-        s.memory.as_ref().map(|m| m.ratio_pool)
-    ));
     out.push(format!("not identifiable {:?}", s.not_identifiable));
-    for (k, r) in s.rounds.iter().enumerate() {
-        out.push(format!("round {k} accepted {:?}", r.accepted));
-        for c in &r.tested {
-            out.push(format!(
-                "round {k} {:?}: accepted {} route {:?} pool ratio {:?} units {}/{} terms {:?} beta {:?}",
-                c.effect,
-                c.accepted,
-                c.route,
-                c.ratio_pool,
-                c.units_improved,
-                c.n_units,
-                c.scored.terms,
-                c.scored.solution.beta
-            ));
-        }
+    for c in &s.candidates {
+        out.push(format!(
+            "{:?}: named {} inclusion {:?} nested gain {:?} plain {:?} share {:?} terms {:?}",
+            c.effect, c.named, c.inclusion, c.gain.ratio, c.gain_plain, c.share, c.own
+        ));
     }
     out.push(format!(
         "final terms {:?} beta {:?} delta {:?}",

@@ -29,6 +29,7 @@ mod dataset_vendor;
 mod diagnose_accelerometer;
 mod diagnose_cli;
 mod diagnose_coil_tau;
+mod diagnose_coulomb;
 mod diagnose_delay;
 mod diagnose_endstop;
 mod diagnose_headline;

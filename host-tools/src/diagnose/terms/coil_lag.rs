@@ -1,6 +1,6 @@
 //! `coil_lag`: the material sees the recorded current through a first-order
 //! lag L/R ([`crate::diagnose::design::effective_current_a`]).
-use super::{Term, Value};
+use super::{TableParts, Term, Value};
 use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::candidates::{median_dt_s, stepped_validate_count};
 use crate::diagnose::design::{Layout, Solution, Terms};
@@ -67,6 +67,11 @@ impl Term for CoilLag {
                 ..*best
             })
             .collect()
+    }
+    /// The coil time constant, which the table's law inverts.
+    fn write_table(&self, _layout: &Layout, t: &Terms, _sol: &Solution, parts: &mut TableParts) -> anyhow::Result<()> {
+        parts.terms.coil_tau_s = t.coil_lag_s.unwrap_or(0.0) as f32;
+        Ok(())
     }
     fn parameters(&self, _prep: &Prepared, _layout: &Layout, t: &Terms, _sol: &Solution) -> Vec<Value> {
         t.coil_lag_s

@@ -1,9 +1,9 @@
 //! `end_stop`: a stop at `x_e` pushing back `k_e(I)·max(0, x − x_e)²` (or
 //! the mirror image at the extension end of a two-sided stroke).
-use super::{Block, Sample, Term, Value};
+use super::{Block, Sample, TableParts, Term, Value};
 use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::candidates::{spread_within_currents, stroke_ends_mm, two_sided};
-use crate::diagnose::design::{end_stop_shape, Layout, Solution, Terms};
+use crate::diagnose::design::{end_stop_shape, Layout, Solution, Terms, QUARTIC_TERMS};
 use crate::diagnose::prepared::Prepared;
 use crate::vocabulary::Effect;
 
@@ -72,7 +72,7 @@ impl Term for EndStop {
     }
     fn parameters(&self, prep: &Prepared, layout: &Layout, t: &Terms, sol: &Solution) -> Vec<Value> {
         let mut out = Vec::new();
-        if let (Some(at), Some(xe)) = (layout.end_stop_at, t.end_stop_x_mm) {
+        if let (Some(at), Some(xe)) = (layout.at(Effect::EndStop, 0), t.end_stop_x_mm) {
             // Per tabulated current (fitted ≥ 0; 0 where a current's tests
             // give no push-back at the stop).
             for (k, c) in prep.currents_a.iter().enumerate() {
@@ -83,6 +83,29 @@ impl Term for EndStop {
             out.push(("lower_end".into(), f64::from(u8::from(t.end_stop_lower)), "1".into()));
         }
         out
+    }
+    /// `k_e(I)·`[`end_stop_shape`] added to both branch quartics of each
+    /// current, projected by least squares on 200 points over its stroke.
+    fn write_table(&self, layout: &Layout, t: &Terms, sol: &Solution, parts: &mut TableParts) -> anyhow::Result<()> {
+        let (Some(at), Some(x_e)) = (layout.at(Effect::EndStop, 0), t.end_stop_x_mm) else {
+            return Ok(());
+        };
+        const N: usize = 200;
+        for (k, (q, &(lo, hi))) in parts.quartics.iter_mut().zip(&parts.stroke_mm).enumerate() {
+            let k_e = parts.scale * sol.beta[at + k];
+            let x = |r: usize| lo + (hi - lo) * r as f64 / (N - 1) as f64;
+            let a = nalgebra::DMatrix::from_fn(N, QUARTIC_TERMS, |r, c| x(r).powi(c as i32));
+            for branch in q.iter_mut() {
+                let y = nalgebra::DVector::from_fn(N, |r, _| {
+                    let xr = x(r);
+                    let p: f64 = branch.iter().rev().fold(0.0, |acc, c| acc * xr + c);
+                    p + k_e * end_stop_shape(xr, x_e, t.end_stop_lower)
+                });
+                let fit = crate::linalg::solve(&a, &y)?;
+                *branch = std::array::from_fn(|i| fit.coeffs[i]);
+            }
+        }
+        Ok(())
     }
     fn searched(&self) -> &'static [&'static str] {
         &["x_e_mm"]

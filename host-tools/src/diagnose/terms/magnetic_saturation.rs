@@ -1,6 +1,6 @@
 //! `magnetic_saturation`: between tabulated currents the law interpolates
 //! on `tanh(I/I_s)` instead of I.
-use super::{Term, Value};
+use super::{TableParts, Term, Value};
 use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::candidates::intermediate_validate_count;
 use crate::diagnose::design::{Layout, Solution, Terms};
@@ -46,6 +46,11 @@ impl Term for MagneticSaturation {
                 ..*base
             })
             .collect()
+    }
+    /// The `tanh(I/I_s)` interpolation variable of the table.
+    fn write_table(&self, _layout: &Layout, t: &Terms, _sol: &Solution, parts: &mut TableParts) -> anyhow::Result<()> {
+        parts.terms.saturation_current_a = t.saturation_i_a.unwrap_or(0.0) as f32;
+        Ok(())
     }
     fn parameters(&self, _prep: &Prepared, _layout: &Layout, t: &Terms, _sol: &Solution) -> Vec<Value> {
         t.saturation_i_a

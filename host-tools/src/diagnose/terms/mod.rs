@@ -15,6 +15,7 @@ use super::prepared::Prepared;
 use crate::vocabulary::Effect;
 
 mod coil_lag;
+mod coulomb_friction;
 mod end_stop;
 mod hysteresis_memory;
 mod inertia;
@@ -36,17 +37,12 @@ pub static REGISTRY: &[&dyn Term] = &[
     &inertia::Inertia,
     &coil_lag::CoilLag,
     &hysteresis_memory::HysteresisMemory,
+    &coulomb_friction::CoulombFriction,
 ];
 
 /// The term of a vocabulary effect (`None` for `none`).
 pub fn of(effect: Effect) -> Option<&'static dyn Term> {
     REGISTRY.iter().copied().find(|t| t.effect() == effect)
-}
-
-/// The candidates forward selection adds to the reference model (the
-/// reference's own term, tested first, is not among them).
-pub fn candidates() -> impl Iterator<Item = &'static dyn Term> {
-    REGISTRY.iter().copied().filter(|t| !t.is_reference())
 }
 
 /// A block of linear design columns a term adds.
@@ -73,11 +69,29 @@ pub struct Sample {
 /// `(name, value, unit)` of one parameter.
 pub type Value = (String, f64, String);
 
+/// The final model as the v2 table holds it (`--model-out`), for each term
+/// to write itself into ([`Term::write_table`]).
+#[derive(Clone, Debug)]
+pub struct TableParts {
+    /// Per current: compression and extension powers x⁰..x⁴.
+    pub quartics: Vec<[[f64; super::design::QUARTIC_TERMS]; 2]>,
+    /// Per current: the stroke its fit recordings cover (mm).
+    pub stroke_mm: Vec<(f64, f64)>,
+    /// The factor every fitted coefficient is written at ([`Term::table_scale`]).
+    pub scale: f64,
+    /// The fastest recorded speed (m/s).
+    pub fastest_m_s: f64,
+    pub terms: mre_core::table::ModelTerms,
+    /// `[diagnose]` metadata: `(key, value)`.
+    pub metadata: Vec<(String, f64)>,
+}
+
 /// One vocabulary effect as a model term.
 pub trait Term: Sync {
     /// Its vocabulary word.
     fn effect(&self) -> Effect;
-    /// The reference model's own term, tested before the candidates.
+    /// The reference term: its value is chosen first, and every other
+    /// term's on top of it ([`super::library`]).
     fn is_reference(&self) -> bool {
         false
     }
@@ -120,10 +134,21 @@ pub trait Term: Sync {
     fn physical(&self, _layout: &Layout, _t: &Terms, _sol: &Solution) -> bool {
         true
     }
-    /// The term scales each recording as a whole, so the per-recording gain
-    /// route can judge it ([`super::scale`]).
-    fn scale_route(&self, _t: &Terms) -> bool {
-        false
+    /// The factor the table writes every fitted coefficient at (softening:
+    /// the damper as the latest recording found it).
+    fn table_scale(&self, _prep: &Prepared, _t: &Terms, _sol: &Solution) -> f64 {
+        1.0
+    }
+    /// Writes the fitted term into the table (`--model-out`); a term the
+    /// table cannot carry writes nothing (DIAGNOSE.md says which).
+    fn write_table(
+        &self,
+        _layout: &Layout,
+        _t: &Terms,
+        _sol: &Solution,
+        _parts: &mut TableParts,
+    ) -> anyhow::Result<()> {
+        Ok(())
     }
     /// Its parameters in a fitted model.
     fn parameters(&self, prep: &Prepared, layout: &Layout, t: &Terms, sol: &Solution) -> Vec<Value>;
@@ -198,6 +223,16 @@ mod tests {
         }
         // One reference term, tested before the candidates.
         assert_eq!(REGISTRY.iter().filter(|t| t.is_reference()).count(), 1);
+        // Every term's word is its own, and a model holding every term fits
+        // the settings.
+        for (k, t) in REGISTRY.iter().enumerate() {
+            assert!(
+                REGISTRY[..k].iter().all(|o| o.effect() != t.effect()),
+                "{}",
+                t.effect().name()
+            );
+        }
+        assert!(REGISTRY.len() <= crate::diagnose::design::SETTINGS_CAPACITY);
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! `sensor_delay`: the force channel lags (or leads) the motion by τ; the
 //! design reads x, v, a and the current at t − τ.
-use super::{Term, Value};
+use super::{TableParts, Term, Value};
 use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::candidates::median_dt_s;
 use crate::diagnose::design::{Layout, Solution, Terms};
@@ -57,6 +57,14 @@ impl Term for SensorDelay {
                 ..*best
             })
             .collect()
+    }
+    /// Compensated in the quartics (fitted at `x(t − τ)`) and written as
+    /// metadata only: the controller does not read the force channel.
+    fn write_table(&self, _layout: &Layout, t: &Terms, _sol: &Solution, parts: &mut TableParts) -> anyhow::Result<()> {
+        parts
+            .metadata
+            .push(("force_channel_delay_s".into(), t.delay_s.unwrap_or(0.0)));
+        Ok(())
     }
     fn parameters(&self, _prep: &Prepared, _layout: &Layout, t: &Terms, _sol: &Solution) -> Vec<Value> {
         t.delay_s

@@ -64,8 +64,16 @@ impl Term for StressSoftening {
     }
     /// Over a run order it scales whole recordings: the per-recording gains
     /// can judge it.
-    fn scale_route(&self, t: &Terms) -> bool {
-        matches!(t.softening, Some(SofteningLaw::Sequence { .. }))
+    /// The damper as the latest recording found it: every coefficient at
+    /// that recording's softening factor.
+    fn table_scale(&self, prep: &Prepared, t: &Terms, sol: &Solution) -> f64 {
+        let Some(law) = t.softening else { return 1.0 };
+        let g = prep
+            .recs
+            .iter()
+            .map(|r| law.covariate(r))
+            .fold(f64::NEG_INFINITY, f64::max);
+        1.0 - sol.delta * if g.is_finite() { g } else { 0.0 }
     }
     fn parameters(&self, _prep: &Prepared, _layout: &Layout, t: &Terms, sol: &Solution) -> Vec<Value> {
         match t.softening {

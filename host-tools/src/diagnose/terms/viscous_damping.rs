@@ -1,6 +1,6 @@
 //! `viscous_damping`: a rate-dependent force `c(I)·φ(v)`, `φ(v) = v` or
 //! `v0·tanh(v/v0)`.
-use super::{Block, Sample, Term, Value};
+use super::{Block, Sample, TableParts, Term, Value};
 use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::candidates::{rate_dependent, spread_within_currents, tested_speeds_m_s, KNEE_FRACTIONS};
 use crate::diagnose::design::{Layout, Solution, Terms, Viscous};
@@ -73,14 +73,14 @@ impl Term for ViscousDamping {
     /// current and accepted (1.10× on the fit folds, 1.025× over all
     /// recordings).
     fn physical(&self, layout: &Layout, _t: &Terms, sol: &Solution) -> bool {
-        let Some(at) = layout.viscous_at else {
+        let Some(at) = layout.at(Effect::ViscousDamping, 0) else {
             return true;
         };
         sol.beta[at..at + layout.n_currents].iter().sum::<f64>() > 0.0
     }
     fn parameters(&self, prep: &Prepared, layout: &Layout, t: &Terms, sol: &Solution) -> Vec<Value> {
         let mut out = Vec::new();
-        if let (Some(at), Some(visc)) = (layout.viscous_at, t.viscous) {
+        if let (Some(at), Some(visc)) = (layout.at(Effect::ViscousDamping, 0), t.viscous) {
             for (k, c) in prep.currents_a.iter().enumerate() {
                 out.push((format!("c_at_{c}a_n_s_per_m"), sol.beta[at + k], "N·s/m".into()));
             }
@@ -89,6 +89,23 @@ impl Term for ViscousDamping {
             }
         }
         out
+    }
+    /// `c(I)·v` as the table's viscous coefficient; a saturating
+    /// `c·v0·tanh(v/v0)` as its secant slope at the fastest recorded speed.
+    fn write_table(&self, layout: &Layout, t: &Terms, sol: &Solution, parts: &mut TableParts) -> anyhow::Result<()> {
+        let (Some(visc), Some(at)) = (t.viscous, layout.at(Effect::ViscousDamping, 0)) else {
+            return Ok(());
+        };
+        let fastest = parts.fastest_m_s;
+        for k in 0..layout.n_currents.min(parts.terms.viscous_n_s_per_m.len()) {
+            let c = parts.scale * sol.beta[at + k];
+            let slope = match visc {
+                Viscous::Saturating { v0_m_s } if fastest > 0.0 => c * v0_m_s * (fastest / v0_m_s).tanh() / fastest,
+                _ => c,
+            };
+            parts.terms.viscous_n_s_per_m[k] = slope as f32;
+        }
+        Ok(())
     }
     fn wrong_sign(&self, name: &str, value: f64) -> Option<&'static str> {
         (name.starts_with("c_at_") && value < 0.0)

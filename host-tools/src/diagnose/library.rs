@@ -1,0 +1,265 @@
+//! The library stage: one joint design holding the paper's per-current
+//! branch quartics and every identifiable term's candidate columns, over the
+//! recordings the decision may read, compressed per recording (the R factor
+//! of the QR of `[A | y]`, see [`super::sparse`]).
+//!
+//! A term's nonlinear parameter (a knee, a stop position, a delay) is chosen
+//! first, the term alone on top of the reference term (`hysteresis_memory`),
+//! by grouped cross-validation ([`super::cv::score_refined`]). A term with
+//! linear columns ([`Term::blocks`]) brings them as its group. A term that
+//! transforms the inputs or scales the force (a delay, a coil lag, current
+//! saturation, softening) enters linearised, as one regressor: what it
+//! changes in the prediction of the joint fit without it (a lagged or
+//! filtered copy of that prediction, NARX-style). Its coefficient is 1 when
+//! the term is there at the chosen value.
+use super::acceptance::Thresholds;
+use super::candidates::{self, Effect};
+use super::cv::score_refined;
+use super::design::{Designs, Terms, QUARTIC_TERMS};
+use super::prepared::Prepared;
+use super::sparse::{Group, Library};
+use super::terms::{Term, REGISTRY};
+use anyhow::Result;
+use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
+
+/// One term in the library.
+#[derive(Clone, Copy)]
+pub struct Candidate {
+    pub term: &'static dyn Term,
+    /// The term alone at its chosen value (on the paper's model).
+    pub own: Terms,
+    /// Index of its group in [`Library::groups`].
+    pub group: usize,
+    /// It enters as one linearised regressor, not its own columns.
+    pub linearised: bool,
+}
+
+impl std::fmt::Debug for Candidate {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} (group {})", self.term.effect().name(), self.group)
+    }
+}
+
+/// The library and what it was built from.
+#[derive(Clone, Debug)]
+pub struct Built {
+    pub lib: Library,
+    pub candidates: Vec<Candidate>,
+    /// Effects the data cannot separate from the baseline, with what would.
+    pub not_identifiable: Vec<(Effect, String)>,
+    /// Per recording of `prep`: its cross-validation fold in the library
+    /// (`None` when it is not in the library).
+    pub fold_of: Vec<Option<usize>>,
+}
+
+/// A linearised regressor per library recording and sample, and the
+/// samples its model scores.
+type Linearised = (Vec<Vec<f64>>, Vec<Vec<bool>>);
+
+/// `t` with every registered term but `term` removed.
+pub fn only(term: &dyn Term, t: Terms) -> Terms {
+    REGISTRY
+        .iter()
+        .filter(|o| o.effect() != term.effect())
+        .fold(t, |acc, o| o.removed_from(&acc))
+}
+
+/// Chooses `term`'s value on top of `on` by grouped cross-validation.
+fn choose(prep: &Prepared, term: &'static dyn Term, on: &Terms) -> Option<Terms> {
+    let variants = term.variants(prep, on);
+    match score_refined(prep, variants, &|best| term.refinements(prep, best)) {
+        Ok(s) => Some(only(term, s.terms)),
+        Err(why) => {
+            eprintln!("note: {} was not tested: {why:#}", term.effect().name());
+            None
+        }
+    }
+}
+
+/// Builds the library for `prep` (see the module docs).
+pub fn build(prep: &Prepared, th: &Thresholds) -> Result<Built> {
+    let mut testable: Vec<&'static dyn Term> = Vec::new();
+    let mut not_identifiable = Vec::new();
+    for &t in REGISTRY {
+        match candidates::identifiable(prep, t.effect(), th) {
+            Ok(()) => testable.push(t),
+            Err(needs) => not_identifiable.push((t.effect(), needs)),
+        }
+    }
+    // The reference term first: the others' values are chosen on top of it,
+    // since a delay or a knee chosen against the bare quartics mimics the
+    // turn-around the quartics cannot follow.
+    let reference: Vec<(&'static dyn Term, Terms)> = testable
+        .iter()
+        .filter(|t| t.is_reference())
+        .filter_map(|&t| choose(prep, t, &Terms::default()).map(|own| (t, own)))
+        .collect();
+    let on = reference
+        .iter()
+        .fold(Terms::default(), |acc, (_, own)| acc.merged(*own));
+    let others: Vec<(&'static dyn Term, Terms)> = testable
+        .par_iter()
+        .filter(|t| !t.is_reference())
+        .filter_map(|&t| choose(prep, t, &on).map(|own| (t, own)))
+        .collect();
+    let mut chosen = reference;
+    chosen.extend(others);
+    let joint = chosen.iter().fold(Terms::default(), |acc, (_, own)| acc.merged(*own));
+    let linearised: Vec<bool> = chosen.iter().map(|(t, _)| t.blocks(&joint).is_empty()).collect();
+    let base = chosen
+        .iter()
+        .zip(&linearised)
+        .filter(|(_, l)| **l)
+        .fold(joint, |acc, ((t, _), _)| t.removed_from(&acc));
+    let d = Designs::build(prep, &base);
+    let fit = prep.fit_indices();
+    let mut recs = fit.clone();
+    if prep.validate_evidence {
+        recs.extend(prep.validate_indices());
+    }
+    let mut fold_of = vec![None; prep.recs.len()];
+    for (j, &i) in recs.iter().enumerate() {
+        // Each validate recording read as evidence is a fold of its own.
+        fold_of[i] = Some(prep.recs[i].fold.unwrap_or(prep.n_folds + j));
+    }
+    // The linearised regressors, each about the fit of the reference model
+    // (quartics and `hysteresis_memory`) *with* the term: `A_t·β_t − A_r·β_t`,
+    // what the term changes in that fit's prediction. When the term is
+    // there, `y ≈ A_r·β_t + 1·column`, so no other group needs to stand in
+    // for it. (About the joint fit without it, the column came from groups
+    // already bent towards a delay, and they kept their share; about the
+    // quartics alone, a delay on a hysteretic law left most of the lag to
+    // the memory basis and was missed on every MTS campaign tried.)
+    let lin_terms: Vec<Terms> = chosen
+        .iter()
+        .zip(&linearised)
+        .filter(|(_, l)| **l)
+        .map(|((_, own), _)| *own)
+        .collect();
+    let reference = if lin_terms.is_empty() {
+        None
+    } else {
+        Some(Designs::build(prep, &on))
+    };
+    // Each with the samples its own model scores (a delay moves the
+    // branch-ambiguous samples at each turn-around).
+    let lin_cols: Vec<Linearised> = lin_terms
+        .par_iter()
+        .map(|own| -> Result<Linearised> {
+            let dq = reference
+                .as_ref()
+                .ok_or_else(|| anyhow::anyhow!("no reference design"))?;
+            let dt = Designs::build(prep, &on.merged(*own));
+            let sol = dt.solve(prep, &fit)?;
+            let mut without = sol.clone();
+            without.delta = 0.0;
+            let cols = recs
+                .iter()
+                .map(|&i| {
+                    let a = dt.predict(prep, i, &sol);
+                    let b = dq.predict(prep, i, &without);
+                    a.iter().zip(&b).map(|(a, b)| a - b).collect()
+                })
+                .collect();
+            Ok((cols, recs.iter().map(|&i| dt.recs[i].mask.clone()).collect()))
+        })
+        .collect::<Result<_>>()?;
+    let p0 = d.layout.n_cols;
+    let p = p0 + lin_terms.len();
+    // Groups: the quartics, then each candidate's.
+    let n_quartic = d.layout.n_currents * 2 * QUARTIC_TERMS;
+    let mut groups = vec![Group {
+        name: "baseline quartics".into(),
+        cols: (0..n_quartic).collect(),
+        always: true,
+    }];
+    let mut candidates_out = Vec::new();
+    let mut next_lin = p0;
+    for ((t, own), &lin) in chosen.iter().zip(&linearised) {
+        let cols: Vec<usize> = if lin {
+            next_lin += 1;
+            vec![next_lin - 1]
+        } else {
+            d.layout
+                .blocks
+                .iter()
+                .filter(|b| b.term.effect() == t.effect())
+                .flat_map(|b| {
+                    let end = d
+                        .layout
+                        .blocks
+                        .iter()
+                        .map(|q| q.at)
+                        .filter(|&a| a > b.at)
+                        .min()
+                        .unwrap_or(p0);
+                    b.at..end
+                })
+                .collect()
+        };
+        candidates_out.push(Candidate {
+            term: *t,
+            own: *own,
+            group: groups.len(),
+            linearised: lin,
+        });
+        groups.push(Group {
+            name: t.effect().name().into(),
+            cols,
+            always: false,
+        });
+    }
+    // Compress each recording's rows to the R factor of its [A | y].
+    let packed: Vec<(usize, DMatrix<f64>, Vec<usize>)> = recs
+        .par_iter()
+        .enumerate()
+        .map(|(j, &i)| {
+            let rd = &d.recs[i];
+            // The samples every model of the library scores.
+            let rows: Vec<usize> = (0..rd.mask.len())
+                .filter(|&t| rd.mask[t] && lin_cols.iter().all(|(_, m)| m[j][t]))
+                .collect();
+            let mut cols = rd.cols.clone();
+            cols.extend(p0..p);
+            let c = cols.len();
+            let mut m = DMatrix::<f64>::zeros(rows.len(), c + 1);
+            for (k, &t) in rows.iter().enumerate() {
+                for l in 0..rd.cols.len() {
+                    m[(k, l)] = rd.a[(t, l)];
+                }
+                for (q, (col, _)) in lin_cols.iter().enumerate() {
+                    m[(k, rd.cols.len() + q)] = col[j][t];
+                }
+                m[(k, c)] = prep.recs[i].force_n[t];
+            }
+            (i, m.qr().r(), cols)
+        })
+        .collect();
+    let n_rows: usize = packed.iter().map(|(_, r, _)| r.nrows()).sum();
+    let mut a = DMatrix::<f64>::zeros(n_rows, p);
+    let mut y = DVector::<f64>::zeros(n_rows);
+    let mut recording_of_row = Vec::with_capacity(n_rows);
+    let mut at = 0;
+    for (i, r, cols) in &packed {
+        for row in 0..r.nrows() {
+            for (l, &g) in cols.iter().enumerate() {
+                a[(at + row, g)] = r[(row, l)];
+            }
+            y[at + row] = r[(row, cols.len())];
+            recording_of_row.push(*i);
+        }
+        at += r.nrows();
+    }
+    Ok(Built {
+        lib: Library {
+            a,
+            y,
+            recording_of_row,
+            groups,
+        },
+        candidates: candidates_out,
+        not_identifiable,
+        fold_of,
+    })
+}
