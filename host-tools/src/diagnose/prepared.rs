@@ -261,9 +261,7 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
             motion_from: r.motion_from,
         });
     }
-    let mut currents_a: Vec<f64> = recs.iter().filter(|r| r.is_fit()).map(|r| r.current_a).collect();
-    currents_a.sort_by(f64::total_cmp);
-    currents_a.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    let currents_a = crate::dataset::distinct_currents_a(recs.iter().filter(|r| r.is_fit()).map(|r| r.current_a));
     if currents_a.is_empty() {
         bail!("the data set has no `fit` recordings to build the baseline from");
     }
@@ -292,9 +290,7 @@ fn assign_folds(recs: &mut [Rec], ds: &Dataset, plan: &FoldPlan) -> Result<usize
             // only in name, and the report counts folds.
             let n_fit = recs.iter().filter(|r| r.is_fit()).count();
             let k = (*k).min(n_fit).max(2);
-            let mut currents: Vec<f64> = recs.iter().filter(|r| r.is_fit()).map(|r| r.current_a).collect();
-            currents.sort_by(f64::total_cmp);
-            currents.dedup();
+            let currents = crate::dataset::distinct_currents_a(recs.iter().filter(|r| r.is_fit()).map(|r| r.current_a));
             let mut offset = 0;
             for c in currents {
                 let mut members: Vec<usize> = (0..recs.len())
