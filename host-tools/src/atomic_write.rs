@@ -132,10 +132,8 @@ pub fn stage_folder(dest: &Path, replace: bool, fill: impl FnOnce(&Path) -> Resu
             use std::os::unix::fs::PermissionsExt;
             builder.permissions(std::fs::Permissions::from_mode(0o777));
         }
-        let tmp = builder
-            .tempdir_in(parent)
+        let tmp = interrupt::create_tracked(|| builder.tempdir_in(parent), |t| t.path())
             .with_context(|| format!("cannot create a temporary folder in {}", parent.display()))?;
-        interrupt::track(tmp.path());
         fill(tmp.path())?;
         std::fs::write(tmp.path().join(MARKER_FILE), MARKER_TEXT)
             .with_context(|| format!("cannot write {}", dest.join(MARKER_FILE).display()))?;
@@ -299,10 +297,8 @@ impl OutputSet {
             use std::os::unix::fs::PermissionsExt;
             builder.permissions(std::fs::Permissions::from_mode(0o666));
         }
-        let mut tmp = builder
-            .tempfile_in(dir)
+        let mut tmp = interrupt::create_tracked(|| builder.tempfile_in(dir), |t| t.path())
             .with_context(|| format!("cannot create a temporary file in {}", dir.display()))?;
-        interrupt::track(tmp.path());
         let injected = self.fail_after == Some(self.staged.len());
         let written = if injected {
             tmp.write_all(&bytes[..bytes.len() / 2])
