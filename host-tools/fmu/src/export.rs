@@ -226,8 +226,19 @@ pub fn check_step<M: Exported>(instance: b::fmi3Instance, t: f64, h: f64) -> Res
     let Some(inst) = (unsafe { (instance as *const Instance<M>).as_ref() }) else {
         return Err(b::fmi3Status_fmi3Error);
     };
-    let now = inst.context().time();
-    let problem = if !(h.is_finite() && h > 0.0) {
+    match step_problem(inst.context().time(), t, h) {
+        None => Ok(()),
+        Some(p) => {
+            log_error::<M>(instance, format_args!("fmi3DoStep: {p}"));
+            Err(b::fmi3Status_fmi3Error)
+        }
+    }
+}
+
+/// What is wrong with a step from `t` by `h` for an instance at `now` (FMI
+/// 2.0 and 3.0 `doStep`: the step positive, from the last step's end).
+pub fn step_problem(now: f64, t: f64, h: f64) -> Option<String> {
+    if !(h.is_finite() && h > 0.0) {
         Some(format!("communicationStepSize {h} is not a positive number"))
     } else if !t.is_finite() || (t - now).abs() > TIME_TOLERANCE * now.abs().max(1.0) {
         Some(format!(
@@ -235,13 +246,6 @@ pub fn check_step<M: Exported>(instance: b::fmi3Instance, t: f64, h: f64) -> Res
         ))
     } else {
         None
-    };
-    match problem {
-        None => Ok(()),
-        Some(p) => {
-            log_error::<M>(instance, format_args!("fmi3DoStep: {p}"));
-            Err(b::fmi3Status_fmi3Error)
-        }
     }
 }
 
