@@ -317,10 +317,11 @@ fn documentation(
              <code>displacement_m</code>, its rate (m/s, positive compressing) to <code>velocity_m_s</code>, \
              and the coil current to <code>current_a</code>; apply <code>force_n</code> to the impacting mass \
              (positive resisting compression). The coil current lags its drive by <code>coil_tau_s</code> \
-             ({} s): with <code>controller.fmu</code>, pass its drive through a first-order lag of that time \
-             constant (limited to the driver's range) before <code>current_a</code>, or feed \
-             <code>current_a</code> directly when the coil has no lag. Co-Simulation: any step (the force is \
-             an algebraic function of the inputs); the default experiment steps at {} s.</p>",
+             ({} s): with <code>controller.fmu</code>, feed its <code>coil_current_a</code> (the drive through \
+             that lag) to <code>current_a</code>. Co-Simulation: any step (the force is an algebraic function \
+             of the inputs); the default experiment steps at {} s. Model Exchange: the velocity is the event \
+             indicator of the branch switch (the force jumps where it changes sign); the branch is held between \
+             events, so let the solver handle the indicator's zero crossings as state events.</p>",
             terms.coil_tau_s, describe.step_size_s
         ),
         Kind::Controller => format!(

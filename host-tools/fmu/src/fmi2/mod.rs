@@ -181,6 +181,13 @@ pub struct Instance<M: Exported> {
     ranges: Option<Vec<(u32, crate::ranges::InputRange)>>,
 }
 
+impl<M: Exported> Drop for Instance<M> {
+    fn drop(&mut self) {
+        // Freed: its address may be reused.
+        crate::export::set_continuous_time::<M>(&self.ctx, false);
+    }
+}
+
 /// `file:` URI → path (FMI 2.0 §2.1.5: `fmuResourceLocation` is a URI;
 /// importers write `file:///abs/path`, `file:/abs/path` or
 /// `file://localhost/abs/path`, with `%XX` escapes).
@@ -359,6 +366,7 @@ impl<M: Exported + ModelGetSet<M>> Instance<M> {
         self.model.set_start_values();
         self.ctx.initialize(0.0, None);
         self.mode = Mode::Instantiated;
+        crate::export::set_continuous_time::<M>(&self.ctx, false);
         self.dirty = true;
         OK
     }
@@ -514,6 +522,7 @@ impl<M: Exported + ModelGetSet<M>> Instance<M> {
             return s;
         }
         self.mode = Mode::Event;
+        crate::export::set_continuous_time::<M>(&self.ctx, false);
         self.dirty = true;
         OK
     }
@@ -544,6 +553,8 @@ impl<M: Exported + ModelGetSet<M>> Instance<M> {
             return s;
         }
         self.mode = Mode::ContinuousTime;
+        // The damper holds its branch from here to the next event.
+        crate::export::set_continuous_time::<M>(&self.ctx, true);
         OK
     }
 
