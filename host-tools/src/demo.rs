@@ -211,6 +211,7 @@ fn fmus(out: &Path) -> Result<DemoStep> {
         model: model.clone(),
         out: dir.join("damper.fmu"),
         controller: true,
+        fmi: crate::fmu::FmiVersion::V3,
     };
     let written = match crate::fmu::run_fmu_with(&request, &libraries) {
         Ok(written) => written,

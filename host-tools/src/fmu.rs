@@ -1,4 +1,7 @@
-//! `mre fmu`: the model file as FMI 3.0 FMUs. `damper.fmu` is the damper
+//! `mre fmu`: the model file as FMI 3.0 FMUs, or FMI 2.0 ones with
+//! `--fmi-version 2` (the same libraries, which export both APIs; a 2.0
+//! model description, `mre_fmu::fmi2::describe`, and 2.0's platform
+//! folders `linux64`, `win64`). `damper.fmu` is the damper
 //! (x, v, I in, force out); `controller.fmu` the impact controller as the
 //! board runs it. Both evaluate through `mre_core` (crate `mre-fmu`).
 //!
@@ -43,6 +46,28 @@ pub const WINDOWS_PLATFORM: &str = "x86_64-windows";
 const WINDOWS_TARGET: &str = "x86_64-pc-windows-gnu";
 const WINDOWS_LINKER: &str = "x86_64-w64-mingw32-gcc";
 
+/// FMI 2.0's platform folders for the same libraries (FMI 2.0 §2.3).
+pub const PLATFORM_V2: &str = "linux64";
+pub const WINDOWS_PLATFORM_V2: &str = "win64";
+
+/// Which FMI standard the FMUs follow.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum FmiVersion {
+    V2,
+    #[default]
+    V3,
+}
+
+impl FmiVersion {
+    /// The binaries' platform folders: (Linux, Windows).
+    fn platforms(self) -> (&'static str, &'static str) {
+        match self {
+            FmiVersion::V2 => (PLATFORM_V2, WINDOWS_PLATFORM_V2),
+            FmiVersion::V3 => (PLATFORM, WINDOWS_PLATFORM),
+        }
+    }
+}
+
 /// What `mre fmu` was asked for.
 #[derive(Clone, Debug)]
 pub struct FmuRequest {
@@ -50,6 +75,7 @@ pub struct FmuRequest {
     /// damper.fmu's path; controller.fmu goes beside it.
     pub out: PathBuf,
     pub controller: bool,
+    pub fmi: FmiVersion,
 }
 
 /// The controller's configuration: `mre sim`'s and `mre pil`'s for the
@@ -102,8 +128,12 @@ pub fn run_fmu_with(request: &FmuRequest, libraries: &Path) -> Result<Vec<PathBu
     for (kind, path) in &kinds {
         let mut describe = describe_for(*kind, &source, &table, &cfg);
         describe.generation_date_and_time = Some(date.clone());
-        let html = documentation(*kind, &describe, &source, &provenance, &table, &cfg);
-        let xml = mre_fmu::describe::model_description(*kind, &describe).map_err(|e| anyhow!(e))?;
+        let html = documentation(*kind, request.fmi, &describe, &source, &provenance, &table, &cfg);
+        let xml = match request.fmi {
+            FmiVersion::V3 => mre_fmu::describe::model_description(*kind, &describe),
+            FmiVersion::V2 => mre_fmu::fmi2::describe::model_description(*kind, &describe),
+        }
+        .map_err(|e| anyhow!(e))?;
         let library = libraries.join(library_file(*kind));
         let binary =
             std::fs::read(&library).with_context(|| format!("cannot read the FMU library {}", library.display()))?;
@@ -120,7 +150,17 @@ pub fn run_fmu_with(request: &FmuRequest, libraries: &Path) -> Result<Vec<PathBu
             }
         };
         write_atomic_with(path, |buf| {
-            pack(buf, *kind, &xml, &binary, windows.as_deref(), &page, &text, &html)
+            pack(
+                buf,
+                *kind,
+                request.fmi,
+                &xml,
+                &binary,
+                windows.as_deref(),
+                &page,
+                &text,
+                &html,
+            )
         })?;
     }
     Ok(kinds.into_iter().map(|(_, p)| p).collect())
@@ -245,6 +285,7 @@ fn escape_html(text: &str) -> String {
 /// ranges, the data it came from, the table's CRC, the wiring).
 fn documentation(
     kind: Kind,
+    fmi: FmiVersion,
     describe: &Describe,
     source: &str,
     provenance: &Provenance,
@@ -276,10 +317,11 @@ fn documentation(
              <code>displacement_m</code>, its rate (m/s, positive compressing) to <code>velocity_m_s</code>, \
              and the coil current to <code>current_a</code>; apply <code>force_n</code> to the impacting mass \
              (positive resisting compression). The coil current lags its drive by <code>coil_tau_s</code> \
-             ({} s): with <code>controller.fmu</code>, pass its drive through a first-order lag of that time \
-             constant (limited to the driver's range) before <code>current_a</code>, or feed \
-             <code>current_a</code> directly when the coil has no lag. Co-Simulation: any step (the force is \
-             an algebraic function of the inputs); the default experiment steps at {} s.</p>",
+             ({} s): with <code>controller.fmu</code>, feed its <code>coil_current_a</code> (the drive through \
+             that lag) to <code>current_a</code>. Co-Simulation: any step (the force is an algebraic function \
+             of the inputs); the default experiment steps at {} s. Model Exchange: the velocity is the event \
+             indicator of the branch switch (the force jumps where it changes sign); the branch is held between \
+             events, so let the solver handle the indicator's zero crossings as state events.</p>",
             terms.coil_tau_s, describe.step_size_s
         ),
         Kind::Controller => format!(
@@ -291,12 +333,18 @@ fn documentation(
             describe.step_size_s, cfg.rate_hz, terms.coil_tau_s, cfg.law.mass_kg, cfg.law.stroke_max_mm
         ),
     };
-    let out_of_range = "<p>Inputs outside their declared range, and NaN or infinite inputs, make \
-        <code>fmi3SetFloat64</code> return <code>fmi3Warning</code> with a log message (enable logging to see \
+    let (set, warning) = match fmi {
+        FmiVersion::V2 => ("fmi2SetReal", "fmi2Warning"),
+        FmiVersion::V3 => ("fmi3SetFloat64", "fmi3Warning"),
+    };
+    let out_of_range = format!(
+        "<p>Inputs outside their declared range, and NaN or infinite inputs, make \
+        <code>{set}</code> return <code>{warning}</code> with a log message (enable logging to see \
         it). The value is still used as the board's core uses it: the damper clamps the displacement to each \
         tabulated current's fitted stroke and the current to the table; a NaN displacement counts as the \
         stroke's start, a NaN current as the lowest, a NaN velocity as the extension branch without viscous \
-        force. The controller passes them to its sensor checks, which latch its fail-safe current.</p>";
+        force. The controller passes them to its sensor checks, which latch its fail-safe current.</p>"
+    );
     format!(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head><meta charset=\"utf-8\"><title>{title}</title></head>\n<body>\n\
          <h1>{title}</h1>\n<p>{description}</p>\n\
@@ -338,6 +386,7 @@ pub fn windows_library_file(kind: Kind) -> String {
 fn pack(
     buf: &mut Vec<u8>,
     kind: Kind,
+    fmi: FmiVersion,
     xml: &str,
     binary: &[u8],
     windows: Option<&[u8]>,
@@ -347,16 +396,17 @@ fn pack(
 ) -> Result<()> {
     let mut zip = zip::ZipWriter::new(std::io::Cursor::new(buf));
     let deflate = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+    let (linux, windows_platform) = fmi.platforms();
     let mut files: Vec<(String, &[u8])> = vec![
         ("modelDescription.xml".to_owned(), xml.as_bytes()),
-        (format!("binaries/{PLATFORM}/{}.so", kind.model_identifier()), binary),
+        (format!("binaries/{linux}/{}.so", kind.model_identifier()), binary),
         (format!("resources/{}", mre_fmu::page::PAGE_FILE), page),
         ("resources/model.toml".to_owned(), model_toml.as_bytes()),
         ("documentation/index.html".to_owned(), html.as_bytes()),
     ];
     if let Some(dll) = windows {
         files.push((
-            format!("binaries/{WINDOWS_PLATFORM}/{}", windows_library_file(kind)),
+            format!("binaries/{windows_platform}/{}", windows_library_file(kind)),
             dll,
         ));
     }

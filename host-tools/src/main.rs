@@ -328,7 +328,7 @@ enum Command {
         #[arg(long)]
         rate_hz: Option<u32>,
     },
-    /// Write the model as an FMI 3.0 FMU (damper: displacement, velocity, current in; force out), evaluated by the board's core.
+    /// Write the model as an FMI 3.0 (or 2.0) FMU (damper: displacement, velocity, current in; force out), evaluated by the board's core.
     Fmu {
         /// Model or table file (as `mre tables` reads).
         model: PathBuf,
@@ -337,6 +337,9 @@ enum Command {
         /// Also write controller.fmu beside it: the impact controller as the board runs it.
         #[arg(long)]
         controller: bool,
+        /// FMI version of the FMUs: 3 (FMI 3.0) or 2 (FMI 2.0, for importers without 3.0); the same libraries and model.
+        #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(2..=3))]
+        fmi_version: u8,
     },
 }
 
@@ -965,9 +968,24 @@ fn run(cli: Cli) -> Result<()> {
                 anyhow::bail!("the firmware run does not match the in-process run (see pil.json)");
             }
         }
-        Command::Fmu { model, out, controller } => {
+        Command::Fmu {
+            model,
+            out,
+            controller,
+            fmi_version,
+        } => {
             let progress = mre_host::progress::spinner("building the FMU libraries and packing the FMUs");
-            let written = mre_host::fmu::run_fmu(&mre_host::fmu::FmuRequest { model, out, controller })?;
+            let fmi = if fmi_version == 2 {
+                mre_host::fmu::FmiVersion::V2
+            } else {
+                mre_host::fmu::FmiVersion::V3
+            };
+            let written = mre_host::fmu::run_fmu(&mre_host::fmu::FmuRequest {
+                model,
+                out,
+                controller,
+                fmi,
+            })?;
             std::mem::drop(progress);
             for path in written {
                 println!("wrote {}", path.display());

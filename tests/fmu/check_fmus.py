@@ -117,13 +117,30 @@ class Fmu:
         shutil.rmtree(self.dir, ignore_errors=True)
 
 
+def indicator(d):
+    """The damper's one event indicator."""
+    z = (ctypes.c_double * 1)()
+    d.fmu.getEventIndicators(z, 1)
+    return z[0]
+
+
 def trace_check(damper_path, trace_path, me):
     rows = list(csv.DictReader(open(trace_path)))
     d = Fmu(damper_path, me=me)
+    z_last = indicator(d) if me else 0.0
     worst, scale = 0.0, max(abs(float(r["force_core_n"])) for r in rows)
     for r in rows:
         d.set(displacement_m=float(r["displacement_m"]), velocity_m_s=float(r["velocity_m_s"]),
               current_a=float(r["current_a"]))
+        if me:
+            # As an importer does: the event indicator (the velocity) changing sign is
+            # an event, where the damper switches branch (it holds it in continuous time).
+            z = indicator(d)
+            if (z > 0) != (z_last > 0):
+                d.fmu.enterEventMode()
+                d.fmu.updateDiscreteStates()
+                d.fmu.enterContinuousTimeMode()
+            z_last = z
         worst = max(worst, abs(d.get("force_n") - float(r["force_core_n"])))
     d.close()
     # The FMU takes x in m and converts to the board's mm in f32; the

@@ -3,9 +3,22 @@
 //! between currents (linear in `tanh(I/I_s)` under a saturation term) and the
 //! viscous term. The coil's time constant and the sensors' delay act in the
 //! controller (the law compensates them); the damper reports them.
+//!
+//! The branch (compression or extension) follows the velocity's sign, and
+//! the force jumps between the branches' quartics at v = 0 (hundreds of N).
+//! For variable-step solvers, Model Exchange declares that switch as a state
+//! event: the event indicator is the velocity (`branch_indicator_m_s`), and
+//! in Continuous-Time Mode the branch stays the one chosen at the last event
+//! (Event Mode, initialisation), so the right-hand side the solver sees is
+//! smooth between events and the switch happens where the solver located
+//! the zero crossing. Co-Simulation, Event Mode and Initialization Mode pick
+//! the branch from the velocity at every evaluation, as the core's
+//! `Table::force` does.
 use fmi::fmi3::{Fmi3Error, Fmi3Res};
+use fmi::EventFlags;
 use fmi_export::fmi3::{Context, DefaultLoggingCategory, UserModel};
 use fmi_export::FmuModel;
+use mre_core::model::Branch;
 use mre_core::Table;
 
 /// MRE impact damper identified by mre: contact force from displacement, velocity and coil current, evaluated by the board's control core (mre_core)
@@ -33,8 +46,14 @@ pub struct Damper {
     /// Sensor delay of the model file (s): how far the sampled displacement and velocity lag the motion (the controller predicts across it)
     #[variable(causality = CalculatedParameter, variability = Fixed, initial = Calculated)]
     pub sensor_delay_s: f64,
+    /// Branch event indicator (m/s): the compression velocity, whose zero crossing switches the force between the extension and compression branches (Model Exchange state event)
+    #[variable(causality = Local, variability = Continuous, event_indicator = true)]
+    pub branch_indicator_m_s: f64,
     #[variable(skip = true)]
     table: Option<Table>,
+    /// The branch chosen at the last event (held in Continuous-Time Mode).
+    #[variable(skip = true)]
+    branch: Option<Branch>,
 }
 
 impl Damper {
@@ -62,6 +81,18 @@ impl Damper {
         }
     }
 
+    /// The core's force on `branch` (x converted to mm, as the board reads it).
+    pub fn force_on(table: &Table, displacement_m: f64, velocity_m_s: f64, branch: Branch, current_a: f64) -> f32 {
+        table
+            .force_on_branch_v(
+                (displacement_m * 1.0e3) as f32,
+                velocity_m_s as f32,
+                branch,
+                current_a as f32,
+            )
+            .force_n
+    }
+
     /// The core's force at the inputs (x converted to mm, as the board reads it).
     pub fn force_at(table: &Table, displacement_m: f64, velocity_m_s: f64, current_a: f64) -> f32 {
         table
@@ -79,12 +110,44 @@ impl UserModel for Damper {
 
     fn calculate_values(&mut self, context: &dyn Context<Self>) -> Result<Fmi3Res, Fmi3Error> {
         let table = self.table(context)?;
-        self.force_n = f64::from(Self::force_at(
+        let from_v = Branch::from_velocity(self.velocity_m_s as f32);
+        let branch = match self.branch {
+            Some(held) if crate::export::in_continuous_time(context) => held,
+            _ => {
+                self.branch = Some(from_v);
+                from_v
+            }
+        };
+        self.force_n = f64::from(Self::force_on(
             &table,
             self.displacement_m,
             self.velocity_m_s,
+            branch,
             self.current_a,
         ));
+        self.branch_indicator_m_s = self.velocity_m_s;
+        Ok(Fmi3Res::OK)
+    }
+
+    fn get_event_indicators(
+        &mut self,
+        _context: &dyn Context<Self>,
+        indicators: &mut [f64],
+    ) -> Result<bool, Fmi3Error> {
+        // The velocity: its sign selects the branch (Branch::from_velocity).
+        match indicators {
+            [z] => {
+                *z = self.velocity_m_s;
+                Ok(true)
+            }
+            _ => Err(Fmi3Error::Error),
+        }
+    }
+
+    fn event_update(&mut self, _context: &dyn Context<Self>, flags: &mut EventFlags) -> Result<Fmi3Res, Fmi3Error> {
+        // The switch: the branch of the velocity at the event.
+        flags.reset();
+        self.branch = Some(Branch::from_velocity(self.velocity_m_s as f32));
         Ok(Fmi3Res::OK)
     }
 }

@@ -41,7 +41,7 @@ impl Kind {
 
 /// Unit of a variable from its name's suffix (longest first), as
 /// `(suffix, declared type, unit, SI base exponents kg, m, s, A)`.
-const UNITS: [(&str, &str, &str, [i32; 4]); 8] = [
+pub(crate) const UNITS: [(&str, &str, &str, [i32; 4]); 8] = [
     ("_m_s", "Velocity", "m/s", [0, 1, -1, 0]),
     ("_kg", "Mass", "kg", [1, 0, 0, 0]),
     ("_m", "Length", "m", [0, 1, 0, 0]),
@@ -52,7 +52,7 @@ const UNITS: [(&str, &str, &str, [i32; 4]); 8] = [
     ("_ohm", "Resistance", "Ohm", [1, 2, -3, -2]),
 ];
 
-fn unit_of(name: &str) -> Option<&'static (&'static str, &'static str, &'static str, [i32; 4])> {
+pub(crate) fn unit_of(name: &str) -> Option<&'static (&'static str, &'static str, &'static str, [i32; 4])> {
     UNITS.iter().find(|(suffix, ..)| name.ends_with(suffix))
 }
 

@@ -226,8 +226,19 @@ pub fn check_step<M: Exported>(instance: b::fmi3Instance, t: f64, h: f64) -> Res
     let Some(inst) = (unsafe { (instance as *const Instance<M>).as_ref() }) else {
         return Err(b::fmi3Status_fmi3Error);
     };
-    let now = inst.context().time();
-    let problem = if !(h.is_finite() && h > 0.0) {
+    match step_problem(inst.context().time(), t, h) {
+        None => Ok(()),
+        Some(p) => {
+            log_error::<M>(instance, format_args!("fmi3DoStep: {p}"));
+            Err(b::fmi3Status_fmi3Error)
+        }
+    }
+}
+
+/// What is wrong with a step from `t` by `h` for an instance at `now` (FMI
+/// 2.0 and 3.0 `doStep`: the step positive, from the last step's end).
+pub fn step_problem(now: f64, t: f64, h: f64) -> Option<String> {
+    if !(h.is_finite() && h > 0.0) {
         Some(format!("communicationStepSize {h} is not a positive number"))
     } else if !t.is_finite() || (t - now).abs() > TIME_TOLERANCE * now.abs().max(1.0) {
         Some(format!(
@@ -235,13 +246,6 @@ pub fn check_step<M: Exported>(instance: b::fmi3Instance, t: f64, h: f64) -> Res
         ))
     } else {
         None
-    };
-    match problem {
-        None => Ok(()),
-        Some(p) => {
-            log_error::<M>(instance, format_args!("fmi3DoStep: {p}"));
-            Err(b::fmi3Status_fmi3Error)
-        }
     }
 }
 
@@ -270,6 +274,33 @@ static RESETS: Mutex<Vec<usize>> = Mutex::new(Vec::new());
 
 fn context_key<M: UserModel>(context: &dyn Context<M>) -> usize {
     context as *const dyn Context<M> as *const () as usize
+}
+
+/// Instances in Model Exchange's Continuous-Time Mode (by context address):
+/// the damper holds its branch there (crate::damper).
+static CONTINUOUS_TIME: Mutex<Vec<usize>> = Mutex::new(Vec::new());
+
+/// Records whether the instance owning `context` is in Continuous-Time Mode.
+pub fn set_continuous_time<M: UserModel>(context: &dyn Context<M>, on: bool) {
+    let key = context_key(context);
+    let mut keys = CONTINUOUS_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    keys.retain(|k| *k != key);
+    if on {
+        keys.push(key);
+    }
+}
+
+/// Whether the instance owning `context` is in Continuous-Time Mode.
+pub fn in_continuous_time<M: UserModel>(context: &dyn Context<M>) -> bool {
+    let key = context_key(context);
+    CONTINUOUS_TIME.lock().unwrap_or_else(|e| e.into_inner()).contains(&key)
+}
+
+/// [`set_continuous_time`] for a 3.0 instance.
+pub fn note_continuous_time<M: Exported>(instance: b::fmi3Instance, on: bool) {
+    if let Some(inst) = unsafe { (instance as *const Instance<M>).as_ref() } {
+        set_continuous_time::<M>(inst.context(), on);
+    }
 }
 
 /// Records that `instance` was reset.
@@ -311,6 +342,7 @@ pub unsafe fn mark_stale<M: Exported + fmi_export::fmi3::Fmi3Common>(instance: b
 pub fn forget<M: Exported>(instance: b::fmi3Instance) {
     if let Some(inst) = unsafe { (instance as *const Instance<M>).as_ref() } {
         take_reset::<M>(inst.context());
+        set_continuous_time::<M>(inst.context(), false);
     }
 }
 
@@ -500,11 +532,14 @@ macro_rules! export_fmu {
                     instance, tolerance_defined, tolerance, start, stop_defined, stop);
             "fmi3ExitInitializationMode" fn fmi3_exit_initialization_mode(instance: fmi3b::fmi3Instance)
                 => <$ty as ::fmi_export::fmi3::Fmi3Common>::fmi3_exit_initialization_mode(instance);
-            "fmi3EnterEventMode" fn fmi3_enter_event_mode(instance: fmi3b::fmi3Instance)
-                => <$ty as ::fmi_export::fmi3::Fmi3Common>::fmi3_enter_event_mode(instance);
+            "fmi3EnterEventMode" fn fmi3_enter_event_mode(instance: fmi3b::fmi3Instance) => {
+                $crate::export::note_continuous_time::<$ty>(instance, false);
+                <$ty as ::fmi_export::fmi3::Fmi3Common>::fmi3_enter_event_mode(instance)
+            };
             "fmi3Terminate" fn fmi3_terminate(instance: fmi3b::fmi3Instance)
                 => <$ty as ::fmi_export::fmi3::Fmi3Common>::fmi3_terminate(instance);
             "fmi3Reset" fn fmi3_reset(instance: fmi3b::fmi3Instance) => {
+                $crate::export::note_continuous_time::<$ty>(instance, false);
                 let status = <$ty as ::fmi_export::fmi3::Fmi3Common>::fmi3_reset(instance);
                 $crate::export::note_reset::<$ty>(instance);
                 $crate::export::mark_stale::<$ty>(instance);
@@ -636,8 +671,14 @@ macro_rules! export_fmu {
                 => $crate::export::unsupported::<$ty>(instance, "fmi3ActivateModelPartition");
 
             // Model Exchange
-            "fmi3EnterContinuousTimeMode" fn fmi3_enter_continuous_time_mode(instance: fmi3b::fmi3Instance)
-                => <$ty as ::fmi_export::fmi3::Fmi3ModelExchange>::fmi3_enter_continuous_time_mode(instance);
+            "fmi3EnterContinuousTimeMode" fn fmi3_enter_continuous_time_mode(instance: fmi3b::fmi3Instance) => {
+                let status = <$ty as ::fmi_export::fmi3::Fmi3ModelExchange>::fmi3_enter_continuous_time_mode(instance);
+                // The damper holds its branch from here to the next event.
+                if status == fmi3b::fmi3Status_fmi3OK {
+                    $crate::export::note_continuous_time::<$ty>(instance, true);
+                }
+                status
+            };
             "fmi3CompletedIntegratorStep" fn fmi3_completed_integrator_step(instance: fmi3b::fmi3Instance,
                 no_set_prior: fmi3b::fmi3Boolean, enter_event_mode: *mut fmi3b::fmi3Boolean,
                 terminate: *mut fmi3b::fmi3Boolean)

@@ -1,4 +1,5 @@
-//! The identified damper and the impact controller as FMI 3.0 models.
+//! The identified damper and the impact controller as FMI 3.0 and FMI 2.0
+//! models (the 2.0 functions in [`fmi2`], over the same models).
 //!
 //! Both evaluate through `mre_core`, the code the board runs. An FMU carries
 //! its table and installation as `resources/table.page`: the 2 KiB flash
@@ -14,6 +15,7 @@ pub mod controller;
 pub mod damper;
 pub mod describe;
 pub mod export;
+pub mod fmi2;
 pub mod page;
 pub mod ranges;
 

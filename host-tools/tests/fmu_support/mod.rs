@@ -20,9 +20,15 @@ pub fn every_term_table() -> Table {
 
 /// Runs `mre fmu MODEL --out DIR/damper.fmu [--controller]`; panics with its stderr on failure.
 pub fn mre_fmu(model: &Path, dir: &Path, controller: bool) -> PathBuf {
+    mre_fmu_version(model, dir, controller, 3)
+}
+
+/// [`mre_fmu`] with `--fmi-version VERSION` (2 or 3).
+pub fn mre_fmu_version(model: &Path, dir: &Path, controller: bool, version: u8) -> PathBuf {
     let out = dir.join("damper.fmu");
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_mre"));
     cmd.arg("fmu").arg(model).arg("--out").arg(&out).arg("--quiet");
+    cmd.arg("--fmi-version").arg(version.to_string());
     if controller {
         cmd.arg("--controller");
     }

@@ -46,6 +46,7 @@ mod diagnose_validate_blind;
 mod diagnose_verdict;
 mod fit;
 mod fmu;
+mod fmu_fmi2;
 mod fmu_fmpy;
 mod installation;
 mod installation_sources;
