@@ -70,3 +70,16 @@ pub fn trace() -> Vec<Sample> {
 pub fn core_force_n(table: &Table, s: &Sample) -> f32 {
     table.force(s.x_mm as f32, s.v_m_s as f32, s.current_a as f32).force_n
 }
+
+/// Where the MinGW-w64 linker and the Rust target are installed, `mre fmu`
+/// must pack Windows binaries (FMI 2.0 and 3.0 alike).
+pub fn windows_toolchain_installed() -> bool {
+    std::process::Command::new("x86_64-w64-mingw32-gcc")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success())
+        && std::process::Command::new("rustup")
+            .args(["target", "list", "--installed"])
+            .output()
+            .is_ok_and(|o| String::from_utf8_lossy(&o.stdout).contains("x86_64-pc-windows-gnu"))
+}

@@ -216,15 +216,7 @@ fn every_binary_exports_every_fmi3_function() {
     let model = dir.path().join("every-term.toml");
     std::fs::write(&model, mre_host::table_file::table_to_toml(&every_term_table())).unwrap();
     let damper = mre_fmu(&model, dir.path(), true);
-    // Where the MinGW-w64 linker and the Rust target are installed, mre fmu must pack Windows binaries.
-    let windows_toolchain = std::process::Command::new("x86_64-w64-mingw32-gcc")
-        .arg("--version")
-        .output()
-        .is_ok_and(|o| o.status.success())
-        && std::process::Command::new("rustup")
-            .args(["target", "list", "--installed"])
-            .output()
-            .is_ok_and(|o| String::from_utf8_lossy(&o.stdout).contains("x86_64-pc-windows-gnu"));
+    let windows_toolchain = windows_toolchain_installed();
     for fmu in [damper.clone(), mre_host::fmu::controller_path(&damper)] {
         let mut zip = zip::ZipArchive::new(std::fs::File::open(&fmu).unwrap()).unwrap();
         let names: Vec<String> = zip.file_names().map(str::to_owned).collect();
@@ -467,3 +459,4 @@ fn the_same_source_date_epoch_writes_the_same_fmu() {
     assert_eq!(first, write("b.fmu", "1700000000"), "same epoch, same bytes");
     assert_ne!(first, write("c.fmu", "1700000001"), "the date is in the FMU");
 }
+
