@@ -1,6 +1,6 @@
 //! `mre fmu`: the model file as FMI 3.0 FMUs. `damper.fmu` is the damper
 //! (x, v, I in, force out); `controller.fmu` the impact controller as the
-//! board runs it. Both evaluate through `mre_core` (crate `mre-fmu`).
+//! board runs it. Both evaluate through `mre_algorithm` (crate `mre-fmu`).
 //!
 //! An FMU is a zip of
 //! - `modelDescription.xml` (`mre_fmu::describe`),
@@ -25,8 +25,8 @@
 //! the running `mre`.
 use crate::atomic_write::write_atomic_with;
 use anyhow::{anyhow, bail, Context, Result};
-use mre_core::control::ControlConfig;
-use mre_core::Table;
+use mre_algorithm::control::ControlConfig;
+use mre_algorithm::Table;
 use mre_fmu::describe::{Describe, Kind};
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
