@@ -4,9 +4,9 @@
 //!
 //! One embassy task runs the control loop: wait for the period (a `Ticker`
 //! on hardware, the next sample frame in PIL), run the core's
-//! [`Controller::step_io`](mre_core::control::Controller::step_io), account
+//! [`Controller::step_io`](mre_algorithm::control::Controller::step_io), account
 //! for overruns, feed the watchdog while every thread-mode task checks in
-//! (`mre_core::watchdog`). On hardware it runs on an
+//! (`mre_runtime::watchdog`). On hardware it runs on an
 //! `InterruptExecutor` (UART4's vector, which nothing else uses) at high
 //! priority; it never logs itself but posts events to a channel that the
 //! thread-mode main task drains into defmt, so a stalled log reader (RTT
@@ -29,7 +29,7 @@ mod fw {
     use embassy_executor::Spawner;
     use embassy_sync::blocking_mutex::raw::CriticalSectionRawMutex;
     use embassy_sync::channel::Channel;
-    use mre_core::control::{Controller, Stats, DEFAULT_RATE_HZ};
+    use mre_algorithm::control::{Controller, Stats, DEFAULT_RATE_HZ};
     use mre_protocol::frame::LinkStats;
     use mre_protocol::upload::TableSource;
 
@@ -71,7 +71,7 @@ mod fw {
     static CLEAR_REQUEST: AtomicBool = AtomicBool::new(false);
 
     /// Thread-mode check-ins for the watchdog (ms since boot,
-    /// `mre_core::watchdog`): the status task every 50 ms, and the log task
+    /// `mre_runtime::watchdog`): the status task every 50 ms, and the log task
     /// with every event (a stats line at least once a second). The upload
     /// task waits for bytes and is not a heartbeat: a busy loop in it (or in
     /// any thread-mode task) starves the status task and is caught there.
@@ -92,11 +92,11 @@ mod fw {
 
     /// True when every thread-mode task checked in within its deadline.
     fn thread_tasks_on_time() -> bool {
-        let tasks = core::array::from_fn::<_, 2, _>(|k| mre_core::watchdog::CheckIn {
+        let tasks = core::array::from_fn::<_, 2, _>(|k| mre_runtime::watchdog::CheckIn {
             last_ms: CHECK_INS[k].load(Ordering::Relaxed),
             deadline_ms: DEADLINES_MS[k],
         });
-        mre_core::watchdog::may_feed(now_ms(), &tasks)
+        mre_runtime::watchdog::may_feed(now_ms(), &tasks)
     }
 
     /// Never blocks: a full channel drops the event and counts it.
@@ -125,12 +125,12 @@ mod fw {
     /// `table-paper` feature the paper's Table 4.
     #[cfg(not(feature = "table-paper"))]
     mod flown {
-        pub use mre_core::generated_table::{GENERATED_TABLE as IMAGE, SOURCE_DATASET_SHA256};
+        pub use mre_algorithm::generated_table::{GENERATED_TABLE as IMAGE, SOURCE_DATASET_SHA256};
         pub const NAME: &str = "generated";
     }
     #[cfg(feature = "table-paper")]
     mod flown {
-        pub use mre_core::table::PAPER_TABLE4 as IMAGE;
+        pub use mre_algorithm::table::PAPER_TABLE4 as IMAGE;
         pub const SOURCE_DATASET_SHA256: &str = "";
         pub const NAME: &str = "paper Table 4";
     }
@@ -283,8 +283,8 @@ mod fw {
 
     // Errors are logged by name: `defmt::Debug2Format` would link
     // `core::fmt` with float printing (~13 KB of flash, BENCHMARKS.md).
-    fn table_error_name(e: &mre_core::TableError) -> &'static str {
-        use mre_core::TableError as E;
+    fn table_error_name(e: &mre_algorithm::TableError) -> &'static str {
+        use mre_algorithm::TableError as E;
         match e {
             E::Empty => "empty",
             E::TooManyEntries { .. } => "too many entries",
@@ -299,8 +299,8 @@ mod fw {
         }
     }
 
-    fn config_error_name(e: &mre_core::control::ControlConfigError) -> &'static str {
-        use mre_core::control::ControlConfigError as E;
+    fn config_error_name(e: &mre_algorithm::control::ControlConfigError) -> &'static str {
+        use mre_algorithm::control::ControlConfigError as E;
         match e {
             E::Rate { .. } => "control rate out of range",
             E::Law(_) => "law configuration",
@@ -403,13 +403,13 @@ mod fw {
     /// clear latched faults.
     #[embassy_executor::task]
     async fn status_task(mut status: board::Status) {
-        use mre_core::status::{led_on, SLOT_MS};
+        use mre_runtime::status::{led_on, SLOT_MS};
         let mut ticker = embassy_time::Ticker::every(embassy_time::Duration::from_millis(u64::from(SLOT_MS)));
         let (mut slot, mut was_pressed) = (0u32, false);
         loop {
             ticker.next().await;
             check_in(STATUS_TASK);
-            status.set_led(led_on(mre_core::Flags(LATCHED.load(Ordering::Relaxed)), slot));
+            status.set_led(led_on(mre_algorithm::Flags(LATCHED.load(Ordering::Relaxed)), slot));
             let pressed = status.button_pressed();
             if pressed && !was_pressed {
                 CLEAR_REQUEST.store(true, Ordering::Relaxed);

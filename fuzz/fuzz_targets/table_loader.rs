@@ -3,7 +3,7 @@
 //! everywhere.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use mre_core::model::Branch;
+use mre_algorithm::model::Branch;
 
 fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else { return };
@@ -24,7 +24,7 @@ fuzz_target!(|data: &[u8]| {
     // Its installation (format 3; the defaults before) is one a board can
     // have, and the image it seals reads back under its CRC.
     assert_eq!(table.installation().invalid_field(), None);
-    assert_eq!(mre_core::Table::from_image(&table.image()).as_ref(), Ok(&table));
+    assert_eq!(mre_algorithm::Table::from_image(&table.image()).as_ref(), Ok(&table));
     // What the loader accepts, `mre tables` can turn into flash source.
     let _ = mre_host::tables::generate_table_source("fuzz", &table, None, None);
 });

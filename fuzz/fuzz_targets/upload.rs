@@ -4,7 +4,7 @@
 //! re-encodes to itself, and both paths agree. The board's receiver
 //! (`UploadPort` onto a flash-like RAM page) stores exactly what it accepts
 //! and leaves the page untouched when it refuses. Nothing accepted lies
-//! outside the board's hard limits (`mre_core::limits`), checked here field
+//! outside the board's hard limits (`mre_algorithm::limits`), checked here field
 //! by field against the wiring's numbers (firmware/README.md, "Hard limits").
 #![no_main]
 use libfuzzer_sys::fuzz_target;
@@ -24,7 +24,7 @@ fuzz_target!(|data: &[u8]| {
         let law = &cfg.law;
         assert!((0.0..=2.0).contains(&law.current_min_a) && (0.0..=2.0).contains(&law.current_max_a));
         assert!((1.0..=2.0).contains(&law.failsafe_current_a));
-        if let mre_core::law::ReboundPolicy::Fixed { current_a } = law.rebound {
+        if let mre_algorithm::law::ReboundPolicy::Fixed { current_a } = law.rebound {
             assert!((0.0..=2.0).contains(&current_a));
         }
         assert!((1.0..=25.0).contains(&law.stroke_max_mm));
@@ -32,7 +32,7 @@ fuzz_target!(|data: &[u8]| {
         assert!((0.1..=20.0).contains(&law.v_valid_max_m_s));
         assert!((1..=100).contains(&cfg.range_fault_samples) && (1..=500).contains(&cfg.stuck_samples));
         assert!((1..=100).contains(&cfg.overrun_limit) && (1..=10_000).contains(&cfg.overrun_window));
-        assert_eq!(mre_core::limits::check(cfg, &mre_core::limits::BOARD), Ok(()));
+        assert_eq!(mre_algorithm::limits::check(cfg, &mre_algorithm::limits::BOARD), Ok(()));
     }
     if let Ok((table, cfg)) = &direct {
         // A table's installation (format 3) is within the wiring's limits,
@@ -43,7 +43,7 @@ fuzz_target!(|data: &[u8]| {
         assert!(i.x_sensor_range_mm == 25.0 && i.v_sensor_full_scale_m_s == 5.0);
         assert!((0.1..=20.0).contains(&i.impact_v_min_m_s) && i.impact_v_min_m_s <= i.impact_v_max_m_s);
         assert!(i.impact_v_max_m_s <= 20.0);
-        if table.version() >= mre_core::table::FORMAT_VERSION_3 {
+        if table.version() >= mre_algorithm::table::FORMAT_VERSION_3 {
             let mut installed = *cfg;
             i.apply(&mut installed);
             assert_eq!(&installed, cfg);

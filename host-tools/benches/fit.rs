@@ -5,7 +5,7 @@
 //! data set of the two-box benchmark) and on a 10-branch synthetic set (the
 //! paper's Table 4 loops, 2000 samples each).
 use criterion::{criterion_group, criterion_main, Criterion};
-use mre_core::model::Branch;
+use mre_algorithm::model::Branch;
 use mre_host::dataset::{BranchSamples, Dataset};
 use mre_host::fit::bounds::data_bounds;
 use mre_host::fit::gsa::{minimize, GsaParams};
@@ -24,7 +24,7 @@ fn bundled(name: &str) -> Vec<BranchProblem> {
 
 /// The paper's Table 4 loops, 2000 samples per branch over 0..0.88 mm.
 fn paper_ten_branches() -> Vec<BranchProblem> {
-    let table = mre_core::table::Table::paper().expect("paper table");
+    let table = mre_algorithm::table::Table::paper().expect("paper table");
     let mut out = Vec::new();
     for e in table.entries() {
         for branch in [Branch::Compression, Branch::Extension] {

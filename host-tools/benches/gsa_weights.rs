@@ -7,7 +7,7 @@
 //! out/bench/gsa_weights.csv). `bench/gsa_boxes.py` turns it into gaps to the
 //! least-squares optimum inside each box (BENCHMARKS.md, Fitting).
 use anyhow::{Context, Result};
-use mre_core::model::Branch;
+use mre_algorithm::model::Branch;
 use mre_host::dataset::Dataset;
 use mre_host::fit::bounds::BoundsChoice;
 use mre_host::fit::gsa::{GsaParams, RandomWeights};

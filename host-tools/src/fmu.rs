@@ -3,7 +3,7 @@
 //! model description, `mre_fmu::fmi2::describe`, and 2.0's platform
 //! folders `linux64`, `win64`). `damper.fmu` is the damper
 //! (x, v, I in, force out); `controller.fmu` the impact controller as the
-//! board runs it. Both evaluate through `mre_core` (crate `mre-fmu`).
+//! board runs it. Both evaluate through `mre_algorithm` (crate `mre-fmu`).
 //!
 //! An FMU is a zip of
 //! - `modelDescription.xml` (`mre_fmu::describe`),
@@ -28,8 +28,8 @@
 //! the running `mre`.
 use crate::atomic_write::write_atomic_with;
 use anyhow::{anyhow, bail, Context, Result};
-use mre_core::control::ControlConfig;
-use mre_core::Table;
+use mre_algorithm::control::ControlConfig;
+use mre_algorithm::Table;
 use mre_fmu::describe::{Describe, Kind};
 use std::io::Write as _;
 use std::path::{Path, PathBuf};

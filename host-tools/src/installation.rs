@@ -9,7 +9,7 @@ use crate::table_file::{
     check_installation_limits, installation_field_index, installation_from_toml, read_installation_section,
 };
 use anyhow::{bail, Context, Result};
-use mre_core::installation::{Installation, DEFAULT_INSTALLATION, FIELD_COUNT};
+use mre_algorithm::installation::{Installation, DEFAULT_INSTALLATION, FIELD_COUNT};
 use std::path::Path;
 
 /// Where one value came from.

@@ -1,5 +1,11 @@
 //! `mre` host tools: everything that needs `std`. Each command is a library
 //! function here; `main.rs` only parses arguments.
+//!
+//! Links two of the firmware's crates and never copies them: the algorithm
+//! (`mre_algorithm`: table, model, law, the control period `mre pil` checks the
+//! image against, the board's hard limits) and the protocol (`mre_protocol`:
+//! frames, the table page). Not the runtime (boot, watchdog, calibration):
+//! only the board image links it.
 pub mod atomic_write;
 pub mod cargo_build;
 pub mod compare;

@@ -1,7 +1,7 @@
 //! `mre model`: the model's compression and extension curves at one current.
 use anyhow::{bail, Result};
-use mre_core::model::Branch;
-use mre_core::table::Table;
+use mre_algorithm::model::Branch;
+use mre_algorithm::table::Table;
 use std::io::Write;
 
 /// One point of a force-displacement loop.

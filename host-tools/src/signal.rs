@@ -2,7 +2,7 @@
 //! estimate and one differentiator, so both commands read a channel alike;
 //! and the one branch rule both fit and score by (`fit` through
 //! `dataset::split_branches`).
-use mre_core::model::Branch;
+use mre_algorithm::model::Branch;
 
 /// A sample's branch counts as ambiguous when its speed is within this many
 /// standard deviations of the velocity noise (two-sided ≈ 95 %).

@@ -26,8 +26,8 @@
 //! `[fit]` or the paper's `[[table5]]`) are ignored by this reader; unknown
 //! keys inside a `[[current]]` entry are an error.
 use anyhow::{bail, Context, Result};
-use mre_core::installation::{Installation, DEFAULT_INSTALLATION};
-use mre_core::table::{CurrentEntry, Quartic, Table};
+use mre_algorithm::installation::{Installation, DEFAULT_INSTALLATION};
+use mre_algorithm::table::{CurrentEntry, Quartic, Table};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -104,7 +104,7 @@ pub fn read_dataset_sha256(path: &Path) -> Result<Option<String>> {
 }
 
 /// A model file's `[installation]` (every key optional; absent keys keep
-/// `mre_core::installation::DEFAULT_INSTALLATION`'s value; the keys are
+/// `mre_algorithm::installation::DEFAULT_INSTALLATION`'s value; the keys are
 /// `Installation::FIELD_NAMES`, docs/dataset-format.md lists them):
 ///
 /// ```toml
@@ -196,7 +196,7 @@ impl InstallationSource {
 
 /// A model file's table as the board flies it: format 3, carrying the
 /// file's installation (or the defaults, said so), checked against the
-/// board's hard limits (`mre_core::limits::BOARD`), which the board would
+/// board's hard limits (`mre_algorithm::limits::BOARD`), which the board would
 /// otherwise refuse it by.
 pub fn read_flash_table(path: &Path) -> Result<(Table, InstallationSource)> {
     let table = read_table_file(path)?;
@@ -205,7 +205,7 @@ pub fn read_flash_table(path: &Path) -> Result<(Table, InstallationSource)> {
     } else {
         InstallationSource::Defaults
     };
-    let table = if table.version() >= mre_core::table::FORMAT_VERSION_3 {
+    let table = if table.version() >= mre_algorithm::table::FORMAT_VERSION_3 {
         table
     } else {
         table
@@ -218,7 +218,7 @@ pub fn read_flash_table(path: &Path) -> Result<(Table, InstallationSource)> {
 
 /// The board's hard limits on an installation, as a sentence naming the value.
 pub fn check_installation_limits(installation: &Installation) -> Result<()> {
-    use mre_core::limits::{check_installation, BOARD};
+    use mre_algorithm::limits::{check_installation, BOARD};
     if let Err(limit) = check_installation(installation, &BOARD) {
         let range = limit.range(&BOARD);
         bail!(
@@ -234,7 +234,7 @@ pub fn check_installation_limits(installation: &Installation) -> Result<()> {
 }
 
 pub fn parse_table_toml(text: &str) -> Result<Table> {
-    use mre_core::table::{
+    use mre_algorithm::table::{
         ModelTerms, FORMAT_VERSION, FORMAT_VERSION_1, FORMAT_VERSION_2, FORMAT_VERSION_3, MAX_CURRENTS,
     };
     let doc: TableToml = toml::from_str(text)?;
@@ -307,7 +307,7 @@ pub fn parse_table_toml(text: &str) -> Result<Table> {
 /// Renders a table in this format (round-trips through [`parse_table_toml`]).
 pub fn table_to_toml(table: &Table) -> String {
     let mut s = format!("format_version = {}\n", table.version());
-    let v2 = table.version() >= mre_core::table::FORMAT_VERSION_2;
+    let v2 = table.version() >= mre_algorithm::table::FORMAT_VERSION_2;
     let t = table.terms();
     if v2 {
         s.push_str(&format!(
@@ -324,7 +324,7 @@ pub fn table_to_toml(table: &Table) -> String {
             s.push_str(&format!("viscous_n_s_per_m = {c:?}\n"));
         }
     }
-    if table.version() >= mre_core::table::FORMAT_VERSION_3 {
+    if table.version() >= mre_algorithm::table::FORMAT_VERSION_3 {
         s.push('\n');
         s.push_str(&installation_to_toml(table.installation()));
     }

@@ -1,12 +1,12 @@
 //! `mre tables MODEL`: the firmware's flash table as Rust source, generated
 //! into the firmware crate (`firmware/src/generated_table.rs`), with the CRC
-//! the core computes (`mre_core::table::content_crc`). The table is format 3:
+//! the core computes (`mre_algorithm::table::content_crc`). The table is format 3:
 //! it carries the model file's `[installation]`, or the defaults (stated in
 //! the source and by `mre tables`), under its CRC.
 use crate::table_file::{read_dataset_sha256, read_flash_table, InstallationSource};
 use anyhow::Result;
-use mre_core::installation::Installation;
-use mre_core::table::Table;
+use mre_algorithm::installation::Installation;
+use mre_algorithm::table::Table;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
@@ -71,7 +71,7 @@ pub fn generate_table_source(
         s,
         "/// The installation the board derives its law and fault configuration from: {from}."
     );
-    if *i == mre_core::installation::DEFAULT_INSTALLATION {
+    if *i == mre_algorithm::installation::DEFAULT_INSTALLATION {
         let _ = writeln!(
             s,
             "pub const GENERATED_INSTALLATION: Installation = DEFAULT_INSTALLATION;"

@@ -11,9 +11,9 @@
 use crate::pil::link::PilLink;
 use crate::table_file::read_flash_table;
 use anyhow::{anyhow, bail, Context, Result};
-use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
-use mre_core::table::Table;
-use mre_core::Flags;
+use mre_algorithm::control::{ControlConfig, DEFAULT_RATE_HZ};
+use mre_algorithm::table::Table;
+use mre_algorithm::Flags;
 use mre_protocol::frame::{encode_config, CONFIG_MAX_WORDS};
 use std::path::Path;
 use std::time::Duration;
@@ -46,10 +46,10 @@ pub fn upload_payload(model: &Path, rate_hz: u32) -> Result<(Table, ControlConfi
     Ok((table, cfg))
 }
 
-/// The board's hard limits (`mre_core::limits::BOARD`), checked before
+/// The board's hard limits (`mre_algorithm::limits::BOARD`), checked before
 /// sending: the board would refuse the same values.
 pub fn check_board_limits(cfg: &ControlConfig) -> Result<()> {
-    use mre_core::limits::{check, BOARD};
+    use mre_algorithm::limits::{check, BOARD};
     if let Err(limit) = check(cfg, &BOARD) {
         let range = limit.range(&BOARD);
         bail!(
@@ -66,7 +66,7 @@ pub fn check_board_limits(cfg: &ControlConfig) -> Result<()> {
 
 /// What a board's answer to a commit says, as a sentence.
 pub fn refusal(code: u16) -> String {
-    use mre_core::limits::BOARD;
+    use mre_algorithm::limits::BOARD;
     use mre_protocol::upload::{CommitAnswer, REST_BEFORE_UPLOAD_S};
     match CommitAnswer::from_code(code) {
         Some(CommitAnswer::NotAtRest) => format!(
@@ -188,7 +188,7 @@ mod tests {
         use mre_protocol::upload::{answer, CommitAnswer, UploadError};
         let code = |r| mre_protocol::frame::CommandFrame::decode(&answer(&r)).unwrap().rejected;
         assert!(refusal(code(Err(UploadError::NotAtRest))).contains("not at rest"));
-        let limit = mre_core::limits::Limit::XValidMax;
+        let limit = mre_algorithm::limits::Limit::XValidMax;
         let r = Err(UploadError::Refused(mre_protocol::frame::ConfigBlobError::OutOfLimits(
             limit,
         )));

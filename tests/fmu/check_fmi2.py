@@ -6,7 +6,7 @@ writes into DIR:
   v2/damper.fmu, v2/controller.fmu   mre fmu --fmi-version 2 of a model with every term
   v3/damper.fmu                      mre fmu (3.0) of the same model
   trace.csv                          a recorded drop's x, v with a current sweep, and the
-                                     core's force at each sample (mre_core in Rust)
+                                     core's force at each sample (mre_algorithm in Rust)
 
 `check_fmi2.py DIR` (the 2.0 FMUs): FMPy's validate_fmu finds no problem and
 simulate_fmu runs each (damper CS and ME, controller CS); the 2.0 damper's

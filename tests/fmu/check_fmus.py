@@ -5,7 +5,7 @@ which writes the FMUs and the reference data into DIR:
   every-term/damper.fmu, every-term/controller.fmu
                            a model file with every format-2 term (coil tau 2 ms)
   trace.csv                a bundled drop recording's x, v with a current sweep,
-                           and the core's force at each sample (mre_core in Rust)
+                           and the core's force at each sample (mre_algorithm in Rust)
   sim/damper.fmu, sim/controller.fmu, sim.json
                            the model `mre sim --controlled` flies, and its result
 

@@ -2,7 +2,7 @@
 //! what several of them share: reference implementations written
 //! independently of the core, and model tables built by hand.
 
-use mre_core::table::{CurrentEntry, Quartic};
+use mre_algorithm::table::{CurrentEntry, Quartic};
 use proptest::test_runner::{Config as ProptestConfig, RngSeed};
 
 /// The seed every property test draws its cases from, so CI meets the same

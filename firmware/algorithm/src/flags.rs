@@ -41,12 +41,12 @@ impl Flags {
     /// too long: one of the two sensors is lying.
     pub const SENSOR_DISAGREE: Flags = Flags(1 << 15);
     /// The coil current measured by the shunt exceeded the coil's rating
-    /// (`mre_core::overcurrent`). Bits 16.. travel in the command frame's
+    /// (`mre_algorithm::overcurrent`). Bits 16.. travel in the command frame's
     /// byte 3 (`frame`).
     pub const OVER_CURRENT: Flags = Flags(1 << 16);
     /// The current-sense channel is dead: no new conversion for
     /// `overcurrent::STALE_PERIODS` periods, or a reading stuck near 0 A while
-    /// the coil is driven (`mre_core::overcurrent::SenseMonitor`). Over-current
+    /// the coil is driven (`mre_algorithm::overcurrent::SenseMonitor`). Over-current
     /// protection is blind, so this is a fault of its own.
     pub const CURRENT_SENSE: Flags = Flags(1 << 17);
 

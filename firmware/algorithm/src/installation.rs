@@ -10,8 +10,8 @@
 use crate::law::LawConfig;
 
 /// A configuration an installation sets ([`Installation::apply`]): the law's
-/// and the velocity sensor's scale. The runtime's `ControlConfig` is one; the
-/// trait keeps this crate free of it (the import circle table → installation
+/// and the velocity sensor's scale. `control::ControlConfig` is one; the
+/// trait keeps this module free of it (the import circle table → installation
 /// → control → law → table of issue 40).
 pub trait InstallationTarget {
     fn law_mut(&mut self) -> &mut LawConfig;

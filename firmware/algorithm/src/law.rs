@@ -328,6 +328,9 @@ const LEAD_GROWTH: f32 = 1.105_170_9;
 
 impl ImpactLaw {
     /// Refuses an invalid configuration instead of running with it.
+    // Out of line: run once per configuration; since `control` moved into this
+    // crate (issue 40) it was inlined into `Controller::new`'s callers, +140 bytes of flash.
+    #[inline(never)]
     pub fn new(cfg: LawConfig) -> Result<Self, ConfigError> {
         cfg.validate()?;
         Ok(Self {

@@ -17,8 +17,8 @@
 //! [`TablePage`] over embassy-stm32's flash; the host tests over RAM.
 use crate::frame::{decode_config, encode_config, ConfigBlobError, CONFIG_MAX_WORDS};
 use crc::{Crc, CRC_32_ISO_HDLC};
-use mre_core::control::ControlConfig;
-use mre_core::table::Table;
+use mre_algorithm::control::ControlConfig;
+use mre_algorithm::table::Table;
 
 pub const MAGIC: u32 = u32::from_le_bytes(*b"MRET");
 pub const PAGE_FORMAT: u32 = 1;

@@ -23,7 +23,7 @@
 //! repeat of the last sequence is reported as [`FrameError::Duplicate`] so
 //! the firmware can re-send its last answer (the host retries on timeout).
 use crc::{Crc, CRC_32_ISO_HDLC};
-use mre_core::flags::Flags;
+use mre_algorithm::flags::Flags;
 
 pub const FRAME_LEN: usize = 24;
 pub const SYNC: [u8; 2] = [0xA5, 0x5A];
@@ -421,17 +421,17 @@ pub const CONFIG_MAX_WORDS: usize =
 const TERMS_MAX_WORDS: usize = 3 + MAX_CURRENTS;
 
 fn terms_words(version: u16, count: usize) -> usize {
-    if version >= mre_core::table::FORMAT_VERSION_2 {
+    if version >= mre_algorithm::table::FORMAT_VERSION_2 {
         count.saturating_add(3)
     } else {
         0
     }
 }
 /// Version 3 tables then append their installation, one word per value.
-const INSTALLATION_WORDS: usize = mre_core::installation::FIELD_COUNT;
+const INSTALLATION_WORDS: usize = mre_algorithm::installation::FIELD_COUNT;
 
 fn installation_words(version: u16) -> usize {
-    if version >= mre_core::table::FORMAT_VERSION_3 {
+    if version >= mre_algorithm::table::FORMAT_VERSION_3 {
         INSTALLATION_WORDS
     } else {
         0
@@ -449,10 +449,10 @@ fn blob_words(version: u16, count: usize) -> Option<usize> {
 }
 const CONTROL_WORDS: usize = 7;
 
-use mre_core::control::ControlConfig;
-use mre_core::installation::{Installation, DEFAULT_INSTALLATION};
-use mre_core::law::{LawConfig, ReboundPolicy};
-use mre_core::table::{CurrentEntry, ModelTerms, Quartic, Table, TableImage, MAX_CURRENTS};
+use mre_algorithm::control::ControlConfig;
+use mre_algorithm::installation::{Installation, DEFAULT_INSTALLATION};
+use mre_algorithm::law::{LawConfig, ReboundPolicy};
+use mre_algorithm::table::{CurrentEntry, ModelTerms, Quartic, Table, TableImage, MAX_CURRENTS};
 
 /// One received piece of the configuration blob.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -527,13 +527,13 @@ pub fn config_frames(words: &[u32]) -> impl Iterator<Item = [u8; FRAME_LEN]> + '
 pub enum ConfigBlobError {
     /// Wrong length, a missing word, or a word index out of range.
     Incomplete,
-    Table(mre_core::table::TableError),
-    Control(mre_core::control::ControlConfigError),
+    Table(mre_algorithm::table::TableError),
+    Control(mre_algorithm::control::ControlConfigError),
     BadRebound,
     /// Consistent, but outside what the board's hardware takes (`limits`).
-    OutOfLimits(mre_core::limits::Limit),
+    OutOfLimits(mre_algorithm::limits::Limit),
     /// The table's installation (format 3) is outside the board's limits.
-    InstallationOutOfLimits(mre_core::limits::InstallationLimit),
+    InstallationOutOfLimits(mre_algorithm::limits::InstallationLimit),
     /// The configuration's mass, stroke, coil or sensor values are not the
     /// ones the table's installation (format 3) sets (`Installation::apply`).
     InstallationMismatch,
@@ -719,15 +719,15 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
         overrun_limit,
         overrun_window,
         // Board constants (the sensor's wiring), not uploaded.
-        v_sensor_full_scale_m_s: mre_core::control::V_SENSOR_FULL_SCALE_M_S,
-        disagree_m_s: mre_core::control::DISAGREE_M_S,
-        disagree_samples: mre_core::control::DISAGREE_SAMPLES,
+        v_sensor_full_scale_m_s: mre_algorithm::control::V_SENSOR_FULL_SCALE_M_S,
+        disagree_m_s: mre_algorithm::control::DISAGREE_M_S,
+        disagree_samples: mre_algorithm::control::DISAGREE_SAMPLES,
     };
-    if table.version() >= mre_core::table::FORMAT_VERSION_3 {
+    if table.version() >= mre_algorithm::table::FORMAT_VERSION_3 {
         // The installation sets the board's wiring (not uploaded) and must
         // agree with the uploaded law values it determines.
         let installation = table.installation();
-        mre_core::limits::check_installation_board(installation).map_err(ConfigBlobError::InstallationOutOfLimits)?;
+        mre_algorithm::limits::check_installation_board(installation).map_err(ConfigBlobError::InstallationOutOfLimits)?;
         let mut uploaded = cfg;
         installation.apply(&mut cfg);
         // What is not uploaded (the drive range, the armed current, the
@@ -743,7 +743,7 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
         }
     }
     cfg.validate().map_err(ConfigBlobError::Control)?;
-    mre_core::limits::check_board(&cfg).map_err(ConfigBlobError::OutOfLimits)?;
+    mre_algorithm::limits::check_board(&cfg).map_err(ConfigBlobError::OutOfLimits)?;
     Ok((table, cfg))
 }
 

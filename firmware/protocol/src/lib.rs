@@ -4,10 +4,11 @@
 //! tools (`mre pil`, `mre upload`) link the same code.
 //!
 //! May not: touch hardware, allocate, panic, or hold `unsafe` code (a board
-//! implements `flash_table::TablePage`). Depends on the algorithm (the table
-//! a page carries) and the runtime (the control configuration a blob
-//! carries, the board's hard limits, the controller's at-rest gate); nothing
-//! depends on it but the image and the host tools.
+//! implements `flash_table::TablePage`). Depends on the algorithm only (the
+//! table a page carries, the control configuration a blob carries, the
+//! board's hard limits, the controller's at-rest gate), not on the runtime:
+//! the host tools link it without the board's runtime. Nothing depends on it
+//! but the image, the host tools and the tests.
 #![cfg_attr(not(test), no_std)]
 #![forbid(unsafe_code)]
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::indexing_slicing)]

@@ -22,10 +22,10 @@ use crate::frame::{
     CommandFrame, ConfigBlobError, ConfigChunk, ConfigCollector, Incoming, SampleReceiver, FRAME_LEN, PING_SEQ,
 };
 use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
-use mre_core::control::{ControlConfig, ControlConfigError, Controller};
-use mre_core::law::Command;
-use mre_core::table::{Table, TableError, TableImage};
-use mre_core::Flags;
+use mre_algorithm::control::{ControlConfig, ControlConfigError, Controller};
+use mre_algorithm::law::Command;
+use mre_algorithm::table::{Table, TableError, TableImage};
+use mre_algorithm::Flags;
 
 /// Why an upload was not stored.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -87,7 +87,7 @@ impl UploadGate {
         let still = !ctl.latched().is_fault()
             && !cmd.flags.is_fault()
             && cmd.target_force_n == 0.0
-            && cmd.branch == mre_core::Branch::Extension
+            && cmd.branch == mre_algorithm::Branch::Extension
             && ctl.is_at_rest();
         self.still_periods = if still { self.still_periods.saturating_add(1) } else { 0 };
     }
@@ -243,9 +243,9 @@ pub enum CommitAnswer {
     /// The table or configuration is invalid.
     Invalid,
     /// A value is outside the board's hard limits.
-    OutOfLimits(mre_core::limits::Limit),
+    OutOfLimits(mre_algorithm::limits::Limit),
     /// A table's installation value is outside the board's hard limits.
-    InstallationOutOfLimits(mre_core::limits::InstallationLimit),
+    InstallationOutOfLimits(mre_algorithm::limits::InstallationLimit),
     /// Valid, but the damper was not at rest: retry when it is still.
     NotAtRest,
     /// The flash page could not be written or read back.
@@ -304,10 +304,10 @@ impl CommitAnswer {
                 let k = code.checked_sub(CODE_INSTALLATION_OUT_OF_LIMITS)?;
                 u8::try_from(k)
                     .ok()
-                    .filter(|k| usize::from(*k) < mre_core::installation::FIELD_COUNT)
-                    .map(|k| CommitAnswer::InstallationOutOfLimits(mre_core::limits::InstallationLimit(k)))
+                    .filter(|k| usize::from(*k) < mre_algorithm::installation::FIELD_COUNT)
+                    .map(|k| CommitAnswer::InstallationOutOfLimits(mre_algorithm::limits::InstallationLimit(k)))
             }
-            _ => mre_core::limits::Limit::ALL
+            _ => mre_algorithm::limits::Limit::ALL
                 .get(usize::from(code.checked_sub(CODE_OUT_OF_LIMITS)?))
                 .map(|l| CommitAnswer::OutOfLimits(*l)),
         }
@@ -355,7 +355,7 @@ pub fn choose_boot_table<P: TablePage + ?Sized>(page: &mut P, built_in: &TableIm
             // A built-in installation outside the board's limits is refused
             // like a corrupt table: fail-safe current, TABLE_FAULT latched.
             let table = Table::from_image(built_in).and_then(|t| {
-                mre_core::limits::check_installation_board(t.installation())
+                mre_algorithm::limits::check_installation_board(t.installation())
                     .map(|()| t)
                     .map_err(|l| TableError::BadInstallation { field: l.name() })
             });
@@ -373,7 +373,7 @@ pub fn choose_boot_table<P: TablePage + ?Sized>(page: &mut P, built_in: &TableIm
 }
 
 /// The defaults at `rate_hz` with `table`'s installation applied (a format
-/// 1 or 2 table's is [`mre_core::installation::DEFAULT_INSTALLATION`], which
+/// 1 or 2 table's is [`mre_algorithm::installation::DEFAULT_INSTALLATION`], which
 /// the defaults already are).
 pub fn installed_config(table: &Table, rate_hz: u32) -> Result<ControlConfig, ControlConfigError> {
     let mut cfg = ControlConfig::at_rate(rate_hz)?;

@@ -127,8 +127,8 @@ impl ResetCause {
 /// `installation_min.coil_rating_a`): an installed 1 A coil is not driven
 /// at the default's 2 A while the table page is still unread.
 pub const BOOT_FAILSAFE_CURRENT_A: f32 = {
-    let default = crate::law::LawConfig::DEFAULT_FAILSAFE_CURRENT_A;
-    let weakest = crate::limits::STM32L4_BOARD.installation_min.coil_rating_a;
+    let default = mre_algorithm::law::LawConfig::DEFAULT_FAILSAFE_CURRENT_A;
+    let weakest = mre_algorithm::limits::STM32L4_BOARD.installation_min.coil_rating_a;
     if default < weakest {
         default
     } else {
@@ -151,9 +151,9 @@ pub enum CoilAfterFault {
 /// PWM on the pin) had been started by `init`; before that only the pin's low
 /// level exists. `latched`: the faults the control task had latched. A
 /// latched over-current keeps the drive removed, as in the loop
-/// (`crate::overcurrent`); otherwise a running drive holds the fail-safe.
-pub fn coil_after_fault(drive_running: bool, latched: crate::Flags, failsafe_current_a: f32) -> CoilAfterFault {
-    if drive_running && !latched.contains(crate::Flags::OVER_CURRENT) {
+/// (`mre_algorithm::overcurrent`); otherwise a running drive holds the fail-safe.
+pub fn coil_after_fault(drive_running: bool, latched: mre_algorithm::Flags, failsafe_current_a: f32) -> CoilAfterFault {
+    if drive_running && !latched.contains(mre_algorithm::Flags::OVER_CURRENT) {
         CoilAfterFault::FailSafe {
             current_a: failsafe_current_a,
         }
@@ -186,13 +186,13 @@ impl SelfTest {
     /// `CURRENT_SENSE` (the coil current cannot be trusted), a table that
     /// fails its CRC `TABLE_FAULT`. Neither clears with B1
     /// (`Controller::latch_boot_faults`).
-    pub fn faults(&self) -> crate::Flags {
-        let mut f = crate::Flags::NONE;
+    pub fn faults(&self) -> mre_algorithm::Flags {
+        let mut f = mre_algorithm::Flags::NONE;
         if !self.sense_converts || !self.pwm_reads_back {
-            f |= crate::Flags::CURRENT_SENSE;
+            f |= mre_algorithm::Flags::CURRENT_SENSE;
         }
         if !self.table_crc_holds {
-            f |= crate::Flags::TABLE_FAULT;
+            f |= mre_algorithm::Flags::TABLE_FAULT;
         }
         f
     }

@@ -94,7 +94,7 @@ pub fn rest_offset(samples: &[f32], expected: f32, limits: RestLimits) -> Result
         return Err(CalError::NotAtRest { spread });
     }
     let offset = sum / samples.len() as f32 - expected;
-    if crate::math::abs(offset) > limits.max_offset {
+    if mre_algorithm::math::abs(offset) > limits.max_offset {
         return Err(CalError::OutOfRange(offset));
     }
     Ok(offset)

@@ -6,7 +6,7 @@
 //! back to back, microseconds apart: the law would run several "periods" on
 //! one sample interval. The board instead asks [`Pacer::wake`] how many
 //! periods were missed, re-phases its ticker when any were, and hands the
-//! count to [`Controller::record_missed_periods`](crate::control::Controller::record_missed_periods).
+//! count to [`Controller::record_missed_periods`](mre_algorithm::control::Controller::record_missed_periods).
 
 /// Deadline of the period in progress. Pure arithmetic, no clock.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -3,7 +3,7 @@
 //! - no fault: a 50 ms heartbeat flash once a second;
 //! - a latched fault: its blink code (1–9 flashes of 100 ms, 100 ms apart)
 //!   at the start of every 2 s cycle. The most serious fault is shown.
-use crate::flags::Flags;
+use mre_algorithm::flags::Flags;
 
 /// The board updates the LED every slot.
 pub const SLOT_MS: u32 = 50;

@@ -3,7 +3,7 @@
 //! on the ST-LINK VCP (`mre_protocol::upload`).
 use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use embassy_stm32::usart::BufferedUart;
-use mre_core::table::TableImage;
+use mre_algorithm::table::TableImage;
 use mre_protocol::upload::{choose_boot_table, BootTable};
 
 /// The flash page reserved for an uploaded table (`memory.x`'s `TABLE_PAGE`),

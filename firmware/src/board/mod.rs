@@ -58,13 +58,13 @@ pub trait Board: Sized {
     /// The uploaded table if its page holds a valid one, else `built_in`.
     fn boot_table(
         &mut self,
-        built_in: &mre_core::table::TableImage<'_>,
+        built_in: &mre_algorithm::table::TableImage<'_>,
         rate_hz: u32,
     ) -> mre_protocol::upload::BootTable;
     /// Starts the table upload receiver (a no-op where there is none).
     fn spawn_uplink(&mut self, spawner: &embassy_executor::Spawner);
     /// The power-on self-test's results.
-    fn self_test(&self, table_crc_holds: bool) -> mre_core::boot::SelfTest;
+    fn self_test(&self, table_crc_holds: bool) -> mre_runtime::boot::SelfTest;
     /// The installed fail-safe duty, re-commanded once the table is known.
     fn hold_fail_safe(&mut self);
     /// Right before the first period (the watchdog's running timeout).
@@ -76,12 +76,12 @@ pub trait Board: Sized {
     fn feed_watchdog(&mut self);
 }
 
-use mre_core::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
+use mre_algorithm::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
 
 /// Whether the damper is at rest, for the table upload: written by the
 /// control task after each step, read on an upload's commit.
 pub static UPLOAD_GATE: mre_protocol::upload::SharedUploadGate = mre_protocol::upload::SharedUploadGate::new();
-use mre_core::law::Command;
+use mre_algorithm::law::Command;
 use mre_protocol::frame::LinkStats;
 
 /// What the control task needs from a board's I/O besides the core's sensor
@@ -99,19 +99,19 @@ pub trait BoardIo: DisplacementSensor + VelocitySensor + Coil {
     /// A calibration deferred by the reset cause that finished this period
     /// (hardware; once), for the thread-mode log.
     fn take_deferred_calibration(&mut self) -> Option<DeferredCalibration>;
-    /// The current-sense channel for the monitor (`mre_core::overcurrent`):
+    /// The current-sense channel for the monitor (`mre_algorithm::overcurrent`):
     /// on hardware the shunt at mid on-time, `Stale` when no conversion ended
     /// since the last period (ADC3's end-of-injected-conversion flag); in PIL
     /// the plant's coil current, `Stale` when a frame stops carrying one.
     /// `None`: no channel (PIL before the host sent a current).
-    fn coil_current(&mut self) -> Option<mre_core::overcurrent::Sense>;
+    fn coil_current(&mut self) -> Option<mre_algorithm::overcurrent::Sense>;
 }
 
 /// The outcome of the VDDA and current-sense calibration run at rest.
 #[derive(Clone, Copy)]
 pub struct DeferredCalibration {
-    pub vdda: Result<f32, mre_core::calibration::CalError>,
-    pub sense_zero_a: Result<f32, mre_core::calibration::CalError>,
+    pub vdda: Result<f32, mre_runtime::calibration::CalError>,
+    pub sense_zero_a: Result<f32, mre_runtime::calibration::CalError>,
 }
 
 /// The status LED and the user button (thread mode).
@@ -130,7 +130,7 @@ pub trait StatusIo {
 // sets the output low (BSRR.BR4) before making PB4 an output with a
 // pull-down, so the pin never drives high. Off (0 A) is the only state a
 // bare GPIO can hold; `init` then starts the fail-safe duty as the reset
-// cause decides (`mre_core::boot::BootPlan`). RM0351 §6.4.17 (RCC_AHB2ENR,
+// cause decides (`mre_runtime::boot::BootPlan`). RM0351 §6.4.17 (RCC_AHB2ENR,
 // corroborated by a public citation), §8.4 (GPIO registers, unverified); the addresses and bits
 // match ST's CMSIS `stm32l475xx.h` V1.3.1: RCC 0x4002_1000 + AHB2ENR 0x4C,
 // GPIOBEN bit 1, GPIOB 0x4800_0400, PUPDR 0x0C, BSRR 0x18. Instructions from the reset vector to here:
@@ -195,12 +195,12 @@ pub static LATCHED_FAULTS: core::sync::atomic::AtomicU32 = core::sync::atomic::A
 
 /// The fail-safe current (A, f32 bits) every board path drives: init, the
 /// boot-failure halt, the panic, HardFault and NMI handlers. Until the boot
-/// table is read it is [`mre_core::boot::BOOT_FAILSAFE_CURRENT_A`] (no
+/// table is read it is [`mre_runtime::boot::BOOT_FAILSAFE_CURRENT_A`] (no
 /// higher than the weakest coil the board's limits admit); `main` then sets
 /// the installed configuration's (`cfg.law.failsafe_current_a`, never above
 /// the installed coil's rating), so a 1 A coil is never driven at 2 A.
 static FAILSAFE_CURRENT_A_BITS: core::sync::atomic::AtomicU32 =
-    core::sync::atomic::AtomicU32::new(mre_core::boot::BOOT_FAILSAFE_CURRENT_A.to_bits());
+    core::sync::atomic::AtomicU32::new(mre_runtime::boot::BOOT_FAILSAFE_CURRENT_A.to_bits());
 
 pub fn failsafe_current_a() -> f32 {
     f32::from_bits(FAILSAFE_CURRENT_A_BITS.load(core::sync::atomic::Ordering::Relaxed))
@@ -224,12 +224,12 @@ pub trait FaultCoil {
 }
 
 /// The coil to its safe state from a panic or a HardFault, on every board:
-/// the decision is `mre_core::boot::coil_after_fault` (fail-safe current
+/// the decision is `mre_runtime::boot::coil_after_fault` (fail-safe current
 /// through a running drive; off before the drive runs or after a latched
 /// over-current), the register writes are the board's `FaultCoil`.
-pub fn coil_safe_from_a_fault(coil: &mut impl FaultCoil) -> mre_core::boot::CoilAfterFault {
-    use mre_core::boot::{coil_after_fault, CoilAfterFault};
-    let latched = mre_core::Flags(LATCHED_FAULTS.load(core::sync::atomic::Ordering::Relaxed));
+pub fn coil_safe_from_a_fault(coil: &mut impl FaultCoil) -> mre_runtime::boot::CoilAfterFault {
+    use mre_runtime::boot::{coil_after_fault, CoilAfterFault};
+    let latched = mre_algorithm::Flags(LATCHED_FAULTS.load(core::sync::atomic::Ordering::Relaxed));
     let command = coil_after_fault(coil.drive_running(), latched, failsafe_current_a());
     match command {
         CoilAfterFault::FailSafe { current_a } => coil.hold_current_a(current_a),

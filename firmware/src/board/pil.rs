@@ -22,11 +22,11 @@ use embassy_stm32::pac;
 use embassy_time::Timer;
 use embassy_time_driver::Driver;
 use embassy_time_queue_utils::Queue;
-use mre_core::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
-use mre_core::law::Command;
-use mre_core::overcurrent::Sense;
-use mre_core::table::TableImage;
-use mre_core::Flags;
+use mre_algorithm::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
+use mre_algorithm::law::Command;
+use mre_algorithm::overcurrent::Sense;
+use mre_algorithm::table::TableImage;
+use mre_algorithm::Flags;
 use mre_protocol::flash_table::RamPage;
 use mre_protocol::frame::{
     CommandFrame, FrameError, Incoming, LinkStats, SampleFrame, SampleReceiver, END_OF_RUN_SEQ, FRAME_LEN,
@@ -216,8 +216,8 @@ pub fn init(_rate_hz: u32) -> (Board, Status) {
 impl Board {
     /// The power-on self-test: QEMU models no ADC and no TIM3, so the
     /// hardware checks pass by construction here; the table's is real.
-    pub fn self_test(&self, table_crc_holds: bool) -> mre_core::boot::SelfTest {
-        mre_core::boot::SelfTest {
+    pub fn self_test(&self, table_crc_holds: bool) -> mre_runtime::boot::SelfTest {
+        mre_runtime::boot::SelfTest {
             sense_converts: true,
             pwm_reads_back: true,
             table_crc_holds,
@@ -521,7 +521,7 @@ impl super::Board for Board {
         spawn_uplink(spawner, self)
     }
 
-    fn self_test(&self, table_crc_holds: bool) -> mre_core::boot::SelfTest {
+    fn self_test(&self, table_crc_holds: bool) -> mre_runtime::boot::SelfTest {
         Board::self_test(self, table_crc_holds)
     }
 
@@ -563,9 +563,9 @@ impl super::Board for Board {
 #[cfg(feature = "bench")]
 pub mod icount {
     use core::hint::black_box;
-    use mre_core::control::Controller;
-    use mre_core::table::ModelTerms;
-    use mre_core::{Branch, Table};
+    use mre_algorithm::control::Controller;
+    use mre_algorithm::table::ModelTerms;
+    use mre_algorithm::{Branch, Table};
 
     #[inline(never)]
     #[no_mangle]
@@ -643,7 +643,7 @@ pub mod icount {
             // At the stop v² rounds to ±0: no square root of a negative.
             let v2 = DROP_V0_M_S * DROP_V0_M_S - 2.0 * a * x_mm * 1.0e-3;
             let v_m_s = if v2 > 0.0 {
-                mre_core::math::sqrt_precise(v2)
+                mre_algorithm::math::sqrt_precise(v2)
             } else {
                 0.0
             };

@@ -15,11 +15,11 @@ use embassy_stm32::usart::BufferedUart;
 use super::flash_upload::Uplink;
 use embassy_stm32::wdg::IndependentWatchdog;
 use embassy_time::{Duration, Instant, Ticker};
-use mre_core::boot::{CalibrationTime, FirstCommand, ResetCause};
-use mre_core::control::{open_loop_duty, Coil, Controller, DisplacementSensor, VelocitySensor};
-use mre_core::law::Command;
-use mre_core::overcurrent::Sense;
-use mre_core::pacing::Pacer;
+use mre_runtime::boot::{CalibrationTime, FirstCommand, ResetCause};
+use mre_algorithm::control::{open_loop_duty, Coil, Controller, DisplacementSensor, VelocitySensor};
+use mre_algorithm::law::Command;
+use mre_algorithm::overcurrent::Sense;
+use mre_runtime::pacing::Pacer;
 
 #[cfg(feature = "board-b-l475e-iot01a")]
 pub const NAME: &str = "B-L475E-IOT01A";
@@ -165,7 +165,7 @@ pub struct Io {
     i_raw_a: f32,
     /// The VDDA and current-sense calibration deferred until at rest
     /// (`BootPlan`), and its outcome once, for the log.
-    deferred: Option<mre_core::calibration::DeferredSenseZero>,
+    deferred: Option<mre_runtime::calibration::DeferredSenseZero>,
     deferred_done: Option<super::DeferredCalibration>,
     pwm: SimplePwmChannel<'static, TIM3>,
     max_duty: u32,
@@ -183,7 +183,7 @@ pub struct Board {
     pub watchdog: IndependentWatchdog<'static, IWDG>,
     /// Read by `boot_table`, taken by `spawn_uplink` (`flash_upload`).
     uplink: Option<Uplink>,
-    /// Power-on self-test results from `init` (`mre_core::boot::SelfTest`).
+    /// Power-on self-test results from `init` (`mre_runtime::boot::SelfTest`).
     sense_converts: bool,
     pwm_reads_back: bool,
 }
@@ -291,7 +291,7 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
     }
     if plan.calibration == CalibrationTime::DeferredUntilAtRest {
         defmt::info!("calibration: VDDA and current sense deferred until the damper is at rest");
-        io.deferred = Some(mre_core::calibration::DeferredSenseZero::default());
+        io.deferred = Some(mre_runtime::calibration::DeferredSenseZero::default());
     }
     let adc3_enabled = io.start_current_sense();
     // Until the loop runs, hold the fail-safe current (stiffest damper).
@@ -372,8 +372,8 @@ fn duty_compare(duty: f32, max_duty: u32) -> u32 {
 
 impl Board {
     /// The power-on self-test: `init`'s two hardware checks and the table's.
-    pub fn self_test(&self, table_crc_holds: bool) -> mre_core::boot::SelfTest {
-        mre_core::boot::SelfTest {
+    pub fn self_test(&self, table_crc_holds: bool) -> mre_runtime::boot::SelfTest {
+        mre_runtime::boot::SelfTest {
             sense_converts: self.sense_converts,
             pwm_reads_back: self.pwm_reads_back,
             table_crc_holds,
@@ -427,7 +427,7 @@ impl Io {
     /// Boot calibration (firmware/README.md): VDDA from VREFINT (here), the
     /// current-sense zero with the PWM off, then the displacement offset and
     /// the velocity zero with the mass at rest. Each result is range-checked
-    /// (`mre_core::calibration`) and logged; a refused one leaves the
+    /// (`mre_runtime::calibration`) and logged; a refused one leaves the
     /// nominal scaling.
     fn calibrate_vdda(&mut self) {
         match self.measure_vdda() {
@@ -442,17 +442,17 @@ impl Io {
 
     /// One VREFINT conversion (~3 µs): VDDA, applied if accepted. Does not
     /// log (the control task calls it for a deferred calibration).
-    fn measure_vdda(&mut self) -> Result<f32, mre_core::calibration::CalError> {
+    fn measure_vdda(&mut self) -> Result<f32, mre_runtime::calibration::CalError> {
         let mut vref = self.adc_x.enable_vrefint();
         let raw = self.adc_x.blocking_read(&mut vref, SampleTime::CYCLES247_5);
-        let vdda = mre_core::calibration::vdda_v(raw, vref.calibrated_value())?;
+        let vdda = mre_runtime::calibration::vdda_v(raw, vref.calibrated_value())?;
         self.v_per_lsb = vdda / ADC_FULL_SCALE;
         Ok(vdda)
     }
 
     /// The current-sense offset, with the coil off (PWM at 0 %).
     fn calibrate_current_sense(&mut self) {
-        use mre_core::calibration::I_SENSE_REST;
+        use mre_runtime::calibration::I_SENSE_REST;
         self.i_offset_a = self.rest_zero("current sense zero (A)", I_SENSE_REST, |io| {
             let (adc, ch) = &mut io.sense;
             let code = adc.blocking_read(ch, SAMPLE_TIME);
@@ -548,7 +548,7 @@ impl Io {
 
     /// The displacement offset and the velocity zero with the mass at rest.
     fn calibrate_at_rest(&mut self) {
-        use mre_core::calibration::{V_REST, X_REST};
+        use mre_runtime::calibration::{V_REST, X_REST};
         self.x_offset_mm = self.rest_zero("x offset (mm)", X_REST, |io| io.read_x_mm());
         if self.velocity.is_some() {
             self.v_zero_m_s = self.rest_zero("velocity zero (m/s)", V_REST, |io| io.read_v_m_s().unwrap_or(f32::NAN));
@@ -559,7 +559,7 @@ impl Io {
     fn rest_zero(
         &mut self,
         what: &str,
-        limits: mre_core::calibration::RestLimits,
+        limits: mre_runtime::calibration::RestLimits,
         mut read: impl FnMut(&mut Self) -> f32,
     ) -> f32 {
         let mut samples = [0.0f32; CAL_SAMPLES];
@@ -569,7 +569,7 @@ impl Io {
             // Boot is supervised (5 ms): each calibration is 3.2 ms.
             feed_watchdog();
         }
-        match mre_core::calibration::rest_offset(&samples, 0.0, limits) {
+        match mre_runtime::calibration::rest_offset(&samples, 0.0, limits) {
             Ok(zero) => {
                 defmt::info!("calibration: {=str} {=f32}", what, zero);
                 zero
@@ -677,8 +677,8 @@ impl Coil for Io {
 /// operating points, which includes branch data, five Horner quartics and
 /// the interpolation), min/mean/max.
 #[cfg(feature = "bench")]
-pub fn bench_model_step(table: Option<&mre_core::Table>) {
-    use mre_core::Branch;
+pub fn bench_model_step(table: Option<&mre_algorithm::Table>) {
+    use mre_algorithm::Branch;
     let Some(table) = table else { return };
     let (mut min, mut max, mut sum) = (u32::MAX, 0u32, 0u32);
     let points = [(0.1f32, 600.0f32), (0.2, 1726.25), (0.5, 3000.0), (0.9, 9000.0)];
@@ -820,7 +820,7 @@ impl super::Board for Board {
 
     fn boot_table(
         &mut self,
-        built_in: &mre_core::table::TableImage<'_>,
+        built_in: &mre_algorithm::table::TableImage<'_>,
         rate_hz: u32,
     ) -> mre_protocol::upload::BootTable {
         super::flash_upload::boot_table(&mut self.uplink, built_in, rate_hz)
@@ -830,7 +830,7 @@ impl super::Board for Board {
         super::flash_upload::spawn_uplink(spawner, &mut self.uplink)
     }
 
-    fn self_test(&self, table_crc_holds: bool) -> mre_core::boot::SelfTest {
+    fn self_test(&self, table_crc_holds: bool) -> mre_runtime::boot::SelfTest {
         Board::self_test(self, table_crc_holds)
     }
 

@@ -63,6 +63,6 @@ fn main() {
     }
     let (fmu, core) = (median(fmu_ns), median(core_ns));
     println!("damper.fmu via fmi (set 3 inputs, get force): {fmu:.1} ns per evaluation");
-    println!("mre_core Table::force, same inputs:          {core:.1} ns per evaluation");
+    println!("mre_algorithm Table::force, same inputs:          {core:.1} ns per evaluation");
     println!("ratio FMU / core: {:.1}", fmu / core);
 }

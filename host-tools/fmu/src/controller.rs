@@ -1,4 +1,4 @@
-//! The impact controller as the board runs it: `mre_core::control::Controller`
+//! The impact controller as the board runs it: `mre_algorithm::control::Controller`
 //! (the law, its velocity cross-checks and fault latches) stepped once per
 //! control period of the configuration on the page, with a measured
 //! velocity (the board's `velocity-sensor` wiring).
@@ -17,10 +17,10 @@
 use fmi::fmi3::{Fmi3Error, Fmi3Res};
 use fmi_export::fmi3::{CSDoStepResult, Context, DefaultLoggingCategory, UserModel};
 use fmi_export::FmuModel;
-use mre_core::control;
-use mre_core::law::ImpactLaw;
+use mre_algorithm::control;
+use mre_algorithm::law::ImpactLaw;
 
-/// MRE impact controller as the board runs it (mre_core::control::Controller at the board's control rate): measured displacement and velocity in, commanded coil current and drive voltage out
+/// MRE impact controller as the board runs it (mre_algorithm::control::Controller at the board's control rate): measured displacement and velocity in, commanded coil current and drive voltage out
 #[derive(FmuModel, Default, Debug)]
 #[model(model_exchange = false, co_simulation = true, user_model = false)]
 pub struct Controller {
@@ -36,7 +36,7 @@ pub struct Controller {
     /// Force the law asked for at the last tick (N); 0 when rebounding or fail-safe
     #[variable(causality = Output, variability = Discrete, initial = Calculated)]
     pub target_force_n: f64,
-    /// Status flags of the last tick (mre_core::flags, firmware/README.md): 1 = X_CLAMPED (bit 0), 256 = FAIL_SAFE (bit 8)
+    /// Status flags of the last tick (mre_algorithm::flags, firmware/README.md): 1 = X_CLAMPED (bit 0), 256 = FAIL_SAFE (bit 8)
     #[variable(causality = Output, variability = Discrete, initial = Calculated)]
     pub flags: u32,
     /// Control period of the board (s): one control tick per period

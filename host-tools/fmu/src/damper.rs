@@ -18,10 +18,10 @@ use fmi::fmi3::{Fmi3Error, Fmi3Res};
 use fmi::EventFlags;
 use fmi_export::fmi3::{Context, DefaultLoggingCategory, UserModel};
 use fmi_export::FmuModel;
-use mre_core::model::Branch;
-use mre_core::Table;
+use mre_algorithm::model::Branch;
+use mre_algorithm::Table;
 
-/// MRE impact damper identified by mre: contact force from displacement, velocity and coil current, evaluated by the board's control core (mre_core)
+/// MRE impact damper identified by mre: contact force from displacement, velocity and coil current, evaluated by the board's control core (mre_algorithm)
 #[derive(FmuModel, Default, Debug)]
 #[model(model_exchange = true, co_simulation = true, user_model = false)]
 pub struct Damper {
@@ -34,7 +34,7 @@ pub struct Damper {
     /// Coil current (A); clamped to the tabulated range
     #[variable(causality = Input, variability = Continuous, start = 0.0)]
     pub current_a: f64,
-    /// Damper force on the impacting mass (N), positive resisting compression (computed in f32 by mre_core, as on the board)
+    /// Damper force on the impacting mass (N), positive resisting compression (computed in f32 by mre_algorithm, as on the board)
     #[variable(causality = Output, variability = Continuous, initial = Calculated)]
     pub force_n: f64,
     /// Saturation current I_s of the model file (A): currents interpolate linearly in tanh(I/I_s); 0 = linear in I

@@ -1,7 +1,7 @@
 //! The identified damper and the impact controller as FMI 3.0 and FMI 2.0
 //! models (the 2.0 functions in [`fmi2`], over the same models).
 //!
-//! Both evaluate through `mre_core`, the code the board runs. An FMU carries
+//! Both evaluate through `mre_algorithm`, the code the board runs. An FMU carries
 //! its table and installation as `resources/table.page`: the 2 KiB flash
 //! page the board stores after `mre upload` (`mre_protocol::flash_table`), read
 //! back through the core's own loader (magic, CRC, table and configuration

@@ -1,7 +1,7 @@
 //! `resources/table.page`: the table and the control configuration as the
 //! board's flash page holds them.
-use mre_core::control::ControlConfig;
-use mre_core::Table;
+use mre_algorithm::control::ControlConfig;
+use mre_algorithm::Table;
 use mre_protocol::flash_table::{self, RamPage, PAGE_BYTES};
 use std::path::Path;
 

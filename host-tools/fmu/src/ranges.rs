@@ -16,7 +16,7 @@
 //! branch without viscous force), so the force stays finite; the controller
 //! feeds it to its sensor checks, which latch the fail-safe current.
 use crate::describe::Kind;
-use mre_core::Table;
+use mre_algorithm::Table;
 
 /// One input's declared range (SI units, as the variable's name says).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -9,7 +9,7 @@ use crate::demo::DemoStep;
 use crate::plant::closed_loop::{run_controlled, run_passive, Comparison, RunResult, RunSpec};
 use crate::plant::synth::{draw_plant, SynthPlan};
 use anyhow::{anyhow, Result};
-use mre_core::Table;
+use mre_algorithm::Table;
 use std::path::Path;
 
 /// The set and the seed `data/generate.sh` made it with (its plant).

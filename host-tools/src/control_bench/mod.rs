@@ -29,10 +29,10 @@ use crate::plant::stepper::{simulate, CurrentSource, ImpactConfig, ImpactSummary
 use crate::plant::synth::{draw_base_plant, draw_plant, synthesize_plant, SynthPlan, SYNTH_PRECISION};
 use anyhow::{anyhow, Context, Result};
 use limit::{physical_limit, Limit};
-use mre_core::installation::Installation;
-use mre_core::law::stopping_force_n;
-use mre_core::model::Branch;
-use mre_core::Table;
+use mre_algorithm::installation::Installation;
+use mre_algorithm::law::stopping_force_n;
+use mre_algorithm::model::Branch;
+use mre_algorithm::Table;
 use rayon::prelude::*;
 use serde::Serialize;
 

@@ -4,7 +4,7 @@
 //! to the coil's own L/R (what a data sheet or a step test gives).
 //! - **with a prediction**: the drop starts [`APPROACH_MM`] before contact and
 //!   the law's displacement range includes the approach, so the law predicts
-//!   the impact velocity from its approach samples (`mre_core::law`); the
+//!   the impact velocity from its approach samples (`mre_algorithm::law`); the
 //!   10 % runs scale the velocity it samples on the approach by 1.1 and 0.9;
 //! - **without**: (c) as the other cases fly it (no approach seen: the coil
 //!   idles at the robust current), here also over the installation's impact
@@ -19,8 +19,8 @@ use super::{CaseOutcome, RunOutcome};
 use crate::plant::closed_loop::{law_config, run_passive, SimSetup};
 use crate::plant::stepper::{simulate, CurrentSource, ImpactConfig, ImpactSummary, Trajectory};
 use anyhow::{anyhow, Result};
-use mre_core::law::ImpactLaw;
-use mre_core::Table;
+use mre_algorithm::law::ImpactLaw;
+use mre_algorithm::Table;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -224,7 +224,7 @@ pub fn run_real_coil(tau_ms: f64, setup: &SimSetup, table: &Table, limit: &Limit
     let stroke = setup.usable_stroke_mm();
     let coil_tau = Table::with_terms(
         table.entries(),
-        mre_core::table::ModelTerms {
+        mre_algorithm::table::ModelTerms {
             coil_tau_s: (tau_ms * 1e-3) as f32,
             ..*table.terms()
         },

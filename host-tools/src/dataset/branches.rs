@@ -4,7 +4,7 @@
 //! ([`crate::signal::branch_band_m_s`]) left out, their branch being chance.
 use super::{Recording, Samples};
 use crate::signal::{branch_band_m_s, clear_branch};
-use mre_core::model::Branch;
+use mre_algorithm::model::Branch;
 
 /// The (x, F) samples of one branch.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -5,8 +5,8 @@
 use super::design::{Designs, Layout, Solution, Terms, QUARTIC_TERMS};
 use super::prepared::Prepared;
 use anyhow::{anyhow, Result};
-use mre_core::model::Branch;
-use mre_core::table::{CurrentEntry, Quartic, Table};
+use mre_algorithm::model::Branch;
+use mre_algorithm::table::{CurrentEntry, Quartic, Table};
 
 /// The baseline table from a least-squares solution of the plain design.
 pub fn table_from_solution(prep: &Prepared, sol: &Solution) -> Result<Table> {

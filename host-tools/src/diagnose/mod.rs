@@ -36,7 +36,7 @@ use anyhow::Result;
 use candidates::Effect;
 use cv::Scored;
 use design::Designs;
-use mre_core::table::Table;
+use mre_algorithm::table::Table;
 use prepared::{FoldPlan, Prepared};
 use select::Selection;
 

@@ -16,7 +16,7 @@ use super::{diagnose, DiagnoseOptions, Diagnosis};
 use crate::dataset::Dataset;
 use crate::installation::StatedInstallation;
 use anyhow::{anyhow, Result};
-use mre_core::table::{CurrentEntry, ModelTerms, Quartic, Table, MAX_CURRENTS};
+use mre_algorithm::table::{CurrentEntry, ModelTerms, Quartic, Table, MAX_CURRENTS};
 use std::path::Path;
 
 /// The final model as a version 2 table (without its installation).

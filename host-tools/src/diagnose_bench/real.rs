@@ -11,7 +11,7 @@ use crate::diagnose::design::{SofteningLaw, Terms};
 use crate::diagnose::{baseline, diagnose, prepared, DiagnoseOptions};
 use crate::vocabulary::{names, Effect};
 use anyhow::{bail, Result};
-use mre_core::model::Branch;
+use mre_algorithm::model::Branch;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;

@@ -11,7 +11,7 @@
 //!   units, is never degenerate, and contains sign changes of small terms.
 use super::lsq::fit_quartic;
 use anyhow::{bail, Result};
-use mre_core::model::Branch;
+use mre_algorithm::model::Branch;
 
 /// Per-coefficient [lower, upper], highest power first.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -12,7 +12,7 @@ pub mod sweep;
 use anyhow::{Context, Result};
 use bounds::{BoundsChoice, SearchBox};
 use gsa::GsaParams;
-use mre_core::model::Branch;
+use mre_algorithm::model::Branch;
 use objective::BranchMoments;
 use problems::BranchProblem;
 use rand::SeedableRng;

@@ -5,7 +5,7 @@
 use super::{branch_name, BranchFit, FitOptions, Method};
 use crate::installation::StatedInstallation;
 use anyhow::{bail, Context, Result};
-use mre_core::model::Branch;
+use mre_algorithm::model::Branch;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -25,7 +25,7 @@ impl ModelFile {
     /// The model carrying `installation` (format 3).
     pub fn with_installation(self, installation: StatedInstallation) -> Self {
         Self {
-            format_version: mre_core::table::FORMAT_VERSION_3,
+            format_version: mre_algorithm::table::FORMAT_VERSION_3,
             installation: Some(installation),
             ..self
         }
@@ -150,7 +150,7 @@ pub fn build(
     }
     let g = &options.gsa;
     Ok(ModelFile {
-        format_version: mre_core::table::FORMAT_VERSION_2,
+        format_version: mre_algorithm::table::FORMAT_VERSION_2,
         model: ModelMeta {
             dataset: dataset.to_string(),
             input_sha256: input_sha256.to_string(),

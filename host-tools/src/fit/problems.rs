@@ -3,7 +3,7 @@
 //! rule (`dataset::split_branches`: |v| inside a recording's noise band is left out).
 use crate::dataset::{split_pooled, BranchSamples, Dataset, Role};
 use anyhow::{bail, Result};
-use mre_core::model::Branch;
+use mre_algorithm::model::Branch;
 
 /// The samples of one (current, branch) pair.
 #[derive(Clone, Debug, PartialEq)]
@@ -32,11 +32,11 @@ pub fn branch_problems(ds: &Dataset) -> Result<Vec<BranchProblem>> {
     if currents.is_empty() {
         bail!("data set `{}` has no recordings with role = \"fit\"", ds.name);
     }
-    if currents.len() > mre_core::table::MAX_CURRENTS {
+    if currents.len() > mre_algorithm::table::MAX_CURRENTS {
         bail!(
             "data set has {} fit currents; a table holds at most {}",
             currents.len(),
-            mre_core::table::MAX_CURRENTS
+            mre_algorithm::table::MAX_CURRENTS
         );
     }
     let mut out = Vec::with_capacity(2 * currents.len());

@@ -9,7 +9,7 @@
 use super::link::PilLink;
 use super::qemu::Qemu;
 use super::tests::{firmware, qemu_or_skip};
-use mre_core::Flags;
+use mre_algorithm::Flags;
 use mre_protocol::frame::{SampleFrame, INJECT_HARDFAULT_SEQ, INJECT_PANIC_SEQ};
 use std::time::Duration;
 
@@ -94,7 +94,7 @@ fn a_hardfault_in_the_control_task_leaves_the_coil_at_the_failsafe_current() {
 #[test]
 fn a_panic_after_a_latched_over_current_keeps_the_drive_removed() {
     // The over-current monitor latches after three periods above 2.4 A
-    // (`mre_core::overcurrent`); a fault after that must not drive the 2 A
+    // (`mre_algorithm::overcurrent`); a fault after that must not drive the 2 A
     // fail-safe into the failed coil.
     let Some((qemu, mut link)) = start() else { return };
     let mut tripped = None;

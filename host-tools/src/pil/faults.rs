@@ -41,8 +41,8 @@ use super::sim::{control_config, PilRequest};
 use crate::plant::closed_loop::setup_for;
 use crate::plant::stepper::{simulate, CurrentSource};
 use anyhow::{anyhow, bail, ensure, Context, Result};
-use mre_core::control::{ControlConfig, Controller};
-use mre_core::Flags;
+use mre_algorithm::control::{ControlConfig, Controller};
+use mre_algorithm::Flags;
 use mre_protocol::frame::{encode_config, CommandFrame, SampleFrame, CONFIG_MAX_WORDS, FRAME_LEN};
 use rand::{Rng, SeedableRng};
 use serde::Serialize;
@@ -329,7 +329,7 @@ fn exchange(link: &mut PilLink, frame: &SampleFrame, faults: &[FrameFault], tall
 }
 
 /// The corrupt upload: the real blob with one coefficient word's bit flipped.
-fn corrupt_upload(link: &mut PilLink, table: &mre_core::table::Table, cfg: &ControlConfig) -> Result<FaultCount> {
+fn corrupt_upload(link: &mut PilLink, table: &mre_algorithm::table::Table, cfg: &ControlConfig) -> Result<FaultCount> {
     let mut words = [0u32; CONFIG_MAX_WORDS];
     let n = encode_config(table, cfg, &mut words);
     // Word 2 is the first table entry's current; flip a low mantissa bit of
@@ -346,7 +346,7 @@ fn corrupt_upload(link: &mut PilLink, table: &mre_core::table::Table, cfg: &Cont
     })
 }
 
-fn words_of(table: &mre_core::table::Table, cfg: &ControlConfig) -> Vec<u32> {
+fn words_of(table: &mre_algorithm::table::Table, cfg: &ControlConfig) -> Vec<u32> {
     let mut words = [0u32; CONFIG_MAX_WORDS];
     let n = encode_config(table, cfg, &mut words);
     words[..n].to_vec()
@@ -555,8 +555,8 @@ impl SenseFault {
 
 /// What the PIL board hands the monitor for a frame's current (its
 /// `coil_current`): fresh when present, stale once a current has been seen.
-fn sense_of(reading: Option<f32>, wired: &mut bool) -> Option<mre_core::overcurrent::Sense> {
-    use mre_core::overcurrent::Sense;
+fn sense_of(reading: Option<f32>, wired: &mut bool) -> Option<mre_algorithm::overcurrent::Sense> {
+    use mre_algorithm::overcurrent::Sense;
     match reading {
         Some(a) => {
             *wired = true;
@@ -570,14 +570,14 @@ fn sense_of(reading: Option<f32>, wired: &mut bool) -> Option<mre_core::overcurr
 /// and the same drop in process; the fault count and the first difference.
 fn run_sense_drop(
     setup: &crate::plant::closed_loop::SimSetup,
-    table: &mre_core::table::Table,
+    table: &mre_algorithm::table::Table,
     cfg: &ControlConfig,
     elf: &std::path::Path,
     fault: SenseFault,
 ) -> Result<(FaultCount, Option<String>)> {
     let mut cfg = *cfg;
     if fault == SenseFault::Stuck {
-        cfg.law.rebound = mre_core::law::ReboundPolicy::Fixed {
+        cfg.law.rebound = mre_algorithm::law::ReboundPolicy::Fixed {
             current_a: STUCK_HOLD_A,
         };
     }
@@ -669,15 +669,15 @@ fn run_sense_drop(
     let in_time = match fault {
         // Stale from STALE_FROM: latched by the STALE_PERIODS-th stale frame.
         SenseFault::Stale => latch_at
-            .is_some_and(|k| k + 1 == (STALE_FROM + u32::from(mre_core::overcurrent::STALE_PERIODS) - 1) as usize),
+            .is_some_and(|k| k + 1 == (STALE_FROM + u32::from(mre_algorithm::overcurrent::STALE_PERIODS) - 1) as usize),
         // Latched after STUCK_PERIODS periods driven ≥ STUCK_DRIVEN_A, not before.
         SenseFault::Stuck => latch_at.is_some_and(|k| {
             let driven = answers[..k]
                 .iter()
                 .rev()
-                .take_while(|a| a.current_a >= mre_core::overcurrent::STUCK_DRIVEN_A)
+                .take_while(|a| a.current_a >= mre_algorithm::overcurrent::STUCK_DRIVEN_A)
                 .count();
-            driven == usize::from(mre_core::overcurrent::STUCK_PERIODS)
+            driven == usize::from(mre_algorithm::overcurrent::STUCK_PERIODS)
         }),
     };
     let held = latch_at.is_some_and(|k| {

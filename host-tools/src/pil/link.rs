@@ -3,9 +3,9 @@
 //! real board's ST-LINK VCP, or QEMU's USART1 on a pty in the tests).
 use super::ControlBackend;
 use anyhow::{bail, Context, Result};
-use mre_core::control::ControlConfig;
-use mre_core::table::Table;
-use mre_core::Flags;
+use mre_algorithm::control::ControlConfig;
+use mre_algorithm::table::Table;
+use mre_algorithm::Flags;
 use mre_protocol::frame::{
     config_frames, encode_config, CommandFrame, SampleFrame, CONFIG_MAX_WORDS, END_OF_RUN_SEQ, FRAME_LEN, HELLO_SEQ,
     SYNC,

@@ -20,10 +20,10 @@ pub mod sim;
 mod tests;
 
 use anyhow::{bail, Result};
-use mre_core::control::{ControlConfig, Controller, DEFAULT_RATE_HZ};
-use mre_core::law::Command;
-use mre_core::table::Table;
-use mre_core::Flags;
+use mre_algorithm::control::{ControlConfig, Controller, DEFAULT_RATE_HZ};
+use mre_algorithm::law::Command;
+use mre_algorithm::table::Table;
+use mre_algorithm::Flags;
 use mre_protocol::frame::{CommandFrame, SampleFrame};
 
 /// One control period: a plant sample in, the controller's answer out.
@@ -43,7 +43,7 @@ impl InProcess {
     pub fn firmware_default() -> Result<Self> {
         let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).map_err(|e| anyhow::anyhow!("control config: {e:?}"))?;
         let table =
-            Table::from_image(&mre_core::generated_table::GENERATED_TABLE).map_err(|e| anyhow::anyhow!("{e}"))?;
+            Table::from_image(&mre_algorithm::generated_table::GENERATED_TABLE).map_err(|e| anyhow::anyhow!("{e}"))?;
         Self::new(cfg, table)
     }
 

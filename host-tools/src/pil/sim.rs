@@ -11,9 +11,9 @@ use crate::plant::closed_loop::{
 };
 use crate::plant::stepper::{simulate, CurrentSource, Trajectory};
 use anyhow::{anyhow, bail, Context, Result};
-use mre_core::control::{ControlConfig, Controller};
-use mre_core::law::LawConfig;
-use mre_core::table::Table;
+use mre_algorithm::control::{ControlConfig, Controller};
+use mre_algorithm::law::LawConfig;
+use mre_algorithm::table::Table;
 use mre_protocol::frame::SampleFrame;
 use serde::Serialize;
 use std::cell::RefCell;

@@ -171,7 +171,7 @@ fn firmware_rejects_corrupt_and_out_of_order_frames_and_counts_them() {
 fn uploaded_table_and_config_drive_the_firmware() {
     let Some((qemu, mut link)) = start() else { return };
     // Table 4 with a 10× longer fitted stroke, at 20 kHz with a 12 mm stroke.
-    let mut entries = mre_core::table::PAPER_TABLE4_ENTRIES;
+    let mut entries = mre_algorithm::table::PAPER_TABLE4_ENTRIES;
     for e in &mut entries {
         e.x_max_mm *= 10.0;
     }
@@ -247,7 +247,7 @@ fn firmware_flies_every_version_2_term_sample_for_sample() {
     }
     use super::sim::{compare, control_config, run_firmware, run_in_process};
     use crate::plant::closed_loop::{run_controlled, setup_for, SimRequest};
-    use mre_core::table::ModelTerms;
+    use mre_algorithm::table::ModelTerms;
     let setup = setup_for(&SimRequest {
         effect: "sensor_delay".to_owned(),
         seed: 3,
@@ -256,7 +256,7 @@ fn firmware_flies_every_version_2_term_sample_for_sample() {
     })
     .unwrap();
     assert!(setup.plant.effect.force_delay_s() > 0.0 && setup.impact.coil_lag_s == Some(2.0e-3));
-    let table = Table::with_terms(&mre_core::generated_table::GENERATED_ENTRIES, ModelTerms::EVERY_TERM).unwrap();
+    let table = Table::with_terms(&mre_algorithm::generated_table::GENERATED_ENTRIES, ModelTerms::EVERY_TERM).unwrap();
     let cfg = control_config(&setup).unwrap();
     let (fw, frames) = run_firmware(&setup, &table, &cfg, &firmware()).unwrap();
     let host = run_in_process(&setup, &table, &cfg).unwrap();
@@ -354,7 +354,7 @@ fn upload_over_qemu_serial_is_flown_and_a_corrupt_upload_is_refused() {
     let sent = run_upload(&pty, &model, None).unwrap();
     let (table, cfg) = upload_payload(&model, DEFAULT_RATE_HZ).unwrap();
     assert_eq!(sent.table_crc32, table.crc32());
-    let built_in = Table::from_image(&mre_core::generated_table::GENERATED_TABLE).unwrap();
+    let built_in = Table::from_image(&mre_algorithm::generated_table::GENERATED_TABLE).unwrap();
     assert_ne!(
         table.crc32(),
         built_in.crc32(),
@@ -398,7 +398,7 @@ fn upload_over_qemu_serial_is_flown_and_a_corrupt_upload_is_refused() {
 /// `MAX_CURRENTS` entries, format 2, every term: the largest blob
 /// (`CONFIG_MAX_WORDS` words, past the receiver's old 128-word tracking).
 fn largest_table() -> Table {
-    use mre_core::table::{CurrentEntry, ModelTerms, Quartic, MAX_CURRENTS};
+    use mre_algorithm::table::{CurrentEntry, ModelTerms, Quartic, MAX_CURRENTS};
     let entries: Vec<CurrentEntry> = (0..MAX_CURRENTS)
         .map(|k| CurrentEntry {
             current_a: 0.25 * k as f32,
@@ -412,7 +412,7 @@ fn largest_table() -> Table {
     for (k, c) in terms.viscous_n_s_per_m.iter_mut().enumerate() {
         *c = 5.0 * (k + 1) as f32;
     }
-    Table::with_installation(&entries, terms, mre_core::installation::DEFAULT_INSTALLATION).unwrap()
+    Table::with_installation(&entries, terms, mre_algorithm::installation::DEFAULT_INSTALLATION).unwrap()
 }
 
 #[test]
@@ -492,7 +492,7 @@ fn mre_pil_serial_closes_the_drop_test_over_qemu_serial() {
 #[test]
 fn firmware_latches_over_current_from_the_measured_coil_current() {
     // The sample frame carries the plant's coil current (bit 2); the
-    // firmware's monitor (`mre_core::overcurrent`, 2.4 A for 3 periods)
+    // firmware's monitor (`mre_algorithm::overcurrent`, 2.4 A for 3 periods)
     // latches OVER_CURRENT before the step, which then removes the drive
     // (0 A: the 2 A fail-safe would drive into the failed coil).
     let Some((qemu, mut link)) = start() else { return };
@@ -621,7 +621,7 @@ fn pil_drop_with_a_full_blocking_rtt_buffer_matches_and_counts_drops() {
     let latch_changes = {
         let mut ctl = Controller::new(
             ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap(),
-            Table::from_image(&mre_core::generated_table::GENERATED_TABLE),
+            Table::from_image(&mre_algorithm::generated_table::GENERATED_TABLE),
         )
         .unwrap();
         let mut known = ctl.latched();

@@ -14,9 +14,9 @@
 //! an option.
 use super::stepper::{simulate, CoilDriver, CurrentSource, ImpactConfig, ImpactSummary, Plant, Trajectory};
 use anyhow::{bail, Context, Result};
-use mre_core::installation::{Installation, DEFAULT_INSTALLATION};
-use mre_core::law::{ImpactLaw, LawConfig};
-use mre_core::Table;
+use mre_algorithm::installation::{Installation, DEFAULT_INSTALLATION};
+use mre_algorithm::law::{ImpactLaw, LawConfig};
+use mre_algorithm::Table;
 use serde::Serialize;
 
 /// Which current a run uses.
@@ -136,7 +136,7 @@ pub struct Comparison {
 /// with the installation applied (`Installation::apply`, as the board does),
 /// the drop's mass, gravity and control period.
 pub fn law_config(setup: &SimSetup) -> LawConfig {
-    let mut cfg = mre_core::control::ControlConfig::at_rate(mre_core::control::DEFAULT_RATE_HZ);
+    let mut cfg = mre_algorithm::control::ControlConfig::at_rate(mre_algorithm::control::DEFAULT_RATE_HZ);
     let law = match &mut cfg {
         Ok(cfg) => {
             setup.installation.apply(cfg);

@@ -102,7 +102,7 @@ impl Default for ImpactConfig {
     /// [`ImpactConfig::for_installation`]).
     fn default() -> Self {
         Self {
-            mass_kg: f64::from(mre_core::installation::DEFAULT_INSTALLATION.mass_kg),
+            mass_kg: f64::from(mre_algorithm::installation::DEFAULT_INSTALLATION.mass_kg),
             impact_velocity_m_s: 2.24,
             gravity_m_s2: 9.81,
             step_s: 1.0e-6,
@@ -120,7 +120,7 @@ impl Default for ImpactConfig {
 }
 
 /// Longest coil time constant the simulator takes (s): real MR dampers
-/// measure 5–20 ms; beyond 100 ms it is a unit mistake (as `mre_core`'s
+/// measure 5–20 ms; beyond 100 ms it is a unit mistake (as `mre_algorithm`'s
 /// `MAX_TERM_TIME_S`).
 pub const MAX_COIL_TAU_S: f64 = 0.1;
 
@@ -137,9 +137,9 @@ pub struct CoilDriver {
 
 impl Default for CoilDriver {
     /// The board's coil drive (firmware/README.md): 12 V half bridge, 4 Ω
-    /// coil, the installation's (`mre_core::installation`).
+    /// coil, the installation's (`mre_algorithm::installation`).
     fn default() -> Self {
-        use mre_core::installation::DEFAULT_INSTALLATION as I;
+        use mre_algorithm::installation::DEFAULT_INSTALLATION as I;
         Self {
             resistance_ohm: f64::from(I.coil_resistance_ohm),
             supply_v: f64::from(I.supply_v),

@@ -5,8 +5,8 @@ use crate::dataset::{Dataset, Role};
 use crate::fit::model_file::ModelFile;
 use crate::loops::model_loop;
 use anyhow::Result;
-use mre_core::model::Branch;
-use mre_core::table::Table;
+use mre_algorithm::model::Branch;
+use mre_algorithm::table::Table;
 use std::path::{Path, PathBuf};
 
 /// Most measured dots per chart (evenly thinned), so loops stay readable.

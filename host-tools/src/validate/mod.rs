@@ -18,8 +18,8 @@
 pub mod report;
 
 use crate::dataset::{Dataset, Recording, Role};
-use mre_core::table::Table;
-use mre_core::Flags;
+use mre_algorithm::table::Table;
+use mre_algorithm::Flags;
 use serde::Serialize;
 
 #[derive(Clone, Debug, PartialEq, Serialize)]

@@ -1,8 +1,8 @@
 //! Shared by the FMU tests: a model file with every format-2 term, the FMUs
 //! `mre fmu` makes of it, and a recorded drop to drive them with.
 #![allow(dead_code)] // each test uses part of it
-use mre_core::table::{ModelTerms, PAPER_TABLE4_ENTRIES};
-use mre_core::Table;
+use mre_algorithm::table::{ModelTerms, PAPER_TABLE4_ENTRIES};
+use mre_algorithm::Table;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

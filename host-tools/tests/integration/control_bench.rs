@@ -1,6 +1,6 @@
 //! From recordings to flash: `mre diagnose --model-out`, the physical limit
 //! of `mre bench-control`, and one bench case end to end.
-use mre_core::installation::DEFAULT_INSTALLATION;
+use mre_algorithm::installation::DEFAULT_INSTALLATION;
 use mre_host::control_bench::limit::physical_limit;
 use mre_host::control_bench::{controllers_for, drop_setup, record_campaign, run_case, Case};
 use mre_host::plant::closed_loop::run_controlled;
@@ -51,7 +51,7 @@ fn model_out_carries_the_coil_lag_the_answer_key_holds() {
     // The model file carries the installation (format 3): the campaign's
     // 5.5 kg drop mass, from its metadata; the rest the defaults.
     assert_eq!(table.version(), 3);
-    assert_eq!(*table.installation(), mre_core::installation::DEFAULT_INSTALLATION);
+    assert_eq!(*table.installation(), mre_algorithm::installation::DEFAULT_INSTALLATION);
     assert!(
         stated.describe().contains("mass_kg = 5.5 from the data set's metadata"),
         "{}",
@@ -138,11 +138,11 @@ fn controller_c_holds_its_target_when_the_coil_time_constant_is_20_percent_off()
     let setup = drop_setup(&plant, campaign.recordings.len(), case.seed(), &DEFAULT_INSTALLATION);
     let limit = physical_limit(&plant, &setup.impact, (0.0, 2.0), setup.usable_stroke_mm()).unwrap();
     for tau_s in [1.6e-3f32, 2.4e-3] {
-        let terms = mre_core::table::ModelTerms {
+        let terms = mre_algorithm::table::ModelTerms {
             coil_tau_s: tau_s,
             ..*diagnosed.terms()
         };
-        let table = mre_core::Table::with_terms(diagnosed.entries(), terms).unwrap();
+        let table = mre_algorithm::Table::with_terms(diagnosed.entries(), terms).unwrap();
         let s = run_controlled(&setup, &table).unwrap().summary;
         let ratio = s.peak_force_n / limit.envelope_n;
         assert!(
@@ -272,11 +272,11 @@ fn a_20_ms_coil_armed_before_contact_stops_softer_than_any_fixed_current() {
     // The bundled fit of the nominal plant (what `cargo fw` flies), with the
     // coil's L/R of 20 ms, on the nominal plant with that coil.
     let tau_s = 0.020;
-    let table = mre_core::Table::with_terms(
-        &mre_core::generated_table::GENERATED_ENTRIES,
-        mre_core::table::ModelTerms {
+    let table = mre_algorithm::Table::with_terms(
+        &mre_algorithm::generated_table::GENERATED_ENTRIES,
+        mre_algorithm::table::ModelTerms {
             coil_tau_s: tau_s as f32,
-            ..mre_core::table::ModelTerms::NONE
+            ..mre_algorithm::table::ModelTerms::NONE
         },
     )
     .unwrap();

@@ -65,9 +65,9 @@ fn the_baseline_reproduces_the_generating_law_through_the_core() {
     for (current, x) in [(0.0, 1.0), (0.5, 2.5), (1.0, 3.5)] {
         for compressing in [true, false] {
             let branch = if compressing {
-                mre_core::model::Branch::Compression
+                mre_algorithm::model::Branch::Compression
             } else {
-                mre_core::model::Branch::Extension
+                mre_algorithm::model::Branch::Extension
             };
             let model = d
                 .baseline_table

@@ -3,7 +3,7 @@
 //! iteration equals a step worked by hand from the published equations, GSA
 //! converges towards the optimum (also with infeasible agents) and keeps every
 //! agent in its box, and the model file is a table file.
-use mre_core::model::Branch;
+use mre_algorithm::model::Branch;
 use mre_host::dataset::BranchSamples;
 use mre_host::fit::bounds::{data_bounds, paper_bounds, SearchBox};
 use mre_host::fit::gsa::{masses, minimize, minimize_batch, minimize_with_draws, step, GsaParams, RandomWeights};

@@ -8,7 +8,7 @@ use fmi::fmi3::import::Fmi3Import;
 use fmi::fmi3::{CoSimulation, Common, Fmi3Model, GetSet};
 use fmi::traits::FmiImport;
 use fmu_support::*;
-use mre_core::control::Controller;
+use mre_algorithm::control::Controller;
 use std::io::{Read, Write};
 
 fn vr(import: &Fmi3Import, name: &str) -> u32 {

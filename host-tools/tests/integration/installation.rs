@@ -2,11 +2,11 @@
 //! the generated table, the board's limits) and the default simulation (what
 //! `mre sim`, `mre pil` and `mre bench-control` run: `SimRequest::default()`)
 //! must share one installation, value for value.
-use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ, V_SENSOR_FULL_SCALE_M_S};
-use mre_core::generated_table::GENERATED_TABLE;
-use mre_core::installation::DEFAULT_INSTALLATION as I;
-use mre_core::limits::{BOARD, X_SENSOR_MAX_MM};
-use mre_core::table::Table;
+use mre_algorithm::control::{ControlConfig, DEFAULT_RATE_HZ, V_SENSOR_FULL_SCALE_M_S};
+use mre_algorithm::generated_table::GENERATED_TABLE;
+use mre_algorithm::installation::DEFAULT_INSTALLATION as I;
+use mre_algorithm::limits::{BOARD, X_SENSOR_MAX_MM};
+use mre_algorithm::table::Table;
 use mre_host::plant::closed_loop::{law_config, setup_for, RunSpec, SimRequest, SimSetup};
 
 #[test]

@@ -4,8 +4,8 @@
 //! stated), `mre tables` carries exactly those values, and `mre sim`,
 //! `mre pil`'s upload, `mre bench-control`'s drop and the FMU's controller
 //! fly the model file's installation instead of the defaults.
-use mre_core::installation::{Installation, DEFAULT_INSTALLATION};
-use mre_core::Table;
+use mre_algorithm::installation::{Installation, DEFAULT_INSTALLATION};
+use mre_algorithm::Table;
 use mre_host::installation::StatedInstallation;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -99,7 +99,7 @@ fn fit_writes_the_data_sets_mass_and_the_options_and_tables_carries_exactly_them
         "{out}"
     );
     let (table, _) = mre_host::table_file::read_flash_table(&model).unwrap();
-    assert_eq!(table.version(), mre_core::table::FORMAT_VERSION_3);
+    assert_eq!(table.version(), mre_algorithm::table::FORMAT_VERSION_3);
     assert_eq!(*table.installation(), LAB);
     let source = std::fs::read_to_string(&generated).unwrap();
     assert!(

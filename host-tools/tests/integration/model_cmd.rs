@@ -1,6 +1,6 @@
 //! `mre model` and the table file format.
-use mre_core::model::Branch;
-use mre_core::Table;
+use mre_algorithm::model::Branch;
+use mre_algorithm::Table;
 use mre_host::loops::{fitted_stroke_mm, model_loop, write_loop_csv};
 use mre_host::table_file::{load_table, parse_table_toml, table_to_toml};
 

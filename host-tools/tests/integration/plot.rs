@@ -8,7 +8,7 @@ use std::path::Path;
 /// A data set with loops at 0 and 1 A (fit) and 0.5 A (validate), from the
 /// paper table's forces with known offsets.
 fn synthetic_dataset(dir: &Path) {
-    let table = mre_core::table::Table::paper().unwrap();
+    let table = mre_algorithm::table::Table::paper().unwrap();
     let mut toml = String::from("name = \"synthetic\"\n");
     for (c, role) in [(0.0, "fit"), (0.5, "validate"), (1.0, "fit")] {
         let file = format!("i{c}.csv");

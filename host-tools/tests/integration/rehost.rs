@@ -7,10 +7,10 @@
 //!
 //! `MRE_REHOST_ELF` / `MRE_REHOST_NUCLEO_ELF` name prebuilt images (else
 //! they are built here: `cargo fw`, `cargo fw-nucleo`, copied to `target/images/`).
-use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
-use mre_core::installation::{Installation, DEFAULT_INSTALLATION};
-use mre_core::table::{CurrentEntry, ModelTerms, Quartic, Table};
-use mre_core::Flags;
+use mre_algorithm::control::{ControlConfig, DEFAULT_RATE_HZ};
+use mre_algorithm::installation::{Installation, DEFAULT_INSTALLATION};
+use mre_algorithm::table::{CurrentEntry, ModelTerms, Quartic, Table};
+use mre_algorithm::Flags;
 use mre_protocol::flash_table::{store, RamPage};
 use mre_protocol::frame::{config_frames, encode_config, CommandFrame, CONFIG_MAX_WORDS, FRAME_LEN};
 use std::path::{Path, PathBuf};

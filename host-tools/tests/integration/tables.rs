@@ -1,7 +1,7 @@
 //! The committed flash table (`firmware/src/generated_table.rs`) must be what
 //! `mre tables` generates from the committed model (`models/drop-full-stroke.toml`),
 //! and that model must be what `mre fit` makes of the bundled drop tests.
-use mre_core::table::Table;
+use mre_algorithm::table::Table;
 use mre_host::table_file::{read_dataset_sha256, read_flash_table, read_table_file};
 use mre_host::tables::generate_table_source;
 use std::path::Path;
@@ -27,7 +27,7 @@ fn committed_generated_table_matches_the_committed_model() {
 
 #[test]
 fn generated_image_validates_and_equals_the_model() {
-    let from_flash = Table::from_image(&mre_core::generated_table::GENERATED_TABLE).unwrap();
+    let from_flash = Table::from_image(&mre_algorithm::generated_table::GENERATED_TABLE).unwrap();
     let (from_model, _) = read_flash_table(&root().join(MODEL)).unwrap();
     assert_eq!(from_flash, from_model);
     // The model's entries and terms, carried in format 3 with its installation.
@@ -58,13 +58,13 @@ fn committed_model_is_the_fit_of_the_bundled_drop_tests() {
         read_table_file(&out).unwrap(),
         read_table_file(&root().join(MODEL))
             .unwrap()
-            .carrying(mre_core::installation::DEFAULT_INSTALLATION)
+            .carrying(mre_algorithm::installation::DEFAULT_INSTALLATION)
             .unwrap()
     );
     // The flash image names the data set it came from.
     assert_eq!(
         read_dataset_sha256(&out).unwrap().as_deref(),
-        Some(mre_core::generated_table::SOURCE_DATASET_SHA256)
+        Some(mre_algorithm::generated_table::SOURCE_DATASET_SHA256)
     );
 }
 
@@ -73,7 +73,7 @@ fn generated_table_covers_the_usable_stroke() {
     // The full-stroke campaign drops every current hard enough to reach
     // 15 mm (data/generate.sh), so every entry's quartic covers the 12 mm
     // usable stroke the law plans over: no entry is clamped inside it.
-    let t = Table::from_image(&mre_core::generated_table::GENERATED_TABLE).unwrap();
+    let t = Table::from_image(&mre_algorithm::generated_table::GENERATED_TABLE).unwrap();
     for e in t.entries() {
         assert!(e.x_max_mm >= 12.0, "{} A covers only {} mm", e.current_a, e.x_max_mm);
     }
@@ -82,15 +82,15 @@ fn generated_table_covers_the_usable_stroke() {
 
 #[test]
 fn corrupting_the_image_is_caught_by_its_crc() {
-    let mut entries = mre_core::generated_table::GENERATED_ENTRIES;
+    let mut entries = mre_algorithm::generated_table::GENERATED_ENTRIES;
     entries[1].extension.coeffs[2] += 1.0;
-    let image = mre_core::table::TableImage {
+    let image = mre_algorithm::table::TableImage {
         entries: &entries,
-        ..mre_core::generated_table::GENERATED_TABLE
+        ..mre_algorithm::generated_table::GENERATED_TABLE
     };
     assert!(matches!(
         Table::from_image(&image),
-        Err(mre_core::TableError::CrcMismatch { .. })
+        Err(mre_algorithm::TableError::CrcMismatch { .. })
     ));
 }
 
@@ -100,7 +100,7 @@ fn paper_table_generates_source_with_its_known_crc() {
     // generator must print the same value.
     let paper = Table::paper().unwrap();
     let src = generate_table_source("paper", &paper, None, None);
-    assert!(src.contains(&format!("crc32: {:#010x},", mre_core::table::PAPER_TABLE4.crc32)));
+    assert!(src.contains(&format!("crc32: {:#010x},", mre_algorithm::table::PAPER_TABLE4.crc32)));
     assert!(src.contains("current_a: 2.0,"));
     assert!(src.contains("compression: Quartic::new([-6619.6, 19772.0, -24021.0, 19016.0, -105.53]),"));
 }

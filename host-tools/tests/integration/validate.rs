@@ -1,7 +1,7 @@
 //! `mre validate` on a synthetic data set made from the paper's Table 4:
 //! exact recordings give zero error; a scaled force gives a known error; an
 //! intermediate-current recording is predicted by interpolation and bracketed.
-use mre_core::table::Table;
+use mre_algorithm::table::Table;
 use mre_host::dataset::{Dataset, Recording, Role, Samples};
 use mre_host::validate::{validate, validate_recording};
 use std::collections::BTreeMap;

@@ -2,9 +2,9 @@
 //! paper's: 1–8 currents, coefficients up to ±2·10⁴, any stroke. Expected
 //! values come from the definitions (quartic in f64, linear interpolation),
 //! not from the core.
-use mre_core::model::Branch;
-use mre_core::table::{CurrentEntry, Quartic, TableImage, MAX_CURRENTS};
-use mre_core::{Flags, Table};
+use mre_algorithm::model::Branch;
+use mre_algorithm::table::{CurrentEntry, Quartic, TableImage, MAX_CURRENTS};
+use mre_algorithm::{Flags, Table};
 use proptest::prelude::*;
 
 // Coefficients up to 2e3 keep |F| below validation's 1e9 N bound over any

@@ -1,7 +1,7 @@
-//! The arming currents (`mre_core::arming`): expected values by hand, from
+//! The arming currents (`mre_algorithm::arming`): expected values by hand, from
 //! energy balance, and one by an independent time integration.
-use mre_core::arming::{compression_work_j, lead_time_s, Arming};
-use mre_core::table::{ModelTerms, Table};
+use mre_algorithm::arming::{compression_work_j, lead_time_s, Arming};
+use mre_algorithm::table::{ModelTerms, Table};
 // `linear(I, a1, a0)`: an entry whose force is `a1·x + a0` (x in mm) over 0–20 mm.
 use mre_tests::linear_entry as linear;
 

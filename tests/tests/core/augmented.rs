@@ -1,8 +1,8 @@
 //! The version 2 (augmented) model: per-current viscous terms and the
 //! saturating interpolation variable, forward and inverse, with no panic.
-use mre_core::model::Branch;
-use mre_core::table::ModelTerms;
-use mre_core::{CurrentEntry, Flags, Quartic, Table};
+use mre_algorithm::model::Branch;
+use mre_algorithm::table::ModelTerms;
+use mre_algorithm::{CurrentEntry, Flags, Quartic, Table};
 use proptest::prelude::*;
 
 /// Two linear "quartics": 0 A gives 100·x N, 1 A gives 300·x N (both
@@ -132,7 +132,7 @@ fn terms_strategy() -> impl Strategy<Value = ModelTerms> {
 }
 
 fn generated_with(terms: ModelTerms) -> Table {
-    Table::with_terms(&mre_core::generated_table::GENERATED_ENTRIES, terms).unwrap()
+    Table::with_terms(&mre_algorithm::generated_table::GENERATED_ENTRIES, terms).unwrap()
 }
 
 proptest! {
@@ -188,7 +188,7 @@ proptest! {
 
 #[test]
 fn a_version_2_table_uploads_to_the_pil_firmware_with_its_terms() {
-    use mre_core::control::ControlConfig;
+    use mre_algorithm::control::ControlConfig;
     use mre_protocol::frame::{decode_config, encode_config, CONFIG_MAX_WORDS};
     let table = augmented();
     let cfg = ControlConfig::at_rate(10_000).unwrap();

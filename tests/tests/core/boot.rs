@@ -1,5 +1,5 @@
 //! Reset-cause decoding of STM32L4 RCC_CSR values (RM0351 §6.4.29).
-use mre_core::boot::ResetCause;
+use mre_runtime::boot::ResetCause;
 
 /// RCC_CSR flag bits, from the reference manual.
 const LPWRRSTF: u32 = 1 << 31;
@@ -36,7 +36,7 @@ fn power_on_software_pin_and_low_power_resets() {
 
 mod boot_plan {
     use super::*;
-    use mre_core::boot::{BootPlan, CalibrationTime, FirstCommand};
+    use mre_runtime::boot::{BootPlan, CalibrationTime, FirstCommand};
 
     const SAFE_AT_ONCE: BootPlan = BootPlan {
         first: FirstCommand::FailSafeAtOnce,
@@ -71,7 +71,7 @@ mod boot_plan {
 }
 
 mod deferred_sense_zero {
-    use mre_core::calibration::{CalError, DeferredSenseZero, DEFERRED_SAMPLES, DEFERRED_SETTLE_PERIODS};
+    use mre_runtime::calibration::{CalError, DeferredSenseZero, DEFERRED_SAMPLES, DEFERRED_SETTLE_PERIODS};
 
     #[test]
     fn the_zero_is_taken_only_after_the_coil_settled_off_at_rest() {
@@ -119,8 +119,8 @@ mod deferred_sense_zero {
 /// is all a bare GPIO holds), and a latched over-current keeps the drive
 /// removed whatever else is latched.
 mod coil_after_a_fault {
-    use mre_core::boot::{coil_after_fault, CoilAfterFault};
-    use mre_core::Flags;
+    use mre_runtime::boot::{coil_after_fault, CoilAfterFault};
+    use mre_algorithm::Flags;
 
     const FAILSAFE_A: f32 = 2.0;
 

@@ -1,5 +1,5 @@
 //! Boot calibration: VDDA from VREFINT, and sensor zeros at rest.
-use mre_core::calibration::{rest_offset, vdda_v, CalError, RestLimits, V_REST, X_REST};
+use mre_runtime::calibration::{rest_offset, vdda_v, CalError, RestLimits, V_REST, X_REST};
 
 #[test]
 fn vdda_follows_the_reference_reading() {

@@ -1,13 +1,13 @@
 //! The control step against mock I/O: fault handling, fail-safe, overrun
 //! accounting, rate config, stats and the coil duty.
-use mre_core::control::{
+use mre_algorithm::control::{
     open_loop_duty, Coil, ControlConfig, ControlConfigError, Controller, DisplacementSensor, NoVelocitySensor,
     VelocitySensor, DEFAULT_RATE_HZ,
 };
-use mre_core::estimate::AlphaBeta;
-use mre_core::law::ImpactLaw;
-use mre_core::table::{Table, TableError, TableImage, PAPER_TABLE4, PAPER_TABLE4_ENTRIES};
-use mre_core::{Branch, Flags};
+use mre_algorithm::estimate::AlphaBeta;
+use mre_algorithm::law::ImpactLaw;
+use mre_algorithm::table::{Table, TableError, TableImage, PAPER_TABLE4, PAPER_TABLE4_ENTRIES};
+use mre_algorithm::{Branch, Flags};
 
 /// Plays back a script of displacements, then repeats the last one.
 struct ScriptX {

@@ -1,6 +1,6 @@
 //! The alpha-beta velocity estimator against its textbook properties.
-use mre_core::estimate::AlphaBeta;
-use mre_core::Flags;
+use mre_algorithm::estimate::AlphaBeta;
+use mre_algorithm::Flags;
 
 const PERIOD_S: f32 = 1.0e-4;
 

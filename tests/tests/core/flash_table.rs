@@ -1,7 +1,7 @@
 //! The uploaded-table flash page, over a RAM page that behaves like STM32L4
 //! flash (erase to 0xFF, 8-byte aligned writes that can only clear bits).
-use mre_core::control::ControlConfig;
-use mre_core::table::{Table, PAPER_TABLE4_ENTRIES};
+use mre_algorithm::control::ControlConfig;
+use mre_algorithm::table::{Table, PAPER_TABLE4_ENTRIES};
 use mre_protocol::flash_table::{load, store, FlashError, PageError, TablePage, WRITE_ALIGN};
 
 /// The core's RAM page, asserting alignment and able to lose power mid-write.

@@ -1,6 +1,6 @@
 //! The PIL frame protocol: layout, CRC, resync, and rejection of corrupt or
 //! out-of-order frames.
-use mre_core::Flags;
+use mre_algorithm::Flags;
 use mre_protocol::frame::{CommandFrame, FrameError, SampleFrame, SampleReceiver, FRAME_LEN};
 use mre_tests::crc32_reference;
 use proptest::prelude::*;
@@ -222,9 +222,9 @@ proptest! {
 }
 
 mod config_upload {
-    use mre_core::control::{ControlConfig, ControlConfigError};
-    use mre_core::law::ReboundPolicy;
-    use mre_core::table::{Table, TableError, PAPER_TABLE4_ENTRIES};
+    use mre_algorithm::control::{ControlConfig, ControlConfigError};
+    use mre_algorithm::law::ReboundPolicy;
+    use mre_algorithm::table::{Table, TableError, PAPER_TABLE4_ENTRIES};
     use mre_protocol::frame::{
         decode_config, encode_config, ConfigBlobError, ConfigChunk, ConfigCollector, Incoming, SampleReceiver,
         CONFIG_MAX_WORDS,

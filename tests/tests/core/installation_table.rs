@@ -1,9 +1,9 @@
 //! Format 3 tables carry the installation under their CRC, and the board
 //! derives its law and fault configuration from it within its hard limits.
 //! Older formats still load, with `DEFAULT_INSTALLATION`.
-use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
-use mre_core::installation::{Installation, DEFAULT_INSTALLATION, FIELD_COUNT};
-use mre_core::table::{
+use mre_algorithm::control::{ControlConfig, DEFAULT_RATE_HZ};
+use mre_algorithm::installation::{Installation, DEFAULT_INSTALLATION, FIELD_COUNT};
+use mre_algorithm::table::{
     CurrentEntry, ModelTerms, Quartic, Table, TableError, TableImage, FORMAT_VERSION_1, FORMAT_VERSION_2,
     FORMAT_VERSION_3,
 };
@@ -174,7 +174,7 @@ fn the_built_in_installation_sets_the_board_s_law_and_fault_configuration() {
 
 #[test]
 fn an_installation_outside_the_board_s_limits_is_refused_by_name() {
-    use mre_core::limits::{check_installation, InstallationLimit, BOARD};
+    use mre_algorithm::limits::{check_installation, InstallationLimit, BOARD};
     // A 3 A coil on a board whose over-current fault is compiled for 2 A; a
     // 24 V supply the PWM scaling was not compiled for; a 30 mm stroke past
     // the 25 mm sensor; a 0.05 kg mass.

@@ -1,6 +1,6 @@
 //! The inverse model: lowest current that gives a force, exact on its segment.
-use mre_core::model::Branch;
-use mre_core::{Flags, Table};
+use mre_algorithm::model::Branch;
+use mre_algorithm::{Flags, Table};
 use proptest::prelude::*;
 
 fn paper() -> Table {

@@ -1,7 +1,7 @@
 //! The impact-mitigation law: physics of the stopping force, and its limits.
-use mre_core::law::{stopping_force_n, ConfigError, ImpactLaw, LawConfig, ReboundPolicy};
-use mre_core::model::Branch;
-use mre_core::{Flags, Table};
+use mre_algorithm::law::{stopping_force_n, ConfigError, ImpactLaw, LawConfig, ReboundPolicy};
+use mre_algorithm::model::Branch;
+use mre_algorithm::{Flags, Table};
 
 fn paper() -> Table {
     Table::paper().expect("built-in table is valid")
@@ -312,12 +312,12 @@ fn the_force_observers_correction_is_clamped() {
     let (g, period) = (9.81f32, 1.0e-4f32);
     let mut law = observed_law(1.0);
     let asked_n = law.step(&t, 0.4, 1.0).target_force_n;
-    assert!(asked_n > 2.0 * mre_core::law::FORCE_ERROR_LIMIT_N, "{asked_n}");
+    assert!(asked_n > 2.0 * mre_algorithm::law::FORCE_ERROR_LIMIT_N, "{asked_n}");
     law.step(&t, 0.5, 1.0 + g * period);
-    assert_eq!(law.force_error_n(), mre_core::law::FORCE_ERROR_LIMIT_N);
+    assert_eq!(law.force_error_n(), mre_algorithm::law::FORCE_ERROR_LIMIT_N);
     // And the other way: a plant far stiffer than the model.
     let mut law = observed_law(1.0);
     law.step(&t, 0.4, 1.0);
     law.step(&t, 0.5, 1.0 - 2.0);
-    assert_eq!(law.force_error_n(), -mre_core::law::FORCE_ERROR_LIMIT_N);
+    assert_eq!(law.force_error_n(), -mre_algorithm::law::FORCE_ERROR_LIMIT_N);
 }

@@ -1,9 +1,9 @@
 //! Arming a lagging coil before contact (#29): idle at the robust current,
 //! and on the approach at the current for the predicted impact. Expected
 //! currents by hand (energy balance), on a model of constant forces.
-use mre_core::law::{ImpactLaw, LawConfig};
-use mre_core::table::ModelTerms;
-use mre_core::Table;
+use mre_algorithm::law::{ImpactLaw, LawConfig};
+use mre_algorithm::table::ModelTerms;
+use mre_algorithm::Table;
 use mre_tests::linear_entry;
 
 /// 500 N at 0 A and 2500 N at 2 A, at any x in 0–20 mm, a coil of τ = 10 ms.

@@ -1,12 +1,12 @@
 //! The law with a version 2 table: coil-lag inversion, look-ahead, pre-energising
 //! and sensor-delay prediction, always within the coil's and the driver's limits.
-use mre_core::law::{stopping_force_n, ImpactLaw, LawConfig, CONTACT_MM};
-use mre_core::table::ModelTerms;
-use mre_core::Table;
+use mre_algorithm::law::{stopping_force_n, ImpactLaw, LawConfig, CONTACT_MM};
+use mre_algorithm::table::ModelTerms;
+use mre_algorithm::Table;
 use proptest::prelude::*;
 
 fn with_terms(terms: ModelTerms) -> Table {
-    Table::with_terms(&mre_core::generated_table::GENERATED_ENTRIES, terms).unwrap()
+    Table::with_terms(&mre_algorithm::generated_table::GENERATED_ENTRIES, terms).unwrap()
 }
 
 /// No impact range: idle at the fixed `armed_current_a` (arming from the
@@ -128,7 +128,7 @@ fn in_contact_the_delay_is_predicted_with_the_last_plans_force() {
     assert!(
         !first
             .flags
-            .intersects(mre_core::Flags::SATURATED_HIGH | mre_core::Flags::SATURATED_LOW),
+            .intersects(mre_algorithm::Flags::SATURATED_HIGH | mre_algorithm::Flags::SATURATED_LOW),
         "{first:?}"
     );
     let f1 = f64::from(first.target_force_n);
@@ -191,11 +191,11 @@ fn the_look_ahead_caps_the_wanted_current_from_the_plans_trend() {
     let plan = |x_mm: f32, v_m_s: f32| {
         let x_plan = x_mm + v_m_s * cfg.period_s * 1.0e3;
         let f = stopping_force_n(cfg.mass_kg, cfg.gravity_m_s2, v_m_s, cfg.stroke_max_mm - x_plan).unwrap();
-        table.current_for_branch_v(x_plan, v_m_s, mre_core::Branch::Compression, f)
+        table.current_for_branch_v(x_plan, v_m_s, mre_algorithm::Branch::Compression, f)
     };
     let p1 = plan(0.0, 2.24);
     assert!(
-        p1.flags.contains(mre_core::Flags::SATURATED_HIGH),
+        p1.flags.contains(mre_algorithm::Flags::SATURATED_HIGH),
         "contact asks more than any entry gives"
     );
     let i1 = p1.current_a as f64;
@@ -225,11 +225,11 @@ fn a_nan_plan_fails_safe_behind_the_output_clamp() {
         ..LawConfig::default()
     };
     let mut law = ImpactLaw::new(cfg).unwrap();
-    let table = Table::with_terms(&mre_core::generated_table::GENERATED_ENTRIES, ModelTerms::EVERY_TERM).unwrap();
+    let table = Table::with_terms(&mre_algorithm::generated_table::GENERATED_ENTRIES, ModelTerms::EVERY_TERM).unwrap();
     let cmd = law.step(&table, 1.0, 1.0e38);
     assert!(
         cmd.flags
-            .contains(mre_core::Flags::FAIL_SAFE | mre_core::Flags::TABLE_FAULT),
+            .contains(mre_algorithm::Flags::FAIL_SAFE | mre_algorithm::Flags::TABLE_FAULT),
         "{cmd:?}"
     );
     assert_eq!(cmd.current_a, cfg.failsafe_current_a);

@@ -1,12 +1,12 @@
-//! The board's hard limits (`mre_core::limits`): no configuration the decoder
+//! The board's hard limits (`mre_algorithm::limits`): no configuration the decoder
 //! accepts lies outside what the hardware takes. The expected bounds here are
 //! written from the wiring (firmware/README.md, "Wiring" and "Hard limits"),
 //! not read from the code: a 2 A coil, a 0–25 mm displacement sensor whose ADC
 //! rails read −2.8 and 27.8 mm (0.3 mm kept inside each), fault counts that latch within an impact.
-use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
-use mre_core::law::ReboundPolicy;
-use mre_core::limits::Limit;
-use mre_core::table::Table;
+use mre_algorithm::control::{ControlConfig, DEFAULT_RATE_HZ};
+use mre_algorithm::law::ReboundPolicy;
+use mre_algorithm::limits::Limit;
+use mre_algorithm::table::Table;
 use mre_protocol::frame::{decode_config, encode_config, ConfigBlobError, CONFIG_MAX_WORDS};
 use proptest::prelude::*;
 

@@ -1,7 +1,7 @@
 //! The core's own exp/ln/tanh/atanh (firmware/algorithm/src/math.rs) against std's
 //! f64 functions: the saturation term's forward and inverse rely on them
 //! agreeing to ~1e-6 without a refinement step.
-use mre_core::math;
+use mre_algorithm::math;
 use proptest::prelude::*;
 
 proptest! {

@@ -1,9 +1,9 @@
 //! No input makes the core panic or return a non-finite or out-of-range value.
 //! Inputs span the whole f32 range, NaN and ±inf included.
-use mre_core::estimate::AlphaBeta;
-use mre_core::law::{ImpactLaw, LawConfig};
-use mre_core::model::Branch;
-use mre_core::{Flags, Table};
+use mre_algorithm::estimate::AlphaBeta;
+use mre_algorithm::law::{ImpactLaw, LawConfig};
+use mre_algorithm::model::Branch;
+use mre_algorithm::{Flags, Table};
 use proptest::num::f32::ANY;
 use proptest::prelude::*;
 

@@ -2,8 +2,8 @@
 //! give exactly the full scan's answer: every result is compared bit for bit
 //! with the same table stripped of its order facts. The proven regions are
 //! checked against crossings found independently (f64 bisection).
-use mre_core::table::{CurrentEntry, ModelTerms, Quartic, MAX_CURRENTS};
-use mre_core::{Branch, Table};
+use mre_algorithm::table::{CurrentEntry, ModelTerms, Quartic, MAX_CURRENTS};
+use mre_algorithm::{Branch, Table};
 use proptest::prelude::*;
 
 fn same_answer(t: &Table, x_mm: f32, v_m_s: f32, branch: Branch, target_n: f32) -> Result<(), TestCaseError> {
@@ -27,7 +27,7 @@ fn same_answer(t: &Table, x_mm: f32, v_m_s: f32, branch: Branch, target_n: f32) 
 }
 
 fn generated(terms: ModelTerms) -> Table {
-    Table::with_terms(&mre_core::generated_table::GENERATED_ENTRIES, terms).unwrap()
+    Table::with_terms(&mre_algorithm::generated_table::GENERATED_ENTRIES, terms).unwrap()
 }
 
 fn branch(compression: bool) -> Branch {
@@ -149,7 +149,7 @@ fn quartic_f64(q: &Quartic, x: f64) -> f64 {
 /// contact" region ends below the first crossing of that entry, likewise.
 #[test]
 fn the_proven_regions_end_at_the_flown_tables_crossing() {
-    let e = &mre_core::generated_table::GENERATED_ENTRIES;
+    let e = &mre_algorithm::generated_table::GENERATED_ENTRIES;
     let d = |x: f64| quartic_f64(&e[4].compression, x) - quartic_f64(&e[3].compression, x);
     let (mut lo, mut hi) = (0.1, 1.0);
     assert!(d(lo) < 0.0 && d(hi) > 0.0);
@@ -205,7 +205,7 @@ fn the_proven_regions_end_at_the_flown_tables_crossing() {
 /// must hold with the viscous forces at both ends of that range.
 #[test]
 fn a_viscous_term_limits_the_facts_to_a_velocity_range() {
-    use mre_core::order::ORDER_V_MAX_M_S;
+    use mre_algorithm::order::ORDER_V_MAX_M_S;
     let t = generated(ModelTerms::EVERY_TERM);
     let c = t.order_facts(Branch::Compression);
     assert_eq!((c.v_min_m_s, c.v_max_m_s), (0.0, ORDER_V_MAX_M_S));
@@ -230,7 +230,7 @@ fn a_viscous_term_limits_the_facts_to_a_velocity_range() {
     // term (the inverse would not use it).
     assert_eq!(c.top_to_mm, f32::NEG_INFINITY);
     assert_eq!(e.top_to_mm, f32::NEG_INFINITY);
-    let e = &mre_core::generated_table::GENERATED_ENTRIES;
+    let e = &mre_algorithm::generated_table::GENERATED_ENTRIES;
     let f = |k: usize, v: f32| f64::from(e[k].compression.eval(0.1)) + f64::from(t.terms().viscous_n_s_per_m[k] * v);
     assert!(f(1, 5.0) > f(3, 5.0) && f(1, 0.0) < f(3, 0.0));
 }

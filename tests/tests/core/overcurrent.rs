@@ -1,14 +1,14 @@
-//! The over-current fault (`mre_core::overcurrent`), the current-sense zero
+//! The over-current fault (`mre_algorithm::overcurrent`), the current-sense zero
 //! at boot, and the fault's path into the controller's fail-safe.
-use mre_core::calibration::{rest_offset, CalError, I_SENSE_REST};
-use mre_core::control::{ControlConfig, Controller};
-use mre_core::law::LawConfig;
-use mre_core::overcurrent::{
+use mre_runtime::calibration::{rest_offset, CalError, I_SENSE_REST};
+use mre_algorithm::control::{ControlConfig, Controller};
+use mre_algorithm::law::LawConfig;
+use mre_algorithm::overcurrent::{
     OverCurrent, Sense, SenseMonitor, SenseVerdict, COIL_RATING_A, STALE_PERIODS, STUCK_DRIVEN_A, STUCK_PERIODS,
     TRIP_A, TRIP_SAMPLES,
 };
-use mre_core::table::Table;
-use mre_core::Flags;
+use mre_algorithm::table::Table;
+use mre_algorithm::Flags;
 use mre_protocol::frame::{CommandFrame, SampleFrame};
 
 // The trip level sits above the coil's rating, within 25 % of it.
@@ -137,9 +137,9 @@ const HELD_A: f32 = 1.5;
 fn hold_the_coil(
     periods: usize,
     mut sense: impl FnMut(usize, f32) -> Option<Sense>,
-) -> (ControlConfig, Vec<mre_core::law::Command>) {
+) -> (ControlConfig, Vec<mre_algorithm::law::Command>) {
     let mut cfg = ControlConfig::at_rate(10_000).unwrap();
-    cfg.law.rebound = mre_core::law::ReboundPolicy::Fixed { current_a: HELD_A };
+    cfg.law.rebound = mre_algorithm::law::ReboundPolicy::Fixed { current_a: HELD_A };
     let mut ctl = Controller::new(cfg, Table::paper()).unwrap();
     let mut coil_a = 0.0f32;
     let mut cmds = Vec::new();

@@ -1,9 +1,9 @@
 //! Missed control periods: the pacer reports whole skipped ticks instead of
 //! letting the ticker catch up, and the controller counts them as overruns.
-use mre_core::control::{ControlConfig, Controller};
-use mre_core::pacing::Pacer;
-use mre_core::table::Table;
-use mre_core::Flags;
+use mre_algorithm::control::{ControlConfig, Controller};
+use mre_runtime::pacing::Pacer;
+use mre_algorithm::table::Table;
+use mre_algorithm::Flags;
 
 #[test]
 fn on_time_and_late_periods_advance_by_one_period() {

@@ -3,9 +3,9 @@
 //! Expected forces were computed independently with `numpy.polyval` in float64
 //! from the coefficients printed in the paper (x in mm, F in N); at x = 1 mm a
 //! quartic is just the sum of its coefficients, which is checked by hand too.
-use mre_core::installation::DEFAULT_INSTALLATION;
-use mre_core::model::Branch;
-use mre_core::table::{
+use mre_algorithm::installation::DEFAULT_INSTALLATION;
+use mre_algorithm::model::Branch;
+use mre_algorithm::table::{
     content_crc, CurrentEntry, ModelTerms, Quartic, Table, TableError, TableImage, FORMAT_VERSION, FORMAT_VERSION_1,
     FORMAT_VERSION_2, FORMAT_VERSION_3, PAPER_TABLE4_ENTRIES,
 };
@@ -107,10 +107,10 @@ fn currents_outside_the_table_are_clamped_and_flagged() {
     let t = paper();
     let above = t.force_on_branch(0.5, Branch::Compression, 3.0);
     assert!((above.force_n as f64 - COMPRESSION_N[4][1]).abs() < TOL_N);
-    assert!(above.flags.contains(mre_core::Flags::CURRENT_CLAMPED));
+    assert!(above.flags.contains(mre_algorithm::Flags::CURRENT_CLAMPED));
     let below = t.force_on_branch(0.5, Branch::Compression, -1.0);
     assert!((below.force_n as f64 - COMPRESSION_N[0][1]).abs() < TOL_N);
-    assert!(below.flags.contains(mre_core::Flags::CURRENT_CLAMPED));
+    assert!(below.flags.contains(mre_algorithm::Flags::CURRENT_CLAMPED));
 }
 
 #[test]
@@ -120,8 +120,8 @@ fn displacement_outside_the_fitted_stroke_is_clamped_and_flagged() {
     let beyond = t.force_on_branch(entry.x_max_mm + 5.0, Branch::Compression, 0.0);
     let at_end = t.force_on_branch(entry.x_max_mm, Branch::Compression, 0.0);
     assert_eq!(beyond.force_n, at_end.force_n);
-    assert!(beyond.flags.contains(mre_core::Flags::X_CLAMPED));
-    assert!(!at_end.flags.contains(mre_core::Flags::X_CLAMPED));
+    assert!(beyond.flags.contains(mre_algorithm::Flags::X_CLAMPED));
+    assert!(!at_end.flags.contains(mre_algorithm::Flags::X_CLAMPED));
     let before = t.force_on_branch(-1.0, Branch::Compression, 0.0);
     // x clamps to 0, where the quartic is its constant term a5 = −236.86.
     assert!((before.force_n as f64 + 236.86).abs() < 1e-3);
@@ -276,7 +276,7 @@ fn crc_is_the_standard_crc32_of_the_documented_byte_layout() {
     // Version 3 appends the installation: mass, usable stroke, coil rating,
     // coil resistance, supply, x sensor range, v sensor full scale, impact
     // v min, impact v max (the order documented in `content_crc`).
-    let lab = mre_core::installation::Installation {
+    let lab = mre_algorithm::installation::Installation {
         mass_kg: 3.0,
         usable_stroke_mm: 9.0,
         coil_rating_a: 1.5,

@@ -3,10 +3,10 @@
 //! polynomial lies within its stated bound of the exact map
 //! `i0 + I_s·(atanh(w0 + t·Δw) − atanh(w0))`, computed here in f64 with
 //! std's atanh (independent of the core's math), on a fine grid of t.
-use mre_core::model::interpolation_variable;
-use mre_core::saturation::{SegmentMap, TOLERANCE_PER_A};
-use mre_core::table::ModelTerms;
-use mre_core::Table;
+use mre_algorithm::model::interpolation_variable;
+use mre_algorithm::saturation::{SegmentMap, TOLERANCE_PER_A};
+use mre_algorithm::table::ModelTerms;
+use mre_algorithm::Table;
 use proptest::prelude::*;
 
 /// The most |polynomial − exact| over t = k/4096 (k = 1 … 4095) and the
@@ -54,7 +54,7 @@ fn the_flown_currents_at_one_and_a_half_amperes_are_fitted_within_their_bound() 
         );
     }
     // The table builds the same maps.
-    let table = Table::with_terms(&mre_core::generated_table::GENERATED_ENTRIES, ModelTerms::EVERY_TERM).unwrap();
+    let table = Table::with_terms(&mre_algorithm::generated_table::GENERATED_ENTRIES, ModelTerms::EVERY_TERM).unwrap();
     for k in 0..4 {
         let fit = SegmentMap::fit(w[k], w[k + 1], i_s, currents[k], currents[k + 1]).unwrap();
         assert_eq!(*table.segment_map(k), fit.map);
@@ -67,7 +67,7 @@ fn a_segment_too_wide_for_the_fit_keeps_the_exact_map() {
     let w1 = interpolation_variable(1.0, 0.5);
     assert!(SegmentMap::fit(0.0, w1, 0.5, 0.0, 1.0).is_none());
     // A linear table has no maps at all.
-    let t = Table::new(&mre_core::generated_table::GENERATED_ENTRIES).unwrap();
+    let t = Table::new(&mre_algorithm::generated_table::GENERATED_ENTRIES).unwrap();
     assert!(!t.segment_map(0).fitted);
 }
 

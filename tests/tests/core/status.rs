@@ -1,8 +1,8 @@
 //! Status LED patterns and the button's fault clear at rest.
-use mre_core::control::{ControlConfig, Controller};
-use mre_core::status::{blink_code, led_on, SLOT_MS};
-use mre_core::table::Table;
-use mre_core::Flags;
+use mre_algorithm::control::{ControlConfig, Controller};
+use mre_runtime::status::{blink_code, led_on, SLOT_MS};
+use mre_algorithm::table::Table;
+use mre_algorithm::Flags;
 
 /// Rising edges of the LED over `slots` slots from 0.
 fn flashes(latched: Flags, slots: u32) -> u32 {
@@ -76,7 +76,7 @@ fn the_button_clears_a_fault_only_at_rest() {
     assert!(c.clear_faults_if_at_rest());
     assert_eq!(c.latched(), Flags::NONE);
     // A table fault is not the button's to clear.
-    let mut bad = mre_core::table::PAPER_TABLE4;
+    let mut bad = mre_algorithm::table::PAPER_TABLE4;
     bad.crc32 ^= 1;
     let mut c = Controller::new(ControlConfig::at_rate(10_000).unwrap(), Table::from_image(&bad)).unwrap();
     c.step_sample(0.0, None);

@@ -1,9 +1,9 @@
 //! Table magnitude validation: an extreme (e.g. uploaded) table must be
 //! refused, because Horner overflows to ±inf and the inverse then yields NaN
 //! (which once clamped to the softest current).
-use mre_core::law::{ImpactLaw, LawConfig};
-use mre_core::table::{MAX_TABLE_FORCE_N, MAX_VISCOUS_N_S_PER_M};
-use mre_core::{CurrentEntry, Flags, Quartic, Table, TableError};
+use mre_algorithm::law::{ImpactLaw, LawConfig};
+use mre_algorithm::table::{MAX_TABLE_FORCE_N, MAX_VISCOUS_N_S_PER_M};
+use mre_algorithm::{CurrentEntry, Flags, Quartic, Table, TableError};
 
 fn entry(current_a: f32, compression: [f32; 5], x_max_mm: f32) -> CurrentEntry {
     CurrentEntry {
@@ -56,7 +56,7 @@ fn extreme_stroke_current_and_viscous_terms_are_refused() {
         Table::new(&[entry(1.0e3, line, 10.0)]),
         Err(TableError::TooLarge { index: 0 })
     );
-    let mut terms = mre_core::table::ModelTerms::NONE;
+    let mut terms = mre_algorithm::table::ModelTerms::NONE;
     terms.viscous_n_s_per_m[0] = 2.0 * MAX_VISCOUS_N_S_PER_M;
     assert!(matches!(
         Table::with_terms(&[entry(0.0, line, 10.0)], terms),
@@ -67,7 +67,7 @@ fn extreme_stroke_current_and_viscous_terms_are_refused() {
 #[test]
 fn the_flown_tables_are_within_the_bounds() {
     assert!(Table::paper().is_ok());
-    assert!(Table::from_image(&mre_core::generated_table::GENERATED_TABLE).is_ok());
+    assert!(Table::from_image(&mre_algorithm::generated_table::GENERATED_TABLE).is_ok());
 }
 
 #[test]

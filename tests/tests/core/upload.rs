@@ -4,10 +4,10 @@
 //! The transfer over a serial port is tested in QEMU
 //! (`host-tools/src/pil/tests.rs`, `upload_over_qemu_serial_*`); QEMU has no
 //! flash controller, so the page logic is tested here, behind `TablePage`.
-use mre_core::control::{ControlConfig, DEFAULT_RATE_HZ};
-use mre_core::generated_table::GENERATED_TABLE;
-use mre_core::table::{Table, PAPER_TABLE4_ENTRIES};
-use mre_core::Flags;
+use mre_algorithm::control::{ControlConfig, DEFAULT_RATE_HZ};
+use mre_algorithm::generated_table::GENERATED_TABLE;
+use mre_algorithm::table::{Table, PAPER_TABLE4_ENTRIES};
+use mre_algorithm::Flags;
 use mre_protocol::flash_table::{PageError, RamPage, TablePage};
 use mre_protocol::frame::{config_frames, encode_config, CommandFrame, ConfigBlobError, CONFIG_MAX_WORDS, FRAME_LEN};
 use mre_protocol::upload::{answer, choose_boot_table, PortEvent, TableSource, UploadError, UploadPort};
@@ -221,11 +221,11 @@ fn a_ping_is_answered_with_a_hello_and_never_stored() {
 
 /// A lab's installation within the board's limits: a 3 kg striker, 9 mm of
 /// stroke, a 1.5 A coil.
-const LAB: mre_core::installation::Installation = mre_core::installation::Installation {
+const LAB: mre_algorithm::installation::Installation = mre_algorithm::installation::Installation {
     mass_kg: 3.0,
     usable_stroke_mm: 9.0,
     coil_rating_a: 1.5,
-    ..mre_core::installation::DEFAULT_INSTALLATION
+    ..mre_algorithm::installation::DEFAULT_INSTALLATION
 };
 
 /// The configuration `mre upload` sends with a table carrying `LAB`.
@@ -239,7 +239,7 @@ fn lab_config() -> ControlConfig {
 /// every term (a viscous coefficient on each entry) and an installation, so
 /// the blob is `CONFIG_MAX_WORDS` long and its last words lie past bit 127.
 fn largest_table() -> Table {
-    use mre_core::table::{CurrentEntry, ModelTerms, Quartic, FORMAT_VERSION, MAX_CURRENTS};
+    use mre_algorithm::table::{CurrentEntry, ModelTerms, Quartic, FORMAT_VERSION, MAX_CURRENTS};
     let entries: Vec<CurrentEntry> = (0..MAX_CURRENTS)
         .map(|k| CurrentEntry {
             current_a: 0.25 * k as f32,
@@ -352,7 +352,7 @@ fn an_upload_in_motion_is_refused_untouched_and_accepted_at_rest() {
 
 #[test]
 fn every_commit_answer_reads_back_as_itself() {
-    use mre_core::limits::Limit;
+    use mre_algorithm::limits::Limit;
     use mre_protocol::upload::CommitAnswer;
     let mut all = vec![
         CommitAnswer::Stored,
@@ -376,7 +376,7 @@ fn every_commit_answer_reads_back_as_itself() {
 /// 0.5 s (5000 periods at 10 kHz) armed, idle and still.
 #[test]
 fn the_upload_gate_opens_only_after_half_a_second_at_rest() {
-    use mre_core::control::Controller;
+    use mre_algorithm::control::Controller;
     use mre_protocol::upload::UploadGate;
     let cfg = ControlConfig::at_rate(DEFAULT_RATE_HZ).unwrap();
     let mut ctl = Controller::new(cfg, Table::from_image(&GENERATED_TABLE)).unwrap();

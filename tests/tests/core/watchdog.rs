@@ -1,6 +1,6 @@
-//! The watchdog supervisor (`mre_core::watchdog`): fed only while every
+//! The watchdog supervisor (`mre_runtime::watchdog`): fed only while every
 //! supervised task checked in within its deadline.
-use mre_core::watchdog::{may_feed, CheckIn};
+use mre_runtime::watchdog::{may_feed, CheckIn};
 
 /// The firmware's tasks (main.rs): the status task every 50 ms, deadline
 /// 200 ms; the log task with every stats line (1 s), deadline 3 s.

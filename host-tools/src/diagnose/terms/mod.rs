@@ -81,7 +81,7 @@ pub struct TableParts {
     pub scale: f64,
     /// The fastest recorded speed (m/s).
     pub fastest_m_s: f64,
-    pub terms: mre_core::table::ModelTerms,
+    pub terms: mre_algorithm::table::ModelTerms,
     /// `[diagnose]` metadata: `(key, value)`.
     pub metadata: Vec<(String, f64)>,
 }
