@@ -40,7 +40,11 @@ pub fn solve(a: &DMatrix<f64>, y: &DVector<f64>) -> Result<LeastSquares> {
     if (0..cols).any(|i| r[(i, i)].abs() <= 1e-12 * r_max) {
         bail!("the design matrix is rank deficient: the data cannot determine every coefficient");
     }
-    let qty = qr.q().transpose() * y;
+    // Qᵀ·y by applying the Householder reflections to y: forming Q itself
+    // (rows × cols) was a sixth of `mre sim`'s time.
+    let mut qty = y.clone();
+    qr.q_tr_mul(&mut qty);
+    let qty = qty.rows(0, cols).into_owned();
     let beta_scaled = match r.solve_upper_triangular(&qty) {
         Some(b) => b,
         None => bail!("triangular solve failed"),

@@ -11,7 +11,7 @@ use super::design::{Layout, Terms};
 use super::heldout::HeldOutRatio;
 use super::library::{self, Built};
 use super::prepared::Prepared;
-use super::sparse::{self, group_stlsq, least_squares, Library};
+use super::sparse::{self, group_stlsq, Library};
 use anyhow::Result;
 use rayon::prelude::*;
 
@@ -85,12 +85,13 @@ fn heldout_sse(
             let train: Vec<usize> = recs.iter().copied().filter(|r| !test.contains(r)).collect();
             let rows = lib.rows_of(&train);
             let kept = kept_for(&rows);
+            let reduced = lib.reduce(&rows);
             let mut out = vec![(vec![0.0; recs.len()], vec![0.0; recs.len()]); n_groups];
             for (g, slot) in out.iter_mut().enumerate().filter(|(g, _)| !lib.groups[*g].always) {
                 for (with, sse) in [(false, &mut slot.0), (true, &mut slot.1)] {
                     let mut k = kept.clone();
                     k[g] = with;
-                    let beta = least_squares(lib, &rows, &k);
+                    let beta = reduced.least_squares(&k);
                     for (rec, e) in lib.sse_by_recording(&beta) {
                         if test.contains(&rec) {
                             if let Some(j) = recs.iter().position(|&r| r == rec) {

@@ -81,34 +81,75 @@ impl Library {
     }
 }
 
-/// Least squares on `rows` with the columns of the groups flagged in
-/// `kept`; the others are 0. Columns are scaled to unit norm first (powers
-/// of x in mm span orders of magnitude), and directions below round-off are
-/// dropped (a current no row touches leaves zero columns).
-pub fn least_squares(lib: &Library, rows: &[usize], kept: &[bool]) -> DVector<f64> {
-    let mut beta = DVector::zeros(lib.a.ncols());
-    let cols = lib.cols_of(kept);
-    if cols.is_empty() || rows.is_empty() {
-        return beta;
-    }
-    let mut sub = lib.a.select_rows(rows).select_columns(&cols);
-    let y = DVector::from_iterator(rows.len(), rows.iter().map(|&r| lib.y[r]));
-    let norms: Vec<f64> = (0..sub.ncols()).map(|c| sub.column(c).norm()).collect();
-    for (c, n) in norms.iter().enumerate() {
-        if *n > 0.0 {
-            sub.column_mut(c).scale_mut(1.0 / n);
+/// The rows of a [`Library`] reduced to the R factor of the QR of their
+/// `[A | y]` (at most columns + 1 rows). For every subset of the columns the
+/// fit and its residual norm are the same as on the rows themselves (module
+/// docs), so a set of rows fitted many times (STLSQ's iterations, a fold's
+/// with/without fits) is factored once.
+pub struct Reduced<'a> {
+    lib: &'a Library,
+    a: DMatrix<f64>,
+    y: DVector<f64>,
+}
+
+impl Library {
+    /// `rows` reduced for repeated fits (see [`Reduced`]).
+    pub fn reduce(&self, rows: &[usize]) -> Reduced<'_> {
+        let c = self.a.ncols();
+        let mut ay = DMatrix::<f64>::zeros(rows.len(), c + 1);
+        for (k, &r) in rows.iter().enumerate() {
+            ay.view_mut((k, 0), (1, c)).copy_from(&self.a.row(r));
+            ay[(k, c)] = self.y[r];
+        }
+        let ay = if rows.len() > c + 1 { ay.qr().r() } else { ay };
+        Reduced {
+            lib: self,
+            a: ay.columns(0, c).into_owned(),
+            y: ay.column(c).into_owned(),
         }
     }
-    let svd = sub.svd(true, true);
-    let eps = 1e-10 * svd.singular_values.max();
-    if let Ok(b) = svd.solve(&y, eps) {
-        for (k, &c) in cols.iter().enumerate() {
-            if norms[k] > 0.0 {
-                beta[c] = b[k] / norms[k];
+}
+
+impl Reduced<'_> {
+    /// Least squares with the columns of the groups flagged in `kept`; the
+    /// others are 0. Columns are scaled to unit norm first (powers of x in
+    /// mm span orders of magnitude), and directions below round-off are
+    /// dropped (a current no row touches leaves zero columns).
+    pub fn least_squares(&self, kept: &[bool]) -> DVector<f64> {
+        let mut beta = DVector::zeros(self.a.ncols());
+        let cols = self.lib.cols_of(kept);
+        if cols.is_empty() || self.a.nrows() == 0 {
+            return beta;
+        }
+        let mut sub = self.a.select_columns(&cols);
+        let norms: Vec<f64> = (0..sub.ncols()).map(|c| sub.column(c).norm()).collect();
+        for (c, n) in norms.iter().enumerate() {
+            if *n > 0.0 {
+                sub.column_mut(c).scale_mut(1.0 / n);
             }
         }
+        let svd = sub.svd(true, true);
+        let eps = 1e-10 * svd.singular_values.max();
+        if let Ok(b) = svd.solve(&self.y, eps) {
+            for (k, &c) in cols.iter().enumerate() {
+                if norms[k] > 0.0 {
+                    beta[c] = b[k] / norms[k];
+                }
+            }
+        }
+        beta
     }
-    beta
+
+    /// `‖A·β − y‖` over the reduced rows.
+    fn residual_norm(&self, beta: &DVector<f64>) -> f64 {
+        (&self.y - &self.a * beta).norm()
+    }
+}
+
+/// Least squares on `rows` with the columns of the groups flagged in `kept`
+/// (see [`Reduced::least_squares`]).
+pub fn least_squares(lib: &Library, rows: &[usize], kept: &[bool]) -> DVector<f64> {
+    lib.reduce(rows).least_squares(kept)
 }
 
 /// The result of one group STLSQ fit.
@@ -130,17 +171,17 @@ const MAX_ITERATIONS: usize = 20;
 pub fn group_stlsq(lib: &Library, rows: &[usize], threshold: f64) -> Sparse {
     let n_groups = lib.groups.len();
     let always: Vec<bool> = lib.groups.iter().map(|g| g.always).collect();
-    let a = lib.a.select_rows(rows);
-    let y = DVector::from_iterator(rows.len(), rows.iter().map(|&r| lib.y[r]));
-    let base = least_squares(lib, rows, &always);
-    let unexplained = (&y - &a * &base).norm().max(f64::MIN_POSITIVE);
+    let reduced = lib.reduce(rows);
+    let base = reduced.least_squares(&always);
+    let unexplained = reduced.residual_norm(&base).max(f64::MIN_POSITIVE);
     let mut kept = vec![true; n_groups];
     let mut beta = DVector::zeros(lib.a.ncols());
     let mut share = vec![0.0; n_groups];
     for _ in 0..MAX_ITERATIONS {
-        beta = least_squares(lib, rows, &kept);
+        beta = reduced.least_squares(&kept);
         for (g, group) in lib.groups.iter().enumerate() {
-            let part = a.select_columns(&group.cols)
+            // ‖A_g·β_g‖ is the same on the reduced rows (Q is orthonormal).
+            let part = reduced.a.select_columns(&group.cols)
                 * DVector::from_iterator(group.cols.len(), group.cols.iter().map(|&c| beta[c]));
             share[g] = part.norm() / unexplained;
         }
