@@ -82,6 +82,70 @@ pub fn distinct_sequences(prep: &Prepared) -> usize {
     s.len()
 }
 
+/// Relative agreement of stroke and peak speed within which two recordings
+/// at the same current are one test condition, repeated (a definition of
+/// "the same test", not a rule fitted to any data).
+pub const SAME_CONDITION: f64 = 0.10;
+
+/// Each recording's test condition (an index into the conditions, in the
+/// order they first appear): the same held current and current step, the
+/// same role, and stroke and peak speed within [`SAME_CONDITION`] of the
+/// condition's first recording. Read from the excitation only, never from
+/// the force.
+pub fn conditions(prep: &Prepared) -> Vec<usize> {
+    let near = |a: f64, b: f64| (a - b).abs() <= SAME_CONDITION * a.abs().max(b.abs()).max(1e-12);
+    let key = |i: usize| {
+        let r = &prep.recs[i];
+        (
+            r.current_label(),
+            r.is_fit(),
+            r.max_x_mm() - r.min_x_mm(),
+            r.max_abs_v_m_s(),
+        )
+    };
+    let mut firsts: Vec<usize> = Vec::new();
+    (0..prep.recs.len())
+        .map(|i| {
+            let (label, fit, stroke, speed) = key(i);
+            match firsts.iter().position(|&f| {
+                let (l, ff, s, v) = key(f);
+                l == label && ff == fit && near(s, stroke) && near(v, speed)
+            }) {
+                Some(c) => c,
+                None => {
+                    firsts.push(i);
+                    firsts.len() - 1
+                }
+            }
+        })
+        .collect()
+}
+
+/// Fit recordings that share their test condition with another fit
+/// recording at a different place in the run order (`sequence`) or at a
+/// different temperature: the recordings that cross the run order with the
+/// test condition.
+pub fn crossed_recordings(prep: &Prepared) -> usize {
+    let cond = conditions(prep);
+    let fit = prep.fit_indices();
+    fit.iter()
+        .filter(|&&i| {
+            fit.iter().any(|&j| {
+                j != i
+                    && cond[j] == cond[i]
+                    && (prep.recs[i]
+                        .sequence
+                        .zip(prep.recs[j].sequence)
+                        .is_some_and(|(a, b)| a != b)
+                        || prep.recs[i]
+                            .temperature_c
+                            .zip(prep.recs[j].temperature_c)
+                            .is_some_and(|(a, b)| (a - b).abs() >= 0.5))
+            })
+        })
+        .count()
+}
+
 pub fn temperature_span_c(prep: &Prepared) -> f64 {
     let t: Vec<f64> = prep
         .fit_indices()

@@ -11,7 +11,9 @@
 //! saturation, softening) enters linearised, as one regressor: what it
 //! changes in the prediction of the joint fit without it (a lagged or
 //! filtered copy of that prediction, NARX-style). Its coefficient is 1 when
-//! the term is there at the chosen value.
+//! the term is there at the chosen value. A crossed term (softening) keeps
+//! only the part of its regressor a gain per test condition cannot explain
+//! ([`Term::crossed`]).
 use super::acceptance::Thresholds;
 use super::candidates::{self, Effect};
 use super::cv::score_refined;
@@ -77,6 +79,36 @@ fn choose(prep: &Prepared, term: &'static dyn Term, on: &Terms) -> Option<Terms>
     }
 }
 
+/// Keeps only the part of a crossed term's regressor ([`Term::crossed`])
+/// that a gain per test condition ([`candidates::conditions`]) on the
+/// prediction without the term cannot explain: within each condition,
+/// `c_r − k_c·b_r` with `k_c` the least-squares gain of the condition's
+/// fit recordings. A condition run once leaves nothing; a library recording
+/// whose condition has no fit recording (a validate one read as evidence)
+/// gets a zero regressor.
+fn cross(prep: &Prepared, recs: &[usize], cols: &mut [Vec<f64>], bases: &[Vec<f64>], masks: &[Vec<bool>]) {
+    let cond = candidates::conditions(prep);
+    let mut sums: std::collections::BTreeMap<usize, (f64, f64)> = std::collections::BTreeMap::new();
+    for (j, &i) in recs.iter().enumerate().filter(|(_, &i)| prep.recs[i].is_fit()) {
+        let e = sums.entry(cond[i]).or_insert((0.0, 0.0));
+        for t in (0..masks[j].len()).filter(|&t| masks[j][t]) {
+            e.0 += cols[j][t] * bases[j][t];
+            e.1 += bases[j][t] * bases[j][t];
+        }
+    }
+    for (j, &i) in recs.iter().enumerate() {
+        match sums.get(&cond[i]) {
+            Some(&(cb, bb)) if bb > 0.0 => {
+                let k = cb / bb;
+                for (c, b) in cols[j].iter_mut().zip(&bases[j]) {
+                    *c -= k * b;
+                }
+            }
+            _ => cols[j].iter_mut().for_each(|c| *c = 0.0),
+        }
+    }
+}
+
 /// Builds the library for `prep` (see the module docs).
 pub fn build(prep: &Prepared, th: &Thresholds) -> Result<Built> {
     let mut testable: Vec<&'static dyn Term> = Vec::new();
@@ -131,11 +163,11 @@ pub fn build(prep: &Prepared, th: &Thresholds) -> Result<Built> {
     // already bent towards a delay, and they kept their share; about the
     // quartics alone, a delay on a hysteretic law left most of the lag to
     // the memory basis and was missed on every MTS campaign tried.)
-    let lin_terms: Vec<Terms> = chosen
+    let lin_terms: Vec<(&'static dyn Term, Terms)> = chosen
         .iter()
         .zip(&linearised)
         .filter(|(_, l)| **l)
-        .map(|((_, own), _)| *own)
+        .map(|((t, own), _)| (*t, *own))
         .collect();
     let reference = if lin_terms.is_empty() {
         None
@@ -146,7 +178,7 @@ pub fn build(prep: &Prepared, th: &Thresholds) -> Result<Built> {
     // branch-ambiguous samples at each turn-around).
     let lin_cols: Vec<Linearised> = lin_terms
         .par_iter()
-        .map(|own| -> Result<Linearised> {
+        .map(|(term, own)| -> Result<Linearised> {
             let dq = reference
                 .as_ref()
                 .ok_or_else(|| anyhow::anyhow!("no reference design"))?;
@@ -154,15 +186,19 @@ pub fn build(prep: &Prepared, th: &Thresholds) -> Result<Built> {
             let sol = dt.solve(prep, &fit)?;
             let mut without = sol.clone();
             without.delta = 0.0;
-            let cols = recs
+            let (mut cols, bases): (Vec<Vec<f64>>, Vec<Vec<f64>>) = recs
                 .iter()
                 .map(|&i| {
                     let a = dt.predict(prep, i, &sol);
                     let b = dq.predict(prep, i, &without);
-                    a.iter().zip(&b).map(|(a, b)| a - b).collect()
+                    (a.iter().zip(&b).map(|(a, b)| a - b).collect(), b)
                 })
-                .collect();
-            Ok((cols, recs.iter().map(|&i| dt.recs[i].mask.clone()).collect()))
+                .unzip();
+            let masks: Vec<Vec<bool>> = recs.iter().map(|&i| dt.recs[i].mask.clone()).collect();
+            if term.crossed() {
+                cross(prep, &recs, &mut cols, &bases, &masks);
+            }
+            Ok((cols, masks))
         })
         .collect::<Result<_>>()?;
     let p0 = d.layout.n_cols;

@@ -103,3 +103,38 @@ fn samples_whose_branch_is_chance_are_neither_fitted_nor_scored() {
     // The support data have noise-free kinematics: nothing is ambiguous but an exact zero.
     assert!(prep.recs.iter().all(|r| r.n_branch_ambiguous() <= 1));
 }
+
+/// Softening is a crossed effect: a drift over the run order is told from a
+/// difference between test conditions only where a condition is repeated at
+/// another place in the run.
+#[test]
+fn softening_is_identifiable_only_where_a_test_condition_is_repeated_in_the_run() {
+    use mre_host::diagnose::acceptance::Thresholds;
+    use mre_host::diagnose::candidates::{conditions, identifiable, Effect};
+    // 3 currents × 3 strokes × 2 repeats, the run order shuffled: 9
+    // conditions, each run twice.
+    let ds = diagnose_support::dataset(Added::None, 1);
+    let prep = prepare(&ds, &FoldPlan::Stratified { k: 3 }, &[]).expect("prepared");
+    let c = conditions(&prep);
+    let mut distinct = c.clone();
+    distinct.sort_unstable();
+    distinct.dedup();
+    assert_eq!(distinct.len(), 9, "{c:?}");
+    assert!(
+        distinct.iter().all(|k| c.iter().filter(|x| *x == k).count() == 2),
+        "{c:?}"
+    );
+    assert!(identifiable(&prep, Effect::StressSoftening, &Thresholds::default()).is_ok());
+    // The outside-class campaign runs each test once per current (four
+    // sinusoids of different stroke or speed, a multisine, a drop), in a
+    // shuffled order: nothing is repeated.
+    let case = mre_host::plant::outside::case(Effect::StressSoftening, 1).expect("campaign");
+    let prep = prepare(
+        &case.dataset,
+        &FoldPlan::Stratified { k: 5 },
+        &[mre_host::plant::outside::VALIDATE_CURRENT_A],
+    )
+    .expect("prepared");
+    let why = identifiable(&prep, Effect::StressSoftening, &Thresholds::default()).unwrap_err();
+    assert!(why.contains("repeated"), "{why}");
+}

@@ -166,6 +166,14 @@ pub trait Term: Sync {
     fn set_by_design(&self) -> &'static [&'static str] {
         &[]
     }
+    /// A crossed effect: its linearised regressor keeps only what a gain per
+    /// test condition cannot explain ([`super::library`]), so the term can
+    /// only explain a change between repeats of one condition (softening:
+    /// the run order crossed with the test condition, never a difference
+    /// between conditions, which the baseline's misfit also makes).
+    fn crossed(&self) -> bool {
+        false
+    }
     /// The experiment that would separate the term from the baseline when
     /// these data cannot (reported with an `inconclusive` verdict).
     fn deciding_experiment(&self) -> &'static str {

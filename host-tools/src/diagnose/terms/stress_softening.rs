@@ -2,7 +2,7 @@
 //! `g_r` from its place in the run order or its temperature.
 use super::{Term, Value};
 use crate::diagnose::acceptance::Thresholds;
-use crate::diagnose::candidates::{distinct_sequences, temperature_span_c};
+use crate::diagnose::candidates::{crossed_recordings, distinct_sequences, temperature_span_c};
 use crate::diagnose::design::{Layout, SofteningLaw, Solution, Terms};
 use crate::diagnose::prepared::Prepared;
 use crate::vocabulary::Effect;
@@ -23,11 +23,23 @@ impl Term for StressSoftening {
         Terms { softening: None, ..*t }
     }
     fn identifiable(&self, prep: &Prepared, _th: &Thresholds) -> Result<(), String> {
-        if distinct_sequences(prep) >= 3 || temperature_span_c(prep) >= 2.0 {
-            Ok(())
-        } else {
-            Err("repeated tests with their run order recorded (`sequence`), or temperature records".into())
+        if distinct_sequences(prep) < 3 && temperature_span_c(prep) < 2.0 {
+            return Err("repeated tests with their run order recorded (`sequence`), or temperature records".into());
         }
+        // A drift across the run is told from a difference between test
+        // conditions only where one condition is repeated at another place
+        // in the run (a crossed effect, [`Term::crossed`]).
+        if crossed_recordings(prep) < 2 {
+            return Err(
+                "a test condition repeated at another place in the run order (each condition here is run once, \
+                 so a drift over the run cannot be told from a difference between conditions)"
+                    .into(),
+            );
+        }
+        Ok(())
+    }
+    fn crossed(&self) -> bool {
+        true
     }
     fn variants(&self, prep: &Prepared, base: &Terms) -> Vec<Terms> {
         let with = |law: SofteningLaw| Terms {
