@@ -4,6 +4,7 @@
 //! Internal units: time s, displacement mm, velocity m/s, acceleration m/s²,
 //! force N, current A, temperature °C. Host analysis runs in f64 and converts
 //! to f32 only at the call into the core (which is what the board computes).
+pub mod accelerometer;
 pub mod branches;
 pub mod columns;
 pub mod error;

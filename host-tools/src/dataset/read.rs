@@ -23,6 +23,7 @@ const RECORDING_KEYS: &[&str] = &[
     "role",
     "mass_kg",
     "impact_velocity_m_s",
+    "impact_velocity_uncertainty_m_s",
     "sequence",
     "temperature_c",
     "tags",
@@ -38,6 +39,7 @@ pub const SETTING_BOUNDS: &[(&str, f64, f64, &str)] = &[
     ("current_a", -100.0, 100.0, "A"),
     ("mass_kg", 1e-6, 1e4, "kg"),
     ("impact_velocity_m_s", -100.0, 100.0, "m/s"),
+    ("impact_velocity_uncertainty_m_s", 0.0, 100.0, "m/s"),
     ("temperature_c", -273.15, 1000.0, "°C"),
 ];
 
@@ -61,6 +63,8 @@ struct Settings {
     role: Option<Role>,
     mass_kg: Option<Spanned<f64>>,
     impact_velocity_m_s: Option<Spanned<f64>>,
+    /// The light gate's uncertainty, for an accelerometer record's report.
+    impact_velocity_uncertainty_m_s: Option<Spanned<f64>>,
     sequence: Option<u32>,
     temperature_c: Option<Spanned<f64>>,
     tags: Option<BTreeMap<String, TagValue>>,
@@ -226,6 +230,26 @@ impl Dataset {
                 Some(sign) => apply_signs(&mut samples, sign.get_ref(), &mpath, line_of(text, sign.span().start))?,
                 None => Vec::new(),
             };
+            // An accelerometer drop record: the force from the striker's
+            // acceleration and the drop mass (super::accelerometer).
+            let mut accelerometer = None;
+            if samples.force_n.is_empty() {
+                let dv0 = finite(
+                    s.impact_velocity_uncertainty_m_s
+                        .as_ref()
+                        .or(d.impact_velocity_uncertainty_m_s.as_ref()),
+                    "impact_velocity_uncertainty_m_s",
+                )?;
+                accelerometer = Some(force_from_accelerometer(
+                    &mut samples,
+                    &file,
+                    mass_kg,
+                    impact_velocity_m_s,
+                    dv0,
+                    &mpath,
+                    line,
+                )?);
+            }
             let impact = mass_kg.is_some() || impact_velocity_m_s.is_some();
             let check = |samples: &Samples, measured_v: bool| {
                 let found = super::sign::inverted_columns(
@@ -251,6 +275,7 @@ impl Dataset {
                     &file,
                     mass_kg,
                     impact_velocity_m_s,
+                    accelerometer,
                     &mpath,
                     line,
                 )?)
@@ -378,6 +403,7 @@ fn derive_motion(
     file: &str,
     mass_kg: Option<f64>,
     impact_velocity_m_s: Option<f64>,
+    accelerometer: Option<super::accelerometer::IntegrationUncertainty>,
     mpath: &str,
     line: usize,
 ) -> Result<MotionSource, DatasetError> {
@@ -390,7 +416,13 @@ fn derive_motion(
         ),
     };
     let v0 = impact_velocity_m_s.ok_or_else(|| missing("`impact_velocity_m_s`"))?;
-    let source = if samples.accel_m_s2.is_some() {
+    let source = if let (Some(uncertainty), Some(mass_kg)) = (accelerometer, mass_kg) {
+        MotionSource::Accelerometer {
+            mass_kg,
+            impact_velocity_m_s: v0,
+            uncertainty,
+        }
+    } else if samples.accel_m_s2.is_some() {
         MotionSource::Acceleration {
             impact_velocity_m_s: v0,
         }
@@ -417,6 +449,39 @@ fn derive_motion(
         });
     }
     Ok(source)
+}
+
+/// The force of a record with acceleration and no force column,
+/// F = m·(g − a), the accelerometer's offset removed from `samples`.
+fn force_from_accelerometer(
+    samples: &mut Samples,
+    file: &str,
+    mass_kg: Option<f64>,
+    v0_m_s: Option<f64>,
+    dv0_m_s: Option<f64>,
+    mpath: &str,
+    line: usize,
+) -> Result<super::accelerometer::IntegrationUncertainty, DatasetError> {
+    let refuse = |why: String| DatasetError::Manifest {
+        path: mpath.to_string(),
+        line,
+        message: format!("`{file}` is an accelerometer drop record (acceleration, no force): {why}"),
+    };
+    let Some(mass_kg) = mass_kg else {
+        return Err(refuse(
+            "its force is m·(g − a), which needs the drop mass `mass_kg` (docs/dataset-format.md, \
+             accelerometer drop records)"
+                .to_string(),
+        ));
+    };
+    let Some(accel) = samples.accel_m_s2.as_mut() else {
+        return Err(refuse("no acceleration column".to_string()));
+    };
+    let (force_n, uncertainty) =
+        super::accelerometer::force_from_acceleration(&samples.time_s, accel, mass_kg, v0_m_s.unwrap_or(0.0), dv0_m_s)
+            .map_err(|r| refuse(r.sentence(canonical_name(Quantity::Acceleration))))?;
+    samples.force_n = force_n;
+    Ok(uncertainty)
 }
 
 /// Rejects keys the format does not define, naming the key and its line.

@@ -160,7 +160,10 @@ fn error_missing_required_column() {
     let f = dir.path().join("a.csv").display().to_string();
     assert_eq!(
         load_err(dir.path()),
-        format!("{f}: line 1: missing required column for force (one of force_n, force_kn, force_lbf)")
+        format!(
+            "{f}: line 1: missing required column for force (one of force_n, force_kn, force_lbf; \
+             or, for an accelerometer drop record with mass_kg, acceleration_m_s2, acceleration_g)"
+        )
     );
 }
 

@@ -17,6 +17,7 @@ mod cli_ux;
 mod compare_families;
 mod compare_outputs;
 mod control_bench;
+mod dataset_accelerometer;
 mod dataset_campaign;
 mod dataset_daq;
 mod dataset_init;
