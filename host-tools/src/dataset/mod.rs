@@ -88,6 +88,9 @@ pub struct Recording {
     /// Set when the file had no displacement: velocity and displacement were
     /// integrated from force or acceleration (docs/dataset-format.md).
     pub motion_from: Option<motion::MotionSource>,
+    /// What the reader assumed or chose reading the file (tied time stamps
+    /// spread, a preamble skipped, a vendor block picked), for reports.
+    pub notes: Vec<String>,
 }
 
 /// A data set folder, loaded.

@@ -96,6 +96,7 @@ pub fn read_samples(
     columns: Option<&[String]>,
     mpath: &str,
     columns_line: usize,
+    notes: &mut Vec<String>,
 ) -> Result<(Samples, bool), DatasetError> {
     let dpath = path.display().to_string();
     let table = (reader.read)(path, bytes)?;
@@ -126,7 +127,8 @@ pub fn read_samples(
             ),
         });
     }
-    samples_from_rows(&dpath, &names, name_path, name_line, table.rows.into_iter())
+    notes.extend(table.notes);
+    samples_from_rows(&dpath, &names, name_path, name_line, table.rows.into_iter(), notes)
 }
 
 /// A number written with `decimal` as its decimal separator, as a cell

@@ -21,6 +21,7 @@ mod dataset_accelerometer;
 mod dataset_campaign;
 mod dataset_daq;
 mod dataset_init;
+mod dataset_lab_text;
 mod dataset_matlab;
 mod dataset_motion;
 mod dataset_read;

@@ -1,0 +1,133 @@
+//! Text as labs write it (issue 41 item 2): tied time stamps at an export's
+//! resolution, a units row under the names, CRLF line ends in error lines,
+//! a Bluehill-style preamble. No real Bluehill export with a licence that
+//! allows redistribution was found: these files are written by hand after
+//! the layout the issue reports (a `Results Table 1 : Specimen 1` line, a
+//! blank line, quoted names over quoted units in parentheses), and each
+//! expected value is worked out by hand in the test.
+use mre_host::dataset::Dataset;
+use std::fmt::Write as _;
+use std::path::Path;
+
+fn load(dir: &Path, data: &str, settings: &str) -> Result<Dataset, String> {
+    std::fs::write(dir.join("r.csv"), data).unwrap();
+    let manifest = format!("[[recording]]\nfile = \"r.csv\"\ncurrent_a = 0.5\n{settings}\n");
+    std::fs::write(dir.join("dataset.toml"), manifest).unwrap();
+    Dataset::load(dir).map_err(|e| e.to_string())
+}
+
+/// 30 rows sampled at 300 Hz with time written at 0.01 s: each stamp three
+/// times. Row k: stamp 0.01·⌊k/3⌋, x = k mm, F = 10·k N.
+fn tied_rows() -> String {
+    let mut s = String::new();
+    for k in 0..30 {
+        writeln!(s, "{:.2},{k},{}", 0.01 * (k / 3) as f64, 10 * k).unwrap();
+    }
+    s
+}
+
+#[test]
+fn tied_time_stamps_are_kept_in_order_and_spread_with_a_note() {
+    let dir = tempfile::tempdir().unwrap();
+    let ds = load(
+        dir.path(),
+        &format!("time_s,displacement_mm,force_n\n{}", tied_rows()),
+        "",
+    )
+    .unwrap();
+    let r = &ds.recordings[0];
+    assert_eq!(r.samples.len(), 30, "every row kept");
+    for k in 0..30 {
+        // By hand: the three rows of a stamp at +0, +1/3 and +2/3 of the 0.01 s step.
+        let t = 0.01 * (k / 3) as f64 + 0.01 * (k % 3) as f64 / 3.0;
+        assert!(
+            (r.samples.time_s[k] - t).abs() < 1e-12,
+            "row {k}: {} vs {t}",
+            r.samples.time_s[k]
+        );
+        assert_eq!(r.samples.x_mm[k], k as f64, "order kept");
+    }
+    // 10 stamps × 2 repeats; the first repeat is row 2 of the data, line 3.
+    let note = r.notes.iter().find(|n| n.contains("time stamp")).expect("a note");
+    assert!(
+        note.starts_with("20 rows") && note.contains("line 3") && note.contains("0.01 s"),
+        "{note}"
+    );
+}
+
+#[test]
+fn time_that_goes_back_is_still_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut rows = tied_rows();
+    rows.push_str("0.05,30,300\n");
+    let e = load(dir.path(), &format!("time_s,displacement_mm,force_n\n{rows}"), "").unwrap_err();
+    // Line 32: the header, 30 rows, then the row whose 0.05 s is below 0.09 s.
+    assert!(e.contains("line 32") && e.contains("does not increase"), "{e}");
+}
+
+/// The Bluehill layout: preamble, blank line, names, units, data.
+fn bluehill(eol: &str, unit_load: &str, rows: &str) -> String {
+    let mut s = String::new();
+    for line in [
+        "Results Table 1 : Specimen 1",
+        "",
+        "\"Time\",\"Extension\",\"Load\"",
+        &format!("\"(sec)\",\"(mm)\",\"({unit_load})\""),
+    ] {
+        s.push_str(line);
+        s.push_str(eol);
+    }
+    for line in rows.lines() {
+        s.push_str(line);
+        s.push_str(eol);
+    }
+    s
+}
+
+#[test]
+fn a_bluehill_preamble_is_skipped_and_its_units_row_sets_the_scale() {
+    let dir = tempfile::tempdir().unwrap();
+    let ds = load(dir.path(), &bluehill("\n", "kN", &tied_rows()), "").unwrap();
+    let r = &ds.recordings[0];
+    assert_eq!(r.samples.len(), 30);
+    // Load in kN: row 4 reads 40 → 40 000 N; Extension in mm.
+    assert_eq!(r.samples.force_n[4], 40_000.0);
+    assert_eq!(r.samples.x_mm[4], 4.0);
+    let notes = r.notes.join(" | ");
+    assert!(notes.contains("skipped"), "{notes}");
+    assert!(
+        notes.contains("units row (line 4)") && notes.contains("force_kn"),
+        "{notes}"
+    );
+    // The same with the load in N: the units row, not the names, sets the scale.
+    let ds = load(dir.path(), &bluehill("\n", "N", &tied_rows()), "").unwrap();
+    assert_eq!(ds.recordings[0].samples.force_n[4], 40.0);
+}
+
+#[test]
+fn crlf_files_name_the_line_of_a_bad_value() {
+    let dir = tempfile::tempdir().unwrap();
+    // Data row 5 (k = 4) is bad: lines 1–4 preamble, blank, names, units, so line 9.
+    let bad: String = tied_rows()
+        .lines()
+        .enumerate()
+        .map(|(k, l)| {
+            if k == 4 {
+                "0.01,abc,40\n".to_string()
+            } else {
+                format!("{l}\n")
+            }
+        })
+        .collect();
+    for eol in ["\n", "\r\n"] {
+        let e = load(dir.path(), &bluehill(eol, "N", &bad), "").unwrap_err();
+        assert!(e.contains("line 9,") && e.contains("`abc`"), "{eol:?}: {e}");
+        // With a plain header: line 6.
+        let plain = format!("time_s,displacement_mm,force_n{eol}{}", bad.replace('\n', eol));
+        let e = load(dir.path(), &plain, "").unwrap_err();
+        assert!(e.contains("line 6,") && e.contains("`abc`"), "{eol:?}: {e}");
+        let ws = plain.replace(',', " ");
+        let e = load(dir.path(), &ws, "delimiter = \"whitespace\"").unwrap_err();
+        assert!(e.contains("line 6,") && e.contains("`abc`"), "{eol:?} whitespace: {e}");
+    }
+}
