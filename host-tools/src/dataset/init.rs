@@ -136,9 +136,15 @@ fn sniff_records(text: &str) -> Result<(Delimiter, Vec<Vec<String>>)> {
         bail!("no data lines")
     };
     // `;` first: its decimal commas would otherwise read as delimiters.
+    // A tab-separated line whose fields read as numbers with decimal commas
+    // (LabVIEW's spreadsheet text in a German locale) is blank-separated.
+    let tab_decimal_comma = first.contains('\t')
+        && first
+            .split_whitespace()
+            .all(|f| f.replacen(',', ".", 1).parse::<f64>().is_ok());
     let delimiter = if first.contains(';') {
         Delimiter::Semicolon
-    } else if first.contains(',') {
+    } else if first.contains(',') && !tab_decimal_comma {
         Delimiter::Comma
     } else {
         Delimiter::Whitespace
@@ -151,7 +157,16 @@ fn sniff_records(text: &str) -> Result<(Delimiter, Vec<Vec<String>>)> {
                 .map(|f| f.trim().trim_matches('"').replacen(',', ".", 1))
                 .collect(),
             Delimiter::Comma => l.split(',').map(|f| f.trim().trim_matches('"').to_string()).collect(),
-            Delimiter::Whitespace => l.split_whitespace().map(|f| f.trim_matches('"').to_string()).collect(),
+            Delimiter::Whitespace => l
+                .split_whitespace()
+                .map(|f| {
+                    let f = f.trim_matches('"');
+                    match f.contains('.') {
+                        true => f.to_string(),
+                        false => f.replacen(',', ".", 1),
+                    }
+                })
+                .collect(),
         })
         .collect();
     Ok((delimiter, records))

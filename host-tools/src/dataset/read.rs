@@ -594,9 +594,11 @@ fn records(bytes: &[u8], delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize
                 if trimmed.is_empty() || trimmed.starts_with('#') {
                     continue;
                 }
+                // A comma inside a blank-separated field is a decimal comma
+                // (LabVIEW's spreadsheet text in a German locale: `0,001\t1,25`).
                 let fields = trimmed
                     .split_whitespace()
-                    .map(|f| f.trim_matches('"').to_owned())
+                    .map(|f| decimal_comma(f.trim_matches('"')))
                     .collect();
                 out.push((i + 1, fields));
             }
@@ -683,6 +685,22 @@ fn parse_samples(
                 lines.next();
             }
             (c.get_ref().clone(), mpath, line_of(manifest_text, c.span().start))
+        }
+        None if lines
+            .as_slice()
+            .first()
+            .is_some_and(|(_, f)| f.iter().all(|x| x.parse::<f64>().is_ok())) =>
+        {
+            let (line, fields) = &lines.as_slice()[0];
+            return Err(DatasetError::BadRecord {
+                path: dpath.clone(),
+                line: *line,
+                message: format!(
+                    "holds {} numbers, not column names: the file has no header; name its columns in \
+                     dataset.toml, e.g. columns = [\"time_s\", \"force_n\"] (docs/dataset-format.md)",
+                    fields.len()
+                ),
+            });
         }
         None => match header(&mut lines, notes) {
             Some((n, names)) => (names, &dpath, n),

@@ -131,3 +131,54 @@ fn crlf_files_name_the_line_of_a_bad_value() {
         assert!(e.contains("line 6,") && e.contains("`abc`"), "{eol:?} whitespace: {e}");
     }
 }
+
+/// LabVIEW's "Write To Spreadsheet File" in a German locale: no header,
+/// tab-separated, decimal commas (`%.6f`). A 5 kg drop: 2000 rows at 10 kHz,
+/// force a 4 ms half-sine of 3 kN from row 500 (t = 50 ms).
+fn labview_headerless() -> String {
+    let mut s = String::new();
+    for k in 0..2000 {
+        let t = k as f64 * 1e-4;
+        let f = if (500..=540).contains(&k) {
+            3000.0 * (std::f64::consts::PI * (k - 500) as f64 / 40.0).sin()
+        } else {
+            0.0
+        };
+        writeln!(
+            s,
+            "{}\t{}",
+            format!("{t:.6}").replace('.', ","),
+            format!("{f:.6}").replace('.', ",")
+        )
+        .unwrap();
+    }
+    s
+}
+
+#[test]
+fn labview_headerless_text_loads_with_columns_in_the_manifest() {
+    let dir = tempfile::tempdir().unwrap();
+    let settings =
+        "delimiter = \"whitespace\"\ncolumns = [\"time_s\", \"force_n\"]\nmass_kg = 5.0\nimpact_velocity_m_s = 2.0";
+    let ds = load(dir.path(), &labview_headerless(), settings).unwrap();
+    let s = &ds.recordings[0].samples;
+    // The peak, row 520: t = 0.052 s, F = 3000 N (sin π/2), read through the decimal commas.
+    let k = s
+        .force_n
+        .iter()
+        .cloned()
+        .enumerate()
+        .fold((0, f64::MIN), |b, (i, f)| if f > b.1 { (i, f) } else { b })
+        .0;
+    assert_eq!(s.force_n[k], 3000.0);
+    assert!((s.time_s[k] - 0.052).abs() < 1e-12, "{}", s.time_s[k]);
+    // Trimmed to the contact: row 500 (the last zero) ± 10 rows, to row 539 + 10.
+    assert!((s.time_s[0] - 0.049).abs() < 1e-12, "{}", s.time_s[0]);
+    assert_eq!(s.len(), 60, "rows 490 to 549");
+    // Without `columns`, the refusal says the file has no header and how to name it.
+    let e = load(dir.path(), &labview_headerless(), "delimiter = \"whitespace\"").unwrap_err();
+    assert!(
+        e.contains("line 1") && e.contains("no header") && e.contains("columns ="),
+        "{e}"
+    );
+}
