@@ -31,6 +31,7 @@ const RECORDING_KEYS: &[&str] = &[
     "columns",
     "variables",
     "sign",
+    "block",
 ];
 
 /// Plausible ranges of the numeric settings (key, min, max, unit): a value
@@ -74,6 +75,8 @@ struct Settings {
     variables: Option<Spanned<BTreeMap<String, String>>>,
     /// Column name → +1 or −1: flips what an instrument reports.
     sign: Option<Spanned<BTreeMap<String, i64>>>,
+    /// An MTS Specimen.dat's data block (1-based), instead of the longest.
+    block: Option<Spanned<usize>>,
 }
 
 #[derive(Deserialize)]
@@ -222,7 +225,14 @@ impl Dataset {
                         ),
                     })
                 }
-                (false, _) => read_samples(&data_path, delimiter, columns, &mpath, text, &mut notes)?,
+                (false, _) => {
+                    let block = s
+                        .block
+                        .as_ref()
+                        .or(d.block.as_ref())
+                        .map(|b| (*b.get_ref(), line_of(text, b.span().start)));
+                    read_samples(&data_path, delimiter, columns, block, &mpath, text, &mut notes)?
+                }
             };
             let mass_kg = finite(s.mass_kg.as_ref().or(d.mass_kg.as_ref()), "mass_kg")?;
             let impact_velocity_m_s = finite(
@@ -622,6 +632,7 @@ fn read_samples(
     path: &Path,
     delimiter: Delimiter,
     columns: Option<&Spanned<Vec<String>>>,
+    block: Option<(usize, usize)>,
     mpath: &str,
     manifest_text: &str,
     notes: &mut Vec<String>,
@@ -632,11 +643,26 @@ fn read_samples(
         reason: e.to_string(),
     })?;
     if let Some(reader) = super::vendor::recognise(&bytes) {
-        let (names, line) = match columns {
-            Some(c) => (Some(c.get_ref().as_slice()), line_of(manifest_text, c.span().start)),
-            None => (None, 1),
+        let (names, line) = match (columns, block) {
+            (Some(c), _) => (Some(c.get_ref().as_slice()), line_of(manifest_text, c.span().start)),
+            (None, Some((_, line))) => (None, line),
+            (None, None) => (None, 1),
         };
-        return super::vendor::read_samples(reader, path, &bytes, names, mpath, line, notes);
+        let block = block.map(|(k, _)| k);
+        let settings = super::vendor::Settings {
+            columns: names,
+            block,
+            mpath,
+            line,
+        };
+        return super::vendor::read_samples(reader, path, &bytes, settings, notes);
+    }
+    if let Some((_, line)) = block {
+        return Err(DatasetError::Manifest {
+            path: mpath.to_string(),
+            line,
+            message: format!("`block` picks a data block of an MTS 793 Specimen.dat; `{dpath}` is not one"),
+        });
     }
     parse_samples(&bytes, delimiter, columns, &dpath, mpath, manifest_text, notes)
 }
@@ -647,8 +673,19 @@ fn read_samples(
 /// TDMS file is read from it).
 pub fn parse_recording(bytes: &[u8], whitespace: bool, path: &str) -> Result<Samples, DatasetError> {
     if let Some(reader) = super::vendor::recognise(bytes) {
-        return super::vendor::read_samples(reader, Path::new(path), bytes, None, "", 0, &mut Vec::new())
-            .map(|(samples, _)| samples);
+        return super::vendor::read_samples(
+            reader,
+            Path::new(path),
+            bytes,
+            super::vendor::Settings {
+                columns: None,
+                block: None,
+                mpath: "",
+                line: 0,
+            },
+            &mut Vec::new(),
+        )
+        .map(|(samples, _)| samples);
     }
     let delimiter = if whitespace {
         Delimiter::Whitespace
