@@ -182,3 +182,67 @@ fn labview_headerless_text_loads_with_columns_in_the_manifest() {
         "{e}"
     );
 }
+
+/// Unit scale factors (issue 41 item 8), from their definitions: 1 in =
+/// 25.4 mm, 1 lbf = 0.453 592 37 kg × 9.806 65 m/s² = 4.448 221 615 260 5 N.
+/// A Bluehill file in inches and pound-force, read from its units row, and
+/// the same names given as `columns`; then `mre dataset init`'s manifest for
+/// it loads with only the current filled in.
+#[test]
+fn inches_and_pound_force_scale_and_init_writes_a_manifest_that_loads() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut rows = String::new();
+    for k in 0..20 {
+        writeln!(rows, "{:.2},{}.5,{}", 0.01 * k as f64, k, 100 * k).unwrap();
+    }
+    let file = bluehill("\r\n", "lbf", &rows).replace("\"(mm)\"", "\"(in)\"");
+    let ds = load(dir.path(), &file, "").unwrap();
+    let s = &ds.recordings[0].samples;
+    // Row 3: 3.5 in, 300 lbf.
+    assert!((s.x_mm[3] - 3.5 * 25.4).abs() < 1e-9, "{}", s.x_mm[3]);
+    assert!(
+        (s.force_n[3] - 300.0 * 0.453_592_37 * 9.806_65).abs() < 1e-9,
+        "{}",
+        s.force_n[3]
+    );
+    let named = load(
+        dir.path(),
+        &file,
+        "columns = [\"time_s\", \"displacement_in\", \"force_lbf\"]",
+    )
+    .unwrap();
+    assert_eq!(named.recordings[0].samples, *s);
+
+    std::fs::remove_file(dir.path().join("dataset.toml")).unwrap();
+    let manifest = mre_host::dataset::init::manifest_for(dir.path(), None, None).unwrap();
+    assert!(
+        manifest.contains("displacement_in") && manifest.contains("force_lbf"),
+        "{manifest}"
+    );
+    let filled = manifest.replacen("[defaults]\n", "[defaults]\ncurrent_a = 1.0\n", 1);
+    let ds = Dataset::from_manifest(dir.path(), &filled).unwrap_or_else(|e| panic!("{e}\n{filled}"));
+    assert_eq!(ds.recordings[0].samples, *s);
+}
+
+/// `mre dataset init` on a file with no force column refuses it, naming the
+/// file's columns and the names mre accepts, rather than write a manifest
+/// of `ignore` columns that fails later (issue 41 item 8).
+#[test]
+fn init_refuses_a_text_file_without_force_naming_its_columns() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut data = String::from("Time (s),Strain (%)\n");
+    for k in 0..12 {
+        writeln!(data, "{},{}", k as f64 * 0.1, k).unwrap();
+    }
+    std::fs::write(dir.path().join("r.csv"), data).unwrap();
+    let e = format!(
+        "{:#}",
+        mre_host::dataset::init::manifest_for(dir.path(), None, None).unwrap_err()
+    );
+    assert!(
+        e.contains("missing required column for force")
+            && e.contains("force_lbf")
+            && e.contains("`Time (s)`, `Strain (%)`"),
+        "{e}"
+    );
+}
