@@ -112,16 +112,27 @@ pub fn parse_header(names: &[String], path: &str, line: usize) -> Result<Vec<Col
     Ok(layout)
 }
 
-/// Time and force must be present. Without displacement the motion is
-/// derived from force or acceleration (`super::motion`).
+/// Time and force must be present; an accelerometer drop record's
+/// acceleration stands for force (`super::accelerometer`). Without
+/// displacement the motion is derived from force or acceleration (`super::motion`).
 pub fn required_columns(layout: &[Column], path: &str, line: usize) -> Result<(), DatasetError> {
+    let has = |q: Quantity| layout.iter().any(|c| matches!(c, Some((qq, _)) if *qq == q));
     for q in [Quantity::Time, Quantity::Force] {
-        if !layout.iter().any(|c| matches!(c, Some((qq, _)) if *qq == q)) {
+        let stands_in = q == Quantity::Force && has(Quantity::Acceleration);
+        if !has(q) && !stands_in {
             return Err(DatasetError::MissingColumn {
                 path: path.to_string(),
                 line,
                 quantity: q.describe().to_string(),
-                accepted: accepted_for(Some(q)),
+                accepted: if q == Quantity::Force {
+                    format!(
+                        "{}; or, for an accelerometer drop record with mass_kg, {}",
+                        accepted_for(Some(q)),
+                        accepted_for(Some(Quantity::Acceleration))
+                    )
+                } else {
+                    accepted_for(Some(q))
+                },
             });
         }
     }

@@ -132,13 +132,22 @@ fn sniff_records(text: &str) -> Result<(Delimiter, Vec<Vec<String>>)> {
         .map(str::trim)
         .filter(|l| !l.is_empty() && !l.starts_with('#'))
         .collect();
-    let Some(first) = lines.first() else {
+    let Some(&last) = lines.last() else {
         bail!("no data lines")
     };
+    // The delimiter is told from the data, the last line: a preamble line
+    // above it (`Results Table 1 : Specimen 1`) says nothing about it.
+    let first = &last;
     // `;` first: its decimal commas would otherwise read as delimiters.
+    // A tab-separated line whose fields read as numbers with decimal commas
+    // (LabVIEW's spreadsheet text in a German locale) is blank-separated.
+    let tab_decimal_comma = first.contains('\t')
+        && first
+            .split_whitespace()
+            .all(|f| f.replacen(',', ".", 1).parse::<f64>().is_ok());
     let delimiter = if first.contains(';') {
         Delimiter::Semicolon
-    } else if first.contains(',') {
+    } else if first.contains(',') && !tab_decimal_comma {
         Delimiter::Comma
     } else {
         Delimiter::Whitespace
@@ -151,7 +160,16 @@ fn sniff_records(text: &str) -> Result<(Delimiter, Vec<Vec<String>>)> {
                 .map(|f| f.trim().trim_matches('"').replacen(',', ".", 1))
                 .collect(),
             Delimiter::Comma => l.split(',').map(|f| f.trim().trim_matches('"').to_string()).collect(),
-            Delimiter::Whitespace => l.split_whitespace().map(|f| f.trim_matches('"').to_string()).collect(),
+            Delimiter::Whitespace => l
+                .split_whitespace()
+                .map(|f| {
+                    let f = f.trim_matches('"');
+                    match f.contains('.') {
+                        true => f.to_string(),
+                        false => f.replacen(',', ".", 1),
+                    }
+                })
+                .collect(),
         })
         .collect();
     Ok((delimiter, records))
@@ -332,7 +350,19 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
                 }
             })
             .collect();
-        parse_header(&names, &path.display().to_string(), 1).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let layout = parse_header(&names, &path.display().to_string(), 1).map_err(|e| anyhow::anyhow!("{e}"))?;
+        // Never a manifest that cannot load: no time or no force is refused
+        // here, with the file's columns and the names mre accepts.
+        super::columns::required_columns(&layout, &path.display().to_string(), first_data).map_err(|e| {
+            anyhow::anyhow!(
+                "{e}; the file's columns are {}; name them with `columns` by hand (docs/dataset-format.md)",
+                raw_names
+                    .iter()
+                    .map(|n| format!("`{n}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        })?;
         let unchanged = first_data == 1 && names.iter().zip(&records[0]).all(|(n, raw)| n == raw);
         let sign = detect_flip(&names, &records[first_data..], &mut notes);
         return Ok(Layout {

@@ -75,6 +75,7 @@ pub(super) fn read_samples(
     variables: &BTreeMap<String, String>,
     mpath: &str,
     line: usize,
+    notes: &mut Vec<String>,
 ) -> Result<(Samples, bool), DatasetError> {
     let dpath = path.display().to_string();
     let unreadable = |reason: String| DatasetError::Unreadable {
@@ -159,7 +160,7 @@ pub(super) fn read_samples(
     }
     let n = columns.first().map_or(0, |(_, v)| v.len());
     let rows = (0..n).map(|k| (k + 1, columns.iter().map(|(_, c)| Cell::Number(c[k])).collect()));
-    samples_from_rows(&dpath, &names, mpath, line, rows)
+    samples_from_rows(&dpath, &names, mpath, line, rows, notes)
 }
 
 /// The tests' MAT-file writer (shared with the integration tests).

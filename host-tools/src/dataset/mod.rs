@@ -4,6 +4,7 @@
 //! Internal units: time s, displacement mm, velocity m/s, acceleration m/s²,
 //! force N, current A, temperature °C. Host analysis runs in f64 and converts
 //! to f32 only at the call into the core (which is what the board computes).
+pub mod accelerometer;
 pub mod branches;
 pub mod columns;
 pub mod error;
@@ -87,6 +88,9 @@ pub struct Recording {
     /// Set when the file had no displacement: velocity and displacement were
     /// integrated from force or acceleration (docs/dataset-format.md).
     pub motion_from: Option<motion::MotionSource>,
+    /// What the reader assumed or chose reading the file (tied time stamps
+    /// spread, a preamble skipped, a vendor block picked), for reports.
+    pub notes: Vec<String>,
 }
 
 /// A data set folder, loaded.

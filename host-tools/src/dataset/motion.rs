@@ -33,6 +33,13 @@ pub enum MotionSource {
     Force { mass_kg: f64, impact_velocity_m_s: f64 },
     /// v = v0 + ∫a dt.
     Acceleration { impact_velocity_m_s: f64 },
+    /// No force column: F = m·(g − a) and v = v0 + ∫a dt, the accelerometer's
+    /// offset removed (`super::accelerometer`).
+    Accelerometer {
+        mass_kg: f64,
+        impact_velocity_m_s: f64,
+        uncertainty: super::accelerometer::IntegrationUncertainty,
+    },
 }
 
 impl MotionSource {
@@ -48,6 +55,15 @@ impl MotionSource {
             ),
             MotionSource::Acceleration { impact_velocity_m_s } => format!(
                 "velocity and displacement integrated from the striker acceleration (v0 = {impact_velocity_m_s} m/s)"
+            ),
+            MotionSource::Accelerometer {
+                mass_kg,
+                impact_velocity_m_s,
+                uncertainty,
+            } => format!(
+                "force F = m·(g − a) and velocity and displacement integrated from the striker accelerometer \
+                 (ISO 6603-2 read backwards: m = {mass_kg} kg, v0 = {impact_velocity_m_s} m/s, g = {G_M_S2} m/s²); {}",
+                uncertainty.describe()
             ),
         }
     }
@@ -144,9 +160,10 @@ pub fn derive_motion(samples: &mut super::Samples, source: MotionSource) -> Opti
             mass_kg,
             impact_velocity_m_s,
         } => (accel_from_force(&samples.force_n, mass_kg), impact_velocity_m_s),
-        MotionSource::Acceleration { impact_velocity_m_s } => {
-            (samples.accel_m_s2.clone().unwrap_or_default(), impact_velocity_m_s)
-        }
+        MotionSource::Acceleration { impact_velocity_m_s }
+        | MotionSource::Accelerometer {
+            impact_velocity_m_s, ..
+        } => (samples.accel_m_s2.clone().unwrap_or_default(), impact_velocity_m_s),
     };
     let (v, x) = integrate(&samples.time_s, &accel, contact, v0);
     samples.v_m_s = v;

@@ -104,6 +104,13 @@ struct Block {
 }
 
 fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
+    read_block(path, bytes, None)
+}
+
+/// Reads record `block` (1-based, in file order; buffers naming the same
+/// channels are one record), or the longest when `None` (`block` in
+/// dataset.toml, docs/dataset-format.md).
+pub fn read_block(path: &Path, bytes: &[u8], block: Option<usize>) -> Result<Table, DatasetError> {
     let dpath = path.display().to_string();
     let text = super::vendor::text(path, bytes, "an MTS Specimen.dat is text")?;
     let bad = |line: usize, message: String| DatasetError::BadRecord {
@@ -112,7 +119,7 @@ fn read(path: &Path, bytes: &[u8]) -> Result<Table, DatasetError> {
         message,
     };
     let blocks = blocks(&text, &bad)?;
-    choose(blocks).ok_or_else(|| {
+    choose(blocks, block).map_err(|m| bad(1, m))?.ok_or_else(|| {
         bad(
             text.lines().count().max(1),
             "no data rows (a row of channel names, a row of units, then numbers)".to_string(),
@@ -193,7 +200,8 @@ fn blocks(text: &str, bad: &dyn Fn(usize, String) -> DatasetError) -> Result<Vec
 /// (MPT repeats the header before each buffer), and the record with the
 /// most rows is taken. The others (a peak or cycle table, a second
 /// process's data) are skipped and named in the table's notes.
-fn choose(blocks: Vec<Block>) -> Option<Table> {
+/// `pick` (1-based) takes another record; `Err` when there is no such record.
+fn choose(blocks: Vec<Block>, pick: Option<usize>) -> Result<Option<Table>, String> {
     let mut records: Vec<Block> = Vec::new();
     for b in blocks {
         match records.iter_mut().find(|r| r.channels == b.channels) {
@@ -201,23 +209,45 @@ fn choose(blocks: Vec<Block>) -> Option<Table> {
             None => records.push(b),
         }
     }
-    let longest = (0..records.len()).max_by_key(|&i| (records[i].rows.len(), std::cmp::Reverse(i)))?;
-    let chosen = records.remove(longest);
+    let describe = |i: usize, r: &Block| {
+        format!(
+            "{}: {} rows at line {} ({})",
+            i + 1,
+            r.rows.len(),
+            r.names_line,
+            r.channels.join(", ")
+        )
+    };
+    let index = match pick {
+        Some(k) if (1..=records.len()).contains(&k) => k - 1,
+        Some(k) => {
+            let list: Vec<String> = records.iter().enumerate().map(|(i, r)| describe(i, r)).collect();
+            return Err(format!(
+                "`block = {k}`, but the file holds {} data block(s): {}",
+                records.len(),
+                list.join("; ")
+            ));
+        }
+        None => match (0..records.len()).max_by_key(|&i| (records[i].rows.len(), std::cmp::Reverse(i))) {
+            Some(i) => i,
+            None => return Ok(None),
+        },
+    };
+    let why = match pick {
+        Some(k) => format!("`block = {k}` picks another"),
+        None => "the longest block is the time series (`block = N` picks another)".to_string(),
+    };
     let notes = records
         .iter()
-        .map(|r| {
-            format!(
-                "skipped the {}-row data block at line {} ({}): the longest block is the time series",
-                r.rows.len(),
-                r.names_line,
-                r.channels.join(", ")
-            )
-        })
+        .enumerate()
+        .filter(|(i, _)| *i != index)
+        .map(|(i, r)| format!("skipped data block {}: {why}", describe(i, r)))
         .collect();
-    Some(Table {
+    let chosen = records.swap_remove(index);
+    Ok(Some(Table {
         channels: chosen.channels,
         names_line: chosen.names_line,
         rows: chosen.rows,
         notes,
-    })
+    }))
 }

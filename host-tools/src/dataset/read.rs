@@ -23,6 +23,7 @@ const RECORDING_KEYS: &[&str] = &[
     "role",
     "mass_kg",
     "impact_velocity_m_s",
+    "impact_velocity_uncertainty_m_s",
     "sequence",
     "temperature_c",
     "tags",
@@ -30,6 +31,7 @@ const RECORDING_KEYS: &[&str] = &[
     "columns",
     "variables",
     "sign",
+    "block",
 ];
 
 /// Plausible ranges of the numeric settings (key, min, max, unit): a value
@@ -38,6 +40,7 @@ pub const SETTING_BOUNDS: &[(&str, f64, f64, &str)] = &[
     ("current_a", -100.0, 100.0, "A"),
     ("mass_kg", 1e-6, 1e4, "kg"),
     ("impact_velocity_m_s", -100.0, 100.0, "m/s"),
+    ("impact_velocity_uncertainty_m_s", 0.0, 100.0, "m/s"),
     ("temperature_c", -273.15, 1000.0, "°C"),
 ];
 
@@ -61,6 +64,8 @@ struct Settings {
     role: Option<Role>,
     mass_kg: Option<Spanned<f64>>,
     impact_velocity_m_s: Option<Spanned<f64>>,
+    /// The light gate's uncertainty, for an accelerometer record's report.
+    impact_velocity_uncertainty_m_s: Option<Spanned<f64>>,
     sequence: Option<u32>,
     temperature_c: Option<Spanned<f64>>,
     tags: Option<BTreeMap<String, TagValue>>,
@@ -70,6 +75,8 @@ struct Settings {
     variables: Option<Spanned<BTreeMap<String, String>>>,
     /// Column name → +1 or −1: flips what an instrument reports.
     sign: Option<Spanned<BTreeMap<String, i64>>>,
+    /// An MTS Specimen.dat's data block (1-based), instead of the longest.
+    block: Option<Spanned<usize>>,
 }
 
 #[derive(Deserialize)]
@@ -199,10 +206,15 @@ impl Dataset {
                 .extension()
                 .is_some_and(|e| e.eq_ignore_ascii_case("mat"));
             let variables = s.variables.as_ref().or(d.variables.as_ref());
+            let mut notes = Vec::new();
             let (samples, velocity_estimated) = match (is_mat, variables) {
-                (true, Some(v)) => {
-                    super::matlab::read_samples(&data_path, v.get_ref(), &mpath, line_of(text, v.span().start))?
-                }
+                (true, Some(v)) => super::matlab::read_samples(
+                    &data_path,
+                    v.get_ref(),
+                    &mpath,
+                    line_of(text, v.span().start),
+                    &mut notes,
+                )?,
                 (true, None) => {
                     return Err(DatasetError::Manifest {
                         path: mpath,
@@ -213,7 +225,14 @@ impl Dataset {
                         ),
                     })
                 }
-                (false, _) => read_samples(&data_path, delimiter, columns, &mpath, text)?,
+                (false, _) => {
+                    let block = s
+                        .block
+                        .as_ref()
+                        .or(d.block.as_ref())
+                        .map(|b| (*b.get_ref(), line_of(text, b.span().start)));
+                    read_samples(&data_path, delimiter, columns, block, &mpath, text, &mut notes)?
+                }
             };
             let mass_kg = finite(s.mass_kg.as_ref().or(d.mass_kg.as_ref()), "mass_kg")?;
             let impact_velocity_m_s = finite(
@@ -226,6 +245,26 @@ impl Dataset {
                 Some(sign) => apply_signs(&mut samples, sign.get_ref(), &mpath, line_of(text, sign.span().start))?,
                 None => Vec::new(),
             };
+            // An accelerometer drop record: the force from the striker's
+            // acceleration and the drop mass (super::accelerometer).
+            let mut accelerometer = None;
+            if samples.force_n.is_empty() {
+                let dv0 = finite(
+                    s.impact_velocity_uncertainty_m_s
+                        .as_ref()
+                        .or(d.impact_velocity_uncertainty_m_s.as_ref()),
+                    "impact_velocity_uncertainty_m_s",
+                )?;
+                accelerometer = Some(force_from_accelerometer(
+                    &mut samples,
+                    &file,
+                    mass_kg,
+                    impact_velocity_m_s,
+                    dv0,
+                    &mpath,
+                    line,
+                )?);
+            }
             let impact = mass_kg.is_some() || impact_velocity_m_s.is_some();
             let check = |samples: &Samples, measured_v: bool| {
                 let found = super::sign::inverted_columns(
@@ -251,6 +290,7 @@ impl Dataset {
                     &file,
                     mass_kg,
                     impact_velocity_m_s,
+                    accelerometer,
                     &mpath,
                     line,
                 )?)
@@ -269,6 +309,7 @@ impl Dataset {
                 samples,
                 velocity_estimated,
                 motion_from,
+                notes,
             });
         }
         Ok(Dataset {
@@ -378,6 +419,7 @@ fn derive_motion(
     file: &str,
     mass_kg: Option<f64>,
     impact_velocity_m_s: Option<f64>,
+    accelerometer: Option<super::accelerometer::IntegrationUncertainty>,
     mpath: &str,
     line: usize,
 ) -> Result<MotionSource, DatasetError> {
@@ -390,7 +432,13 @@ fn derive_motion(
         ),
     };
     let v0 = impact_velocity_m_s.ok_or_else(|| missing("`impact_velocity_m_s`"))?;
-    let source = if samples.accel_m_s2.is_some() {
+    let source = if let (Some(uncertainty), Some(mass_kg)) = (accelerometer, mass_kg) {
+        MotionSource::Accelerometer {
+            mass_kg,
+            impact_velocity_m_s: v0,
+            uncertainty,
+        }
+    } else if samples.accel_m_s2.is_some() {
         MotionSource::Acceleration {
             impact_velocity_m_s: v0,
         }
@@ -417,6 +465,39 @@ fn derive_motion(
         });
     }
     Ok(source)
+}
+
+/// The force of a record with acceleration and no force column,
+/// F = m·(g − a), the accelerometer's offset removed from `samples`.
+fn force_from_accelerometer(
+    samples: &mut Samples,
+    file: &str,
+    mass_kg: Option<f64>,
+    v0_m_s: Option<f64>,
+    dv0_m_s: Option<f64>,
+    mpath: &str,
+    line: usize,
+) -> Result<super::accelerometer::IntegrationUncertainty, DatasetError> {
+    let refuse = |why: String| DatasetError::Manifest {
+        path: mpath.to_string(),
+        line,
+        message: format!("`{file}` is an accelerometer drop record (acceleration, no force): {why}"),
+    };
+    let Some(mass_kg) = mass_kg else {
+        return Err(refuse(
+            "its force is m·(g − a), which needs the drop mass `mass_kg` (docs/dataset-format.md, \
+             accelerometer drop records)"
+                .to_string(),
+        ));
+    };
+    let Some(accel) = samples.accel_m_s2.as_mut() else {
+        return Err(refuse("no acceleration column".to_string()));
+    };
+    let (force_n, uncertainty) =
+        super::accelerometer::force_from_acceleration(&samples.time_s, accel, mass_kg, v0_m_s.unwrap_or(0.0), dv0_m_s)
+            .map_err(|r| refuse(r.sentence(canonical_name(Quantity::Acceleration))))?;
+    samples.force_n = force_n;
+    Ok(uncertainty)
 }
 
 /// Rejects keys the format does not define, naming the key and its line.
@@ -477,7 +558,13 @@ fn records(bytes: &[u8], delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize
         line,
         message: "binary bytes (NUL) where a text recording was expected".to_string(),
     })?;
-    let bytes = decoded.text.as_bytes();
+    // CRLF as LF: the csv crate counts a blank CRLF line short, which put
+    // every later line number one too low.
+    let text = match decoded.text.contains("\r\n") {
+        true => std::borrow::Cow::Owned(decoded.text.replace("\r\n", "\n")),
+        false => decoded.text,
+    };
+    let bytes = text.as_bytes();
     let mut out = Vec::new();
     match delimiter {
         Delimiter::Comma | Delimiter::Semicolon => {
@@ -517,9 +604,11 @@ fn records(bytes: &[u8], delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize
                 if trimmed.is_empty() || trimmed.starts_with('#') {
                     continue;
                 }
+                // A comma inside a blank-separated field is a decimal comma
+                // (LabVIEW's spreadsheet text in a German locale: `0,001\t1,25`).
                 let fields = trimmed
                     .split_whitespace()
-                    .map(|f| f.trim_matches('"').to_owned())
+                    .map(|f| decimal_comma(f.trim_matches('"')))
                     .collect();
                 out.push((i + 1, fields));
             }
@@ -543,8 +632,10 @@ fn read_samples(
     path: &Path,
     delimiter: Delimiter,
     columns: Option<&Spanned<Vec<String>>>,
+    block: Option<(usize, usize)>,
     mpath: &str,
     manifest_text: &str,
+    notes: &mut Vec<String>,
 ) -> Result<(Samples, bool), DatasetError> {
     let dpath = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|e| DatasetError::Unreadable {
@@ -552,13 +643,28 @@ fn read_samples(
         reason: e.to_string(),
     })?;
     if let Some(reader) = super::vendor::recognise(&bytes) {
-        let (names, line) = match columns {
-            Some(c) => (Some(c.get_ref().as_slice()), line_of(manifest_text, c.span().start)),
-            None => (None, 1),
+        let (names, line) = match (columns, block) {
+            (Some(c), _) => (Some(c.get_ref().as_slice()), line_of(manifest_text, c.span().start)),
+            (None, Some((_, line))) => (None, line),
+            (None, None) => (None, 1),
         };
-        return super::vendor::read_samples(reader, path, &bytes, names, mpath, line);
+        let block = block.map(|(k, _)| k);
+        let settings = super::vendor::Settings {
+            columns: names,
+            block,
+            mpath,
+            line,
+        };
+        return super::vendor::read_samples(reader, path, &bytes, settings, notes);
     }
-    parse_samples(&bytes, delimiter, columns, &dpath, mpath, manifest_text)
+    if let Some((_, line)) = block {
+        return Err(DatasetError::Manifest {
+            path: mpath.to_string(),
+            line,
+            message: format!("`block` picks a data block of an MTS 793 Specimen.dat; `{dpath}` is not one"),
+        });
+    }
+    parse_samples(&bytes, delimiter, columns, &dpath, mpath, manifest_text, notes)
 }
 
 /// Parses one recording file with a header row, or a vendor export
@@ -567,14 +673,26 @@ fn read_samples(
 /// TDMS file is read from it).
 pub fn parse_recording(bytes: &[u8], whitespace: bool, path: &str) -> Result<Samples, DatasetError> {
     if let Some(reader) = super::vendor::recognise(bytes) {
-        return super::vendor::read_samples(reader, Path::new(path), bytes, None, "", 0).map(|(samples, _)| samples);
+        return super::vendor::read_samples(
+            reader,
+            Path::new(path),
+            bytes,
+            super::vendor::Settings {
+                columns: None,
+                block: None,
+                mpath: "",
+                line: 0,
+            },
+            &mut Vec::new(),
+        )
+        .map(|(samples, _)| samples);
     }
     let delimiter = if whitespace {
         Delimiter::Whitespace
     } else {
         Delimiter::Comma
     };
-    parse_samples(bytes, delimiter, None, path, "", "").map(|(samples, _)| samples)
+    parse_samples(bytes, delimiter, None, path, "", "", &mut Vec::new()).map(|(samples, _)| samples)
 }
 
 fn parse_samples(
@@ -584,6 +702,7 @@ fn parse_samples(
     dpath: &str,
     mpath: &str,
     manifest_text: &str,
+    notes: &mut Vec<String>,
 ) -> Result<(Samples, bool), DatasetError> {
     let dpath = dpath.to_string();
     let mut lines = records(bytes, delimiter, &dpath)?.into_iter();
@@ -604,7 +723,23 @@ fn parse_samples(
             }
             (c.get_ref().clone(), mpath, line_of(manifest_text, c.span().start))
         }
-        None => match lines.next() {
+        None if lines
+            .as_slice()
+            .first()
+            .is_some_and(|(_, f)| f.iter().all(|x| x.parse::<f64>().is_ok())) =>
+        {
+            let (line, fields) = &lines.as_slice()[0];
+            return Err(DatasetError::BadRecord {
+                path: dpath.clone(),
+                line: *line,
+                message: format!(
+                    "holds {} numbers, not column names: the file has no header; name its columns in \
+                     dataset.toml, e.g. columns = [\"time_s\", \"force_n\"] (docs/dataset-format.md)",
+                    fields.len()
+                ),
+            });
+        }
+        None => match header(&mut lines, notes) {
             Some((n, names)) => (names, &dpath, n),
             None => {
                 return Err(DatasetError::TooFewSamples {
@@ -617,7 +752,135 @@ fn parse_samples(
         },
     };
     let rows = lines.map(|(n, f)| (n, f.into_iter().map(Cell::Text).collect()));
-    samples_from_rows(&dpath, &names, name_path, name_line, rows)
+    samples_from_rows(&dpath, &names, name_path, name_line, rows, notes)
+}
+
+/// Units a units row under the names may hold (lower case, brackets
+/// stripped): the ones [`super::columns::map_name`] reads, and a few it
+/// does not, so the row is still told from a data row.
+const UNIT_WORDS: &[&str] = &[
+    "s", "sec", "secs", "ms", "min", "mm", "m", "in", "cm", "n", "kn", "lbf", "kgf", "g", "m/s", "mm/s", "m/s^2",
+    "m/s²", "a", "ma", "v", "mv", "°c", "degc", "c", "%", "mpa", "kpa", "pa", "-", "",
+];
+
+fn is_units_row(fields: &[String]) -> bool {
+    fields.iter().any(|f| !f.is_empty())
+        && fields.iter().all(|f| {
+            let u = f.trim().trim_matches(|c| "()[]".contains(c)).trim().to_lowercase();
+            UNIT_WORDS.contains(&u.as_str())
+        })
+}
+
+/// The header of a file without `columns`: its first row when that names
+/// columns mre reads (as the format asks). Otherwise, as labs' software
+/// writes: the names are the row above the first all-numeric row, or two
+/// above when the row between is a units row (`(sec)`, `(N)`), which is
+/// joined to the names (`Load` over `(N)` → `force_n`); rows above the
+/// names (a Bluehill `Results Table 1 : Specimen 1`, a date) are skipped
+/// and noted. Leaves `lines` at the first data row.
+fn header(
+    lines: &mut std::vec::IntoIter<(usize, Vec<String>)>,
+    notes: &mut Vec<String>,
+) -> Option<(usize, Vec<String>)> {
+    let rows = lines.as_slice();
+    let first = rows.first()?.clone();
+    let numeric = |f: &[String]| f.iter().all(|x| x.parse::<f64>().is_ok());
+    let reads = |names: &[String]| parse_header(names, "", 1).is_ok();
+    let data = rows.iter().position(|(_, f)| numeric(f));
+    let plan = match data {
+        Some(d) if !reads(&first.1) && d >= 1 => {
+            let units = d >= 2 && is_units_row(&rows[d - 1].1) && rows[d - 2].1.len() == rows[d - 1].1.len();
+            let names_at = if units { d - 2 } else { d - 1 };
+            let (line, raw) = &rows[names_at];
+            let names: Vec<String> = raw
+                .iter()
+                .enumerate()
+                .map(|(i, name)| {
+                    let unit = units.then(|| rows[d - 1].1[i].trim().trim_matches(|c| "()[]".contains(c)).trim());
+                    let joined = match unit {
+                        Some(u) if !u.is_empty() => format!("{name} ({u})"),
+                        _ => name.clone(),
+                    };
+                    super::columns::map_name(&joined).unwrap_or_else(|| name.clone())
+                })
+                .collect();
+            Some((names_at, *line, names, units, d))
+        }
+        _ => None,
+    };
+    match plan {
+        Some((names_at, line, names, units, d)) => {
+            if names_at > 0 {
+                notes.push(format!(
+                    "{names_at} line(s) above the column names (line {line}) skipped, from line {}",
+                    rows[0].0
+                ));
+            }
+            if units {
+                notes.push(format!(
+                    "the units row (line {}) read with the names: {}",
+                    rows[d - 1].0,
+                    names.join(", ")
+                ));
+            } else if names != rows[names_at].1 {
+                notes.push(format!("the column names (line {line}) read as {}", names.join(", ")));
+            }
+            for _ in 0..d {
+                lines.next();
+            }
+            Some((line, names))
+        }
+        None => lines.next(),
+    }
+}
+
+/// Spreads runs of tied time stamps (s) evenly up to the next stamp: an
+/// export that writes time at 0.01 s while sampling faster repeats each
+/// stamp, and its rows are in order. A run at the end takes the step before
+/// it. `Err(k)`: sample `k` cannot be placed (every stamp the same).
+fn spread_tied_times(time_s: &mut [f64], lines: &[usize], notes: &mut Vec<String>) -> Result<(), usize> {
+    let n = time_s.len();
+    let mut tied = 0;
+    let mut first_line = None;
+    let mut resolution = f64::INFINITY;
+    for w in time_s.windows(2) {
+        if w[1] > w[0] {
+            resolution = resolution.min(w[1] - w[0]);
+        }
+    }
+    let mut i = 0;
+    // The stamp of the run before, as written (its rows are spread by now).
+    let mut previous_stamp = None;
+    while i < n {
+        let mut j = i + 1;
+        while j < n && time_s[j] == time_s[i] {
+            j += 1;
+        }
+        let stamp = time_s[i];
+        if j - i > 1 {
+            let step = match (j < n, previous_stamp) {
+                (true, _) => time_s[j] - stamp,
+                (false, Some(p)) => stamp - p,
+                (false, None) => return Err(1.min(n - 1)),
+            };
+            let t0 = time_s[i];
+            for (k, t) in time_s[i..j].iter_mut().enumerate() {
+                *t = t0 + step * k as f64 / (j - i) as f64;
+            }
+            tied += j - i - 1;
+            first_line.get_or_insert(lines.get(i + 1).copied().unwrap_or(0));
+        }
+        previous_stamp = Some(stamp);
+        i = j;
+    }
+    if let Some(line) = first_line {
+        notes.push(format!(
+            "{tied} rows repeat the time stamp of the row before (first at line {line}): the export writes \
+             time at {} s, coarser than it samples; kept in order, their times spread evenly up to the next stamp",
+            (resolution * 1e9).round() / 1e9
+        ));
+    }
+    Ok(())
 }
 
 /// One field of a recording: text from a CSV file, or a number from a
@@ -638,13 +901,15 @@ impl std::fmt::Display for Cell {
 
 /// Checks and converts rows (line, cells) under unit-named columns `names`
 /// (named at `name_path`:`name_line`) into samples in internal units;
-/// the bool is true when velocity was estimated.
+/// the bool is true when velocity was estimated. What the reader assumed
+/// (tied time stamps spread) goes to `notes`.
 pub(super) fn samples_from_rows(
     dpath: &str,
     names: &[String],
     name_path: &str,
     name_line: usize,
     rows: impl Iterator<Item = (usize, Vec<Cell>)>,
+    notes: &mut Vec<String>,
 ) -> Result<(Samples, bool), DatasetError> {
     let dpath = dpath.to_string();
     let layout = parse_header(names, name_path, name_line)?;
@@ -700,7 +965,9 @@ pub(super) fn samples_from_rows(
             }
             if quantity == Quantity::Time && Some(col) == time_col {
                 if let Some(&previous_s) = channels[col].last() {
-                    if value <= previous_s {
+                    // A tie is the export's clock resolution (spread below);
+                    // time going back is refused.
+                    if value < previous_s {
                         return Err(DatasetError::TimeNotIncreasing {
                             path: dpath,
                             line: n,
@@ -714,6 +981,16 @@ pub(super) fn samples_from_rows(
             }
             channels[col].push(value);
         }
+    }
+    if let Some(c) = time_col {
+        spread_tied_times(&mut channels[c], &sample_lines, notes).map_err(|k| DatasetError::TimeNotIncreasing {
+            path: dpath.clone(),
+            line: sample_lines[k],
+            column: c + 1,
+            name: names[c].clone(),
+            time_s: channels[c][k],
+            previous_s: channels[c][k - 1],
+        })?;
     }
     let count = time_col.map_or(0, |c| channels[c].len());
     if count < MIN_SAMPLES {

@@ -86,19 +86,47 @@ pub fn unusable(reader: &VendorReader, table: &Table, names: &[String]) -> Optio
     ))
 }
 
-/// Samples of a vendor file. `columns` (from dataset.toml, located at
-/// `mpath`:`columns_line`) names the channels in file order; without it the
-/// names come from the file's channel names and units.
+/// What dataset.toml says about a vendor file: `columns` names the channels
+/// in file order, `block` picks an MTS data block; both located at
+/// `mpath`:`line`, for errors.
+pub struct Settings<'a> {
+    pub columns: Option<&'a [String]>,
+    pub block: Option<usize>,
+    pub mpath: &'a str,
+    pub line: usize,
+}
+
+/// Samples of a vendor file. Without `columns` the names come from the
+/// file's channel names and units.
 pub fn read_samples(
     reader: &VendorReader,
     path: &Path,
     bytes: &[u8],
-    columns: Option<&[String]>,
-    mpath: &str,
-    columns_line: usize,
+    settings: Settings<'_>,
+    notes: &mut Vec<String>,
 ) -> Result<(Samples, bool), DatasetError> {
+    let Settings {
+        columns,
+        block,
+        mpath,
+        line: columns_line,
+    } = settings;
     let dpath = path.display().to_string();
-    let table = (reader.read)(path, bytes)?;
+    // `block` picks one of an MTS file's data blocks (the others hold one).
+    let table = match block {
+        None => (reader.read)(path, bytes)?,
+        Some(k) if reader.name == super::mts::READER.name => super::mts::read_block(path, bytes, Some(k))?,
+        Some(_) => {
+            return Err(DatasetError::Manifest {
+                path: mpath.to_string(),
+                line: columns_line,
+                message: format!(
+                    "`block` picks a data block of an MTS 793 Specimen.dat; `{dpath}` is a {} file",
+                    reader.name
+                ),
+            })
+        }
+    };
     let (names, name_path, name_line) = match columns {
         Some(c) => (c.to_vec(), mpath, columns_line),
         None => {
@@ -126,7 +154,8 @@ pub fn read_samples(
             ),
         });
     }
-    samples_from_rows(&dpath, &names, name_path, name_line, table.rows.into_iter())
+    notes.extend(table.notes);
+    samples_from_rows(&dpath, &names, name_path, name_line, table.rows.into_iter(), notes)
 }
 
 /// A number written with `decimal` as its decimal separator, as a cell

@@ -230,6 +230,7 @@ fn build(
                 temperature_c: None,
                 tags,
                 motion_from: None,
+                notes: Vec::new(),
                 samples: Samples {
                     time_s: t_all[keep.clone()].iter().map(|t| t.max(0.0)).collect(),
                     x_mm: x[keep.clone()].iter().map(|x| x + x_noise.sample(rng)).collect(),

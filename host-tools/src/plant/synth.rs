@@ -593,6 +593,7 @@ pub fn synthesize_plant(plant: Plant, seed: u64, plan: &SynthPlan) -> Result<Syn
                 samples,
                 velocity_estimated: false,
                 motion_from: None,
+                notes: Vec::new(),
             })
         })
         .collect::<Result<Vec<_>>>()?;

@@ -235,6 +235,7 @@ pub fn synthesize_mts_with(law: &HystereticLaw, effect: &MtsEffect, seed: u64) -
                 },
                 velocity_estimated: false,
                 motion_from: None,
+                notes: Vec::new(),
             });
         }
     }

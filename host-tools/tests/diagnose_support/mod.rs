@@ -97,6 +97,7 @@ pub fn dataset_with_steps(added: Added, seed: u64) -> Dataset {
             samples: s,
             velocity_estimated: false,
             motion_from: None,
+            notes: Vec::new(),
         });
     }
     ds
@@ -166,6 +167,7 @@ pub fn dataset(added: Added, seed: u64) -> Dataset {
                     samples: s,
                     velocity_estimated: false,
                     motion_from: None,
+                    notes: Vec::new(),
                 });
                 n += 1;
             }
@@ -251,5 +253,6 @@ pub fn fit_recording(file: String, current_a: f64, samples: Samples) -> Recordin
         samples,
         velocity_estimated: false,
         motion_from: None,
+        notes: Vec::new(),
     }
 }

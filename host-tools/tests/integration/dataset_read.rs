@@ -160,7 +160,10 @@ fn error_missing_required_column() {
     let f = dir.path().join("a.csv").display().to_string();
     assert_eq!(
         load_err(dir.path()),
-        format!("{f}: line 1: missing required column for force (one of force_n, force_kn, force_lbf)")
+        format!(
+            "{f}: line 1: missing required column for force (one of force_n, force_kn, force_lbf; \
+             or, for an accelerometer drop record with mass_kg, acceleration_m_s2, acceleration_g)"
+        )
     );
 }
 
@@ -219,11 +222,12 @@ fn error_non_finite_value() {
 #[test]
 fn error_time_not_increasing() {
     let dir = tempfile::tempdir().unwrap();
-    one_recording(dir.path(), "time_s,displacement_mm,force_n\n0,0,1\n0.2,0,1\n0.2,0,1\n");
+    // Time going back (a tie is an export's resolution: dataset_lab_text.rs).
+    one_recording(dir.path(), "time_s,displacement_mm,force_n\n0,0,1\n0.2,0,1\n0.1,0,1\n");
     let f = dir.path().join("a.csv").display().to_string();
     assert_eq!(
         load_err(dir.path()),
-        format!("{f}: line 4, column 1 (time_s): time 0.2 s does not increase (previous sample 0.2 s)")
+        format!("{f}: line 4, column 1 (time_s): time 0.1 s does not increase (previous sample 0.2 s)")
     );
 }
 
@@ -298,7 +302,7 @@ fn error_non_finite_current_and_bad_role() {
 #[test]
 fn error_variants_are_matchable() {
     let dir = tempfile::tempdir().unwrap();
-    one_recording(dir.path(), "time_s,displacement_mm,force_n\n0,0,1\n0,0,1\n");
+    one_recording(dir.path(), "time_s,displacement_mm,force_n\n0,0,1\n-1,0,1\n");
     assert!(matches!(
         Dataset::load(dir.path()),
         Err(DatasetError::TimeNotIncreasing { line: 3, column: 1, .. })

@@ -259,7 +259,7 @@ fn init_flips_a_compression_negative_mts_record_and_its_manifest_loads() {
         text.contains("assumed: `force_kn` reads compression negative"),
         "{text}"
     );
-    assert!(text.contains("skipped the 2-row data block at line 590"), "{text}");
+    assert!(text.contains("skipped data block 2: 2 rows at line 590"), "{text}");
     // The lab fills in the current, nothing else.
     let text = text.replace("file = \"specimen.dat\"", "file = \"specimen.dat\"\ncurrent_a = 0.0");
     std::fs::write(dir.path().join("dataset.toml"), text).unwrap();
@@ -284,4 +284,33 @@ fn init_refuses_a_file_without_force_naming_its_channels() {
     );
     assert!(e.contains("Temperatura (°C) (°C)"), "{e}");
     assert!(!dir.path().join("dataset.toml").exists());
+}
+
+/// `block = N` picks a data block of an MTS file (issue 41 item 3). BAM's
+/// cube test holds two (the peak table at line 15, the series at line 21):
+/// `block = 2` is the series the default takes (482 rows, as above);
+/// `block = 1`, the peak table, has no time channel and is refused for
+/// that; `block = 3` lists the two there are; an LabVIEW file refuses the key.
+#[test]
+fn mts_block_in_the_manifest_picks_the_data_block() {
+    let name = "mts793_deu_cube_compression_specimen.dat";
+    let ds = load(name, "specimen.dat", "block = 2").unwrap();
+    assert_eq!(ds.recordings[0].samples.len(), 482);
+    let notes = ds.recordings[0].notes.join(" | ");
+    assert!(notes.contains("skipped data block 1: 2 rows at line 15"), "{notes}");
+    let e = load(name, "specimen.dat", "block = 1").unwrap_err().to_string();
+    assert!(e.contains("no time channel"), "{e}");
+    let e = load(name, "specimen.dat", "block = 3").unwrap_err().to_string();
+    assert!(
+        e.contains("`block = 3`, but the file holds 2 data block(s): 1: 2 rows at line 15")
+            && e.contains("2: 482 rows at line 21"),
+        "{e}"
+    );
+    let e = load("lvm_read_short.lvm", "short.lvm", "block = 1")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("`block` picks a data block of an MTS 793 Specimen.dat"),
+        "{e}"
+    );
 }

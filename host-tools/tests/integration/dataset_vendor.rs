@@ -322,7 +322,12 @@ fn fuzz_seeds_hold_the_readers_promises() {
             if let Ok(s) = parse_recording(&bytes, whitespace, &name) {
                 let n = s.len();
                 assert!(n >= mre_host::dataset::read::MIN_SAMPLES, "{name}");
-                assert!(s.force_n.len() == n, "{name}");
+                // Force, or (an accelerometer drop record) acceleration it is derived from at load.
+                assert!(
+                    s.force_n.len() == n
+                        || (s.force_n.is_empty() && s.accel_m_s2.as_ref().is_some_and(|a| a.len() == n)),
+                    "{name}"
+                );
                 // Motion complete, or absent (a force-only record: derived at load).
                 let motion = (s.x_mm.len(), s.v_m_s.len());
                 assert!(motion == (n, n) || motion == (0, 0), "{name}: motion {motion:?} of {n}");

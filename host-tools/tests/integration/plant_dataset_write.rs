@@ -29,6 +29,7 @@ fn recording(file: &str, current_a: f64, role: Role) -> Recording {
         },
         velocity_estimated: false,
         motion_from: None,
+        notes: Vec::new(),
     }
 }
 

@@ -36,6 +36,7 @@ fn recording(table: &Table, current_a: f64, gain: f64, role: Role) -> Recording 
         samples: s,
         velocity_estimated: false,
         motion_from: None,
+        notes: Vec::new(),
     }
 }
 

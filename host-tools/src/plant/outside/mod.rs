@@ -385,6 +385,7 @@ impl Plant {
             },
             velocity_estimated: true,
             motion_from: None,
+            notes: Vec::new(),
         })
     }
 }
