@@ -727,7 +727,8 @@ pub fn decode_config(words: &[u32]) -> Result<(Table, ControlConfig), ConfigBlob
         // The installation sets the board's wiring (not uploaded) and must
         // agree with the uploaded law values it determines.
         let installation = table.installation();
-        mre_algorithm::limits::check_installation_board(installation).map_err(ConfigBlobError::InstallationOutOfLimits)?;
+        mre_algorithm::limits::check_installation_board(installation)
+            .map_err(ConfigBlobError::InstallationOutOfLimits)?;
         let mut uploaded = cfg;
         installation.apply(&mut cfg);
         // What is not uploaded (the drive range, the armed current, the

@@ -256,7 +256,11 @@ fn firmware_flies_every_version_2_term_sample_for_sample() {
     })
     .unwrap();
     assert!(setup.plant.effect.force_delay_s() > 0.0 && setup.impact.coil_lag_s == Some(2.0e-3));
-    let table = Table::with_terms(&mre_algorithm::generated_table::GENERATED_ENTRIES, ModelTerms::EVERY_TERM).unwrap();
+    let table = Table::with_terms(
+        &mre_algorithm::generated_table::GENERATED_ENTRIES,
+        ModelTerms::EVERY_TERM,
+    )
+    .unwrap();
     let cfg = control_config(&setup).unwrap();
     let (fw, frames) = run_firmware(&setup, &table, &cfg, &firmware()).unwrap();
     let host = run_in_process(&setup, &table, &cfg).unwrap();

@@ -83,3 +83,87 @@ pub fn windows_toolchain_installed() -> bool {
             .output()
             .is_ok_and(|o| String::from_utf8_lossy(&o.stdout).contains("x86_64-pc-windows-gnu"))
 }
+
+/// The functions FMI `version` (2 or 3) declares, read from the standard's
+/// own header (`fmi2Functions.h` / `fmi3Functions.h`, shipped with the
+/// patched fmi-sys): each line `#define fmiNX fmiNFullName(fmiNX)`.
+pub fn fmi_functions(version: u8) -> Vec<String> {
+    let header = repo().join(format!(
+        "host-tools/fmu/fmi-sys/fmi-standard{version}/headers/fmi{version}Functions.h"
+    ));
+    let text = std::fs::read_to_string(header).unwrap();
+    let full_name = format!("fmi{version}FullName");
+    text.lines()
+        .filter_map(|l| {
+            let mut words = l.split_whitespace();
+            match (words.next(), words.next(), words.next()) {
+                (Some("#define"), Some(name), Some(full)) if full == format!("{full_name}({name})") => {
+                    Some(name.to_owned())
+                }
+                _ => None,
+            }
+        })
+        .collect()
+}
+
+/// Every binary an FMU carries: its path in the archive and its bytes.
+pub fn fmu_binaries(fmu: &Path) -> Vec<(String, Vec<u8>)> {
+    use std::io::Read;
+    let mut zip = zip::ZipArchive::new(std::fs::File::open(fmu).unwrap()).unwrap();
+    let names: Vec<String> = zip
+        .file_names()
+        .filter(|n| n.starts_with("binaries/"))
+        .map(str::to_owned)
+        .collect();
+    names
+        .into_iter()
+        .map(|name| {
+            let mut bytes = Vec::new();
+            zip.by_name(&name).unwrap().read_to_end(&mut bytes).unwrap();
+            (name, bytes)
+        })
+        .collect()
+}
+
+/// The symbols an ELF or PE binary exports.
+pub fn exported_symbols(name: &str, bytes: &[u8]) -> Vec<String> {
+    use object::read::Object;
+    let file = object::File::parse(bytes).unwrap_or_else(|e| panic!("{name}: {e}"));
+    file.exports()
+        .unwrap()
+        .filter_map(|e| e.ok()?.name().name().map(|n| String::from_utf8_lossy(n).into_owned()))
+        .collect()
+}
+
+/// Whether FMPy can be imported. Without it an FMPy test says so and
+/// passes, except under CI (`CI` set), where it fails: `.ci/run` installs it.
+pub fn fmpy_available() -> bool {
+    let ok = std::process::Command::new("python3")
+        .args(["-c", "import fmpy"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !ok {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "FMPy is missing on CI: .ci/run must `pip install fmpy`"
+        );
+        eprintln!("skipped: FMPy is not installed (pip install fmpy)");
+    }
+    ok
+}
+
+/// `path` as the FMPy scripts read a recorded drop: inputs in SI units and
+/// the core's force at each sample.
+pub fn write_trace_csv(table: &Table, path: &Path) {
+    let mut csv = String::from("displacement_m,velocity_m_s,current_a,force_core_n\n");
+    for s in trace() {
+        csv += &format!(
+            "{:e},{:e},{:e},{:e}\n",
+            s.x_mm * 1e-3,
+            s.v_m_s,
+            s.current_a,
+            core_force_n(table, &s)
+        );
+    }
+    std::fs::write(path, csv).unwrap();
+}

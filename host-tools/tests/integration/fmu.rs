@@ -185,29 +185,9 @@ fn a_missing_model_file_is_a_sentence() {
     assert!(!dir.path().join("d.fmu").exists());
 }
 
-/// The functions FMI 3.0 declares, read from the standard's own header
-/// (`fmi3Functions.h`, shipped with the patched fmi-sys): each line
-/// `#define fmi3X fmi3FullName(fmi3X)`.
-fn fmi3_functions() -> Vec<String> {
-    let header = repo().join("host-tools/fmu/fmi-sys/fmi-standard3/headers/fmi3Functions.h");
-    let text = std::fs::read_to_string(header).unwrap();
-    text.lines()
-        .filter_map(|l| {
-            let mut words = l.split_whitespace();
-            match (words.next(), words.next(), words.next()) {
-                (Some("#define"), Some(name), Some(full)) if full == format!("fmi3FullName({name})") => {
-                    Some(name.to_owned())
-                }
-                _ => None,
-            }
-        })
-        .collect()
-}
-
 #[test]
 fn every_binary_exports_every_fmi3_function() {
-    use object::read::Object;
-    let required = fmi3_functions();
+    let required = fmi_functions(3);
     // Counted by hand in the header: 6 version/logging/instance + 5 mode + 14 getters + 14 setters
     // + 2 dependency + 6 FMU state + 2 derivative + 2 configuration + 8 clock + 2 discrete state
     // + 10 Model Exchange + 3 Co-Simulation + 1 Scheduled Execution.
@@ -218,25 +198,17 @@ fn every_binary_exports_every_fmi3_function() {
     let damper = mre_fmu(&model, dir.path(), true);
     let windows_toolchain = windows_toolchain_installed();
     for fmu in [damper.clone(), mre_host::fmu::controller_path(&damper)] {
-        let mut zip = zip::ZipArchive::new(std::fs::File::open(&fmu).unwrap()).unwrap();
-        let names: Vec<String> = zip.file_names().map(str::to_owned).collect();
-        let binaries: Vec<&String> = names.iter().filter(|n| n.starts_with("binaries/")).collect();
-        let platforms: Vec<&str> = binaries.iter().filter_map(|n| n.split('/').nth(1)).collect();
-        assert!(platforms.contains(&"x86_64-linux"), "{binaries:?}");
+        let binaries = fmu_binaries(&fmu);
+        let names: Vec<&String> = binaries.iter().map(|(n, _)| n).collect();
+        let platforms: Vec<&str> = names.iter().filter_map(|n| n.split('/').nth(1)).collect();
+        assert!(platforms.contains(&"x86_64-linux"), "{names:?}");
         if windows_toolchain {
-            assert!(platforms.contains(&"x86_64-windows"), "{}: {binaries:?}", fmu.display());
+            assert!(platforms.contains(&"x86_64-windows"), "{}: {names:?}", fmu.display());
         } else {
             eprintln!("note: no MinGW-w64 or no x86_64-pc-windows-gnu target: Linux binaries only checked");
         }
-        for name in binaries {
-            let mut bytes = Vec::new();
-            zip.by_name(name).unwrap().read_to_end(&mut bytes).unwrap();
-            let file = object::File::parse(&*bytes).unwrap_or_else(|e| panic!("{name}: {e}"));
-            let exported: Vec<String> = file
-                .exports()
-                .unwrap()
-                .filter_map(|e| e.ok()?.name().name().map(|n| String::from_utf8_lossy(n).into_owned()))
-                .collect();
+        for (name, bytes) in &binaries {
+            let exported = exported_symbols(name, bytes);
             let missing: Vec<&String> = required.iter().filter(|f| !exported.contains(f)).collect();
             assert!(
                 missing.is_empty(),
@@ -248,6 +220,8 @@ fn every_binary_exports_every_fmi3_function() {
             } else {
                 object::BinaryFormat::Elf
             };
+            use object::read::Object;
+            let file = object::File::parse(&bytes[..]).unwrap();
             assert_eq!(file.format(), expected_format, "{name}");
             assert_eq!(file.architecture(), object::Architecture::X86_64, "{name}");
         }
@@ -459,4 +433,3 @@ fn the_same_source_date_epoch_writes_the_same_fmu() {
     assert_eq!(first, write("b.fmu", "1700000000"), "same epoch, same bytes");
     assert_ne!(first, write("c.fmu", "1700000001"), "the date is in the FMU");
 }
-

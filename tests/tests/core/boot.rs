@@ -119,8 +119,8 @@ mod deferred_sense_zero {
 /// is all a bare GPIO holds), and a latched over-current keeps the drive
 /// removed whatever else is latched.
 mod coil_after_a_fault {
-    use mre_runtime::boot::{coil_after_fault, CoilAfterFault};
     use mre_algorithm::Flags;
+    use mre_runtime::boot::{coil_after_fault, CoilAfterFault};
 
     const FAILSAFE_A: f32 = 2.0;
 

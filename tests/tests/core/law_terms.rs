@@ -225,7 +225,11 @@ fn a_nan_plan_fails_safe_behind_the_output_clamp() {
         ..LawConfig::default()
     };
     let mut law = ImpactLaw::new(cfg).unwrap();
-    let table = Table::with_terms(&mre_algorithm::generated_table::GENERATED_ENTRIES, ModelTerms::EVERY_TERM).unwrap();
+    let table = Table::with_terms(
+        &mre_algorithm::generated_table::GENERATED_ENTRIES,
+        ModelTerms::EVERY_TERM,
+    )
+    .unwrap();
     let cmd = law.step(&table, 1.0, 1.0e38);
     assert!(
         cmd.flags

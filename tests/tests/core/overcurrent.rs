@@ -1,6 +1,5 @@
 //! The over-current fault (`mre_algorithm::overcurrent`), the current-sense zero
 //! at boot, and the fault's path into the controller's fail-safe.
-use mre_runtime::calibration::{rest_offset, CalError, I_SENSE_REST};
 use mre_algorithm::control::{ControlConfig, Controller};
 use mre_algorithm::law::LawConfig;
 use mre_algorithm::overcurrent::{
@@ -10,6 +9,7 @@ use mre_algorithm::overcurrent::{
 use mre_algorithm::table::Table;
 use mre_algorithm::Flags;
 use mre_protocol::frame::{CommandFrame, SampleFrame};
+use mre_runtime::calibration::{rest_offset, CalError, I_SENSE_REST};
 
 // The trip level sits above the coil's rating, within 25 % of it.
 const _: () = assert!(TRIP_A > COIL_RATING_A && TRIP_A <= 1.25 * COIL_RATING_A);

@@ -1,9 +1,9 @@
 //! Missed control periods: the pacer reports whole skipped ticks instead of
 //! letting the ticker catch up, and the controller counts them as overruns.
 use mre_algorithm::control::{ControlConfig, Controller};
-use mre_runtime::pacing::Pacer;
 use mre_algorithm::table::Table;
 use mre_algorithm::Flags;
+use mre_runtime::pacing::Pacer;
 
 #[test]
 fn on_time_and_late_periods_advance_by_one_period() {

@@ -54,7 +54,11 @@ fn the_flown_currents_at_one_and_a_half_amperes_are_fitted_within_their_bound() 
         );
     }
     // The table builds the same maps.
-    let table = Table::with_terms(&mre_algorithm::generated_table::GENERATED_ENTRIES, ModelTerms::EVERY_TERM).unwrap();
+    let table = Table::with_terms(
+        &mre_algorithm::generated_table::GENERATED_ENTRIES,
+        ModelTerms::EVERY_TERM,
+    )
+    .unwrap();
     for k in 0..4 {
         let fit = SegmentMap::fit(w[k], w[k + 1], i_s, currents[k], currents[k + 1]).unwrap();
         assert_eq!(*table.segment_map(k), fit.map);

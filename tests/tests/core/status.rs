@@ -1,8 +1,8 @@
 //! Status LED patterns and the button's fault clear at rest.
 use mre_algorithm::control::{ControlConfig, Controller};
-use mre_runtime::status::{blink_code, led_on, SLOT_MS};
 use mre_algorithm::table::Table;
 use mre_algorithm::Flags;
+use mre_runtime::status::{blink_code, led_on, SLOT_MS};
 
 /// Rising edges of the LED over `slots` slots from 0.
 fn flashes(latched: Flags, slots: u32) -> u32 {
