@@ -146,12 +146,6 @@ impl Reduced<'_> {
     }
 }
 
-/// Least squares on `rows` with the columns of the groups flagged in `kept`
-/// (see [`Reduced::least_squares`]).
-pub fn least_squares(lib: &Library, rows: &[usize], kept: &[bool]) -> DVector<f64> {
-    lib.reduce(rows).least_squares(kept)
-}
-
 /// The result of one group STLSQ fit.
 #[derive(Clone, Debug)]
 pub struct Sparse {
