@@ -490,7 +490,7 @@ impl ImpactLaw {
     /// construction): the period without the check that the table is the
     /// prepared one (7 instructions a control step).
     #[inline]
-    pub fn step_prepared(&mut self, table: &Table, x_mm: f32, v_m_s: f32) -> Command {
+    pub(crate) fn step_prepared(&mut self, table: &Table, x_mm: f32, v_m_s: f32) -> Command {
         if !self.inputs_plausible(x_mm, v_m_s) {
             let input_faults = self.check_inputs(x_mm, v_m_s);
             return self.fail_safe(input_faults);
