@@ -206,7 +206,7 @@ mod fw {
                 // The installed coil's fail-safe from here on (init, the
                 // halt, the fault handlers): never above its rating.
                 board::set_failsafe_current_a(cfg.law.failsafe_current_a);
-                Board::hold_fail_safe(&mut board);
+                board.hold_fail_safe();
                 cfg
             }
             Err(e) => {
@@ -227,7 +227,7 @@ mod fw {
         // failed check latches its fault so the controller never arms and
         // holds the fail-safe (the LED blinks the fault's code, every
         // command frame and stats line carries it).
-        let self_test = Board::self_test(&board, table_crc_holds);
+        let self_test = board.self_test(table_crc_holds);
         match self_test.first_failure() {
             None => defmt::info!("self-test passed: current sense converts, PWM duty reads back, table CRC holds"),
             Some(why) => {
@@ -423,7 +423,7 @@ mod fw {
     async fn control_task(mut ctl: Controller, mut board: board::Selected) {
         let mut last = ctl.stats();
         let mut known_faults = ctl.latched();
-        Board::start(&mut board);
+        board.start();
         loop {
             let missed = board.io().next_period(&mut ctl).await;
             if missed > 0 {

@@ -370,50 +370,6 @@ fn duty_compare(duty: f32, max_duty: u32) -> u32 {
     (duty * max_duty as f32) as u32
 }
 
-impl Board {
-    /// The power-on self-test: `init`'s two hardware checks and the table's.
-    pub fn self_test(&self, table_crc_holds: bool) -> mre_runtime::boot::SelfTest {
-        mre_runtime::boot::SelfTest {
-            sense_converts: self.sense_converts,
-            pwm_reads_back: self.pwm_reads_back,
-            table_crc_holds,
-        }
-    }
-
-    /// The installed fail-safe current to the coil (main, once the boot
-    /// configuration is known; `super::set_failsafe_current_a`).
-    pub fn hold_fail_safe(&mut self) {
-        self.io.set_duty(fail_safe_duty());
-    }
-
-    /// Starts the ticker and the watchdog right before the first period.
-    pub fn start(&mut self) {
-        self.io.ticker.reset();
-        self.io.pacer = Pacer::start(Instant::now().as_ticks(), self.io.period.as_ticks());
-        // The 5 ms period of the running loop (RM0351 §36.3.4: KR = 0x5555
-        // unlocks PR and RLR; the new values load at the next reload).
-        use embassy_stm32::pac::iwdg::vals::{Key, Pr};
-        let iwdg = embassy_stm32::pac::IWDG;
-        iwdg.kr().write(|w| w.set_key(Key::ENABLE));
-        iwdg.pr().write(|w| w.set_pr(Pr::from_bits(WATCHDOG_PR)));
-        iwdg.rlr().write(|w| w.set_rl(WATCHDOG_RLR));
-        self.watchdog.unleash();
-        self.watchdog.pet();
-    }
-}
-
-/// Holds the fail-safe coil current until the watchdog resets the chip
-/// (configuration refused): started here and never fed, so a fatal fault
-/// at boot retries from reset instead of sleeping for ever.
-pub fn halt_fail_safe(mut board: Board) -> ! {
-    board.io.set_duty(fail_safe_duty());
-    // The watchdog is running since `init`: not feeding it resets the chip.
-    board.watchdog.unleash();
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
-
 /// The installed fail-safe current's duty (`super::failsafe_current_a`).
 fn fail_safe_duty() -> f32 {
     open_loop_duty(super::failsafe_current_a(), COIL_FULL_SCALE_A)
@@ -830,20 +786,46 @@ impl super::Board for Board {
         super::flash_upload::spawn_uplink(spawner, &mut self.uplink)
     }
 
+    /// The power-on self-test: `init`'s two hardware checks and the table's.
     fn self_test(&self, table_crc_holds: bool) -> mre_runtime::boot::SelfTest {
-        Board::self_test(self, table_crc_holds)
+        mre_runtime::boot::SelfTest {
+            sense_converts: self.sense_converts,
+            pwm_reads_back: self.pwm_reads_back,
+            table_crc_holds,
+        }
     }
 
+    /// The installed fail-safe current to the coil (main, once the boot
+    /// configuration is known; `super::set_failsafe_current_a`).
     fn hold_fail_safe(&mut self) {
-        Board::hold_fail_safe(self)
+        self.io.set_duty(fail_safe_duty());
     }
 
+    /// Starts the ticker and the watchdog right before the first period.
     fn start(&mut self) {
-        Board::start(self)
+        self.io.ticker.reset();
+        self.io.pacer = Pacer::start(Instant::now().as_ticks(), self.io.period.as_ticks());
+        // The 5 ms period of the running loop (RM0351 §36.3.4: KR = 0x5555
+        // unlocks PR and RLR; the new values load at the next reload).
+        use embassy_stm32::pac::iwdg::vals::{Key, Pr};
+        let iwdg = embassy_stm32::pac::IWDG;
+        iwdg.kr().write(|w| w.set_key(Key::ENABLE));
+        iwdg.pr().write(|w| w.set_pr(Pr::from_bits(WATCHDOG_PR)));
+        iwdg.rlr().write(|w| w.set_rl(WATCHDOG_RLR));
+        self.watchdog.unleash();
+        self.watchdog.pet();
     }
 
-    fn halt_fail_safe(self) -> ! {
-        halt_fail_safe(self)
+    /// Holds the fail-safe coil current until the watchdog resets the chip
+    /// (configuration refused): started here and never fed, so a fatal fault
+    /// at boot retries from reset instead of sleeping for ever.
+    fn halt_fail_safe(mut self) -> ! {
+        self.io.set_duty(fail_safe_duty());
+        // The watchdog is running since `init`: not feeding it resets the chip.
+        self.watchdog.unleash();
+        loop {
+            cortex_m::asm::wfi();
+        }
     }
 
     #[inline(always)]
