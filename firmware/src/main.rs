@@ -4,7 +4,7 @@
 //!
 //! One embassy task runs the control loop: wait for the period (a `Ticker`
 //! on hardware, the next sample frame in PIL), run the core's
-//! [`Controller::step_io`](mre_algorithm::control::Controller::step_io), account
+//! [`ControllerIo::step_io`](mre_runtime::io::ControllerIo::step_io), account
 //! for overruns, feed the watchdog while every thread-mode task checks in
 //! (`mre_runtime::watchdog`). On hardware it runs on an
 //! `InterruptExecutor` (UART4's vector, which nothing else uses) at high
@@ -32,6 +32,7 @@ mod fw {
     use mre_algorithm::control::{Controller, Stats, DEFAULT_RATE_HZ};
     use mre_protocol::frame::LinkStats;
     use mre_protocol::upload::TableSource;
+    use mre_runtime::io::ControllerIo;
 
     // Log lines carry embassy-time's µs since boot.
     defmt::timestamp!("{=u64:us}", embassy_time::Instant::now().as_micros());

@@ -76,7 +76,8 @@ pub trait Board: Sized {
     fn feed_watchdog(&mut self);
 }
 
-use mre_algorithm::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
+use mre_algorithm::control::Controller;
+use mre_runtime::io::{Coil, DisplacementSensor, VelocitySensor};
 
 /// Whether the damper is at rest, for the table upload: written by the
 /// control task after each step, read on an upload's commit.

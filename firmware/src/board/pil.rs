@@ -22,7 +22,7 @@ use embassy_stm32::pac;
 use embassy_time::Timer;
 use embassy_time_driver::Driver;
 use embassy_time_queue_utils::Queue;
-use mre_algorithm::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
+use mre_algorithm::control::Controller;
 use mre_algorithm::law::Command;
 use mre_algorithm::overcurrent::Sense;
 use mre_algorithm::table::TableImage;
@@ -33,6 +33,7 @@ use mre_protocol::frame::{
     INJECT_HARDFAULT_SEQ, INJECT_PANIC_SEQ, PING_SEQ,
 };
 use mre_protocol::upload::{choose_boot_table, BootTable, UploadReceiver};
+use mre_runtime::io::{Coil, DisplacementSensor, VelocitySensor};
 
 pub const NAME: &str = "PIL (QEMU b-l475e-iot01a)";
 /// MSI after reset; nothing here changes the clock tree.

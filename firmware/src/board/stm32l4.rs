@@ -15,10 +15,11 @@ use embassy_stm32::usart::BufferedUart;
 use super::flash_upload::Uplink;
 use embassy_stm32::wdg::IndependentWatchdog;
 use embassy_time::{Duration, Instant, Ticker};
-use mre_algorithm::control::{open_loop_duty, Coil, Controller, DisplacementSensor, VelocitySensor};
+use mre_algorithm::control::Controller;
 use mre_algorithm::law::Command;
 use mre_algorithm::overcurrent::Sense;
 use mre_runtime::boot::{CalibrationTime, FirstCommand, ResetCause};
+use mre_runtime::io::{open_loop_duty, Coil, DisplacementSensor, VelocitySensor};
 use mre_runtime::pacing::Pacer;
 
 #[cfg(feature = "board-b-l475e-iot01a")]
