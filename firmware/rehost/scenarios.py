@@ -6,7 +6,7 @@ host-tools/tests/integration/rehost.rs (`cargo test`) or by hand:
 Prints `ok SCENARIO ...` and exits 0, or fails with the reason (exit 1).
 Expected values come from the hardware, not from the image: the coil driver
 is 12 V into 4 ohm (3 A at 100 % duty), TIM3 runs at 20 kHz from 80 MHz
-(ARR + 1 = 4000, RM0351 §31.3.10), so the boot fail-safe (1 A, the weakest
+(ARR + 1 = 4000, RM0351's TIM2-5 "PWM mode"), so the boot fail-safe (1 A, the weakest
 coil the board admits) is duty 1333/4000 and the default coil's 2 A is
 2666/4000; the current sense is 1 V/A into a 12-bit ADC at 3.3 V.
 """
@@ -28,7 +28,7 @@ LSB = 1 / 4000
 OVER_CURRENT = 1 << 16
 CURRENT_SENSE = 1 << 17
 CSR = {
-    # RM0351 §6.4.30 RCC_CSR reset flags: LPWR 31, WWDG 30, IWDG 29, SFT 28,
+    # RM0351 "Control/status register (RCC_CSR)" reset flags: LPWR 31, WWDG 30, IWDG 29, SFT 28,
     # BOR 27, PIN 26. NRST pulses on every reset, so PINRSTF accompanies all;
     # a power-on sets BORRSTF too (and reads like a brown-out).
     "power-on": (1 << 27) | (1 << 26),
