@@ -26,7 +26,9 @@
 //! current (default 2 A: the stiffest damper, so an impact cannot bottom out),
 //! except `OVER_CURRENT`, which removes the drive (0 A): the fail-safe would
 //! drive 67 % duty into the failed coil or driver.
-//! Latched faults clear only by [`Controller::clear_faults`] (a reset).
+//! Latched faults clear only by [`Controller::clear_faults`] (a reset) or,
+//! at rest, by B1's [`Controller::clear_faults_if_at_rest`], which keeps
+//! `OVER_CURRENT`, `TABLE_FAULT` and a failed self-test's faults.
 use crate::estimate::AlphaBeta;
 use crate::flags::Flags;
 use crate::law::{Command, ConfigError, ImpactLaw, LawConfig};
