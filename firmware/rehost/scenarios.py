@@ -6,7 +6,7 @@ host-tools/tests/integration/rehost.rs (`cargo test`) or by hand:
 Prints `ok SCENARIO ...` and exits 0, or fails with the reason (exit 1).
 Expected values come from the hardware, not from the image: the coil driver
 is 12 V into 4 ohm (3 A at 100 % duty), TIM3 runs at 20 kHz from 80 MHz
-(ARR + 1 = 4000, RM0351 §31.3.10), so the boot fail-safe (1 A, the weakest
+(ARR + 1 = 4000, RM0351's TIM2-5 "PWM mode"), so the boot fail-safe (1 A, the weakest
 coil the board admits) is duty 1333/4000 and the default coil's 2 A is
 2666/4000; the current sense is 1 V/A into a 12-bit ADC at 3.3 V.
 """
@@ -28,7 +28,7 @@ LSB = 1 / 4000
 OVER_CURRENT = 1 << 16
 CURRENT_SENSE = 1 << 17
 CSR = {
-    # RM0351 §6.4.30 RCC_CSR reset flags: LPWR 31, WWDG 30, IWDG 29, SFT 28,
+    # RM0351 "Control/status register (RCC_CSR)" reset flags: LPWR 31, WWDG 30, IWDG 29, SFT 28,
     # BOR 27, PIN 26. NRST pulses on every reset, so PINRSTF accompanies all;
     # a power-on sets BORRSTF too (and reads like a brown-out).
     "power-on": (1 << 27) | (1 << 26),
@@ -240,6 +240,45 @@ def scenario_fault(args, kind, over_current_first=False):
     return f"coil {expected:.4f} with PRIMASK set, watchdog reset after {chip.resets[0][0] - start} cycles"
 
 
+def scenario_panic_in_panic(args):
+    """A panic inside the panic handler's own log line (issue 39: "a panic
+    inside a defmt frame re-panics without limit"): every time the handler
+    starts its defmt frame (`_defmt_acquire`), the harness makes that call
+    panic again. The handler must skip the log when entered a second time
+    (`PANICKING`): two entries, no more; the coil stays at the fail-safe with
+    interrupts masked and the watchdog resets. Without the flag each entry
+    logs and re-panics until the stack runs out (a HardFault)."""
+    from unicorn import UC_HOOK_CODE
+    from unicorn.arm_const import UC_ARM_REG_PC
+    chip = boot(args)
+    run_periods(chip, 20)
+    entries = [0]
+    unwind = chip.elf.symbol("rust_begin_unwind") & ~1
+    acquire = chip.elf.symbol("_defmt_acquire") & ~1
+
+    def count(uc, address, size, user):
+        entries[0] += 1
+
+    def repanic(uc, address, size, user):
+        # Only inside the handler, and bounded (the planted failure recurses).
+        if 0 < entries[0] < 200:
+            inject_panic(chip)
+            uc.reg_write(UC_ARM_REG_PC, chip.pc)
+    chip.uc.hook_add(UC_HOOK_CODE, count, begin=unwind, end=unwind + 1)
+    chip.uc.hook_add(UC_HOOK_CODE, repanic, begin=acquire, end=acquire + 1)
+    inject_panic(chip)
+    start = chip.cycles
+    chip.run(MS // 2)
+    hardfaults = sum(1 for e in chip.log if e[1] == "enter" and e[2] == 3)
+    check(entries[0] == 2, f"the panic handler was entered {entries[0]} times (a panic in its log must end at the second)")
+    check(hardfaults == 0, f"{hardfaults} HardFaults (the recursion ran out of stack)")
+    check(chip.uc.reg_read(UC_ARM_REG_PRIMASK) & 1, "panic in panic: interrupts not masked")
+    check(near(duty_now(chip), DUTY_2A), f"panic in panic: coil at {chip.coil_state()}, expected {DUTY_2A}")
+    chip.run(10 * MS, until=lambda: bool(chip.resets))
+    check(chip.resets and chip.resets[0][1] == "IWDG", f"panic in panic: no watchdog reset: {chip.resets}")
+    return f"2 handler entries, coil {DUTY_2A:.4f} with PRIMASK set, watchdog reset after {chip.resets[0][0] - start} cycles"
+
+
 def stack_bottom(chip):
     """The stack's lowest address: `_stack_end` (memory.x), else, in an
     image without the guard, the end of the statics (cortex-m-rt's default
@@ -332,6 +371,8 @@ def main():
         detail = scenario_fault(args, "hardfault")
     elif s == "panic":
         detail = scenario_fault(args, "panic")
+    elif s == "panic-in-panic":
+        detail = scenario_panic_in_panic(args)
     elif s == "hardfault-after-over-current":
         detail = scenario_fault(args, "hardfault", over_current_first=True)
     elif s == "stack-overflow":

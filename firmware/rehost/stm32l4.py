@@ -14,22 +14,28 @@ cmake or C toolchain step on CI), and the peripheral models are plain Python
 callbacks on MMIO regions; the `unicorn-engine` crate builds the C engine with
 cmake at `cargo build` time.
 
-Section numbers: RM0351 itself could not be opened here. The chapter numbers
-are corroborated by independent citations found in public code (search, not
-the manual): §2.2.2 memory map, §3.3.7 flash programming, §3.3.3 read access
-latency (so ECC is §3.3.2), §3.7 FLASH registers, §6.4.16/§6.4.17
-RCC_AHB1ENR/AHB2ENR, §13 NVIC, §15 CRC, §18 ADC (§18.4.32 in the functional
-description), §31 TIM2-5 (§31.4.6 EGR, §31.4.8 CCMR1 output mode, §31.4.11
-CCER), §36 IWDG (§36.4 registers), §40 USART (§40.5.4, §40.8 registers), §48
-DBG. Corrected from the first version, which cited from memory: IWDG §32 ->
-§36, ECC §3.3.3 -> §3.3.2, RCC_CSR §6.4.29 -> §6.4.30, FLASH_KEYR §3.7.2 ->
-§3.7.3, FLASH_ECCR §3.7.4 -> §3.7.7, ADC SQR1/JSQR/JDR1 §18.7.9/12/16 ->
-§18.7.11/16/18, PWR_SR2 §5.4.7 -> §5.4.6, USART ISR/ICR/RDR/TDR §40.8.10-13
--> §40.8.8-11, CC1E §31.4.9 -> §31.4.11. Register subsections (§x.y.N) are
-numbered by RM0351's convention of one subsection per register in offset
-order, anchored on the corroborated ones; they and the functional-description
-subsections (§3.3.5, §5.4.1, §6.1.2, §6.4.1/3, §8.3.1, §8.4.x, §18.4.6-21,
-§18.7.x, §31.3.x, §36.3.x, §40.5.5) are unverified against the manual.
+Citations: RM0351 itself could not be opened here. A section is cited by
+number only where an independent public citation (found by search in public
+code, not in the manual) confirms it: §2.2.2 memory map, §3.3.7 flash
+programming (and §3.3.3 read access latency), §3.7 FLASH registers,
+§6.4.16/§6.4.17 RCC_AHB1ENR/AHB2ENR, §13 NVIC, §15 CRC, §18 ADC, §18.4.6 the
+ADC's power-up (DEEPPWD, ADVREGEN: cited as "RM0351 18.4.6" by a public
+STM32L4 ADC driver, and RM0394's ADC chapter has the same subsection as
+§16.4.6 "ADC Deep-power-down mode (DEEPPWD) & ADC Voltage Regulator
+(ADVREGEN)"), §18.4.32 temperature sensor, §31 TIM2-5 (§31.4.6 EGR, §31.4.8
+CCMR1 output mode, §31.4.11 CCER), §36 IWDG (§36.4 registers), §40 USART
+(§40.5.4, §40.8 registers), §48 debug support. Everything else is cited by
+the register's name as ST titles it ("ADC control register (ADC_CR)") or by
+the functional section's topic, not by a number: the first version cited
+numbers from memory and several were wrong (IWDG §32 for §36, RCC_CSR
+§6.4.29, FLASH_ECCR §3.7.4, the USART registers §40.8.10-13), and numbers
+counted from a register's place in its chapter are not confirmation. The
+register text the models rely on most (JADSTART is set only when ADEN = 1
+and ADDIS = 0; ADRDY set after ADEN, cleared by writing 1; the injected
+context queue, JQDIS) matches ST's register descriptions as RM0394 (the
+STM32L43x manual, the same ADC) words them, quoted in
+github.com/bobmittmann/thinkos sdk/include/stm32f/stm32l4-adc.h, where the
+queue is §16.4.21 "Queue of context for injected conversions".
 
 Timing model: one instruction is one cycle of the 80 MHz core clock. The run
 advances in slices of at most `SLICE` instructions; timers, ADC conversions
@@ -119,9 +125,9 @@ class Regs:
 
 
 class Rcc(Regs):
-    """RM0351 §6.4 RCC registers. Ready flags follow their enables at once:
-    CR (§6.4.1) HSIRDY = HSION, MSIRDY = MSION, PLLRDY = PLLON; CFGR (§6.4.3)
-    SWS = SW; CSR (§6.4.30) LSIRDY = LSION, RMVF clears the reset flags
+    """RM0351 RCC registers. Ready flags follow their enables at once:
+    RCC_CR HSIRDY = HSION, MSIRDY = MSION, PLLRDY = PLLON; RCC_CFGR
+    SWS = SW; RCC_CSR ("Control/status register") LSIRDY = LSION, RMVF clears the reset flags
     (bits 24..31), which persist across every reset but power-on."""
     name = "RCC"
     regs = {0x00: ("CR", 0x63), 0x04: ("ICSCR", 0x10000000), 0x08: ("CFGR", 0), 0x0C: ("PLLCFGR", 0x1000),
@@ -158,7 +164,7 @@ class Rcc(Regs):
 
 
 class Pwr(Regs):
-    """RM0351 §5.4 PWR: CR1 VOS (§5.4.1); SR2 (§5.4.6) VOSF and REGLPF read 0
+    """RM0351 PWR registers: PWR_CR1 VOS; PWR_SR2 VOSF and REGLPF read 0
     (the regulator is always settled in this model)."""
     name = "PWR"
     regs = {0x00: ("CR1", 0x200), 0x04: ("CR2", 0), 0x08: ("CR3", 0x8000), 0x0C: ("CR4", 0), 0x10: ("SR1", 0),
@@ -166,16 +172,17 @@ class Pwr(Regs):
 
 
 class Flash(Regs):
-    """RM0351 §3.7 FLASH registers, §3.3.5-3.3.7 unlock, erase, program.
-    KEYR (§3.7.3): 0x45670123 then 0xCDEF89AB clears LOCK (CR bit 31); a wrong
-    key locks until reset. CR (§3.7.6): PER, PNB[10:3], BKER (bit 11), STRT
+    """RM0351 §3.7 FLASH registers; the flash chapter's unlock, page erase
+    and (§3.3.7) programming sequences. FLASH_KEYR: 0x45670123 then
+    0xCDEF89AB clears LOCK (CR bit 31); a wrong
+    key locks until reset. FLASH_CR: PER, PNB[10:3], BKER (bit 11), STRT
     (bit 16) erases a page; PG (bit 0) with a 64-bit double word written to
-    flash programs it (bits can only be cleared). SR (§3.7.5): EOP (bit 0),
+    flash programs it (bits can only be cleared). FLASH_SR: EOP (bit 0),
     errors OPERR 1, PROGERR 3, WRPERR 4, PGAERR 5, SIZERR 6, PGSERR 7, MISERR 8,
     FASTERR 9, RDERR 14, OPTVERR 15, write 1 to clear; BSY 16. EOPIE (CR bit
-    24) and ERRIE (bit 25) raise the FLASH interrupt (IRQ 4). ECCR (§3.7.7):
+    24) and ERRIE (bit 25) raise the FLASH interrupt (IRQ 4). FLASH_ECCR:
     ECCD bit 31 (write 1 to clear), BK_ECC bit 19, ADDR_ECC 18:0; a double ECC
-    error on a read raises NMI (§3.3.2)."""
+    error on a read raises NMI ("Error code correction (ECC)")."""
     name = "FLASH"
     regs = {0x00: ("ACR", 0x600), 0x04: ("PDKEYR", 0), 0x08: ("KEYR", 0), 0x0C: ("OPTKEYR", 0),
             0x10: ("SR", 0), 0x14: ("CR", 0xC0000000), 0x18: ("ECCR", 0), 0x20: ("OPTR", 0xFFEFF8AA)}
@@ -213,7 +220,7 @@ class Flash(Regs):
             return
         if off == 0x14:
             if self.v[0x14] & (1 << 31):
-                # Locked: CR cannot be written (§3.3.5).
+                # Locked: FLASH_CR cannot be written (flash unlock).
                 self.chip.violation("FLASH_CR written while locked")
                 return
             self.v[0x14] = val & ~(1 << 16)
@@ -245,7 +252,7 @@ class Flash(Regs):
             self.finish(bits)
 
     def finish(self, error_bits):
-        self.v[0x10] |= error_bits | 1              # EOP (§3.7.5: set also on error when EOPIE)
+        self.v[0x10] |= error_bits | 1              # EOP (FLASH_SR: set also on error when EOPIE)
         self.chip.nvic_update_flash()
 
     def irq_level(self):
@@ -254,9 +261,9 @@ class Flash(Regs):
 
 
 class Gpio(Regs):
-    """RM0351 §8.4 GPIO registers: MODER, OTYPER, OSPEEDR, PUPDR, IDR, ODR,
-    BSRR (§8.4.7: BRy in 31:16 reset, BSy in 15:0 set, set wins), LCKR, AFRL,
-    AFRH, BRR, ASCR (§8.4.12, STM32L47x/L48x). IDR mirrors ODR for outputs and
+    """RM0351 GPIO registers: MODER, OTYPER, OSPEEDR, PUPDR, IDR, ODR,
+    BSRR (BRy in 31:16 reset, BSy in 15:0 set, set wins), LCKR, AFRL,
+    AFRH, BRR, ASCR (STM32L47x/L48x). IDR mirrors ODR for outputs and
     reads the pull (or the bench's level in `inputs`) otherwise."""
     regs = {0x00: ("MODER", 0xFFFFFFFF), 0x04: ("OTYPER", 0), 0x08: ("OSPEEDR", 0), 0x0C: ("PUPDR", 0),
             0x10: ("IDR", 0), 0x14: ("ODR", 0), 0x18: ("BSRR", 0), 0x1C: ("LCKR", 0), 0x20: ("AFRL", 0),
@@ -304,12 +311,13 @@ class Gpio(Regs):
 
 class Timer(Regs):
     """RM0351 §31.4 general-purpose timer registers (TIM2..TIM5): CR1 CEN
-    (bit 0), DIER (§31.4.4) UIE 0, CCxIE 1..4; SR (§31.4.5) UIF 0, CCxIF 1..4,
+    (bit 0), DIER UIE 0, CCxIE 1..4; SR UIF 0, CCxIF 1..4,
     write 0 to clear; EGR UG (§31.4.6) reloads PSC and zeroes CNT; CNT counts
     up at f_CK / (PSC + 1) to ARR, then wraps with an update; CCxIF is set when
-    CNT reaches CCRx (§31.3.7). CCMR/CCER/CCR are stored; TIM3 CH1 in PWM mode
-    1 (§31.3.10) drives its pin high while CNT < CCR1, CH4 in PWM mode 2 rises
-    at CCR4: the injected trigger TIM3_CH4 for the ADC (§18.4.19)."""
+    CNT reaches CCRx ("Output compare mode"). CCMR/CCER/CCR are stored; TIM3 CH1 in PWM mode
+    1 ("PWM mode") drives its pin high while CNT < CCR1, CH4 in PWM mode 2 rises
+    at CCR4: the injected trigger TIM3_CH4 for the ADC (the ADC's external
+    triggers for injected conversions)."""
     regs = {0x00: ("CR1", 0), 0x04: ("CR2", 0), 0x08: ("SMCR", 0), 0x0C: ("DIER", 0), 0x10: ("SR", 0),
             0x14: ("EGR", 0), 0x18: ("CCMR1", 0), 0x1C: ("CCMR2", 0), 0x20: ("CCER", 0), 0x24: ("CNT", 0),
             0x28: ("PSC", 0), 0x2C: ("ARR", 0xFFFFFFFF), 0x30: ("RCR", 0), 0x34: ("CCR1", 0), 0x38: ("CCR2", 0),
@@ -379,21 +387,21 @@ class Timer(Regs):
 
 
 class Adc(Regs):
-    """RM0351 §18.7 ADC registers (one ADC of ADC1..3).
-    CR (§18.7.3): DEEPPWD bit 29 (reset 1), ADVREGEN 28, ADCAL 31, JADSTP 5,
+    """RM0351 ADC registers (one ADC of ADC1..3).
+    ADC_CR: DEEPPWD bit 29 (reset 1), ADVREGEN 28, ADCAL 31, JADSTP 5,
     ADSTP 4, JADSTART 3, ADSTART 2, ADDIS 1, ADEN 0.
     - §18.4.6: the regulator needs t_ADCVREG_STUP (20 µs, datasheet) after
       ADVREGEN before calibration or enable; DEEPPWD must be 0 first.
-    - §18.4.8 calibration: ADCAL with ADEN = 0 runs 116 ADC cycles, then
+    - calibration: ADCAL with ADEN = 0 runs 116 ADC cycles, then
       clears; CALFACT is loaded.
-    - §18.4.9 ADEN sets ADRDY (ISR bit 0) after t_STAB; ADDIS clears ADEN.
-    - §18.7.3 JADSTART: "software is allowed to set JADSTART only when ADEN =
+    - "ADC on-off control (ADEN, ADDIS, ADRDY)": ADEN sets ADRDY (ISR bit 0) after t_STAB; ADDIS clears ADEN.
+    - ADC_CR JADSTART: "software is allowed to set JADSTART only when ADEN =
       1 and ADDIS = 0": with ADEN = 0 the write is ignored. With JADSTART set
-      and JEXTEN != 0, each trigger JEXTSEL (JSQR §18.7.16; 4 = TIM3_CH4,
-      §18.4.19 table 'injected triggers') converts JSQ1: JDR1 (§18.7.18) and
+      and JEXTEN != 0, each trigger JEXTSEL (ADC_JSQR; 4 = TIM3_CH4,
+      the table of injected triggers) converts JSQ1: ADC_JDR1 and
       JEOC (ISR bit 5) and JEOS (bit 6).
-    - ADSTART converts SQ1 (SQR1 §18.7.11) into DR; EOC (bit 2), EOS (bit 3).
-    ISR flags clear by writing 1 (§18.7.1)."""
+    - ADSTART converts SQ1 (ADC_SQR1) into DR; EOC (bit 2), EOS (bit 3).
+    ADC_ISR flags clear by writing 1."""
     regs = {0x00: ("ISR", 0), 0x04: ("IER", 0), 0x08: ("CR", 0x20000000), 0x0C: ("CFGR", 0x80000000),
             0x10: ("CFGR2", 0), 0x14: ("SMPR1", 0), 0x18: ("SMPR2", 0), 0x20: ("TR1", 0x0FFF0000),
             0x24: ("TR2", 0x00FF0000), 0x28: ("TR3", 0x00FF0000), 0x30: ("SQR1", 0), 0x34: ("SQR2", 0),
@@ -515,16 +523,16 @@ class Adc(Regs):
 
 
 class AdcCommon(Regs):
-    """RM0351 §18.8 ADC common registers: CSR (read-only flags), CCR (CKMODE,
+    """RM0351 ADC common registers: CSR (read-only flags), CCR (CKMODE,
     PRESC, VREFEN bit 22, TSEN 23, VBATEN 24), CDR."""
     name = "ADC_COMMON"
     regs = {0x00: ("CSR", 0), 0x08: ("CCR", 0), 0x0C: ("CDR", 0)}
 
 
 class Iwdg(Regs):
-    """RM0351 §36.4 IWDG: KR (§36.4.1) 0xCCCC starts (forces the LSI on),
+    """RM0351 §36.4 IWDG registers: KR 0xCCCC starts (forces the LSI on),
     0xAAAA reloads RLR into the counter, 0x5555 unlocks PR/RLR/WINR; PR
-    (§36.4.2) divider 4 << PR; RLR (§36.4.3, reset 0xFFF); SR (§36.4.4) PVU,
+    divider 4 << PR; RLR (reset 0xFFF); SR PVU,
     RVU, WVU read 0 (updates take effect at once). The counter runs from the
     32 kHz LSI; reaching 0 resets the chip with IWDGRSTF (RCC_CSR bit 29)."""
     name = "IWDG"
@@ -579,9 +587,8 @@ class Iwdg(Regs):
 
 
 class Usart(Regs):
-    """RM0351 §40.8 USART registers (§40.8.1 CR1 UE 0, RE 2, TE 3, RXNEIE 5,
-    TCIE 6, TXEIE 7; ISR §40.8.8 RXNE 5, TC 6, TXE 7, ORE 3; RDR §40.8.10,
-    TDR §40.8.11; ICR §40.8.9). Transmission is instant: TDR's byte lands in
+    """RM0351 §40.8 USART registers (CR1 UE 0, RE 2, TE 3, RXNEIE 5,
+    TCIE 6, TXEIE 7; ISR RXNE 5, TC 6, TXE 7, ORE 3; RDR, TDR, ICR). Transmission is instant: TDR's byte lands in
     `tx`, TXE and TC stay set. `rx_push` delivers bytes one at a time (RXNE)."""
     regs = {0x00: ("CR1", 0), 0x04: ("CR2", 0), 0x08: ("CR3", 0), 0x0C: ("BRR", 0), 0x10: ("GTPR", 0),
             0x14: ("RTOR", 0), 0x18: ("RQR", 0), 0x1C: ("ISR", 0xC0), 0x20: ("ICR", 0), 0x24: ("RDR", 0),
@@ -605,7 +612,7 @@ class Usart(Regs):
 
     def feed(self):
         """One byte per frame time into RDR (RXNE; a byte not read before the
-        next arrives sets ORE, §40.5.5), then IDLE (ISR bit 4, §40.8.8)
+        next arrives sets ORE: overrun error), then IDLE (ISR bit 4)
         one frame after the last byte."""
         isr = self.v[0x1C]
         if self.v[0x00] & 5 != 5:
@@ -778,9 +785,9 @@ class Chip:
         self.boot_cycle = self.cycles
 
     def reset(self, cause):
-        """A system reset (RM0351 §6.1.2): every peripheral to its reset
+        """A system reset (RM0351 RCC "System reset"): every peripheral to its reset
         state, SRAM1 kept (the runtime rewrites .data/.bss), the flash kept,
-        RCC_CSR's reset flags ORed (§6.4.30: an internal reset also pulses
+        RCC_CSR's reset flags ORed (RCC_CSR: an internal reset also pulses
         NRST, so PINRSTF accompanies it)."""
         flag = {"IWDG": 1 << 29, "SFT": 1 << 28, "PIN": 0}[cause]
         self.resets.append((self.cycles, cause))
@@ -814,7 +821,7 @@ class Chip:
     def table_read(self, uc, off, size, user):
         o = 0xFF000 + off
         if (o & ~7) in self.ecc_bad:
-            # §3.3.2: double ECC error on read: ECCD, BK_ECC, ADDR_ECC, NMI.
+            # ECC: double error on read: ECCD, BK_ECC, ADDR_ECC, NMI.
             eccr = self.flash.v[0x18]
             if not eccr & (1 << 31):
                 bank_off = o - 0x80000
@@ -860,7 +867,7 @@ class Chip:
             self.flash.start(Flash.PROGRAM_CYCLES, 1 << 3, None)   # PROGERR: nothing written
             return
         if not erased and any(data):
-            # §3.7.5 PROGERR: the double word was not erased (and the data is not all 0).
+            # FLASH_SR PROGERR: the double word was not erased (and the data is not all 0).
             self.flash.start(Flash.PROGRAM_CYCLES, 1 << 3, None)
             return
 
@@ -950,7 +957,7 @@ class Chip:
             af = (g.v[0x20] >> 16) & 0xF
             t = self.tim3
             if af != 2 or not t.v[0x00] & 1 or not t.v[0x20] & 1:
-                # OC1 disabled: the pin at its pull (§8.3.1, §31.4.11 CC1E).
+                # OC1 disabled: the pin at its pull (GPIO pull-up/pull-down, §31.4.11 CC1E).
                 pull = (g.v[0x0C] >> 8) & 3
                 return {1: 1.0, 2: 0.0}.get(pull, "floating")
             arr = t.v[0x2C] & 0xFFFF

@@ -4,7 +4,7 @@
 //!
 //! One embassy task runs the control loop: wait for the period (a `Ticker`
 //! on hardware, the next sample frame in PIL), run the core's
-//! [`Controller::step_io`](mre_algorithm::control::Controller::step_io), account
+//! [`ControllerIo::step_io`](mre_runtime::io::ControllerIo::step_io), account
 //! for overruns, feed the watchdog while every thread-mode task checks in
 //! (`mre_runtime::watchdog`). On hardware it runs on an
 //! `InterruptExecutor` (UART4's vector, which nothing else uses) at high
@@ -32,6 +32,7 @@ mod fw {
     use mre_algorithm::control::{Controller, Stats, DEFAULT_RATE_HZ};
     use mre_protocol::frame::LinkStats;
     use mre_protocol::upload::TableSource;
+    use mre_runtime::io::ControllerIo;
 
     // Log lines carry embassy-time's µs since boot.
     defmt::timestamp!("{=u64:us}", embassy_time::Instant::now().as_micros());
@@ -206,7 +207,7 @@ mod fw {
                 // The installed coil's fail-safe from here on (init, the
                 // halt, the fault handlers): never above its rating.
                 board::set_failsafe_current_a(cfg.law.failsafe_current_a);
-                Board::hold_fail_safe(&mut board);
+                board.hold_fail_safe();
                 cfg
             }
             Err(e) => {
@@ -227,7 +228,7 @@ mod fw {
         // failed check latches its fault so the controller never arms and
         // holds the fail-safe (the LED blinks the fault's code, every
         // command frame and stats line carries it).
-        let self_test = Board::self_test(&board, table_crc_holds);
+        let self_test = board.self_test(table_crc_holds);
         match self_test.first_failure() {
             None => defmt::info!("self-test passed: current sense converts, PWM duty reads back, table CRC holds"),
             Some(why) => {
@@ -423,7 +424,7 @@ mod fw {
     async fn control_task(mut ctl: Controller, mut board: board::Selected) {
         let mut last = ctl.stats();
         let mut known_faults = ctl.latched();
-        Board::start(&mut board);
+        board.start();
         loop {
             let missed = board.io().next_period(&mut ctl).await;
             if missed > 0 {

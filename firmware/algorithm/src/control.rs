@@ -1,9 +1,10 @@
-//! One control period over small I/O traits: sample → estimate → law → coil,
-//! with fault latching, overrun accounting and statistics.
+//! One control period from sampled values: sample → estimate → law → coil
+//! current, with fault latching, overrun accounting and statistics.
 //!
-//! This is the whole control task minus the timing: the board's embassy task
-//! (a `Ticker`) and the PIL frame link both call [`Controller::step`] once per
-//! period, so the host can test exactly the logic that runs on the board.
+//! This is the whole control task minus the I/O and the timing: the board's
+//! embassy task (a `Ticker`, through `mre_runtime::io`) and the PIL frame link
+//! both call [`Controller::step_sample`] once per period, and the host runs the
+//! same calls, so `mre pil` and the tests fly exactly the logic of the board.
 //!
 //! Faults and the fail-safe (see `firmware/README.md`):
 //! - A non-finite or out-of-range sample makes that period fail-safe (the law
@@ -25,41 +26,15 @@
 //! current (default 2 A: the stiffest damper, so an impact cannot bottom out),
 //! except `OVER_CURRENT`, which removes the drive (0 A): the fail-safe would
 //! drive 67 % duty into the failed coil or driver.
-//! Latched faults clear only by [`Controller::clear_faults`] (a reset).
+//! Latched faults clear only by [`Controller::clear_faults`] (a reset) or,
+//! at rest, by B1's [`Controller::clear_faults_if_at_rest`], which keeps
+//! `OVER_CURRENT`, `TABLE_FAULT` and a failed self-test's faults.
 use crate::estimate::AlphaBeta;
 use crate::flags::Flags;
 use crate::law::{Command, ConfigError, ImpactLaw, LawConfig};
 use crate::math;
 use crate::overcurrent::{Sense, SenseMonitor};
 use crate::table::{Table, TableError};
-
-/// Displacement sensor (e.g. an ADC channel with linear scaling).
-pub trait DisplacementSensor {
-    /// Displacement from first contact in mm (may be NaN on a read error).
-    fn read_x_mm(&mut self) -> f32;
-}
-
-/// Optional velocity sensor. Boards without one return `None` and the
-/// controller uses its displacement-based estimator.
-pub trait VelocitySensor {
-    fn read_v_m_s(&mut self) -> Option<f32>;
-}
-
-/// The coil driver (PWM, open loop: see `open_loop_duty`).
-pub trait Coil {
-    fn set_current_a(&mut self, current_a: f32);
-}
-
-/// For boards without a velocity sensor.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct NoVelocitySensor;
-
-impl VelocitySensor for NoVelocitySensor {
-    #[inline]
-    fn read_v_m_s(&mut self) -> Option<f32> {
-        None
-    }
-}
 
 /// Control rate limits: below 1 kHz an impact (a few ms) is under-sampled;
 /// 40 kHz leaves the M4F at 80 MHz 2000 cycles per period.
@@ -181,7 +156,7 @@ impl ControlConfig {
     }
 }
 
-impl crate::installation::InstallationTarget for ControlConfig {
+impl crate::law::InstallationTarget for ControlConfig {
     fn law_mut(&mut self) -> &mut LawConfig {
         &mut self.law
     }
@@ -371,38 +346,14 @@ impl Controller {
         self.stats.latched = self.latched;
     }
 
-    /// One period from I/O: read the sensors, decide, command the coil.
-    #[inline]
-    pub fn step<D, V, C>(&mut self, displacement: &mut D, velocity: &mut V, coil: &mut C) -> Command
-    where
-        D: DisplacementSensor + ?Sized,
-        V: VelocitySensor + ?Sized,
-        C: Coil + ?Sized,
-    {
-        let x_mm = displacement.read_x_mm();
-        let v_m_s = velocity.read_v_m_s();
-        let cmd = self.step_sample(x_mm, v_m_s);
-        coil.set_current_a(cmd.current_a);
-        cmd
-    }
-
-    /// [`Controller::step`] for a board whose one I/O object implements all
-    /// three traits (it then owns the peripherals or the PIL frame state).
-    #[inline]
-    pub fn step_io<B>(&mut self, io: &mut B) -> Command
-    where
-        B: DisplacementSensor + VelocitySensor + Coil + ?Sized,
-    {
-        let x_mm = io.read_x_mm();
-        let v_m_s = io.read_v_m_s();
-        let cmd = self.step_sample(x_mm, v_m_s);
-        io.set_current_a(cmd.current_a);
-        cmd
-    }
-
     /// One period from sampled values (`v_measured_m_s = None`: no velocity
     /// sensor, use the estimator). The returned current is always finite and
     /// inside the law's output range.
+    // `#[inline]`: emitted into the board's crate with `step_io`
+    // (`mre_runtime::io`), optimized there with the board's I/O before LTO. Compiled alone in this crate and
+    // inlined only by LTO, the control task took 396 bytes more of flash and
+    // 1 more instruction per step (issue 40: `cargo fw` 86 340 -> 85 972 B).
+    #[inline]
     pub fn step_sample(&mut self, x_mm: f32, v_measured_m_s: Option<f32>) -> Command {
         self.stats.periods = self.stats.periods.wrapping_add(1);
         self.sample_x_mm = x_mm;
@@ -541,14 +492,4 @@ impl Controller {
         s.step_cycles_sum = s.step_cycles_sum.saturating_add(u64::from(cycles));
         s.step_cycles_count = s.step_cycles_count.saturating_add(1);
     }
-}
-
-/// PWM duty for a coil current without current feedback: the coil draws
-/// `duty · full_scale_a` on average (duty ∈ [0, 1]).
-#[inline]
-pub fn open_loop_duty(current_a: f32, full_scale_a: f32) -> f32 {
-    if full_scale_a.is_nan() || full_scale_a <= 0.0 {
-        return 0.0;
-    }
-    math::clamp(current_a / full_scale_a, 0.0, 1.0)
 }

@@ -7,16 +7,6 @@
 //! `mre upload` carry it in the flash table (format 3, under the table's
 //! CRC), and the board derives its law and fault configuration from it
 //! ([`Installation::apply`]) within its hard limits (`limits`).
-use crate::law::LawConfig;
-
-/// A configuration an installation sets ([`Installation::apply`]): the law's
-/// and the velocity sensor's scale. `control::ControlConfig` is one; the
-/// trait keeps this module free of it (the import circle table → installation
-/// → control → law → table of issue 40).
-pub trait InstallationTarget {
-    fn law_mut(&mut self) -> &mut LawConfig;
-    fn set_v_sensor_full_scale_m_s(&mut self, full_scale_m_s: f32);
-}
 
 /// Declares [`Installation`] once: each field is one line here, and the
 /// table's CRC, the upload blob, the limits check and the host's TOML reader
@@ -109,27 +99,5 @@ impl Installation {
             None if self.impact_v_min_m_s > self.impact_v_max_m_s => Some("impact_v_min_m_s"),
             None => None,
         }
-    }
-
-    /// Sets the law and fault configuration this installation determines:
-    /// the law's mass and usable stroke, the output clamp at the coil's
-    /// rating (the fail-safe and armed currents kept within it), the drive
-    /// range of the half bridge (±supply / resistance), the displacement
-    /// check's top at the sensor's range, the fastest impact the law arms
-    /// for without a prediction (`impact_v_max_m_s`), and the velocity
-    /// sensor's scale.
-    pub fn apply<C: InstallationTarget + ?Sized>(&self, cfg: &mut C) {
-        let law = cfg.law_mut();
-        law.mass_kg = self.mass_kg;
-        law.stroke_max_mm = self.usable_stroke_mm;
-        law.current_max_a = self.coil_rating_a;
-        law.failsafe_current_a = law.failsafe_current_a.min(self.coil_rating_a);
-        law.armed_current_a = law.armed_current_a.min(self.coil_rating_a);
-        law.drive_max_a = self.drive_max_a();
-        law.drive_min_a = -self.drive_max_a();
-        law.x_valid_max_mm = self.x_sensor_range_mm;
-        // Without a predicted impact the coil idles armed for the fastest one.
-        law.impact_v_max_m_s = self.impact_v_max_m_s;
-        cfg.set_v_sensor_full_scale_m_s(self.v_sensor_full_scale_m_s);
     }
 }

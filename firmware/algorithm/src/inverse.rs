@@ -17,7 +17,7 @@
 use crate::flags::Flags;
 use crate::math;
 use crate::model::Branch;
-use crate::table::{CurrentEntry, Table, MAX_CURRENTS};
+use crate::table::{CurrentEntry, Entries, Table};
 
 /// A current with the flags that qualify it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -270,36 +270,6 @@ impl Table {
             r.flags |= Flags::NON_FINITE_INPUT;
         }
         r
-    }
-}
-
-/// A table's entries as the scans walk them: the whole fixed array and how
-/// many are in use (at least one), so that a scan tests its end once per
-/// entry and needs no slice of checked length.
-#[derive(Clone, Copy)]
-pub(crate) struct Entries<'a> {
-    pub(crate) all: &'a [CurrentEntry; MAX_CURRENTS],
-    pub(crate) len: usize,
-}
-
-impl<'a> Entries<'a> {
-    /// Entry 0: every table has one (`Table::build` refuses an empty one),
-    /// so no check is needed.
-    #[inline(always)]
-    fn first(&self) -> &'a CurrentEntry {
-        let [first, ..] = self.all;
-        first
-    }
-
-    /// Entries 1, 2, … of the array with their indices (the caller stops at `len`).
-    #[inline(always)]
-    fn rest(&self) -> impl Iterator<Item = (usize, &'a CurrentEntry)> {
-        self.all.iter().enumerate().skip(1)
-    }
-
-    #[inline(always)]
-    fn last_index(&self) -> usize {
-        self.len.saturating_sub(1)
     }
 }
 

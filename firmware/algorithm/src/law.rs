@@ -51,6 +51,7 @@
 //! in one impact is applied to the next.
 use crate::arming::Arming;
 use crate::flags::Flags;
+use crate::installation::Installation;
 use crate::math;
 use crate::model::{Branch, BranchSelector};
 use crate::table::Table;
@@ -249,6 +250,40 @@ pub struct Command {
     pub target_force_n: f32,
     pub branch: Branch,
     pub flags: Flags,
+}
+
+/// A configuration an installation sets ([`Installation::apply`]): the law's
+/// and the velocity sensor's scale. `control::ControlConfig` is one. Here,
+/// not in `installation`, so that the installation (which a table carries)
+/// uses nothing above it: no import circle table → installation → law →
+/// table (issue 40).
+pub trait InstallationTarget {
+    fn law_mut(&mut self) -> &mut LawConfig;
+    fn set_v_sensor_full_scale_m_s(&mut self, full_scale_m_s: f32);
+}
+
+impl Installation {
+    /// Sets the law and fault configuration this installation determines:
+    /// the law's mass and usable stroke, the output clamp at the coil's
+    /// rating (the fail-safe and armed currents kept within it), the drive
+    /// range of the half bridge (±supply / resistance), the displacement
+    /// check's top at the sensor's range, the fastest impact the law arms
+    /// for without a prediction (`impact_v_max_m_s`), and the velocity
+    /// sensor's scale.
+    pub fn apply<C: InstallationTarget + ?Sized>(&self, cfg: &mut C) {
+        let law = cfg.law_mut();
+        law.mass_kg = self.mass_kg;
+        law.stroke_max_mm = self.usable_stroke_mm;
+        law.current_max_a = self.coil_rating_a;
+        law.failsafe_current_a = law.failsafe_current_a.min(self.coil_rating_a);
+        law.armed_current_a = law.armed_current_a.min(self.coil_rating_a);
+        law.drive_max_a = self.drive_max_a();
+        law.drive_min_a = -self.drive_max_a();
+        law.x_valid_max_mm = self.x_sensor_range_mm;
+        // Without a predicted impact the coil idles armed for the fastest one.
+        law.impact_v_max_m_s = self.impact_v_max_m_s;
+        cfg.set_v_sensor_full_scale_m_s(self.v_sensor_full_scale_m_s);
+    }
 }
 
 /// Stopping force for a mass at `v_m_s` with `remaining_mm` of stroke left:
@@ -490,7 +525,7 @@ impl ImpactLaw {
     /// construction): the period without the check that the table is the
     /// prepared one (7 instructions a control step).
     #[inline]
-    pub fn step_prepared(&mut self, table: &Table, x_mm: f32, v_m_s: f32) -> Command {
+    pub(crate) fn step_prepared(&mut self, table: &Table, x_mm: f32, v_m_s: f32) -> Command {
         if !self.inputs_plausible(x_mm, v_m_s) {
             let input_faults = self.check_inputs(x_mm, v_m_s);
             return self.fail_safe(input_faults);

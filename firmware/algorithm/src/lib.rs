@@ -1,22 +1,35 @@
-//! The paper's algorithm and the one control period built on it: the force
-//! table and its forward model, the inverse (which current gives a force),
-//! the impact law with arming before contact, the velocity estimator, and
-//! `control::Controller`, one period from a sample to a coil command with its
-//! fault latches and the coil-current monitor (`overcurrent`). Also the
-//! installation a table carries and the board's hard limits (`limits`) every
-//! configuration is checked against. What the board flies and what the host
-//! tools, the simulator and the FMUs link.
+//! The MRE damper's algorithm (`mre_algorithm`): the paper's model and the
+//! impact law, and the one control period built on them, as pure functions
+//! of sampled values. What the board flies and what the host tools, the
+//! simulator and the FMUs link.
 //!
-//! Why the controller and the limits live here, not in the runtime: `mre pil`
-//! and the controller FMU run the very `Controller` the board runs (faults and
-//! the sense monitor included) and must match the firmware bit for bit, and the
-//! protocol checks every upload against `limits`; in the algorithm crate the
-//! host and the protocol link them without linking the runtime.
+//! What is here:
+//! - the model: `entry` (one current's two quartics), `table` (the entries,
+//!   the format 2 terms and the installation under a CRC, validated when
+//!   built), `saturation`, `order` (facts proven when a table is built),
+//!   `model` (force from x, v, I) and `inverse` (the current for a force);
+//! - the law: `law` (impact law, coil-lag inversion, delay prediction),
+//!   `arming` (the current before contact), `estimate` (velocity from x);
+//! - the period: `control::Controller` (a sample in, a coil current out, with
+//!   its fault latches, overrun accounting and statistics) and `overcurrent`
+//!   (the coil-current monitor the controller runs before each step);
+//! - data: `installation`, `limits` (the board's hard limits),
+//!   `generated_table` (the built-in table), `flags`, `math`.
 //!
-//! May not: do I/O, touch hardware, allocate, panic, or hold `unsafe` code;
-//! it knows nothing of boards, frames, flash, boot or timing (it declares the
-//! I/O traits a board implements, `control::{DisplacementSensor, ...}`).
-//! Depends on no other crate of the firmware.
+//! Why the controller, the monitor and the limits are here, not in the
+//! runtime: `mre pil` and the controller FMU fly the board's `Controller`
+//! bit for bit (faults and the sense monitor included), and host-tools may
+//! link only this crate and the protocol; the protocol checks every upload
+//! against `limits`. They stay pure: the board passes the sample, the shunt
+//! reading, whether the period overran and its cycle count in as values.
+//!
+//! May not: do I/O or know a board: no sensor or coil traits (the runtime's
+//! `io`), no registers, clock, watchdog, boot, frames or flash; no heap, no
+//! panics, no `unsafe`. Depends on no other crate of the firmware. Its
+//! modules import one way (no circle): `math`, `flags`, `entry`,
+//! `saturation`, `installation`, `overcurrent`, `estimate` at the bottom,
+//! then `order`, `table`, `model`, `inverse`, `arming`, `law`, `control`,
+//! `limits`.
 //!
 //! Data flow of one control period (`control::Controller::step_sample`):
 //! `estimate` (velocity from displacement) → `law` (target force for the impact)
@@ -31,6 +44,7 @@
 
 pub mod arming;
 pub mod control;
+pub mod entry;
 pub mod estimate;
 pub mod flags;
 // The table the image flies, written by `mre tables` beside the image

@@ -16,20 +16,11 @@
 //!   (`X_CLAMPED`): a quartic extrapolated beyond its data is meaningless.
 //! - NaN or infinite inputs are replaced (x → x_min, current → lowest) and
 //!   flagged `NON_FINITE_INPUT`, so the result is always finite.
+pub use crate::entry::Branch;
 use crate::flags::Flags;
 use crate::math;
+pub use crate::saturation::interpolation_variable;
 use crate::table::{CurrentEntry, Table};
-
-/// The variable the interpolation between currents is linear in: `I`, or
-/// `tanh(I/I_s)` when `saturation_current_a > 0`.
-#[inline]
-pub fn interpolation_variable(current_a: f32, saturation_current_a: f32) -> f32 {
-    if saturation_current_a > 0.0 {
-        math::tanh(current_a / saturation_current_a)
-    } else {
-        current_a
-    }
-}
 
 /// Fastest velocity the viscous term takes (m/s): beyond any drop test, and
 /// keeps `c·v` finite for any finite v.
@@ -46,27 +37,6 @@ pub fn viscous_velocity(v_m_s: f32) -> f32 {
         0.0
     } else {
         math::clamp(v_m_s, -VISCOUS_V_LIMIT_M_S, VISCOUS_V_LIMIT_M_S)
-    }
-}
-
-/// Which of an entry's two quartics applies.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Branch {
-    /// Loading, v > 0.
-    Compression,
-    /// Unloading, v ≤ 0.
-    Extension,
-}
-
-impl Branch {
-    /// The paper's rule: compression when v > 0, else extension (NaN → extension).
-    #[inline]
-    pub fn from_velocity(v_m_s: f32) -> Branch {
-        if v_m_s > 0.0 {
-            Branch::Compression
-        } else {
-            Branch::Extension
-        }
     }
 }
 

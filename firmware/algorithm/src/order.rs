@@ -46,9 +46,8 @@
 //! The "largest entry" fact is not proven with a viscous term: near contact
 //! the largest entry changes with the velocity, and the inverse does not use
 //! it then (its path cost the full scan more than it saved, BENCHMARKS.md).
+use crate::entry::{Branch, CurrentEntry, Quartic, MAX_CURRENTS};
 use crate::math::abs;
-use crate::model::Branch;
-use crate::table::{CurrentEntry, Quartic, MAX_CURRENTS};
 
 /// Fastest speed (m/s) the facts of a table with a viscous term are proven
 /// for: the velocity transducer's full scale (firmware/README.md), twice the

@@ -40,6 +40,17 @@
 //! `ModelTerms::EVERY_TERM`: bounds 1.3–2.7·10⁻⁶ A, measured ≤ 3·10⁻⁷ A).
 use crate::math;
 
+/// The variable the interpolation between currents is linear in: `I`, or
+/// `tanh(I/I_s)` when `saturation_current_a > 0`.
+#[inline]
+pub fn interpolation_variable(current_a: f32, saturation_current_a: f32) -> f32 {
+    if saturation_current_a > 0.0 {
+        math::tanh(current_a / saturation_current_a)
+    } else {
+        current_a
+    }
+}
+
 /// Degree of the polynomial in t: 7 multiply-adds per period.
 pub const DEGREE: usize = 7;
 /// Terms of the Taylor series before economizing (the series' tail past

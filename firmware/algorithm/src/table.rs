@@ -7,14 +7,13 @@
 //! Tables are stored in flash as a [`TableImage`] (version + entries + CRC-32)
 //! and only become a usable [`Table`] through a validating constructor, so a
 //! corrupt or inconsistent table is never evaluated.
+use crate::entry::Branch;
+pub use crate::entry::{CurrentEntry, Quartic, MAX_CURRENTS};
 use crate::installation::{Installation, DEFAULT_INSTALLATION, FIELD_COUNT as INSTALLATION_WORDS};
-use crate::model::Branch;
 use crate::order::OrderFacts;
-use crate::saturation::SegmentMap;
+use crate::saturation::{interpolation_variable, SegmentMap};
 use crc::{Crc, CRC_32_ISO_HDLC};
 
-/// Most currents one table can hold (fixed size: no heap on the board).
-pub const MAX_CURRENTS: usize = 8;
 /// The newest format version, written by [`Table::with_installation`]:
 /// version 3 adds the [`Installation`] (what `mre tables` and `mre upload`
 /// write). Version 2 ([`Table::with_terms`]) added [`ModelTerms`]; version 1
@@ -112,38 +111,6 @@ impl ModelTerms {
     }
 }
 
-/// `F(x) = c[0]·x⁴ + c[1]·x³ + c[2]·x² + c[3]·x + c[4]` (highest power first,
-/// as the paper prints it).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Quartic {
-    pub coeffs: [f32; 5],
-}
-
-impl Quartic {
-    pub const fn new(coeffs: [f32; 5]) -> Self {
-        Self { coeffs }
-    }
-
-    /// Horner's scheme: four multiplies and four adds.
-    #[inline]
-    pub fn eval(&self, x: f32) -> f32 {
-        let [a4, a3, a2, a1, a0] = self.coeffs;
-        (((a4 * x + a3) * x + a2) * x + a1) * x + a0
-    }
-
-    fn is_finite(&self) -> bool {
-        self.coeffs.iter().all(|c| c.is_finite())
-    }
-
-    /// A bound on |p(x)| and on every Horner partial for |x| ≤ `x_abs_max`
-    /// (≥ 1): Horner over the coefficients' magnitudes. Infinite on overflow.
-    pub(crate) fn magnitude_bound(&self, x_abs_max: f32) -> f32 {
-        self.coeffs
-            .iter()
-            .fold(0.0, |acc, c| acc * x_abs_max + crate::math::abs(*c))
-    }
-}
-
 /// Largest force (N) a table may produce anywhere in its fitted stroke, and
 /// the largest |x| (mm), |current| (A) and viscous coefficient (N·s/m) it may
 /// hold. The damper makes a few kN; quartics extrapolated over a long fitted
@@ -155,27 +122,6 @@ pub const MAX_TABLE_FORCE_N: f32 = 1.0e9;
 pub const MAX_TABLE_X_MM: f32 = 1.0e3;
 pub const MAX_TABLE_CURRENT_A: f32 = 100.0;
 pub const MAX_VISCOUS_N_S_PER_M: f32 = 1.0e5;
-
-/// One tabulated current: its two branch quartics and their fitted stroke.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CurrentEntry {
-    pub current_a: f32,
-    pub compression: Quartic,
-    pub extension: Quartic,
-    /// Fitted displacement range; outside it the model clamps x (see `model`).
-    pub x_min_mm: f32,
-    pub x_max_mm: f32,
-}
-
-impl CurrentEntry {
-    const ZERO: CurrentEntry = CurrentEntry {
-        current_a: 0.0,
-        compression: Quartic::new([0.0; 5]),
-        extension: Quartic::new([0.0; 5]),
-        x_min_mm: 0.0,
-        x_max_mm: 0.0,
-    };
-}
 
 /// A table as it is stored in flash or in a generated source file.
 #[derive(Clone, Copy, Debug)]
@@ -404,7 +350,7 @@ impl Table {
                 entry.compression.eval(entry.x_max_mm),
                 entry.extension.eval(entry.x_max_mm),
             ];
-            *knot = crate::model::interpolation_variable(entry.current_a, terms.saturation_current_a);
+            *knot = interpolation_variable(entry.current_a, terms.saturation_current_a);
             table.shared_x_min_mm = table.shared_x_min_mm.max(entry.x_min_mm);
             table.shared_x_max_mm = table.shared_x_max_mm.min(entry.x_max_mm);
         }
@@ -478,8 +424,8 @@ impl Table {
 
     /// The entries as the inverse's scans walk them.
     #[inline(always)]
-    pub(crate) fn entry_array(&self) -> crate::inverse::Entries<'_> {
-        crate::inverse::Entries {
+    pub(crate) fn entry_array(&self) -> Entries<'_> {
+        Entries {
             all: &self.entries,
             len: self.len,
         }
@@ -857,3 +803,33 @@ pub static PAPER_TABLE4: TableImage<'static> = TableImage {
         &DEFAULT_INSTALLATION,
     ),
 };
+
+/// A table's entries as the scans walk them: the whole fixed array and how
+/// many are in use (at least one), so that a scan tests its end once per
+/// entry and needs no slice of checked length.
+#[derive(Clone, Copy)]
+pub(crate) struct Entries<'a> {
+    pub(crate) all: &'a [CurrentEntry; MAX_CURRENTS],
+    pub(crate) len: usize,
+}
+
+impl<'a> Entries<'a> {
+    /// Entry 0: every table has one (`Table::build` refuses an empty one),
+    /// so no check is needed.
+    #[inline(always)]
+    pub(crate) fn first(&self) -> &'a CurrentEntry {
+        let [first, ..] = self.all;
+        first
+    }
+
+    /// Entries 1, 2, … of the array with their indices (the caller stops at `len`).
+    #[inline(always)]
+    pub(crate) fn rest(&self) -> impl Iterator<Item = (usize, &'a CurrentEntry)> {
+        self.all.iter().enumerate().skip(1)
+    }
+
+    #[inline(always)]
+    pub(crate) fn last_index(&self) -> usize {
+        self.len.saturating_sub(1)
+    }
+}

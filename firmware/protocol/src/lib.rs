@@ -8,7 +8,8 @@
 //! table a page carries, the control configuration a blob carries, the
 //! board's hard limits, the controller's at-rest gate), not on the runtime:
 //! the host tools link it without the board's runtime. Nothing depends on it
-//! but the image, the host tools and the tests.
+//! but the image, the host tools and their FMUs, fuzz and the tests. Its
+//! modules import one way: `upload` → `flash_table` → `frame`.
 #![cfg_attr(not(test), no_std)]
 #![forbid(unsafe_code)]
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::indexing_slicing)]

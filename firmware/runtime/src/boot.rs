@@ -1,8 +1,8 @@
 //! Boot facts decoded from raw register values, so the decoding is tested on
-//! the host: why the chip reset (STM32L4 `RCC_CSR`, RM0351 §6.4.30, numbered
-//! from the register order, unverified; flag bits 24..31 as in ST's CMSIS `stm32l475xx.h`), and what
-//! the board does first about it ([`BootPlan`], firmware/README.md "Reset
-//! paths").
+//! the host: why the chip reset (STM32L4 `RCC_CSR`, RM0351's "Control/status
+//! register (RCC_CSR)" in the RCC chapter; flag bits 24..31 as in ST's CMSIS
+//! `stm32l475xx.h`), and what the board does first about it ([`BootPlan`],
+//! firmware/README.md "Reset paths").
 
 /// The reset cause, most specific first (NRST pulses on every reset, so
 /// `PINRSTF` accompanies the others and only counts alone).

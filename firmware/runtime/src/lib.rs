@@ -1,18 +1,21 @@
 //! The MRE damper runtime (`mre_runtime`): what runs around the control
-//! period on a board: boot decisions and the power-on self-test, the fail-safe
-//! after a panic or HardFault, the current-sense and sensor calibration,
-//! watchdog check-ins, pacing of missed periods and the status LED's codes.
+//! period on a board: `io` (the sensor and coil traits a board implements,
+//! one period over them, the coil's open-loop duty), `boot` (reset causes,
+//! the boot plan, the power-on self-test, the coil after a panic or
+//! HardFault), `calibration` (current-sense and sensor zeros), `watchdog`
+//! (check-ins), `pacing` (missed periods) and `status` (the LED's codes).
 //!
 //! The period itself (`mre_algorithm::control::Controller`, with its fault
 //! latches and the coil-current monitor) and the board's hard limits are the
-//! algorithm crate's: the host simulator and the protocol need them, and they
-//! do not link this crate. The frames, the upload receiver and the table page
-//! codec are the protocol crate's (`mre_protocol`).
+//! algorithm crate's: the host flies them and does not link this crate. The
+//! frames, the upload receiver and the table page codec are the protocol
+//! crate's (`mre_protocol`).
 //!
 //! May not: touch hardware or registers, allocate, panic, or hold `unsafe`
 //! code; a board implements the I/O traits. Depends on the algorithm
-//! (`mre_algorithm`) only, on no board and not on the protocol. Only the board
-//! image (and the firmware tests in tests/) link it.
+//! (`mre_algorithm`) only, on no board and not on the protocol; its modules
+//! use none of each other. Only the board image (and the firmware tests in
+//! tests/) link it.
 #![cfg_attr(not(test), no_std)]
 // Pure logic: unsafe code belongs to the board layer (firmware/src/board/).
 #![forbid(unsafe_code)]
@@ -24,6 +27,7 @@
 
 pub mod boot;
 pub mod calibration;
+pub mod io;
 pub mod pacing;
 pub mod status;
 pub mod watchdog;

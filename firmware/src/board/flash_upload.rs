@@ -23,7 +23,7 @@ const TABLE_PAGE_OFFSET: u32 =
 /// `flash/l.rs` leaves FLASH_ACR alone; embassy's later sources save, disable
 /// and reset it, commit 1b9e61437 "fix STM32L4 corrupted data cache after
 /// erase/write"), so this page does, in `begin_update` / `end_update`.
-/// FLASH_SR's error flags (RM0351 §3.7.5 FLASH_SR: OPERR 1, PROGERR 3,
+/// FLASH_SR's error flags (RM0351 "Flash status register (FLASH_SR)": OPERR 1, PROGERR 3,
 /// WRPERR 4, PGAERR 5, SIZERR 6, PGSERR 7, MISERR 8, FASTERR 9, RDERR 14,
 /// OPTVERR 15) seen by [`FlashErrorCapture`] since the operation began.
 static FLASH_SR_ERRORS: AtomicU32 = AtomicU32::new(0);

@@ -76,7 +76,8 @@ pub trait Board: Sized {
     fn feed_watchdog(&mut self);
 }
 
-use mre_algorithm::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
+use mre_algorithm::control::Controller;
+use mre_runtime::io::{Coil, DisplacementSensor, VelocitySensor};
 
 /// Whether the damper is at rest, for the table upload: written by the
 /// control task after each step, read on an upload's commit.
@@ -131,7 +132,7 @@ pub trait StatusIo {
 // pull-down, so the pin never drives high. Off (0 A) is the only state a
 // bare GPIO can hold; `init` then starts the fail-safe duty as the reset
 // cause decides (`mre_runtime::boot::BootPlan`). RM0351 §6.4.17 (RCC_AHB2ENR,
-// corroborated by a public citation), §8.4 (GPIO registers, unverified); the addresses and bits
+// corroborated by a public citation) and the GPIO chapter's "GPIO registers"; the addresses and bits
 // match ST's CMSIS `stm32l475xx.h` V1.3.1: RCC 0x4002_1000 + AHB2ENR 0x4C,
 // GPIOBEN bit 1, GPIOB 0x4800_0400, PUPDR 0x0C, BSRR 0x18. Instructions from the reset vector to here:
 // `firmware/bench/reset_icount.sh`.

@@ -22,7 +22,7 @@ use embassy_stm32::pac;
 use embassy_time::Timer;
 use embassy_time_driver::Driver;
 use embassy_time_queue_utils::Queue;
-use mre_algorithm::control::{Coil, Controller, DisplacementSensor, VelocitySensor};
+use mre_algorithm::control::Controller;
 use mre_algorithm::law::Command;
 use mre_algorithm::overcurrent::Sense;
 use mre_algorithm::table::TableImage;
@@ -33,6 +33,7 @@ use mre_protocol::frame::{
     INJECT_HARDFAULT_SEQ, INJECT_PANIC_SEQ, PING_SEQ,
 };
 use mre_protocol::upload::{choose_boot_table, BootTable, UploadReceiver};
+use mre_runtime::io::{Coil, DisplacementSensor, VelocitySensor};
 
 pub const NAME: &str = "PIL (QEMU b-l475e-iot01a)";
 /// MSI after reset; nothing here changes the clock tree.
@@ -213,45 +214,8 @@ pub fn init(_rate_hz: u32) -> (Board, Status) {
     )
 }
 
-impl Board {
-    /// The power-on self-test: QEMU models no ADC and no TIM3, so the
-    /// hardware checks pass by construction here; the table's is real.
-    pub fn self_test(&self, table_crc_holds: bool) -> mre_runtime::boot::SelfTest {
-        mre_runtime::boot::SelfTest {
-            sense_converts: true,
-            pwm_reads_back: true,
-            table_crc_holds,
-        }
-    }
-
-    /// The fail-safe is commanded by the first answer frame here.
-    pub fn hold_fail_safe(&mut self) {}
-
-    /// Announces the link with a command frame of sequence 0 (`HELLO_SEQ`):
-    /// the host sends no sample before it, so no byte can arrive while the
-    /// firmware is still booting.
-    pub fn start(&mut self) {
-        defmt::info!("PIL link up on USART1: waiting for sample frames");
-        send_hello(Flags::NONE);
-    }
-}
-
 fn send_hello(flags: Flags) {
     usart_write(&CommandFrame::hello(flags).encode());
-}
-
-/// The table boot flies: the page (in RAM here, so empty after QEMU starts)
-/// or the image's own. Uploads arrive on the frame link and switch the
-/// running controller (`Io::next_period`).
-pub fn boot_table(board: &mut Board, built_in: &TableImage<'_>, rate_hz: u32) -> BootTable {
-    choose_boot_table(&mut board.io.page, built_in, rate_hz)
-}
-
-/// Uploads share the frame link with the samples: no separate receiver.
-pub fn spawn_uplink(_spawner: &embassy_executor::Spawner, _board: &mut Board) {}
-
-pub fn halt_fail_safe(_board: Board) -> ! {
-    semihosting::process::exit(2)
 }
 
 impl super::BoardIo for Io {
@@ -513,28 +477,40 @@ impl super::Board for Board {
         cycles()
     }
 
+    /// The table boot flies: the page (in RAM here, so empty after QEMU
+    /// starts) or the image's own. Uploads arrive on the frame link and
+    /// switch the running controller (`Io::next_period`).
     fn boot_table(&mut self, built_in: &TableImage<'_>, rate_hz: u32) -> BootTable {
-        boot_table(self, built_in, rate_hz)
+        choose_boot_table(&mut self.io.page, built_in, rate_hz)
     }
 
-    fn spawn_uplink(&mut self, spawner: &embassy_executor::Spawner) {
-        spawn_uplink(spawner, self)
-    }
+    /// Uploads share the frame link with the samples: no separate receiver.
+    fn spawn_uplink(&mut self, _spawner: &embassy_executor::Spawner) {}
 
+    /// The power-on self-test: QEMU models no ADC and no TIM3, so the
+    /// hardware checks pass by construction here; the table's is real.
     fn self_test(&self, table_crc_holds: bool) -> mre_runtime::boot::SelfTest {
-        Board::self_test(self, table_crc_holds)
+        mre_runtime::boot::SelfTest {
+            sense_converts: true,
+            pwm_reads_back: true,
+            table_crc_holds,
+        }
     }
 
-    fn hold_fail_safe(&mut self) {
-        Board::hold_fail_safe(self)
-    }
+    /// The fail-safe is commanded by the first answer frame here.
+    fn hold_fail_safe(&mut self) {}
 
+    /// Announces the link with a command frame of sequence 0 (`HELLO_SEQ`):
+    /// the host sends no sample before it, so no byte can arrive while the
+    /// firmware is still booting.
     fn start(&mut self) {
-        Board::start(self)
+        defmt::info!("PIL link up on USART1: waiting for sample frames");
+        send_hello(Flags::NONE);
     }
 
+    /// A fatal fault at boot: QEMU has no watchdog, so the run ends (exit 2).
     fn halt_fail_safe(self) -> ! {
-        halt_fail_safe(self)
+        semihosting::process::exit(2)
     }
 
     #[inline(always)]

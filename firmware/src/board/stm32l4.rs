@@ -15,10 +15,11 @@ use embassy_stm32::usart::BufferedUart;
 use super::flash_upload::Uplink;
 use embassy_stm32::wdg::IndependentWatchdog;
 use embassy_time::{Duration, Instant, Ticker};
-use mre_algorithm::control::{open_loop_duty, Coil, Controller, DisplacementSensor, VelocitySensor};
+use mre_algorithm::control::Controller;
 use mre_algorithm::law::Command;
 use mre_algorithm::overcurrent::Sense;
 use mre_runtime::boot::{CalibrationTime, FirstCommand, ResetCause};
+use mre_runtime::io::{open_loop_duty, Coil, DisplacementSensor, VelocitySensor};
 use mre_runtime::pacing::Pacer;
 
 #[cfg(feature = "board-b-l475e-iot01a")]
@@ -108,7 +109,8 @@ const JEXTEN_RISING: u8 = 1;
 /// 50 periods at 10 kHz: long enough for the 1 Hz stats log, short enough
 /// that a hung control loop releases the coil to the reset state quickly.
 /// Set by [`Board::start`]: IWDG_PR = 0 (/4), IWDG_RLR = 39, (39 + 1) × 4 /
-/// 32 kHz = 5 ms (RM0351 §36.3.2, §36.4.2-3).
+/// 32 kHz = 5 ms (RM0351 §36.4, "Prescaler register (IWDG_PR)" and
+/// "Reload register (IWDG_RLR)").
 const WATCHDOG_PR: u8 = 0;
 const WATCHDOG_RLR: u16 = 39;
 /// Boot, from reset to the first period, is about 2.4 M instructions in
@@ -210,9 +212,9 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
     embassy_stm32::pac::RCC.csr().modify(|w| w.set_rmvf(true));
     // Supervised from here: the IWDG started at its reset configuration
     // (PR /4, RLR 0xFFF: 512 ms on the 32 kHz LSI, which the start forces
-    // on; RM0351 §36.3 "IWDG functional description", §36.4 registers)
-    // before the clock set-up and the ADC busy-waits; narrowed to
-    // `WATCHDOG_TIMEOUT_US` right after `embassy_stm32::init`.
+    // on; RM0351 "IWDG functional description", §36.4 registers)
+    // before the clock set-up and the ADC busy-waits; set to
+    // `BOOT_WATCHDOG_TIMEOUT_US` right after `embassy_stm32::init`.
     start_watchdog();
     let cause = ResetCause::from_rcc_csr(csr);
     let plan = cause.boot_plan();
@@ -350,8 +352,8 @@ pub fn init(rate_hz: u32) -> (Board, Status) {
     )
 }
 
-/// KR = 0xCCCC: starts the IWDG (a no-op when it runs). RM0351 §36.4.1
-/// IWDG_KR; the key is ST's LL driver's `LL_IWDG_KEY_ENABLE`.
+/// KR = 0xCCCC: starts the IWDG (a no-op when it runs). RM0351 §36.4,
+/// "Key register (IWDG_KR)"; the key is ST's LL driver's `LL_IWDG_KEY_ENABLE`.
 fn start_watchdog() {
     embassy_stm32::pac::IWDG
         .kr()
@@ -368,50 +370,6 @@ fn feed_watchdog() {
 /// TIM3's compare value for `duty` ∈ [0, 1] (`as` saturates).
 fn duty_compare(duty: f32, max_duty: u32) -> u32 {
     (duty * max_duty as f32) as u32
-}
-
-impl Board {
-    /// The power-on self-test: `init`'s two hardware checks and the table's.
-    pub fn self_test(&self, table_crc_holds: bool) -> mre_runtime::boot::SelfTest {
-        mre_runtime::boot::SelfTest {
-            sense_converts: self.sense_converts,
-            pwm_reads_back: self.pwm_reads_back,
-            table_crc_holds,
-        }
-    }
-
-    /// The installed fail-safe current to the coil (main, once the boot
-    /// configuration is known; `super::set_failsafe_current_a`).
-    pub fn hold_fail_safe(&mut self) {
-        self.io.set_duty(fail_safe_duty());
-    }
-
-    /// Starts the ticker and the watchdog right before the first period.
-    pub fn start(&mut self) {
-        self.io.ticker.reset();
-        self.io.pacer = Pacer::start(Instant::now().as_ticks(), self.io.period.as_ticks());
-        // The 5 ms period of the running loop (RM0351 §36.3.4: KR = 0x5555
-        // unlocks PR and RLR; the new values load at the next reload).
-        use embassy_stm32::pac::iwdg::vals::{Key, Pr};
-        let iwdg = embassy_stm32::pac::IWDG;
-        iwdg.kr().write(|w| w.set_key(Key::ENABLE));
-        iwdg.pr().write(|w| w.set_pr(Pr::from_bits(WATCHDOG_PR)));
-        iwdg.rlr().write(|w| w.set_rl(WATCHDOG_RLR));
-        self.watchdog.unleash();
-        self.watchdog.pet();
-    }
-}
-
-/// Holds the fail-safe coil current until the watchdog resets the chip
-/// (configuration refused): started here and never fed, so a fatal fault
-/// at boot retries from reset instead of sleeping for ever.
-pub fn halt_fail_safe(mut board: Board) -> ! {
-    board.io.set_duty(fail_safe_duty());
-    // The watchdog is running since `init`: not feeding it resets the chip.
-    board.watchdog.unleash();
-    loop {
-        cortex_m::asm::wfi();
-    }
 }
 
 /// The installed fail-safe current's duty (`super::failsafe_current_a`).
@@ -477,16 +435,17 @@ impl Io {
         // CC4E: the channel 4 compare output enabled (RM0351 §31.4.11,
         // TIMx_CCER), so OC4REF's edge reaches the ADC as TIM3_CH4. CH4 has
         // no pin mapped to AF2 here, so nothing is driven.
-        // RM0351 §31.4.11 and chapter 18 (ADC) are corroborated by public
-        // citations; the ADC subsections here are not (firmware/rehost/
-        // stm32l4.py says which are). The bits are
+        // RM0351 §31.4.11, chapter 18 (ADC) and §18.4.6 are corroborated by
+        // public citations; the ADC sections below are cited by title
+        // (firmware/rehost/stm32l4.py says why). The bits are
         // checked against ST's CMSIS `stm32l475xx.h` V1.3.1 and LL ADC driver
         // (vendored in github.com/nickfox-taterli/stm32l4_disco_test,
         // 21e0a73): TIM_CCER_CC4E bit 12, ADC_CFGR_JQDIS bit 31, ADC_ISR_JEOC
         // bit 5, LL_ADC_INJ_TRIG_EXT_TIM3_CH4 = JEXTSEL 4 (firmware/README.md).
         pac::TIM3.ccer().modify(|w| w.set_cce(3, true));
-        // JQDIS = 1: the injected queue disabled (RM0351 §18.7.4, ADC_CFGR
-        // bit 31; §18.4.21, "Queue of context for injected conversions"):
+        // JQDIS = 1: the injected queue disabled (RM0351 "ADC configuration
+        // register (ADC_CFGR)" bit 31; "Queue of context for injected
+        // conversions"):
         // the JSQR below is the one context, kept after every sequence, and
         // cannot be consumed into an empty queue that ignores triggers. Its
         // reset value is 1; set explicitly rather than trusted (the stm32
@@ -501,8 +460,9 @@ impl Io {
         // ADC3 enabled before JADSTART: embassy-stm32 0.6 (`adc/v3.rs`)
         // sets ADEN only inside a blocking read, and ADC3's only one is the
         // pin-reset calibration; JADSTART with ADEN = 0 is ignored (RM0351
-        // §18.4.9 "ADC on-off control": ADRDY cleared by writing 1, ADEN = 1,
-        // wait for ADRDY; §18.7.3 ADC_CR: JADSTART is set only with ADEN = 1
+        // "ADC on-off control (ADEN, ADDIS, ADRDY)": ADRDY cleared by writing
+        // 1, ADEN = 1, wait for ADRDY; "ADC control register (ADC_CR)":
+        // JADSTART is set only with ADEN = 1
         // and ADDIS = 0). Bounded: ADRDY takes t_STAB (about 1 ADC cycle)
         // plus a few; 10 000 polls are over 0.3 ms at 80 MHz.
         if !pac::ADC3.cr().read().aden() {
@@ -566,7 +526,8 @@ impl Io {
         for s in samples.iter_mut() {
             *s = read(self);
             embassy_time::block_for(Duration::from_micros(50));
-            // Boot is supervised (5 ms): each calibration is 3.2 ms.
+            // Boot runs under the 500 ms boot timeout: each calibration is
+            // 3.2 ms, and fed per sample.
             feed_watchdog();
         }
         match mre_runtime::calibration::rest_offset(&samples, 0.0, limits) {
@@ -636,7 +597,8 @@ impl super::BoardIo for Io {
 
     /// The latest mid-on-time shunt conversion, with its proof of being new:
     /// ADC3's JEOC (end of injected conversion, set by hardware, cleared by
-    /// writing 1; RM0351 §18.7.1, ADC_ISR). No JEOC since the last period:
+    /// writing 1; RM0351 "ADC interrupt and status register (ADC_ISR)"). No
+    /// JEOC since the last period:
     /// `Stale` (a dead trigger chain or ADC reads the old JDR1 for ever).
     /// JEOC is cleared before JDR1 is read, so a conversion that ends in
     /// between is counted new next period, never lost.
@@ -732,8 +694,8 @@ impl super::FaultCoil for Tim3Coil {
 /// `BootPlan` (watchdog: the fail-safe at once).
 fn coil_safe_from_a_fault() {
     super::coil_safe_from_a_fault(&mut Tim3Coil);
-    // IWDG_KR = 0xCCCC starts the watchdog (RM0351 §36.3, §36.4.1, section
-    // numbers unverified; the key is ST's LL driver's LL_IWDG_KEY_ENABLE).
+    // IWDG_KR = 0xCCCC starts the watchdog (RM0351 §36.4, "Key register
+    // (IWDG_KR)"; the key is ST's LL driver's LL_IWDG_KEY_ENABLE).
     embassy_stm32::pac::IWDG
         .kr()
         .write(|w| w.set_key(embassy_stm32::pac::iwdg::vals::Key::START));
@@ -777,7 +739,8 @@ extern "C" fn mre_hard_fault() -> ! {
 }
 
 /// NMI. A flash double-ECC error in the table page (an upload torn by power
-/// loss; RM0351 §3.3.2 "Error code correction": ECCD in FLASH_ECCR, the
+/// loss; RM0351 "Error code correction (ECC)" in the flash chapter: ECCD in
+/// FLASH_ECCR, the
 /// failing bank and address in BK_ECC and ADDR_ECC, an NMI raised) is
 /// cleared (ECCD, write 1) and noted, and the interrupted page read
 /// returns: `flash_upload` then refuses the page and boot flies the
@@ -830,20 +793,47 @@ impl super::Board for Board {
         super::flash_upload::spawn_uplink(spawner, &mut self.uplink)
     }
 
+    /// The power-on self-test: `init`'s two hardware checks and the table's.
     fn self_test(&self, table_crc_holds: bool) -> mre_runtime::boot::SelfTest {
-        Board::self_test(self, table_crc_holds)
+        mre_runtime::boot::SelfTest {
+            sense_converts: self.sense_converts,
+            pwm_reads_back: self.pwm_reads_back,
+            table_crc_holds,
+        }
     }
 
+    /// The installed fail-safe current to the coil (main, once the boot
+    /// configuration is known; `super::set_failsafe_current_a`).
     fn hold_fail_safe(&mut self) {
-        Board::hold_fail_safe(self)
+        self.io.set_duty(fail_safe_duty());
     }
 
+    /// Starts the ticker and the watchdog right before the first period.
     fn start(&mut self) {
-        Board::start(self)
+        self.io.ticker.reset();
+        self.io.pacer = Pacer::start(Instant::now().as_ticks(), self.io.period.as_ticks());
+        // The 5 ms period of the running loop (RM0351 IWDG "Register access
+        // protection": KR = 0x5555
+        // unlocks PR and RLR; the new values load at the next reload).
+        use embassy_stm32::pac::iwdg::vals::{Key, Pr};
+        let iwdg = embassy_stm32::pac::IWDG;
+        iwdg.kr().write(|w| w.set_key(Key::ENABLE));
+        iwdg.pr().write(|w| w.set_pr(Pr::from_bits(WATCHDOG_PR)));
+        iwdg.rlr().write(|w| w.set_rl(WATCHDOG_RLR));
+        self.watchdog.unleash();
+        self.watchdog.pet();
     }
 
-    fn halt_fail_safe(self) -> ! {
-        halt_fail_safe(self)
+    /// Holds the fail-safe coil current until the watchdog resets the chip
+    /// (configuration refused): started here and never fed, so a fatal fault
+    /// at boot retries from reset instead of sleeping for ever.
+    fn halt_fail_safe(mut self) -> ! {
+        self.io.set_duty(fail_safe_duty());
+        // The watchdog is running since `init`: not feeding it resets the chip.
+        self.watchdog.unleash();
+        loop {
+            cortex_m::asm::wfi();
+        }
     }
 
     #[inline(always)]

@@ -1,4 +1,4 @@
-//! Reset-cause decoding of STM32L4 RCC_CSR values (RM0351 §6.4.29).
+//! Reset-cause decoding of STM32L4 RCC_CSR values (RM0351's "Control/status register (RCC_CSR)").
 use mre_runtime::boot::ResetCause;
 
 /// RCC_CSR flag bits, from the reference manual.

@@ -1,13 +1,11 @@
 //! The control step against mock I/O: fault handling, fail-safe, overrun
 //! accounting, rate config, stats and the coil duty.
-use mre_algorithm::control::{
-    open_loop_duty, Coil, ControlConfig, ControlConfigError, Controller, DisplacementSensor, NoVelocitySensor,
-    VelocitySensor, DEFAULT_RATE_HZ,
-};
+use mre_algorithm::control::{ControlConfig, ControlConfigError, Controller, DEFAULT_RATE_HZ};
 use mre_algorithm::estimate::AlphaBeta;
 use mre_algorithm::law::ImpactLaw;
 use mre_algorithm::table::{Table, TableError, TableImage, PAPER_TABLE4, PAPER_TABLE4_ENTRIES};
 use mre_algorithm::{Branch, Flags};
+use mre_runtime::io::{open_loop_duty, Coil, ControllerIo, DisplacementSensor, NoVelocitySensor, VelocitySensor};
 
 /// Plays back a script of displacements, then repeats the last one.
 struct ScriptX {
