@@ -316,7 +316,7 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
         .map_err(|line| anyhow::anyhow!("binary bytes (NUL) at line {line}: not a text recording"))?;
     let (delimiter, _) = sniff_records(&decoded.text)?;
     // The rows as the loader will read them (quoted fields, CRLF, digit grouping).
-    let records: Vec<Vec<String>> = super::read::text_rows(
+    let (lines, records): (Vec<usize>, Vec<Vec<String>>) = super::read::text_rows(
         &bytes,
         match delimiter {
             Delimiter::Comma => ',',
@@ -325,7 +325,9 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
         },
         &path.display().to_string(),
     )
-    .map_err(|e| anyhow::anyhow!("{e}"))?;
+    .map_err(|e| anyhow::anyhow!("{e}"))?
+    .into_iter()
+    .unzip();
     if records.is_empty() {
         bail!("no data lines");
     }
@@ -339,9 +341,13 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
         .unwrap_or(records.len());
     let header = first_data > 0;
     if header {
-        let unit_row = |r: &Vec<String>| super::read::is_units_row(r);
+        let with_units = first_data >= 2
+            && super::read::is_units_row(&records[first_data - 1])
+            && records[first_data - 2].len() == records[first_data - 1].len();
+        // The line of the names, for errors (blank and `#` lines counted).
+        let names_line = lines[first_data - if with_units { 2 } else { 1 }];
         let raw_names: Vec<String> = match first_data {
-            n if n >= 2 && unit_row(&records[n - 1]) && records[n - 2].len() == records[n - 1].len() => {
+            n if with_units => {
                 notes.push("units from the units row under the names".to_string());
                 records[n - 2]
                     .iter()
@@ -390,10 +396,11 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
                 }
             }
         }
-        let layout = parse_header(&names, &path.display().to_string(), 1).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let layout =
+            parse_header(&names, &path.display().to_string(), names_line).map_err(|e| anyhow::anyhow!("{e}"))?;
         // Never a manifest that cannot load: no time or no force is refused
         // here, with the file's columns and the names mre accepts.
-        super::columns::required_columns(&layout, &path.display().to_string(), first_data).map_err(|e| {
+        super::columns::required_columns(&layout, &path.display().to_string(), names_line).map_err(|e| {
             anyhow::anyhow!(
                 "{e}; the file's columns are {}; name them with `columns` by hand (docs/dataset-format.md)",
                 raw_names

@@ -551,13 +551,14 @@ fn check_keys(text: &str, mpath: &str) -> Result<(), DatasetError> {
 /// and CRLF handled, decimal commas and digit grouping read), for `mre
 /// dataset init`, which must see the file as the loader will.
 /// `delimiter`: `,`, `;`, or anything else for whitespace.
-pub(super) fn text_rows(bytes: &[u8], delimiter: char, dpath: &str) -> Result<Vec<Vec<String>>, DatasetError> {
+/// Each row comes with its line in the file.
+pub(super) fn text_rows(bytes: &[u8], delimiter: char, dpath: &str) -> Result<Vec<(usize, Vec<String>)>, DatasetError> {
     let delimiter = match delimiter {
         ',' => Delimiter::Comma,
         ';' => Delimiter::Semicolon,
         _ => Delimiter::Whitespace,
     };
-    Ok(records(bytes, delimiter, dpath)?.into_iter().map(|(_, f)| f).collect())
+    records(bytes, delimiter, dpath)
 }
 
 /// The non-comment records of a recording file as (line, fields): through

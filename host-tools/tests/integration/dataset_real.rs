@@ -420,11 +420,11 @@ fn mts_testsuite_semicolon_export_loads_after_init_with_only_the_current() {
     assert_eq!(s.len(), 950);
     // Line 9: "159,8212890625"; …; "-40,41028125" (Ch 1 Kraft, kN); "-0,00757277030061232" (mm).
     assert!(close(s.time_s[0], 159.8212890625, 1e-12));
-    assert!(close(s.force_n[0], 40_410.28125, 1e-6), "{}", s.force_n[0]);
+    assert!(close(s.force_n[0], 40_410.281_25, 1e-6), "{}", s.force_n[0]);
     assert!(close(s.x_mm[0], 0.00757277030061232, 1e-15));
     // Line 958: "349,806640625"; …; "-40,343453125"; "-0,0145405529110576".
     assert!(close(s.time_s[949], 349.806640625, 1e-12));
-    assert!(close(s.force_n[949], 40_343.453125, 1e-6));
+    assert!(close(s.force_n[949], 40_343.453_125, 1e-6));
     assert!(close(s.x_mm[949], 0.0145405529110576, 1e-15));
     // Line 138 holds the largest load, -134,766296875 kN at 185,646484375 s
     // (awk over lines 9–958).
@@ -434,7 +434,7 @@ fn mts_testsuite_semicolon_export_loads_after_init_with_only_the_current() {
         .copied()
         .enumerate()
         .fold((0, f64::MIN), |a, (i, f)| if f > a.1 { (i, f) } else { a });
-    assert!(close(peak, 134_766.296875, 1e-6) && k == 129, "{peak} at {k}");
+    assert!(close(peak, 134_766.296_875, 1e-6) && k == 129, "{peak} at {k}");
 }
 
 /// The same TestSuite file loaded with no manifest columns: the header is
@@ -450,7 +450,7 @@ fn mts_testsuite_export_loads_without_columns() {
     .unwrap();
     let rec = &ds.recordings[0];
     assert_eq!(rec.samples.len(), 950);
-    assert!(close(rec.samples.force_n[129], 134_766.296875, 1e-6));
+    assert!(close(rec.samples.force_n[129], 134_766.296_875, 1e-6));
     let notes = rec.notes.join(" | ");
     assert!(notes.contains("`Laufzeit (sec)` (a second clock)"), "{notes}");
     assert!(notes.contains("`Ch 1 Kraft Sollwert (kN)`"), "{notes}");
@@ -506,4 +506,26 @@ fn reading_notes_reach_dataset_check_and_the_validation_report() {
         .as_str()
         .unwrap()
         .starts_with("10 row(s) above the first data row skipped"));
+}
+
+/// The TestSuite file with its two force channels renamed (`Ch 1 Kraft` →
+/// `Ch 1 Foo` on line 7; one stated change): `init` refuses it, naming the
+/// line the names are on as an editor counts it (BOM, 4 preamble lines and
+/// 2 empty ones above), and writes no manifest.
+#[test]
+fn init_names_the_physical_line_of_the_names_it_cannot_read() {
+    let dir = bare("mts_testsuite_deu_emodul_run3.csv", "run3.csv");
+    let text = std::fs::read_to_string(dir.path().join("run3.csv")).unwrap();
+    let changed = text.replacen(
+        "\"Ch 1 Kraft Sollwert \";\"Ch 1 Kraft \"",
+        "\"Ch 1 Foo Sollwert \";\"Ch 1 Foo \"",
+        1,
+    );
+    assert_ne!(changed, text);
+    std::fs::write(dir.path().join("run3.csv"), changed).unwrap();
+    let e = mre_host::dataset::init::manifest_for(dir.path(), None, Some("x"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("run3.csv: line 7: missing required column for force"), "{e}");
+    assert!(!dir.path().join("dataset.toml").exists());
 }
