@@ -240,3 +240,38 @@ pub fn map_name(raw: &str) -> Option<String> {
     };
     Some(name.to_string())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::map_name;
+
+    /// Hand-written: channel names as the real exports in the vendor
+    /// README's tally write them (Bluehill in German and Polish, a custom
+    /// Bluehill method, MTS TestSuite), with their units joined.
+    #[test]
+    fn instrument_channel_names_map_to_their_quantity_and_commands_do_not() {
+        let cases = [
+            ("Zeit (sec)", Some("time_s")),
+            ("Traversenweg (mm)", Some("displacement_mm")),
+            ("Last (kN)", Some("force_kn")),
+            ("Godzina (s)", Some("time_s")),
+            ("Przemieszczenie (mm)", Some("displacement_mm")),
+            ("Obciążenie (N)", Some("force_n")),
+            ("Time measurement (s)", Some("time_s")),
+            ("Primary load measurement (N)", Some("force_n")),
+            ("Compressive extension (mm)", Some("displacement_mm")),
+            ("Ch 1 Kraft (kN)", Some("force_kn")),
+            // A command is not a measurement; strain, stress and a name with two quantities say nothing.
+            ("Ch 1 Kraft Sollwert (kN)", None),
+            ("Load command (N)", None),
+            ("Tensile strain (Strain 1) (%)", None),
+            ("Zugspannung (MPa)", None),
+            ("Load cell temperature (C)", None),
+            // A known quantity in a unit mre has no factor for.
+            ("Extension (%)", None),
+        ];
+        for (raw, want) in cases {
+            assert_eq!(map_name(raw).as_deref(), want, "{raw}");
+        }
+    }
+}
