@@ -291,7 +291,8 @@ enum Command {
         #[arg(long, alias = "report")]
         out: PathBuf,
     },
-    /// Data set helpers: `mre dataset init DIR` writes dataset.toml for a folder of recordings.
+    /// Data set helpers: `mre dataset init DIR` writes dataset.toml for a folder of recordings;
+    /// `mre dataset check DIR` loads it and prints what it holds and what the readers assumed.
     Dataset {
         #[command(subcommand)]
         action: DatasetAction,
@@ -355,6 +356,8 @@ enum DatasetAction {
         #[arg(long)]
         name: Option<String>,
     },
+    /// Load DIR/dataset.toml as every command does and print what it holds and what the readers assumed.
+    Check { dir: PathBuf },
 }
 
 /// GSA settings shared by `fit` and `sweep`.
@@ -537,6 +540,7 @@ fn run(cli: Cli) -> Result<()> {
             if let Some(stated) = &run.model.installation {
                 println!("{}", stated.describe());
             }
+            print!("{}", run.reading_notes);
             print!("{}", mre_host::fit::summary_markdown(&run.fits));
             println!(
                 "fitted {} branches in {:.3} ms; wrote {}",
@@ -904,6 +908,12 @@ fn run(cli: Cli) -> Result<()> {
         } => {
             let path = mre_host::dataset::init::run_init(&dir, pattern.as_deref(), name.as_deref())?;
             println!("wrote {} (check the units it assumed, in its comments)", path.display());
+        }
+        Command::Dataset {
+            action: DatasetAction::Check { dir },
+        } => {
+            let ds = mre_host::dataset::Dataset::load(&dir)?;
+            print!("{}", mre_host::dataset::summary::check_markdown(&ds));
         }
         Command::Completions { shell } => {
             use clap::CommandFactory;

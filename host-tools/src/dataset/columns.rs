@@ -139,6 +139,34 @@ pub fn required_columns(layout: &[Column], path: &str, line: usize) -> Result<()
     Ok(())
 }
 
+/// Words naming what a machine was told to do, not what it measured.
+const COMMAND_WORDS: &[&str] = &[
+    "command", "cmd", "setpoint", "set", "target", "demand", "sollwert", "soll", "consigne", "consigna",
+];
+
+/// The quantity a channel's name (lower case, without its unit) names.
+fn quantity_word(word: &str) -> Option<&'static str> {
+    Some(match word {
+        // English, German, Spanish, French and Polish, as MTS and Instron
+        // exports name them (Bluehill's German `Traversenweg` and `Last`,
+        // its Polish `Godzina`, `Przemieszczenie`, `Obciążenie`).
+        "time" | "t" | "running time" | "zeit" | "laufzeit" | "prüfzeit" | "tiempo" | "temps" | "czas" | "godzina" => {
+            "time"
+        }
+        "displacement" | "disp" | "position" | "stroke" | "x" | "deflection" | "extension" | "weg" | "verschiebung"
+        | "traversenweg" | "standardweg" | "desplazamiento" | "déplacement" | "deplacement" | "przemieszczenie" => {
+            "displacement"
+        }
+        "velocity" | "vel" | "speed" | "v" => "velocity",
+        "force" | "load" | "f" | "kraft" | "prüfkraft" | "pruefkraft" | "standardkraft" | "last" | "fuerza"
+        | "carga" | "charge" | "obciążenie" | "siła" => "force",
+        "acceleration" | "accel" | "acc" | "a" => "acceleration",
+        "current" | "i" | "coil current" => "current",
+        "temperature" | "temp" => "temperature",
+        _ => return None,
+    })
+}
+
 /// A header name to a unit-carrying column name, if it can be told:
 /// `Time (ms)` → `time_ms`, `Load [kN]` → `force_kn`, `Axial Force (kN)`
 /// → `force_kn`, `Load (Newtons)` → `force_n`.
@@ -160,17 +188,25 @@ pub fn map_name(raw: &str) -> Option<String> {
         .collect();
     let unit = if words.len() > 1 { words.pop() } else { None };
     let word = words.join(" ");
-    let quantity = match word.as_str() {
-        // English, German, Spanish and French, as MTS and Instron exports name them.
-        "time" | "t" | "running time" | "zeit" | "laufzeit" | "tiempo" | "temps" => "time",
-        "displacement" | "disp" | "position" | "stroke" | "x" | "deflection" | "extension" | "weg" | "verschiebung"
-        | "desplazamiento" | "déplacement" | "deplacement" => "displacement",
-        "velocity" | "vel" | "speed" | "v" => "velocity",
-        "force" | "load" | "f" | "kraft" | "prüfkraft" | "pruefkraft" | "fuerza" | "carga" | "charge" => "force",
-        "acceleration" | "accel" | "acc" | "a" => "acceleration",
-        "current" | "i" | "coil current" => "current",
-        "temperature" | "temp" => "temperature",
-        _ => return None,
+    let quantity = match quantity_word(&word) {
+        Some(q) => q,
+        // A name of several words with one quantity word among them, as
+        // Bluehill names channels (`Compressive extension`, `Primary load
+        // measurement`, `Time measurement`); one-letter words say nothing
+        // here, and two quantity words (`Load cell temperature`) are no name,
+        // nor is a command (MTS's `Ch 1 Kraft Sollwert`, a `Load command`).
+        None if words.iter().any(|w| COMMAND_WORDS.contains(w)) => return None,
+        None => {
+            let mut found = words
+                .iter()
+                .filter(|w| w.chars().count() > 1)
+                .filter_map(|w| quantity_word(w));
+            let first = found.next()?;
+            if words.len() < 2 || found.any(|q| q != first) {
+                return None;
+            }
+            first
+        }
     };
     // Spelled-out units (LabVIEW's `Newtons`, MTS's `Sec`) to their symbols.
     let unit = unit.map(|u| {
@@ -203,4 +239,39 @@ pub fn map_name(raw: &str) -> Option<String> {
         _ => return None,
     };
     Some(name.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::map_name;
+
+    /// Hand-written: channel names as the real exports in the vendor
+    /// README's tally write them (Bluehill in German and Polish, a custom
+    /// Bluehill method, MTS TestSuite), with their units joined.
+    #[test]
+    fn instrument_channel_names_map_to_their_quantity_and_commands_do_not() {
+        let cases = [
+            ("Zeit (sec)", Some("time_s")),
+            ("Traversenweg (mm)", Some("displacement_mm")),
+            ("Last (kN)", Some("force_kn")),
+            ("Godzina (s)", Some("time_s")),
+            ("Przemieszczenie (mm)", Some("displacement_mm")),
+            ("Obciążenie (N)", Some("force_n")),
+            ("Time measurement (s)", Some("time_s")),
+            ("Primary load measurement (N)", Some("force_n")),
+            ("Compressive extension (mm)", Some("displacement_mm")),
+            ("Ch 1 Kraft (kN)", Some("force_kn")),
+            // A command is not a measurement; strain, stress and a name with two quantities say nothing.
+            ("Ch 1 Kraft Sollwert (kN)", None),
+            ("Load command (N)", None),
+            ("Tensile strain (Strain 1) (%)", None),
+            ("Zugspannung (MPa)", None),
+            ("Load cell temperature (C)", None),
+            // A known quantity in a unit mre has no factor for.
+            ("Extension (%)", None),
+        ];
+        for (raw, want) in cases {
+            assert_eq!(map_name(raw).as_deref(), want, "{raw}");
+        }
+    }
 }

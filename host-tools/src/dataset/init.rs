@@ -311,20 +311,43 @@ fn infer_columns(data: &[Vec<f64>], amplitude_mm: Option<f64>, notes: &mut Vec<S
 /// Sniffs one file's layout.
 fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
     let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let text = std::str::from_utf8(&bytes).context("not UTF-8 text")?;
-    let (delimiter, records) = sniff_records(text)?;
+    // In the encoding it was written in, as the loader reads it (super::text).
+    let decoded = super::text::decode(&bytes)
+        .map_err(|line| anyhow::anyhow!("binary bytes (NUL) at line {line}: not a text recording"))?;
+    let (delimiter, _) = sniff_records(&decoded.text)?;
+    // The rows as the loader will read them (quoted fields, CRLF, digit grouping).
+    let (lines, records): (Vec<usize>, Vec<Vec<String>>) = super::read::text_rows(
+        &bytes,
+        match delimiter {
+            Delimiter::Comma => ',',
+            Delimiter::Semicolon => ';',
+            Delimiter::Whitespace => ' ',
+        },
+        &path.display().to_string(),
+    )
+    .map_err(|e| anyhow::anyhow!("{e}"))?
+    .into_iter()
+    .unzip();
+    if records.is_empty() {
+        bail!("no data lines");
+    }
     let mut notes = Vec::new();
     // Rows above the first all-numeric one: vendor metadata, then the name
-    // row, and under it perhaps a units row (`(sec),(mm),(N)`, Bluehill).
+    // row, and under it perhaps a units row (`(sec),(mm),(N)`, Bluehill;
+    // `sec;kN`, MTS TestSuite), told as the loader tells it.
     let first_data = records
         .iter()
         .position(|r| r.iter().all(|f| is_number(f)))
         .unwrap_or(records.len());
     let header = first_data > 0;
     if header {
-        let unit_row = |r: &Vec<String>| r.iter().all(|f| f.starts_with('(') && f.ends_with(')'));
+        let with_units = first_data >= 2
+            && super::read::is_units_row(&records[first_data - 1])
+            && records[first_data - 2].len() == records[first_data - 1].len();
+        // The line of the names, for errors (blank and `#` lines counted).
+        let names_line = lines[first_data - if with_units { 2 } else { 1 }];
         let raw_names: Vec<String> = match first_data {
-            n if n >= 2 && unit_row(&records[n - 1]) && records[n - 2].len() == records[n - 1].len() => {
+            n if with_units => {
                 notes.push("units from the units row under the names".to_string());
                 records[n - 2]
                     .iter()
@@ -340,7 +363,7 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
                 first_data
             ));
         }
-        let names: Vec<String> = raw_names
+        let mut names: Vec<String> = raw_names
             .iter()
             .map(|raw| match map_name(raw) {
                 Some(n) => n,
@@ -350,10 +373,34 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
                 }
             })
             .collect();
-        let layout = parse_header(&names, &path.display().to_string(), 1).map_err(|e| anyhow::anyhow!("{e}"))?;
+        // Two clocks (MTS TestSuite's `Zeit` and `Laufzeit`, test and run
+        // time) both read as time: the first is the time, the others are
+        // ignored, and said so. Two forces or strokes stay an error: which
+        // one is meant cannot be told.
+        let is_time = |n: &str| {
+            matches!(
+                parse_header(&[n.to_string()], "", 1).as_deref(),
+                Ok([Some((Quantity::Time, _))])
+            )
+        };
+        if let Some(first) = names.iter().position(|n| is_time(n)) {
+            for i in first + 1..names.len() {
+                if is_time(&names[i]) {
+                    notes.push(format!(
+                        "column `{}` is a second clock: ignored (time is column {}, `{}`)",
+                        raw_names[i],
+                        first + 1,
+                        raw_names[first]
+                    ));
+                    names[i] = "ignore".into();
+                }
+            }
+        }
+        let layout =
+            parse_header(&names, &path.display().to_string(), names_line).map_err(|e| anyhow::anyhow!("{e}"))?;
         // Never a manifest that cannot load: no time or no force is refused
         // here, with the file's columns and the names mre accepts.
-        super::columns::required_columns(&layout, &path.display().to_string(), first_data).map_err(|e| {
+        super::columns::required_columns(&layout, &path.display().to_string(), names_line).map_err(|e| {
             anyhow::anyhow!(
                 "{e}; the file's columns are {}; name them with `columns` by hand (docs/dataset-format.md)",
                 raw_names

@@ -16,6 +16,7 @@ pub mod motion;
 pub mod mts;
 pub mod read;
 pub mod sign;
+pub mod summary;
 pub mod tdms;
 pub mod text;
 pub mod velocity;

@@ -547,6 +547,20 @@ fn check_keys(text: &str, mpath: &str) -> Result<(), DatasetError> {
     Ok(())
 }
 
+/// The rows of a text recording as the loader reads them (decoded, quotes
+/// and CRLF handled, decimal commas and digit grouping read), for `mre
+/// dataset init`, which must see the file as the loader will.
+/// `delimiter`: `,`, `;`, or anything else for whitespace.
+/// Each row comes with its line in the file.
+pub(super) fn text_rows(bytes: &[u8], delimiter: char, dpath: &str) -> Result<Vec<(usize, Vec<String>)>, DatasetError> {
+    let delimiter = match delimiter {
+        ',' => Delimiter::Comma,
+        ';' => Delimiter::Semicolon,
+        _ => Delimiter::Whitespace,
+    };
+    records(bytes, delimiter, dpath)
+}
+
 /// The non-comment records of a recording file as (line, fields): through
 /// the csv crate for `,` (quotes, CRLF), split on runs of blanks for
 /// `whitespace`. The text is decoded first (a byte-order mark skipped);
@@ -585,11 +599,11 @@ fn records(bytes: &[u8], delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize
                         _ => e.to_string(),
                     },
                 })?;
-                let line = record.position().map_or(1, |p| p.line() as usize);
+                let line = record.position().map_or(1, |p| record_line(bytes, p));
                 if record.iter().all(str::is_empty) {
                     continue;
                 }
-                let field = |f: &str| if semicolon { decimal_comma(f) } else { f.to_owned() };
+                let field = |f: &str| if semicolon { decimal_comma(f) } else { grouped(f) };
                 out.push((line, record.iter().map(field).collect()));
             }
         }
@@ -617,15 +631,74 @@ fn records(bytes: &[u8], delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize
     Ok(out)
 }
 
-/// A field of a `;` file: `1,5` is the number 1.5; other text is kept as
-/// written (a name, or a bad value reported as written).
+/// The line a csv record is on, as an editor numbers it: the csv crate
+/// places a record after blank or `#` lines at the first of them.
+fn record_line(bytes: &[u8], p: &csv::Position) -> usize {
+    let mut line = p.line() as usize;
+    let mut at = (p.byte() as usize).min(bytes.len());
+    while let Some(end) = bytes[at..].iter().position(|&b| b == b'\n') {
+        let this = &bytes[at..at + end];
+        if !(this.iter().all(|&b| b == b'\r') || this.first() == Some(&b'#')) {
+            break;
+        }
+        line += 1;
+        at += end + 1;
+    }
+    line
+}
+
+/// A field of a `;` file: `1,5` is the number 1.5, and `1.004,5` or
+/// `1 004,5` (digits grouped in threes, as a spreadsheet in a German or
+/// French locale writes them) is 1004.5; other text is kept as written (a
+/// name, or a bad value reported as written).
 fn decimal_comma(f: &str) -> String {
     let dotted = f.replacen(',', ".", 1);
     if !f.contains('.') && dotted.parse::<f64>().is_ok() {
-        dotted
-    } else {
-        f.to_owned()
+        return dotted;
     }
+    if let Some((int, frac)) = f.split_once(',') {
+        if let Some(digits) = ungroup(int, &['.', ' ', '\u{a0}', '\u{202f}']) {
+            let number = format!("{digits}.{frac}");
+            if frac.chars().all(|c| c.is_ascii_digit()) && number.parse::<f64>().is_ok() {
+                return number;
+            }
+        }
+    }
+    f.to_owned()
+}
+
+/// A field of a comma-separated file: `1,004.80328` (quoted, digits grouped
+/// in threes before a decimal point, as Bluehill writes loads of 1000 N and
+/// more) is 1004.80328. Without a decimal point `1,004` could be a decimal
+/// comma too, so it is kept as written (and refused as not a number).
+fn grouped(f: &str) -> String {
+    if let Some((int, frac)) = f.split_once('.') {
+        if let Some(digits) = ungroup(int, &[',']) {
+            let number = format!("{digits}.{frac}");
+            if number.parse::<f64>().is_ok() {
+                return number;
+            }
+        }
+    }
+    f.to_owned()
+}
+
+/// `int` without its group separators when it is digits grouped in threes
+/// by one of `separators` (`-1,004` → `-1004`); `None` when it is not
+/// grouped that way (no separator at all is `None` too).
+fn ungroup(int: &str, separators: &[char]) -> Option<String> {
+    let (sign, body) = match int.strip_prefix(['-', '+']) {
+        Some(rest) => (&int[..1], rest),
+        None => ("", int),
+    };
+    let sep = body.chars().find(|c| separators.contains(c))?;
+    let groups: Vec<&str> = body.split(sep).collect();
+    let digits = |g: &str| g.chars().all(|c| c.is_ascii_digit());
+    let ok = groups.len() > 1
+        && (1..=3).contains(&groups[0].len())
+        && groups.iter().all(|g| digits(g))
+        && groups[1..].iter().all(|g| g.len() == 3);
+    ok.then(|| format!("{sign}{}", groups.concat()))
 }
 
 fn read_samples(
@@ -714,12 +787,21 @@ fn parse_samples(
             // as `mre dataset init` writes), and a vendor's metadata and
             // units rows above the data, are skipped: every row before the
             // first all-numeric one.
-            while lines
+            let mut skipped: Option<(usize, usize, usize)> = None;
+            while let Some((n, _)) = lines
                 .as_slice()
                 .first()
-                .is_some_and(|(_, f)| f.iter().any(|x| x.parse::<f64>().is_err()))
+                .filter(|(_, f)| f.iter().any(|x| x.parse::<f64>().is_err()))
             {
+                let (first, _, count) = skipped.unwrap_or((*n, *n, 0));
+                skipped = Some((first, *n, count + 1));
                 lines.next();
+            }
+            if let Some((first, last, count)) = skipped {
+                notes.push(format!(
+                    "{count} row(s) above the first data row skipped (lines {first}–{last}: the file's names, \
+                     metadata, units), as `columns` names the columns"
+                ));
             }
             (c.get_ref().clone(), mpath, line_of(manifest_text, c.span().start))
         }
@@ -761,9 +843,12 @@ fn parse_samples(
 const UNIT_WORDS: &[&str] = &[
     "s", "sec", "secs", "ms", "min", "mm", "m", "in", "cm", "n", "kn", "lbf", "kgf", "g", "m/s", "mm/s", "m/s^2",
     "m/s²", "a", "ma", "v", "mv", "°c", "degc", "c", "%", "mpa", "kpa", "pa", "-", "",
+    // Strain, stress and angle units a testing machine's export carries next to force and stroke.
+    "mm/mm", "in/in", "m/m", "n/mm²", "n/mm^2", "n/mm2", "psi", "ksi", "gpa", "j", "nm", "n·m", "deg", "°", "µm", "μm",
+    "um", "µs", "us", "h", "hz", "kg",
 ];
 
-fn is_units_row(fields: &[String]) -> bool {
+pub(super) fn is_units_row(fields: &[String]) -> bool {
     fields.iter().any(|f| !f.is_empty())
         && fields.iter().all(|f| {
             let u = f.trim().trim_matches(|c| "()[]".contains(c)).trim().to_lowercase();
@@ -792,18 +877,50 @@ fn header(
             let units = d >= 2 && is_units_row(&rows[d - 1].1) && rows[d - 2].1.len() == rows[d - 1].1.len();
             let names_at = if units { d - 2 } else { d - 1 };
             let (line, raw) = &rows[names_at];
-            let names: Vec<String> = raw
+            let joined: Vec<String> = raw
                 .iter()
                 .enumerate()
                 .map(|(i, name)| {
                     let unit = units.then(|| rows[d - 1].1[i].trim().trim_matches(|c| "()[]".contains(c)).trim());
-                    let joined = match unit {
+                    match unit {
                         Some(u) if !u.is_empty() => format!("{name} ({u})"),
                         _ => name.clone(),
-                    };
-                    super::columns::map_name(&joined).unwrap_or_else(|| name.clone())
+                    }
                 })
                 .collect();
+            // In an instrument's layout (a units row, or rows above the
+            // names) a channel that maps to nothing (strain, stress, a
+            // command) is ignored, as the vendor readers ignore it; a second
+            // clock too (MTS TestSuite's `Zeit` and `Laufzeit`): the first is
+            // the time. A plain first-row header keeps unknown names, so a
+            // misspelt `displacement_cm` is still refused by name.
+            let export = units || names_at > 0;
+            let mut ignored = Vec::new();
+            let mut time_at = None;
+            let names: Vec<String> = joined
+                .iter()
+                .enumerate()
+                .map(|(i, j)| match super::columns::map_name(j) {
+                    Some(n) if export && n.starts_with("time_") && time_at.is_some() => {
+                        ignored.push(format!("`{j}` (a second clock)"));
+                        "ignore".to_string()
+                    }
+                    Some(n) => {
+                        if n.starts_with("time_") {
+                            time_at = Some(i);
+                        }
+                        n
+                    }
+                    None if export => {
+                        ignored.push(format!("`{j}`"));
+                        "ignore".to_string()
+                    }
+                    None => raw[i].clone(),
+                })
+                .collect();
+            if !ignored.is_empty() {
+                notes.push(format!("channels not read (ignored): {}", ignored.join(", ")));
+            }
             Some((names_at, *line, names, units, d))
         }
         _ => None,
@@ -1046,4 +1163,41 @@ pub(super) fn samples_from_rows(
         force_n,
     };
     Ok((samples, estimated))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{decimal_comma, grouped, records, Delimiter};
+
+    /// Hand-written: a record after blank lines is on its own line, as an
+    /// editor numbers it (names on line 3, data on 5), LF or CRLF.
+    #[test]
+    fn lines_after_blank_lines_are_numbered_as_written() {
+        for eol in ["\n", "\r\n"] {
+            let text = ["# c", "", "a,b", "", "1,2", ""].join(eol);
+            let rows = records(text.as_bytes(), Delimiter::Comma, "f").unwrap();
+            let lines: Vec<usize> = rows.iter().map(|(n, _)| *n).collect();
+            assert_eq!(lines, [3, 5], "{eol:?}");
+        }
+    }
+
+    /// Hand-written fields: digit grouping as spreadsheets and Bluehill write it.
+    #[test]
+    fn grouped_digits_read_as_one_number_and_ambiguous_ones_are_kept() {
+        // Comma-separated file, quoted field (pymechtest's Bluehill export: "1,004.80328").
+        assert_eq!(grouped("1,004.80328"), "1004.80328");
+        assert_eq!(grouped("-12,345,678.5"), "-12345678.5");
+        // `1,004` could be 1.004 with a decimal comma: kept, so it is refused as written.
+        assert_eq!(grouped("1,004"), "1,004");
+        assert_eq!(grouped("1,00.5"), "1,00.5");
+        assert_eq!(grouped("1234,567.0"), "1234,567.0");
+        // `;` file with decimal comma: `.`, space and no-break spaces group.
+        assert_eq!(decimal_comma("0,5"), "0.5");
+        assert_eq!(decimal_comma("1.004,25"), "1004.25");
+        assert_eq!(decimal_comma("-2 500,0"), "-2500.0");
+        assert_eq!(decimal_comma("1\u{a0}234\u{202f}567,8"), "1\u{a0}234\u{202f}567,8");
+        assert_eq!(decimal_comma("1\u{202f}234,5"), "1234.5");
+        assert_eq!(decimal_comma("1.5"), "1.5");
+        assert_eq!(decimal_comma("Last"), "Last");
+    }
 }

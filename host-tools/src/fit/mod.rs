@@ -247,6 +247,9 @@ pub struct FitRun {
     pub model: model_file::ModelFile,
     /// Wall time of the fitting alone (not loading), seconds.
     pub fit_seconds: f64,
+    /// What the readers assumed reading the recordings, in Markdown
+    /// (`crate::dataset::summary`); empty when nothing.
+    pub reading_notes: String,
 }
 
 /// Fits a loaded data set and assembles the model file (nothing written).
@@ -263,6 +266,7 @@ pub fn fit_dataset(ds: &crate::dataset::Dataset, options: &FitOptions) -> Result
         fits,
         model,
         fit_seconds,
+        reading_notes: crate::dataset::summary::reading_notes_markdown(ds),
     })
 }
 

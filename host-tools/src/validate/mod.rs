@@ -61,6 +61,9 @@ pub struct RecordingReport {
     /// Set when velocity and displacement were integrated from force or
     /// acceleration: what from (docs/dataset-format.md).
     pub motion_derived_from: Option<String>,
+    /// What the file's reader assumed (`Recording::notes`): rows skipped,
+    /// a units row read, tied time stamps spread, a vendor block picked.
+    pub reading_notes: Vec<String>,
     pub bracket: Option<Bracket>,
 }
 
@@ -157,6 +160,7 @@ pub fn validate_recording(table: &Table, rec: &Recording) -> RecordingReport {
         x_clamped_fraction: clamped.iter().filter(|&&c| c).count() as f64 / n,
         velocity_estimated: rec.velocity_estimated,
         motion_derived_from: rec.motion_from.map(|m| m.describe()),
+        reading_notes: rec.notes.clone(),
         bracket: if interpolated { bracket(table, rec) } else { None },
     }
 }

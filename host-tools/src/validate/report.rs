@@ -43,6 +43,16 @@ pub fn markdown(r: &ValidationReport) -> String {
         }
         let _ = writeln!(s);
     }
+    if r.recordings.iter().any(|x| !x.reading_notes.is_empty()) {
+        let _ = writeln!(
+            s,
+            "Reading notes: what the readers assumed reading each file (docs/dataset-format.md):\n"
+        );
+        for x in r.recordings.iter().filter(|x| !x.reading_notes.is_empty()) {
+            let _ = writeln!(s, "- `{}`: {}", x.file, x.reading_notes.join("; "));
+        }
+        let _ = writeln!(s);
+    }
     let _ = writeln!(s, "## Error per recording\n");
     let _ = writeln!(
         s,

@@ -314,3 +314,218 @@ fn mts_block_in_the_manifest_picks_the_data_block() {
         "{e}"
     );
 }
+
+// --- Lab text exports: Bluehill CSV, MTS TestSuite CSV ---------------------
+
+/// `init` on a bare folder, then only the current filled in, as a lab
+/// would; the manifest it wrote and the loaded data set.
+fn init_then_load(name: &str, file: &str) -> (String, Dataset) {
+    let dir = bare(name, file);
+    let text = mre_host::dataset::init::manifest_for(dir.path(), None, Some("lab")).unwrap();
+    let filled = text.replace(
+        &format!("file = \"{file}\""),
+        &format!("file = \"{file}\"\ncurrent_a = 0.0"),
+    );
+    assert_ne!(filled, text, "{text}");
+    std::fs::write(dir.path().join("dataset.toml"), &filled).unwrap();
+    let ds = Dataset::load(dir.path()).unwrap();
+    (text, ds)
+}
+
+/// Real artifact: an Instron Bluehill raw-data export (pymechtest's test
+/// data, CRLF): 8 result lines and a blank line above `Time, Extension,
+/// Load, Tensile strain (Strain 1), Tensile stress` over `(s),(mm),(N),(%),
+/// (MPa)` (lines 10–11), quoted values, loads of 1000 N and more written
+/// with digit grouping (`"3,802.00708"`). Data lines 12–290: 279 rows, as
+/// pymechtest's own test counts them.
+#[test]
+fn bluehill_export_with_digit_grouping_loads_after_init_with_only_the_current() {
+    let name = "bluehill_pymechtest_tens_yield_1.csv";
+    let (manifest, ds) = init_then_load(name, "Specimen_RawData_1.csv");
+    assert!(
+        manifest.contains(r#"columns = ["time_s", "displacement_mm", "force_n", "ignore", "ignore"]"#),
+        "{manifest}"
+    );
+    let rec = &ds.recordings[0];
+    let s = &rec.samples;
+    assert_eq!(s.len(), 279);
+    // Line 12: "0.00000","0.00319","499.71045",…
+    assert!(close(s.time_s[0], 0.0, 1e-12) && close(s.x_mm[0], 0.00319, 1e-12));
+    assert!(close(s.force_n[0], 499.71045, 1e-9));
+    // Line 290: "46.46200","0.45269","2,252.98486",…
+    assert!(close(s.time_s[278], 46.462, 1e-9) && close(s.force_n[278], 2252.98486, 1e-9));
+    // Line 281 holds the peak, "3,802.00708" N at 46.332 s (awk over lines
+    // 12–290). The file's own results agree: 188.43817 MPa at tensile
+    // strength over 1.989 mm × 10.144 mm (lines 5–7) is 3801.99 N.
+    let (k, peak) = s
+        .force_n
+        .iter()
+        .copied()
+        .enumerate()
+        .fold((0, f64::MIN), |a, (i, f)| if f > a.1 { (i, f) } else { a });
+    assert!(
+        close(peak, 3802.00708, 1e-9) && close(s.time_s[k], 46.332, 1e-9),
+        "{peak} at {k}"
+    );
+    assert!(close(peak, 188.43817 * 1.989 * 10.144, 0.1));
+    // The reader says what it skipped (lines 1–8, 10, 11; line 9 is blank).
+    let notes = rec.notes.join(" | ");
+    assert!(
+        notes.contains("10 row(s) above the first data row skipped (lines 1–11"),
+        "{notes}"
+    );
+}
+
+/// The same Bluehill file without `columns`: the names and the units row
+/// are found under the results lines, strain and stress are ignored, and
+/// the notes say so.
+#[test]
+fn bluehill_export_loads_without_columns_and_notes_what_it_ignored() {
+    let ds = load("bluehill_pymechtest_tens_yield_1.csv", "b.csv", "").unwrap();
+    let rec = &ds.recordings[0];
+    assert_eq!(rec.samples.len(), 279);
+    assert!(close(rec.samples.force_n[269], 3802.00708, 1e-9));
+    let notes = rec.notes.join(" | ");
+    assert!(
+        notes.contains("8 line(s) above the column names (line 10) skipped"),
+        "{notes}"
+    );
+    assert!(notes.contains("the units row (line 11) read with the names"), "{notes}");
+    assert!(
+        notes.contains("channels not read (ignored): `Tensile strain (Strain 1) (%)`, `Tensile stress (MPa)`"),
+        "{notes}"
+    );
+}
+
+/// Real artifact: an MTS TestSuite export in a German locale (BAM's
+/// E-modulus test, UTF-8 with a byte-order mark): `;`, quoted fields,
+/// decimal commas (`-7,89761571695635E-05` too), four preamble lines and two
+/// empty ones, names `Zeit; Laufzeit; Ch 1 Kraft Sollwert; Ch 1 Kraft; Ch 1
+/// Weg; …` (line 7) over a bare units row `sec; sec; kN; kN; mm; …` (line 8),
+/// data lines 9–958 (950 rows). Two clocks: the first is the time. It reads
+/// compression negative; init flips force and stroke and says so.
+#[test]
+fn mts_testsuite_semicolon_export_loads_after_init_with_only_the_current() {
+    let (manifest, ds) = init_then_load("mts_testsuite_deu_emodul_run3.csv", "run3.csv");
+    assert!(manifest.contains("delimiter = \";\""), "{manifest}");
+    assert!(
+        manifest.contains("column `Laufzeit sec` is a second clock: ignored (time is column 1, `Zeit sec`)"),
+        "{manifest}"
+    );
+    assert!(
+        manifest.contains("sign = { force_kn = -1, displacement_mm = -1 }"),
+        "{manifest}"
+    );
+    let s = &ds.recordings[0].samples;
+    assert_eq!(s.len(), 950);
+    // Line 9: "159,8212890625"; …; "-40,41028125" (Ch 1 Kraft, kN); "-0,00757277030061232" (mm).
+    assert!(close(s.time_s[0], 159.8212890625, 1e-12));
+    assert!(close(s.force_n[0], 40_410.281_25, 1e-6), "{}", s.force_n[0]);
+    assert!(close(s.x_mm[0], 0.00757277030061232, 1e-15));
+    // Line 958: "349,806640625"; …; "-40,343453125"; "-0,0145405529110576".
+    assert!(close(s.time_s[949], 349.806640625, 1e-12));
+    assert!(close(s.force_n[949], 40_343.453_125, 1e-6));
+    assert!(close(s.x_mm[949], 0.0145405529110576, 1e-15));
+    // Line 138 holds the largest load, -134,766296875 kN at 185,646484375 s
+    // (awk over lines 9–958).
+    let (k, peak) = s
+        .force_n
+        .iter()
+        .copied()
+        .enumerate()
+        .fold((0, f64::MIN), |a, (i, f)| if f > a.1 { (i, f) } else { a });
+    assert!(close(peak, 134_766.296_875, 1e-6) && k == 129, "{peak} at {k}");
+}
+
+/// The same TestSuite file loaded with no manifest columns: the header is
+/// found under the preamble, `Laufzeit` is a second clock, and the command
+/// (`Ch 1 Kraft Sollwert`) and extensometers are not read, all noted.
+#[test]
+fn mts_testsuite_export_loads_without_columns() {
+    let ds = load(
+        "mts_testsuite_deu_emodul_run3.csv",
+        "run3.csv",
+        "delimiter = \";\"\nsign = { force_kn = -1, displacement_mm = -1 }",
+    )
+    .unwrap();
+    let rec = &ds.recordings[0];
+    assert_eq!(rec.samples.len(), 950);
+    assert!(close(rec.samples.force_n[129], 134_766.296_875, 1e-6));
+    let notes = rec.notes.join(" | ");
+    assert!(notes.contains("`Laufzeit (sec)` (a second clock)"), "{notes}");
+    assert!(notes.contains("`Ch 1 Kraft Sollwert (kN)`"), "{notes}");
+}
+
+// --- Recording notes reach the reports ---------------------------------------
+
+/// Real artifact (the Bluehill export above): what its reader assumed
+/// reaches where a user reads about the data set: `mre dataset check`
+/// prints it per recording, and the validation report (report.md and
+/// report.json) carries it.
+#[test]
+fn reading_notes_reach_dataset_check_and_the_validation_report() {
+    let dir = bare("bluehill_pymechtest_tens_yield_1.csv", "Specimen_RawData_1.csv");
+    let text = mre_host::dataset::init::manifest_for(dir.path(), None, Some("lab")).unwrap();
+    let text = text.replace(
+        "file = \"Specimen_RawData_1.csv\"",
+        "file = \"Specimen_RawData_1.csv\"\ncurrent_a = 0.0",
+    );
+    std::fs::write(dir.path().join("dataset.toml"), text).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_mre"))
+        .args(["dataset", "check"])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let printed = String::from_utf8(out.stdout).unwrap();
+    // 279 rows, lines 12–290 of the file (by hand).
+    assert!(
+        printed.contains("| Specimen_RawData_1.csv | 0 | fit | 279 |"),
+        "{printed}"
+    );
+    assert!(printed.contains("## Reading notes"), "{printed}");
+    assert!(
+        printed.contains("- `Specimen_RawData_1.csv`:\n  - 10 row(s) above the first data row skipped (lines 1–11"),
+        "{printed}"
+    );
+
+    let ds = Dataset::load(dir.path()).unwrap();
+    let table = mre_algorithm::table::Table::paper().unwrap();
+    let report = mre_host::validate::validate(&ds, &table, "paper");
+    let md = mre_host::validate::report::markdown(&report);
+    assert!(
+        md.contains("- `Specimen_RawData_1.csv`: 10 row(s) above the first data row skipped (lines 1–11"),
+        "{md}"
+    );
+    let out = tempfile::tempdir().unwrap();
+    mre_host::validate::report::write(out.path(), &report).unwrap();
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.path().join("report.json")).unwrap()).unwrap();
+    let notes = json["recordings"][0]["reading_notes"].as_array().unwrap();
+    assert!(notes[0]
+        .as_str()
+        .unwrap()
+        .starts_with("10 row(s) above the first data row skipped"));
+}
+
+/// The TestSuite file with its two force channels renamed (`Ch 1 Kraft` →
+/// `Ch 1 Foo` on line 7; one stated change): `init` refuses it, naming the
+/// line the names are on as an editor counts it (BOM, 4 preamble lines and
+/// 2 empty ones above), and writes no manifest.
+#[test]
+fn init_names_the_physical_line_of_the_names_it_cannot_read() {
+    let dir = bare("mts_testsuite_deu_emodul_run3.csv", "run3.csv");
+    let text = std::fs::read_to_string(dir.path().join("run3.csv")).unwrap();
+    let changed = text.replacen(
+        "\"Ch 1 Kraft Sollwert \";\"Ch 1 Kraft \"",
+        "\"Ch 1 Foo Sollwert \";\"Ch 1 Foo \"",
+        1,
+    );
+    assert_ne!(changed, text);
+    std::fs::write(dir.path().join("run3.csv"), changed).unwrap();
+    let e = mre_host::dataset::init::manifest_for(dir.path(), None, Some("x"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("run3.csv: line 7: missing required column for force"), "{e}");
+    assert!(!dir.path().join("dataset.toml").exists());
+}
