@@ -7,6 +7,9 @@ writes into DIR:
   v3/damper.fmu                      mre fmu (3.0) of the same model
   trace.csv                          a recorded drop's x, v with a current sweep, and the
                                      core's force at each sample (mre_algorithm in Rust)
+  sim/damper.fmu, sim/controller.fmu, sim.json
+                                     FMI 2.0 FMUs of the model `mre sim --controlled`
+                                     flies, and its result
 
 `check_fmi2.py DIR` (the 2.0 FMUs): FMPy's validate_fmu finds no problem and
 simulate_fmu runs each (damper CS and ME, controller CS); the 2.0 damper's
@@ -15,7 +18,10 @@ fmi2Reset the controller repeats a fresh instance's commands and a damper
 steps from time 0 again; every unsupported call returns fmi2Error with a log
 line naming it and the process lives (child process); setting an output or
 a calculated parameter, a bad doStep and a Model Exchange call on a
-Co-Simulation instance return fmi2Error; an out-of-range input fmi2Warning.
+Co-Simulation instance return fmi2Error; an out-of-range input fmi2Warning;
+the falling mass of check_fmus.py closed through the 2.0 controller.fmu and
+damper.fmu (coil_current_a into current_a) reproduces `mre sim --controlled`'s
+peak force and stroke within 1 %.
 
 `check_fmi2.py --events DIR`: the branch event, for v2 and v3 damper.fmu.
 Exits non-zero on any failure.
@@ -24,7 +30,6 @@ import csv
 import ctypes
 import json
 import math
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -32,99 +37,11 @@ from pathlib import Path
 
 import numpy as np
 import fmpy
-from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import FMU2Model, FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
-from fmpy.fmi3 import FMU3Slave
+from fmpy.fmi2 import FMU2Slave
 from fmpy.validation import validate_fmu
 
-F32_EPS = 2.0 ** -23
-OK, WARNING, ERROR = 0, 1, 3  # fmi2Status
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
-
-
-class Fmu:
-    """One instance of an FMU (2.0 or 3.0, CS or ME) by variable name."""
-
-    def __init__(self, path, me=False, log=None):
-        self.md = fmpy.read_model_description(str(path))
-        self.v2 = self.md.fmiVersion == "2.0"
-        self.dir = tempfile.mkdtemp()
-        fmpy.extract(str(path), self.dir)
-        self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
-        iface = self.md.modelExchange if me else self.md.coSimulation
-        kind = (FMU2Model if me else FMU2Slave) if self.v2 else FMU3Slave
-        self.fmu = kind(guid=self.md.guid, unzipDirectory=self.dir,
-                        modelIdentifier=iface.modelIdentifier, instanceName=path.stem)
-        if log is None:
-            self.fmu.instantiate()
-        else:
-            # Every message the FMU logs, as (status, text).
-            def logger(env, name, status, category, message):
-                log.append((status, message.decode(errors="replace")))
-            self.callbacks = fmi2CallbackFunctions()
-            self.callbacks.logger = fmi2CallbackLoggerTYPE(logger)
-            self.callbacks.allocateMemory = fmpy.fmi2.fmi2CallbackAllocateMemoryTYPE(fmpy.fmi2.calloc)
-            self.callbacks.freeMemory = fmpy.fmi2.fmi2CallbackFreeMemoryTYPE(fmpy.fmi2.free)
-            self.fmu.instantiate(callbacks=self.callbacks, loggingOn=True)
-        self.start()
-        if me:
-            self.fmu.newDiscreteStates()
-            self.fmu.enterContinuousTimeMode()
-            self.z = self.indicator()
-
-    def start(self):
-        if self.v2:
-            self.fmu.setupExperiment(startTime=0.0)
-        self.fmu.enterInitializationMode() if self.v2 else self.fmu.enterInitializationMode(startTime=0.0)
-        self.fmu.exitInitializationMode()
-
-    def set(self, **values):
-        vrs, xs = [self.vr[k] for k in values], list(values.values())
-        self.fmu.setReal(vrs, xs) if self.v2 else self.fmu.setFloat64(vrs, xs)
-
-    def get(self, name):
-        return (self.fmu.getReal if self.v2 else self.fmu.getFloat64)([self.vr[name]])[0]
-
-    def indicator(self):
-        buf = (ctypes.c_double * 1)()
-        self.fmu.getEventIndicators(buf, 1)
-        return buf[0]
-
-    def handle_events(self):
-        """As an ME importer does after new inputs: a sign change of the event
-        indicator (the velocity) is an event, handled in Event Mode."""
-        z = self.indicator()
-        if (z > 0) != (self.z > 0):
-            self.fmu.enterEventMode()
-            self.fmu.newDiscreteStates()
-            self.fmu.enterContinuousTimeMode()
-        self.z = z
-
-    def raw(self, name, *args):
-        """Calls an fmi2 function of the library directly; returns its status."""
-        f = getattr(self.fmu.dll, name)
-        f.restype = ctypes.c_uint
-        return f(ctypes.c_void_p(self.fmu.component), *args)
-
-    def close(self):
-        self.fmu.terminate()
-        self.fmu.freeInstance()
-        shutil.rmtree(self.dir, ignore_errors=True)
-
-
-def fails(call):
-    """The status of an FMI call FMPy raises on, or 0 when it returns OK."""
-    try:
-        call()
-        return OK
-    except FMICallException as e:
-        return getattr(e, "status", ERROR)
+from fmpy_common import (ERROR, F32_EPS, OK, WARNING, Fmu, check, closed_loop, commands, drop_inputs, fails,
+                         failures)
 
 
 def validate_and_simulate(v2):
@@ -175,25 +92,6 @@ def same_force(v2, v3, trace_path):
     check(worst_core <= 8 * F32_EPS * scale,
           f"damper 2.0: force equals the core's (worst {worst_core:.3g} N, allowed {8 * F32_EPS * scale:.3g} N)")
     check(scale > 100, f"the drive loads the damper (peak {scale:.0f} N)")
-
-
-def drop_inputs(n):
-    """x, v of a mass met at 2.24 m/s and stopped over n ticks: it loads the law."""
-    x, out = 0.0, []
-    for k in range(n):
-        v = 2.24 * (1.0 - k / n)
-        out.append((x, v))
-        x += v * 1e-4
-    return out
-
-
-def commands(ctl, period, inputs):
-    got = []
-    for k, (x, v) in enumerate(inputs):
-        ctl.set(displacement_m=x, velocity_m_s=v)
-        ctl.fmu.doStep(k * period, period)
-        got.append((ctl.get("coil_command_a"), ctl.get("target_force_n")))
-    return got
 
 
 def reset_check(v2):
@@ -383,6 +281,7 @@ def main():
         same_force(root / "v2", root / "v3", root / "trace.csv")
         reset_check(root / "v2")
         contract_check(root / "v2")
+        closed_loop(root / "sim", json.load(open(root / "sim.json")), "FMI 2.0: ")
     print(f"{len(failures)} failed" if failures else "all FMPy checks passed")
     return 1 if failures else 0
 

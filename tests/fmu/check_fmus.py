@@ -29,25 +29,15 @@ import csv
 import ctypes
 import json
 import math
-import shutil
 import subprocess
 import sys
-import tempfile
 from pathlib import Path
 
 import fmpy
-from fmpy.fmi1 import FMICallException
-from fmpy.fmi3 import FMU3Model, FMU3Slave
 from fmpy.validation import validate_fmu
 
-F32_EPS = 2.0 ** -23
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
+from fmpy_common import (ERROR, F32_EPS, WARNING, Fmu, check, closed_loop, commands, drop_inputs, fails,
+                         failures)
 
 
 def validate(path):
@@ -81,66 +71,15 @@ def validate(path):
     return md
 
 
-class Fmu:
-    """One instance of an FMU by variable name (CS or ME)."""
-
-    def __init__(self, path, me=False, log=None):
-        self.md = fmpy.read_model_description(str(path))
-        self.dir = tempfile.mkdtemp()
-        fmpy.extract(str(path), self.dir)
-        self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
-        kind = FMU3Model if me else FMU3Slave
-        iface = self.md.modelExchange if me else self.md.coSimulation
-        self.fmu = kind(guid=self.md.guid, unzipDirectory=self.dir,
-                        modelIdentifier=iface.modelIdentifier, instanceName=path.stem)
-        if log is None:
-            self.fmu.instantiate()
-        else:
-            # Every message the FMU logs, as (status, text).
-            def logger(env, status, category, message):
-                log.append((status, message.decode(errors="replace")))
-            self.fmu.instantiate(loggingOn=True, logMessage=logger)
-        self.fmu.enterInitializationMode(startTime=0.0)
-        self.fmu.exitInitializationMode()
-        if me:
-            self.fmu.enterContinuousTimeMode()
-
-    def set(self, **values):
-        self.fmu.setFloat64([self.vr[k] for k in values], list(values.values()))
-
-    def get(self, name):
-        return self.fmu.getFloat64([self.vr[name]])[0]
-
-    def close(self):
-        self.fmu.terminate()
-        self.fmu.freeInstance()
-        shutil.rmtree(self.dir, ignore_errors=True)
-
-
-def indicator(d):
-    """The damper's one event indicator."""
-    z = (ctypes.c_double * 1)()
-    d.fmu.getEventIndicators(z, 1)
-    return z[0]
-
-
 def trace_check(damper_path, trace_path, me):
     rows = list(csv.DictReader(open(trace_path)))
     d = Fmu(damper_path, me=me)
-    z_last = indicator(d) if me else 0.0
     worst, scale = 0.0, max(abs(float(r["force_core_n"])) for r in rows)
     for r in rows:
         d.set(displacement_m=float(r["displacement_m"]), velocity_m_s=float(r["velocity_m_s"]),
               current_a=float(r["current_a"]))
         if me:
-            # As an importer does: the event indicator (the velocity) changing sign is
-            # an event, where the damper switches branch (it holds it in continuous time).
-            z = indicator(d)
-            if (z > 0) != (z_last > 0):
-                d.fmu.enterEventMode()
-                d.fmu.updateDiscreteStates()
-                d.fmu.enterContinuousTimeMode()
-            z_last = z
+            d.handle_events()
         worst = max(worst, abs(d.get("force_n") - float(r["force_core_n"])))
     d.close()
     # The FMU takes x in m and converts to the board's mm in f32; the
@@ -148,107 +87,6 @@ def trace_check(damper_path, trace_path, me):
     check(worst <= 8 * F32_EPS * scale,
           f"damper ({'ME' if me else 'CS'}): force equals the core's on {len(rows)} samples "
           f"(worst {worst:.3g} N, f32 rounding allows {8 * F32_EPS * scale:.3g} N)")
-
-
-def closed_loop(sim_dir, sim):
-    damper = Fmu(sim_dir / "damper.fmu")
-    ctl = Fmu(sim_dir / "controller.fmu")
-    period = ctl.get("control_period_s")
-    substeps = int(round(period / sim["step_s"]))
-    h = period / substeps
-    m, g = sim["mass_kg"], sim["gravity_m_s2"]
-    tau = sim["coil_lag_s"]
-    lo, hi = sim["drive_range_a"]
-    x, v, t = 0.0, sim["impact_velocity_m_s"], 0.0
-    current = sim["initial_current_a"]
-    peak_force, max_stroke = 0.0, 0.0
-    coil_gap, drive_gap = 0.0, 0.0
-    ohm = ctl.get("coil_resistance_ohm")
-
-    def force(xm, vm, i):
-        # The mass touches the damper only at x > 0, and the damper only pushes.
-        if xm <= 0.0:
-            return 0.0
-        damper.set(displacement_m=xm, velocity_m_s=vm, current_a=i)
-        return max(damper.get("force_n"), 0.0)
-
-    def accel(xm, vm, i):
-        return g - force(xm, vm, i) / m
-
-    while t < sim["max_duration_s"]:
-        t0 = t
-        ctl.set(displacement_m=x, velocity_m_s=v)
-        ctl.fmu.doStep(t, period)
-        command = ctl.get("coil_command_a")
-        coil_fmu = ctl.get("coil_current_a")
-        drive_gap = max(drive_gap, abs(ctl.get("drive_voltage_v") - command * ohm))
-        done = False
-        for _ in range(substeps):
-            if tau is None:
-                current = command
-            else:
-                current += (min(max(command, lo), hi) - current) * (1.0 - math.exp(-h / tau))
-            k1x, k1v = v, accel(x, v, current)
-            k2x, k2v = v + h / 2 * k1v, accel(x + h / 2 * k1x, v + h / 2 * k1v, current)
-            k3x, k3v = v + h / 2 * k2v, accel(x + h / 2 * k2x, v + h / 2 * k2v, current)
-            k4x, k4v = v + h * k3v, accel(x + h * k3x, v + h * k3v, current)
-            x += h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x)
-            v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v)
-            t += h
-            peak_force = max(peak_force, force(x, v, current))
-            max_stroke = max(max_stroke, x * 1e3)
-            if x < 0.0 and v < 0.0:
-                done = True
-                break
-        if not done:
-            # The FMU's coil current at the tick's end against the lag integrated here.
-            coil_gap = max(coil_gap, abs(coil_fmu - current))
-        damper.fmu.doStep(t0, period)
-        if done:
-            break
-    damper.close()
-    ctl.close()
-    check(coil_gap <= 1e-6, f"closed loop: controller's coil_current_a is the coil current the loop integrates "
-                            f"(worst {coil_gap:.3g} A)")
-    check(drive_gap <= 1e-9, f"closed loop: drive_voltage_v = coil_command_a x {ohm} ohm (worst {drive_gap:.3g} V)")
-    for what, fmpy_value, mre_value in [
-        ("peak force (N)", peak_force, sim["peak_force_n"]),
-        ("stroke (mm)", max_stroke, sim["max_stroke_mm"]),
-    ]:
-        rel = abs(fmpy_value - mre_value) / mre_value
-        check(rel <= 0.01, f"closed loop in FMPy: {what} {fmpy_value:.2f} vs mre sim --controlled "
-                           f"{mre_value:.2f} ({100 * rel:.2f} %, at most 1 %)")
-
-
-ERROR = 3  # fmi3Error
-
-
-def fails(call):
-    """The status of an FMI call FMPy raises on, or 0 when it returns OK."""
-    try:
-        call()
-        return 0
-    except FMICallException as e:
-        return getattr(e, "status", ERROR)
-
-
-def drop_inputs(n):
-    """x, v of a mass met at 2.24 m/s and stopped over n ticks: it loads the law."""
-    x, out = 0.0, []
-    for k in range(n):
-        v = 2.24 * (1.0 - k / n)
-        out.append((x, v))
-        x += v * 1e-4
-    return out
-
-
-def commands(ctl, period, inputs):
-    got = []
-    for k, (x, v) in enumerate(inputs):
-        ctl.set(displacement_m=x, velocity_m_s=v)
-        ctl.fmu.doStep(k * period, period)
-        got.append((ctl.get("coil_command_a"), ctl.get("target_force_n")))
-    return got
 
 
 def coil_check(every_dir):
@@ -385,9 +223,6 @@ def contract_check(sim_dir):
           "damper.fmu: force_n depends on displacement_m, velocity_m_s and current_a in the XML")
 
 
-WARNING = 1  # fmi3Warning
-
-
 def range_check(path, output):
     """Out-of-range and NaN inputs: fmi3Warning, a warning logged naming the input, a finite output."""
     log = []
@@ -419,7 +254,7 @@ def main():
     validate(root / "sim" / "controller.fmu")
     trace_check(root / "every-term" / "damper.fmu", root / "trace.csv", me=False)
     trace_check(root / "every-term" / "damper.fmu", root / "trace.csv", me=True)
-    closed_loop(root / "sim", json.load(open(root / "sim.json")))
+    closed_loop(root / "sim", json.load(open(root / "sim.json")), "")
     reset_check(root / "sim" / "controller.fmu")
     coil_check(root / "every-term")
     contract_check(root / "sim")

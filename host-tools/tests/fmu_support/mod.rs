@@ -361,3 +361,34 @@ pub fn unpack_fmu(fmu: &Path, dir: &Path) {
     let mut zip = zip::ZipArchive::new(std::fs::File::open(fmu).unwrap()).unwrap();
     zip.extract(dir).unwrap();
 }
+
+/// `ROOT/sim/damper.fmu`, `ROOT/sim/controller.fmu` (FMI `version`) of the
+/// model `mre sim --controlled` flies with its defaults, and `ROOT/sim.json`:
+/// that run's peak force and stroke and the settings the FMPy scripts' falling
+/// mass needs to fly the same drop (tests/fmu/fmpy_common.py, `closed_loop`).
+pub fn write_sim_case(root: &Path, version: u8) {
+    use mre_host::plant::closed_loop::{controlled_impact, run_comparison, setup_for, RunSpec, SimRequest};
+    let request = SimRequest::default();
+    let setup = setup_for(&request).unwrap();
+    let sim_dir = root.join("sim");
+    std::fs::create_dir_all(&sim_dir).unwrap();
+    let text = mre_host::control_bench::diagnosed_model_file(&setup.plant, setup.impact.noise_seed).unwrap();
+    std::fs::write(sim_dir.join("model.toml"), &text).unwrap();
+    mre_fmu_version(&sim_dir.join("model.toml"), &sim_dir, true, version);
+    let cmp = run_comparison(&setup, &[RunSpec::Controlled]).unwrap();
+    let s = cmp.runs[0].summary;
+    let impact = controlled_impact(&setup, &mre_host::table_file::parse_table_toml(&text).unwrap());
+    let sim = serde_json::json!({
+        "peak_force_n": s.peak_force_n,
+        "max_stroke_mm": s.max_stroke_mm,
+        "mass_kg": impact.mass_kg,
+        "gravity_m_s2": impact.gravity_m_s2,
+        "impact_velocity_m_s": impact.impact_velocity_m_s,
+        "initial_current_a": impact.initial_current_a,
+        "step_s": impact.step_s,
+        "max_duration_s": impact.max_duration_s,
+        "coil_lag_s": impact.coil_lag_s,
+        "drive_range_a": impact.driver.command_range_a(),
+    });
+    std::fs::write(root.join("sim.json"), sim.to_string()).unwrap();
+}

@@ -10,7 +10,8 @@ use std::path::Path;
 use std::process::Command;
 
 /// v2/ (damper.fmu, controller.fmu with FMI 2.0) and v3/damper.fmu of the
-/// every-term model, and trace.csv: the recorded drive and the core's force.
+/// every-term model, and trace.csv: the recorded drive and the core's force
+/// (the contract test adds the closed loop's FMUs and sim.json, `write_sim_case`).
 fn write_fmus(root: &Path) {
     let table = every_term_table();
     let model = root.join("every-term.toml");
@@ -33,12 +34,13 @@ fn run_script(args: &[&std::ffi::OsStr]) {
 }
 
 #[test]
-fn fmi2_fmus_validate_simulate_and_keep_the_contract() {
+fn fmi2_fmus_validate_simulate_keep_the_contract_and_close_the_loop() {
     if !fmpy_available() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
     write_fmus(dir.path());
+    write_sim_case(dir.path(), 2);
     run_script(&[dir.path().as_os_str()]);
 }
 
