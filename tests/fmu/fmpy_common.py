@@ -4,8 +4,11 @@ interface, the drop the controller is driven with, and the falling mass
 closed through controller.fmu and damper.fmu that is compared with
 `mre sim --controlled`."""
 import ctypes
+import json
 import math
 import shutil
+import subprocess
+import sys
 import tempfile
 
 import fmpy
@@ -207,3 +210,29 @@ def closed_loop(sim_dir, sim, label):
         check(rel <= 0.01, f"{label}closed loop in FMPy: {what} {fmpy_value:.2f} vs mre sim --controlled "
                            f"{mre_value:.2f} ({100 * rel:.2f} %, at most 1 %)")
     return peak_force, max_stroke
+
+
+def unsupported_check(script, path, label, error):
+    """Runs `script --unsupported path` (the script's child: each unsupported call
+    once, a JSON line each) and checks that the process lives and that all 9 calls
+    return `error` (fmi2Error / fmi3Error, 3) with a log line naming the call."""
+    child = subprocess.run([sys.executable, script, "--unsupported", str(path)], capture_output=True, text=True)
+    check(child.returncode == 0, f"{label}: the unsupported calls leave the process alive "
+                                 f"(exit {child.returncode}; {child.stderr.strip()[-300:]})")
+    results = [json.loads(line) for line in child.stdout.splitlines() if line.startswith("{")]
+    check(len(results) == 9, f"{label}: all 9 unsupported calls returned ({len(results)})")
+    for r in results:
+        check(r["status"] == ERROR and r["logged"],
+              f"{label}: {r['call']} returns {error} ({r['status']}) with a log line naming it ({r['logged']})")
+
+
+def refused_sets_check(f, log, names, label, error):
+    """Setting an output or a calculated parameter returns `error` with a log line
+    and leaves the value as it was."""
+    set_values = f.fmu.setReal if f.v2 else f.fmu.setFloat64
+    for name in names:
+        before = f.get(name)
+        n = len(log)
+        status = fails(lambda: set_values([f.vr[name]], [before + 1.0]))
+        check(status == ERROR and len(log) > n, f"{label}: setting {name} returns {error} ({status}) with a log line")
+        check(f.get(name) == before, f"{label}: {name} keeps its value after the refused set")

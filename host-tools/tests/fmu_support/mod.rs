@@ -125,6 +125,32 @@ pub fn fmu_binaries(fmu: &Path) -> Vec<(String, Vec<u8>)> {
         .collect()
 }
 
+/// An FMU's binaries, checked: in the folders `[linux, windows]` only, the
+/// Linux one always, the Windows one where the toolchain is installed (else a
+/// note), each exporting every function of `required`.
+pub fn checked_binaries(fmu: &Path, [linux, windows]: [&str; 2], required: &[String]) -> Vec<(String, Vec<u8>)> {
+    let binaries = fmu_binaries(fmu);
+    let names: Vec<&String> = binaries.iter().map(|(n, _)| n).collect();
+    let platforms: Vec<&str> = names.iter().filter_map(|n| n.split('/').nth(1)).collect();
+    assert!(platforms.contains(&linux), "{names:?}");
+    assert!(platforms.iter().all(|p| [linux, windows].contains(p)), "{names:?}");
+    if windows_toolchain_installed() {
+        assert!(platforms.contains(&windows), "{}: {names:?}", fmu.display());
+    } else {
+        eprintln!("note: no MinGW-w64 or no x86_64-pc-windows-gnu target: Linux binaries only checked");
+    }
+    for (name, bytes) in &binaries {
+        let exported = exported_symbols(name, bytes);
+        let missing: Vec<&String> = required.iter().filter(|f| !exported.contains(f)).collect();
+        assert!(
+            missing.is_empty(),
+            "{}: {name} does not export {missing:?}",
+            fmu.display()
+        );
+    }
+    binaries
+}
+
 /// The symbols an ELF or PE binary exports.
 pub fn exported_symbols(name: &str, bytes: &[u8]) -> Vec<String> {
     use object::read::Object;

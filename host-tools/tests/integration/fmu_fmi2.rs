@@ -66,25 +66,7 @@ fn every_fmi2_binary_exports_every_fmi2_function() {
     std::fs::write(&model, mre_host::table_file::table_to_toml(&every_term_table())).unwrap();
     let damper = mre_fmu_version(&model, dir.path(), true, 2);
     for fmu in [damper.clone(), mre_host::fmu::controller_path(&damper)] {
-        let binaries = fmu_binaries(&fmu);
-        let names: Vec<&String> = binaries.iter().map(|(n, _)| n).collect();
         // FMI 2.0's platform folders (FMI 2.0 §2.3), not 3.0's.
-        let platforms: Vec<&str> = names.iter().filter_map(|n| n.split('/').nth(1)).collect();
-        assert!(platforms.contains(&"linux64"), "{names:?}");
-        assert!(platforms.iter().all(|p| ["linux64", "win64"].contains(p)), "{names:?}");
-        if windows_toolchain_installed() {
-            assert!(platforms.contains(&"win64"), "{}: {names:?}", fmu.display());
-        } else {
-            eprintln!("note: no MinGW-w64 or no x86_64-pc-windows-gnu target: Linux binaries only checked");
-        }
-        for (name, bytes) in &binaries {
-            let exported = exported_symbols(name, bytes);
-            let missing: Vec<&String> = required.iter().filter(|f| !exported.contains(f)).collect();
-            assert!(
-                missing.is_empty(),
-                "{}: {name} does not export {missing:?}",
-                fmu.display()
-            );
-        }
+        checked_binaries(&fmu, ["linux64", "win64"], &required);
     }
 }
