@@ -40,7 +40,7 @@ from fmpy.fmi2 import FMU2Slave
 from fmpy.validation import validate_fmu
 
 from fmpy_common import (ERROR, F32_EPS, OK, WARNING, Fmu, check, closed_loop, commands, drop_inputs, fails,
-                         failures, refused_sets_check, unsupported_check)
+                         refused_sets_check, run_script, unsupported_check)
 
 
 def validate_and_simulate(v2):
@@ -146,18 +146,6 @@ def unsupported_calls(f):
         "fmi2GetStatus": lambda: f.raw("fmi2GetStatus", ctypes.c_int(0), ctypes.byref(status)),
         "fmi2GetRealStatus": lambda: f.raw("fmi2GetRealStatus", ctypes.c_int(2), x),
     }
-
-
-def unsupported_child(path):
-    """Child process: call each unsupported function once; print the status and log."""
-    log = []
-    f = Fmu(Path(path), log=log)
-    for name, call in unsupported_calls(f).items():
-        n = len(log)
-        status = call()
-        said = any(name in m for _, m in log[n:])
-        print(json.dumps({"call": name, "status": status, "logged": said}), flush=True)
-    f.close()
 
 
 def contract_check(v2):
@@ -267,12 +255,7 @@ def main():
         reset_check(root / "v2")
         contract_check(root / "v2")
         closed_loop(root / "sim", json.load(open(root / "sim.json")), "FMI 2.0: ")
-    print(f"{len(failures)} failed" if failures else "all FMPy checks passed")
-    return 1 if failures else 0
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 3 and sys.argv[1] == "--unsupported":
-        unsupported_child(sys.argv[2])
-        sys.exit(0)
-    sys.exit(main())
+    run_script(main, unsupported_calls)

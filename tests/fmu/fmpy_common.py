@@ -10,6 +10,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+from pathlib import Path
 
 import fmpy
 from fmpy.fmi1 import FMICallException
@@ -28,12 +29,13 @@ def check(ok, what):
 
 
 def fails(call):
-    """The status of an FMI call FMPy raises on, or 0 when it returns OK."""
+    """The status of an FMI call: the one FMPy raises on, else the one a raw call
+    returns, else OK."""
     try:
-        call()
-        return OK
+        result = call()
     except FMICallException as e:
         return getattr(e, "status", ERROR)
+    return result if isinstance(result, int) else OK
 
 
 class Fmu:
@@ -236,3 +238,23 @@ def refused_sets_check(f, log, names, label, error):
         status = fails(lambda: set_values([f.vr[name]], [before + 1.0]))
         check(status == ERROR and len(log) > n, f"{label}: setting {name} returns {error} ({status}) with a log line")
         check(f.get(name) == before, f"{label}: {name} keeps its value after the refused set")
+
+
+def run_script(main, unsupported_calls):
+    """A check script's entry point. `SCRIPT --unsupported PATH` is unsupported_check's
+    child: each call of unsupported_calls(fmu) (name: call) once, a JSON line each
+    with its status and whether the log named it. Otherwise main() runs the checks;
+    the last line is the verdict, the exit status non-zero on any failure."""
+    if len(sys.argv) == 3 and sys.argv[1] == "--unsupported":
+        log = []
+        f = Fmu(Path(sys.argv[2]), log=log)
+        for name, call in unsupported_calls(f).items():
+            n = len(log)
+            status = fails(call)
+            said = any(name in m for _, m in log[n:])
+            print(json.dumps({"call": name, "status": status, "logged": said}), flush=True)
+        f.close()
+        sys.exit(0)
+    main()
+    print(f"{len(failures)} failed" if failures else "all FMPy checks passed")
+    sys.exit(1 if failures else 0)

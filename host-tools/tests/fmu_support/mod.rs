@@ -178,6 +178,20 @@ pub fn fmpy_available() -> bool {
     ok
 }
 
+/// Runs `tests/fmu/SCRIPT ARGS…` (an FMPy check script), echoes its lines,
+/// and fails unless every check passed (its last line says so).
+pub fn run_fmpy_script(script: &str, args: &[&std::ffi::OsStr]) {
+    let o = Command::new("python3")
+        .arg(repo().join("tests/fmu").join(script))
+        .args(args)
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    eprintln!("{out}{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "FMPy checks failed:\n{out}");
+    assert!(out.contains("all FMPy checks passed"));
+}
+
 /// `path` as the FMPy scripts read a recorded drop: inputs in SI units and
 /// the core's force at each sample.
 pub fn write_trace_csv(table: &Table, path: &Path) {

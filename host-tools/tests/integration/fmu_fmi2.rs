@@ -7,7 +7,6 @@ use crate::fmu_support;
 
 use fmu_support::*;
 use std::path::Path;
-use std::process::Command;
 
 /// v2/ (damper.fmu, controller.fmu with FMI 2.0) and v3/damper.fmu of the
 /// every-term model, and trace.csv: the recorded drive and the core's force
@@ -24,15 +23,6 @@ fn write_fmus(root: &Path) {
     write_trace_csv(&table, &root.join("trace.csv"));
 }
 
-fn run_script(args: &[&std::ffi::OsStr]) {
-    let script = repo().join("tests/fmu/check_fmi2.py");
-    let o = Command::new("python3").arg(&script).args(args).output().unwrap();
-    let out = String::from_utf8_lossy(&o.stdout);
-    eprintln!("{out}{}", String::from_utf8_lossy(&o.stderr));
-    assert!(o.status.success(), "FMPy checks failed:\n{out}");
-    assert!(out.contains("all FMPy checks passed"));
-}
-
 #[test]
 fn fmi2_fmus_validate_simulate_keep_the_contract_and_close_the_loop() {
     if !fmpy_available() {
@@ -41,7 +31,7 @@ fn fmi2_fmus_validate_simulate_keep_the_contract_and_close_the_loop() {
     let dir = tempfile::tempdir().unwrap();
     write_fmus(dir.path());
     write_sim_case(dir.path(), 2);
-    run_script(&[dir.path().as_os_str()]);
+    run_fmpy_script("check_fmi2.py", &[dir.path().as_os_str()]);
 }
 
 #[test]
@@ -51,7 +41,7 @@ fn model_exchange_damper_switches_branch_at_state_events() {
     }
     let dir = tempfile::tempdir().unwrap();
     write_fmus(dir.path());
-    run_script(&["--events".as_ref(), dir.path().as_os_str()]);
+    run_fmpy_script("check_fmi2.py", &["--events".as_ref(), dir.path().as_os_str()]);
 }
 
 #[test]

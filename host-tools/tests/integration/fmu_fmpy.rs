@@ -6,7 +6,6 @@
 use crate::fmu_support;
 
 use fmu_support::*;
-use std::process::Command;
 
 #[test]
 fn fmpy_validates_evaluates_and_closes_the_loop() {
@@ -26,10 +25,5 @@ fn fmpy_validates_evaluates_and_closes_the_loop() {
 
     write_sim_case(root, 3);
 
-    let script = repo().join("tests/fmu/check_fmus.py");
-    let o = Command::new("python3").arg(&script).arg(root).output().unwrap();
-    let out = String::from_utf8_lossy(&o.stdout);
-    eprintln!("{out}{}", String::from_utf8_lossy(&o.stderr));
-    assert!(o.status.success(), "FMPy checks failed:\n{out}");
-    assert!(out.contains("all FMPy checks passed"));
+    run_fmpy_script("check_fmus.py", &[root.as_os_str()]);
 }
