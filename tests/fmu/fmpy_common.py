@@ -77,12 +77,15 @@ class Fmu:
             self.z = self.indicator()
 
     def start(self):
+        self.enter_initialization()
+        self.fmu.exitInitializationMode()
+
+    def enter_initialization(self):
         if self.v2:
             self.fmu.setupExperiment(startTime=0.0)
             self.fmu.enterInitializationMode()
         else:
             self.fmu.enterInitializationMode(startTime=0.0)
-        self.fmu.exitInitializationMode()
 
     def set(self, **values):
         vrs, xs = [self.vr[k] for k in values], list(values.values())
@@ -137,6 +140,32 @@ def commands(ctl, period, inputs):
         ctl.fmu.doStep(k * period, period)
         got.append((ctl.get("coil_command_a"), ctl.get("target_force_n")))
     return got
+
+
+def controller_reset_check(path, label, ticks):
+    """After fmiXReset and a new initialisation the controller is a fresh instance:
+    the command in Initialization Mode is a fresh one's, and on the same drop it
+    commands what a fresh instance does. The reset comes `ticks` into the drop
+    (state and tick count built up, the command moved)."""
+    fresh = Fmu(path)
+    reset = "fmi2Reset" if fresh.v2 else "fmi3Reset"
+    period = fresh.get("control_period_s")
+    at_init = fresh.get("coil_command_a")
+    inputs = drop_inputs(60)
+    expected = commands(fresh, period, inputs)
+    fresh.close()
+    check(any(c != at_init for c, _ in expected), f"{label}: the drop moves the command")
+    ctl = Fmu(path)
+    before = commands(ctl, period, inputs[:ticks])
+    check(before[-1][0] != at_init, f"{label}: the reset comes while the command is not the initial one")
+    ctl.fmu.reset()
+    ctl.enter_initialization()
+    check(ctl.get("coil_command_a") == at_init,
+          f"{label}: after {reset} the command in Initialization Mode is a fresh instance's")
+    ctl.fmu.exitInitializationMode()
+    again = commands(ctl, period, inputs)
+    ctl.close()
+    check(again == expected, f"{label}: after {reset} it commands what a fresh instance does on the same inputs")
 
 
 def closed_loop(sim_dir, sim, label):
