@@ -7,6 +7,10 @@ writes into DIR:
   v3/damper.fmu                      mre fmu (3.0) of the same model
   trace.csv                          a recorded drop's x, v with a current sweep, and the
                                      core's force at each sample (mre_algorithm in Rust)
+  sim/damper.fmu, sim/controller.fmu, sim.json
+                                     FMI 2.0 FMUs of the model `mre sim --controlled`
+                                     flies, and its result (the closed loop, the
+                                     controller's reset as check_fmus.py checks it)
 
 `check_fmi2.py DIR` (the 2.0 FMUs): FMPy's validate_fmu finds no problem and
 simulate_fmu runs each (damper CS and ME, controller CS); the 2.0 damper's
@@ -15,7 +19,10 @@ fmi2Reset the controller repeats a fresh instance's commands and a damper
 steps from time 0 again; every unsupported call returns fmi2Error with a log
 line naming it and the process lives (child process); setting an output or
 a calculated parameter, a bad doStep and a Model Exchange call on a
-Co-Simulation instance return fmi2Error; an out-of-range input fmi2Warning.
+Co-Simulation instance return fmi2Error; an out-of-range input fmi2Warning;
+the falling mass of check_fmus.py closed through the 2.0 controller.fmu and
+damper.fmu (coil_current_a into current_a) reproduces `mre sim --controlled`'s
+peak force and stroke within 1 %.
 
 `check_fmi2.py --events DIR`: the branch event, for v2 and v3 damper.fmu.
 Exits non-zero on any failure.
@@ -24,107 +31,17 @@ import csv
 import ctypes
 import json
 import math
-import shutil
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
 import fmpy
-from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import FMU2Model, FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
-from fmpy.fmi3 import FMU3Slave
+from fmpy.fmi2 import FMU2Slave
 from fmpy.validation import validate_fmu
 
-F32_EPS = 2.0 ** -23
-OK, WARNING, ERROR = 0, 1, 3  # fmi2Status
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
-
-
-class Fmu:
-    """One instance of an FMU (2.0 or 3.0, CS or ME) by variable name."""
-
-    def __init__(self, path, me=False, log=None):
-        self.md = fmpy.read_model_description(str(path))
-        self.v2 = self.md.fmiVersion == "2.0"
-        self.dir = tempfile.mkdtemp()
-        fmpy.extract(str(path), self.dir)
-        self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
-        iface = self.md.modelExchange if me else self.md.coSimulation
-        kind = (FMU2Model if me else FMU2Slave) if self.v2 else FMU3Slave
-        self.fmu = kind(guid=self.md.guid, unzipDirectory=self.dir,
-                        modelIdentifier=iface.modelIdentifier, instanceName=path.stem)
-        if log is None:
-            self.fmu.instantiate()
-        else:
-            # Every message the FMU logs, as (status, text).
-            def logger(env, name, status, category, message):
-                log.append((status, message.decode(errors="replace")))
-            self.callbacks = fmi2CallbackFunctions()
-            self.callbacks.logger = fmi2CallbackLoggerTYPE(logger)
-            self.callbacks.allocateMemory = fmpy.fmi2.fmi2CallbackAllocateMemoryTYPE(fmpy.fmi2.calloc)
-            self.callbacks.freeMemory = fmpy.fmi2.fmi2CallbackFreeMemoryTYPE(fmpy.fmi2.free)
-            self.fmu.instantiate(callbacks=self.callbacks, loggingOn=True)
-        self.start()
-        if me:
-            self.fmu.newDiscreteStates()
-            self.fmu.enterContinuousTimeMode()
-            self.z = self.indicator()
-
-    def start(self):
-        if self.v2:
-            self.fmu.setupExperiment(startTime=0.0)
-        self.fmu.enterInitializationMode() if self.v2 else self.fmu.enterInitializationMode(startTime=0.0)
-        self.fmu.exitInitializationMode()
-
-    def set(self, **values):
-        vrs, xs = [self.vr[k] for k in values], list(values.values())
-        self.fmu.setReal(vrs, xs) if self.v2 else self.fmu.setFloat64(vrs, xs)
-
-    def get(self, name):
-        return (self.fmu.getReal if self.v2 else self.fmu.getFloat64)([self.vr[name]])[0]
-
-    def indicator(self):
-        buf = (ctypes.c_double * 1)()
-        self.fmu.getEventIndicators(buf, 1)
-        return buf[0]
-
-    def handle_events(self):
-        """As an ME importer does after new inputs: a sign change of the event
-        indicator (the velocity) is an event, handled in Event Mode."""
-        z = self.indicator()
-        if (z > 0) != (self.z > 0):
-            self.fmu.enterEventMode()
-            self.fmu.newDiscreteStates()
-            self.fmu.enterContinuousTimeMode()
-        self.z = z
-
-    def raw(self, name, *args):
-        """Calls an fmi2 function of the library directly; returns its status."""
-        f = getattr(self.fmu.dll, name)
-        f.restype = ctypes.c_uint
-        return f(ctypes.c_void_p(self.fmu.component), *args)
-
-    def close(self):
-        self.fmu.terminate()
-        self.fmu.freeInstance()
-        shutil.rmtree(self.dir, ignore_errors=True)
-
-
-def fails(call):
-    """The status of an FMI call FMPy raises on, or 0 when it returns OK."""
-    try:
-        call()
-        return OK
-    except FMICallException as e:
-        return getattr(e, "status", ERROR)
+from fmpy_common import (ERROR, F32_EPS, OK, WARNING, Fmu, check, closed_loop, controller_reset_check, fails,
+                         refused_sets_check, run_script, unsupported_check)
 
 
 def validate_and_simulate(v2):
@@ -177,44 +94,7 @@ def same_force(v2, v3, trace_path):
     check(scale > 100, f"the drive loads the damper (peak {scale:.0f} N)")
 
 
-def drop_inputs(n):
-    """x, v of a mass met at 2.24 m/s and stopped over n ticks: it loads the law."""
-    x, out = 0.0, []
-    for k in range(n):
-        v = 2.24 * (1.0 - k / n)
-        out.append((x, v))
-        x += v * 1e-4
-    return out
-
-
-def commands(ctl, period, inputs):
-    got = []
-    for k, (x, v) in enumerate(inputs):
-        ctl.set(displacement_m=x, velocity_m_s=v)
-        ctl.fmu.doStep(k * period, period)
-        got.append((ctl.get("coil_command_a"), ctl.get("target_force_n")))
-    return got
-
-
-def reset_check(v2):
-    fresh = Fmu(v2 / "controller.fmu")
-    period = fresh.get("control_period_s")
-    at_init = fresh.get("coil_command_a")
-    inputs = drop_inputs(60)
-    expected = commands(fresh, period, inputs)
-    fresh.close()
-    check(any(c != at_init for c, _ in expected), "controller 2.0: the drop moves the command")
-    ctl = Fmu(v2 / "controller.fmu")
-    before = commands(ctl, period, inputs[:30])
-    check(any(c != at_init for c, _ in before),
-          "controller 2.0: the reset comes after the command has moved from the initial one")
-    ctl.fmu.reset()
-    ctl.start()
-    check(ctl.get("coil_command_a") == at_init, "controller 2.0: after fmi2Reset the command is a fresh instance's")
-    again = commands(ctl, period, inputs)
-    ctl.close()
-    check(again == expected, "controller 2.0: after fmi2Reset it commands what a fresh instance does")
-
+def damper_reset_check(v2):
     # The damper's time goes back to 0 with the reset: a step from 0 runs again.
     d = Fmu(v2 / "damper.fmu")
     h = float(d.md.defaultExperiment.stepSize)
@@ -251,41 +131,15 @@ def unsupported_calls(f):
     }
 
 
-def unsupported_child(path):
-    """Child process: call each unsupported function once; print the status and log."""
-    log = []
-    f = Fmu(Path(path), log=log)
-    for name, call in unsupported_calls(f).items():
-        n = len(log)
-        status = call()
-        said = any(name in m for _, m in log[n:])
-        print(json.dumps({"call": name, "status": status, "logged": said}), flush=True)
-    f.close()
-
-
 def contract_check(v2):
     for fmu in ["damper.fmu", "controller.fmu"]:
-        child = subprocess.run([sys.executable, __file__, "--unsupported", str(v2 / fmu)],
-                               capture_output=True, text=True)
-        check(child.returncode == 0, f"{fmu} 2.0: the unsupported calls leave the process alive "
-                                     f"(exit {child.returncode}; {child.stderr.strip()[-300:]})")
-        results = [json.loads(l) for l in child.stdout.splitlines() if l.startswith("{")]
-        check(len(results) == 9, f"{fmu} 2.0: all 9 unsupported calls returned ({len(results)})")
-        for r in results:
-            check(r["status"] == ERROR and r["logged"],
-                  f"{fmu} 2.0: {r['call']} returns fmi2Error ({r['status']}) with a log line naming it "
-                  f"({r['logged']})")
+        unsupported_check(__file__, v2 / fmu, f"{fmu} 2.0", "fmi2Error")
 
     for fmu, names in [("damper.fmu", ["force_n", "coil_tau_s"]),
                        ("controller.fmu", ["coil_command_a", "control_period_s"])]:
         log = []
         f = Fmu(v2 / fmu, log=log)
-        for name in names:
-            before = f.get(name)
-            n = len(log)
-            status = fails(lambda: f.fmu.setReal([f.vr[name]], [before + 1.0]))
-            check(status == ERROR and len(log) > n, f"{fmu} 2.0: setting {name} returns fmi2Error ({status})")
-            check(f.get(name) == before, f"{fmu} 2.0: {name} keeps its value after the refused set")
+        refused_sets_check(f, log, names, f"{fmu} 2.0", "fmi2Error")
         h = float(f.md.defaultExperiment.stepSize)
         for what, t, step in [("a negative step", 0.0, -h), ("a NaN step", 0.0, float("nan")),
                               ("a step from a later time", 5 * h, h)]:
@@ -381,14 +235,11 @@ def main():
         root = Path(sys.argv[1])
         validate_and_simulate(root / "v2")
         same_force(root / "v2", root / "v3", root / "trace.csv")
-        reset_check(root / "v2")
+        controller_reset_check(root / "sim" / "controller.fmu", "controller 2.0", 8)
+        damper_reset_check(root / "v2")
         contract_check(root / "v2")
-    print(f"{len(failures)} failed" if failures else "all FMPy checks passed")
-    return 1 if failures else 0
+        closed_loop(root / "sim", json.load(open(root / "sim.json")), "FMI 2.0: ")
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 3 and sys.argv[1] == "--unsupported":
-        unsupported_child(sys.argv[2])
-        sys.exit(0)
-    sys.exit(main())
+    run_script(main, unsupported_calls)

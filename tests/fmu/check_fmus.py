@@ -29,25 +29,14 @@ import csv
 import ctypes
 import json
 import math
-import shutil
-import subprocess
 import sys
-import tempfile
 from pathlib import Path
 
 import fmpy
-from fmpy.fmi1 import FMICallException
-from fmpy.fmi3 import FMU3Model, FMU3Slave
 from fmpy.validation import validate_fmu
 
-F32_EPS = 2.0 ** -23
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
+from fmpy_common import (ERROR, F32_EPS, WARNING, Fmu, check, closed_loop, controller_reset_check, drop_inputs,
+                         fails, refused_sets_check, run_script, unsupported_check)
 
 
 def validate(path):
@@ -81,66 +70,15 @@ def validate(path):
     return md
 
 
-class Fmu:
-    """One instance of an FMU by variable name (CS or ME)."""
-
-    def __init__(self, path, me=False, log=None):
-        self.md = fmpy.read_model_description(str(path))
-        self.dir = tempfile.mkdtemp()
-        fmpy.extract(str(path), self.dir)
-        self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
-        kind = FMU3Model if me else FMU3Slave
-        iface = self.md.modelExchange if me else self.md.coSimulation
-        self.fmu = kind(guid=self.md.guid, unzipDirectory=self.dir,
-                        modelIdentifier=iface.modelIdentifier, instanceName=path.stem)
-        if log is None:
-            self.fmu.instantiate()
-        else:
-            # Every message the FMU logs, as (status, text).
-            def logger(env, status, category, message):
-                log.append((status, message.decode(errors="replace")))
-            self.fmu.instantiate(loggingOn=True, logMessage=logger)
-        self.fmu.enterInitializationMode(startTime=0.0)
-        self.fmu.exitInitializationMode()
-        if me:
-            self.fmu.enterContinuousTimeMode()
-
-    def set(self, **values):
-        self.fmu.setFloat64([self.vr[k] for k in values], list(values.values()))
-
-    def get(self, name):
-        return self.fmu.getFloat64([self.vr[name]])[0]
-
-    def close(self):
-        self.fmu.terminate()
-        self.fmu.freeInstance()
-        shutil.rmtree(self.dir, ignore_errors=True)
-
-
-def indicator(d):
-    """The damper's one event indicator."""
-    z = (ctypes.c_double * 1)()
-    d.fmu.getEventIndicators(z, 1)
-    return z[0]
-
-
 def trace_check(damper_path, trace_path, me):
     rows = list(csv.DictReader(open(trace_path)))
     d = Fmu(damper_path, me=me)
-    z_last = indicator(d) if me else 0.0
     worst, scale = 0.0, max(abs(float(r["force_core_n"])) for r in rows)
     for r in rows:
         d.set(displacement_m=float(r["displacement_m"]), velocity_m_s=float(r["velocity_m_s"]),
               current_a=float(r["current_a"]))
         if me:
-            # As an importer does: the event indicator (the velocity) changing sign is
-            # an event, where the damper switches branch (it holds it in continuous time).
-            z = indicator(d)
-            if (z > 0) != (z_last > 0):
-                d.fmu.enterEventMode()
-                d.fmu.updateDiscreteStates()
-                d.fmu.enterContinuousTimeMode()
-            z_last = z
+            d.handle_events()
         worst = max(worst, abs(d.get("force_n") - float(r["force_core_n"])))
     d.close()
     # The FMU takes x in m and converts to the board's mm in f32; the
@@ -148,107 +86,6 @@ def trace_check(damper_path, trace_path, me):
     check(worst <= 8 * F32_EPS * scale,
           f"damper ({'ME' if me else 'CS'}): force equals the core's on {len(rows)} samples "
           f"(worst {worst:.3g} N, f32 rounding allows {8 * F32_EPS * scale:.3g} N)")
-
-
-def closed_loop(sim_dir, sim):
-    damper = Fmu(sim_dir / "damper.fmu")
-    ctl = Fmu(sim_dir / "controller.fmu")
-    period = ctl.get("control_period_s")
-    substeps = int(round(period / sim["step_s"]))
-    h = period / substeps
-    m, g = sim["mass_kg"], sim["gravity_m_s2"]
-    tau = sim["coil_lag_s"]
-    lo, hi = sim["drive_range_a"]
-    x, v, t = 0.0, sim["impact_velocity_m_s"], 0.0
-    current = sim["initial_current_a"]
-    peak_force, max_stroke = 0.0, 0.0
-    coil_gap, drive_gap = 0.0, 0.0
-    ohm = ctl.get("coil_resistance_ohm")
-
-    def force(xm, vm, i):
-        # The mass touches the damper only at x > 0, and the damper only pushes.
-        if xm <= 0.0:
-            return 0.0
-        damper.set(displacement_m=xm, velocity_m_s=vm, current_a=i)
-        return max(damper.get("force_n"), 0.0)
-
-    def accel(xm, vm, i):
-        return g - force(xm, vm, i) / m
-
-    while t < sim["max_duration_s"]:
-        t0 = t
-        ctl.set(displacement_m=x, velocity_m_s=v)
-        ctl.fmu.doStep(t, period)
-        command = ctl.get("coil_command_a")
-        coil_fmu = ctl.get("coil_current_a")
-        drive_gap = max(drive_gap, abs(ctl.get("drive_voltage_v") - command * ohm))
-        done = False
-        for _ in range(substeps):
-            if tau is None:
-                current = command
-            else:
-                current += (min(max(command, lo), hi) - current) * (1.0 - math.exp(-h / tau))
-            k1x, k1v = v, accel(x, v, current)
-            k2x, k2v = v + h / 2 * k1v, accel(x + h / 2 * k1x, v + h / 2 * k1v, current)
-            k3x, k3v = v + h / 2 * k2v, accel(x + h / 2 * k2x, v + h / 2 * k2v, current)
-            k4x, k4v = v + h * k3v, accel(x + h * k3x, v + h * k3v, current)
-            x += h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x)
-            v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v)
-            t += h
-            peak_force = max(peak_force, force(x, v, current))
-            max_stroke = max(max_stroke, x * 1e3)
-            if x < 0.0 and v < 0.0:
-                done = True
-                break
-        if not done:
-            # The FMU's coil current at the tick's end against the lag integrated here.
-            coil_gap = max(coil_gap, abs(coil_fmu - current))
-        damper.fmu.doStep(t0, period)
-        if done:
-            break
-    damper.close()
-    ctl.close()
-    check(coil_gap <= 1e-6, f"closed loop: controller's coil_current_a is the coil current the loop integrates "
-                            f"(worst {coil_gap:.3g} A)")
-    check(drive_gap <= 1e-9, f"closed loop: drive_voltage_v = coil_command_a x {ohm} ohm (worst {drive_gap:.3g} V)")
-    for what, fmpy_value, mre_value in [
-        ("peak force (N)", peak_force, sim["peak_force_n"]),
-        ("stroke (mm)", max_stroke, sim["max_stroke_mm"]),
-    ]:
-        rel = abs(fmpy_value - mre_value) / mre_value
-        check(rel <= 0.01, f"closed loop in FMPy: {what} {fmpy_value:.2f} vs mre sim --controlled "
-                           f"{mre_value:.2f} ({100 * rel:.2f} %, at most 1 %)")
-
-
-ERROR = 3  # fmi3Error
-
-
-def fails(call):
-    """The status of an FMI call FMPy raises on, or 0 when it returns OK."""
-    try:
-        call()
-        return 0
-    except FMICallException as e:
-        return getattr(e, "status", ERROR)
-
-
-def drop_inputs(n):
-    """x, v of a mass met at 2.24 m/s and stopped over n ticks: it loads the law."""
-    x, out = 0.0, []
-    for k in range(n):
-        v = 2.24 * (1.0 - k / n)
-        out.append((x, v))
-        x += v * 1e-4
-    return out
-
-
-def commands(ctl, period, inputs):
-    got = []
-    for k, (x, v) in enumerate(inputs):
-        ctl.set(displacement_m=x, velocity_m_s=v)
-        ctl.fmu.doStep(k * period, period)
-        got.append((ctl.get("coil_command_a"), ctl.get("target_force_n")))
-    return got
 
 
 def coil_check(every_dir):
@@ -276,40 +113,15 @@ def coil_check(every_dir):
     check(worst <= 1e-9, f"coil: coil_current_a is the drive through tau = {tau} s (worst {worst:.3g} A)")
 
 
-def reset_check(controller_path):
-    fresh = Fmu(controller_path)
-    period = fresh.get("control_period_s")
-    at_init = fresh.get("coil_command_a")
-    inputs = drop_inputs(60)
-    expected = commands(fresh, period, inputs)
-    fresh.close()
-    check(any(c != at_init for c, _ in expected), "controller: the drop moves the command")
-
-    ctl = Fmu(controller_path)
-    # Stop mid-impact (state and tick count built up), reset, initialise again.
-    before = commands(ctl, period, inputs[:8])
-    check(before[-1][0] != at_init, "controller: the reset comes while the command is not the initial one")
-    ctl.fmu.reset()
-    ctl.fmu.enterInitializationMode(startTime=0.0)
-    check(ctl.get("coil_command_a") == at_init,
-          "controller: after fmi3Reset the command in Initialization Mode is a fresh instance's")
-    ctl.fmu.exitInitializationMode()
-    again = commands(ctl, period, inputs)
-    ctl.close()
-    check(again == expected, "controller: after fmi3Reset it commands what a fresh instance does on the same inputs")
-
-
-def unsupported_child(path):
-    """Child process: call each unsupported function once; print the status and log."""
-    log = []
-    f = Fmu(Path(path), log=log)
+def unsupported_calls(f):
+    """The calls this FMU does not implement, with arguments of the right shape."""
     u = f.fmu
     vr = (ctypes.c_uint32 * 1)(0)
     x = (ctypes.c_double * 1)(0.0)
     state = ctypes.c_void_p()
     size = ctypes.c_size_t()
     q = (ctypes.c_int * 1)(0)
-    calls = {
+    return {
         "fmi3GetFMUState": lambda: u.fmi3GetFMUState(u.component, ctypes.byref(state)),
         "fmi3SetFMUState": lambda: u.fmi3SetFMUState(u.component, state),
         "fmi3SerializedFMUStateSize": lambda: u.fmi3SerializedFMUStateSize(u.component, state, ctypes.byref(size)),
@@ -321,27 +133,11 @@ def unsupported_child(path):
         "fmi3GetShiftDecimal": lambda: u.fmi3GetShiftDecimal(u.component, vr, 1, x),
         "fmi3SetIntervalDecimal": lambda: u.fmi3SetIntervalDecimal(u.component, vr, 1, x),
     }
-    for name, call in calls.items():
-        n = len(log)
-        status = fails(call)
-        said = any(name in m for _, m in log[n:])
-        print(json.dumps({"call": name, "status": status, "logged": said}), flush=True)
-    f.close()
 
 
 def contract_check(sim_dir):
     for fmu in ["damper.fmu", "controller.fmu"]:
-        path = sim_dir / fmu
-        child = subprocess.run([sys.executable, __file__, "--unsupported", str(path)],
-                               capture_output=True, text=True)
-        check(child.returncode == 0,
-              f"{fmu}: the unsupported calls leave the process alive (exit {child.returncode}; "
-              f"{child.stderr.strip()[-300:]})")
-        results = [json.loads(l) for l in child.stdout.splitlines() if l.startswith("{")]
-        check(len(results) == 9, f"{fmu}: all 9 unsupported calls returned ({len(results)})")
-        for r in results:
-            check(r["status"] == ERROR and r["logged"],
-                  f"{fmu}: {r['call']} returns fmi3Error ({r['status']}) with a log message naming it ({r['logged']})")
+        unsupported_check(__file__, sim_dir / fmu, fmu, "fmi3Error")
 
     # Setting an output or a calculated parameter is refused; a doStep with a
     # bad step or from another time than the instance's is refused.
@@ -349,13 +145,7 @@ def contract_check(sim_dir):
                        ("controller.fmu", ["coil_command_a", "control_period_s"])]:
         log = []
         f = Fmu(sim_dir / fmu, log=log)
-        for name in names:
-            before = f.get(name)
-            n = len(log)
-            status = fails(lambda: f.fmu.setFloat64([f.vr[name]], [before + 1.0]))
-            check(status == ERROR and len(log) > n,
-                  f"{fmu}: setting {name} returns fmi3Error ({status}) with a log message")
-            check(f.get(name) == before, f"{fmu}: {name} keeps its value after the refused set")
+        refused_sets_check(f, log, names, fmu, "fmi3Error")
         h = float(f.md.defaultExperiment.stepSize)
         for what, t, step in [("a negative step", 0.0, -h), ("a NaN step", 0.0, float("nan")),
                               ("a zero step", 0.0, 0.0), ("a step from a later time", 5 * h, h)]:
@@ -383,9 +173,6 @@ def contract_check(sim_dir):
     force = next(o for o in md.outputs if o.variable.name == "force_n")
     check(sorted(v.name for v in force.dependencies or []) == ["current_a", "displacement_m", "velocity_m_s"],
           "damper.fmu: force_n depends on displacement_m, velocity_m_s and current_a in the XML")
-
-
-WARNING = 1  # fmi3Warning
 
 
 def range_check(path, output):
@@ -419,18 +206,13 @@ def main():
     validate(root / "sim" / "controller.fmu")
     trace_check(root / "every-term" / "damper.fmu", root / "trace.csv", me=False)
     trace_check(root / "every-term" / "damper.fmu", root / "trace.csv", me=True)
-    closed_loop(root / "sim", json.load(open(root / "sim.json")))
-    reset_check(root / "sim" / "controller.fmu")
+    closed_loop(root / "sim", json.load(open(root / "sim.json")), "")
+    controller_reset_check(root / "sim" / "controller.fmu", "controller", 8)
     coil_check(root / "every-term")
     contract_check(root / "sim")
     range_check(root / "sim" / "damper.fmu", "force_n")
     range_check(root / "sim" / "controller.fmu", "coil_command_a")
-    print(f"{len(failures)} failed" if failures else "all FMPy checks passed")
-    return 1 if failures else 0
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 3 and sys.argv[1] == "--unsupported":
-        unsupported_child(sys.argv[2])
-        sys.exit(0)
-    sys.exit(main())
+    run_script(main, unsupported_calls)

@@ -137,6 +137,17 @@ pub struct Describe {
     pub generation_date_and_time: Option<String>,
 }
 
+impl Describe {
+    /// The nominal of the quantity whose unit suffix is `suffix`: the first
+    /// input of that quantity's (it goes on the type, shared by 3.0 and 2.0).
+    pub fn nominal(&self, suffix: &str) -> Option<f64> {
+        self.ranges
+            .iter()
+            .find(|r| unit_of(r.name).is_some_and(|u| u.0 == suffix))
+            .map(|r| r.nominal)
+    }
+}
+
 /// The model description of `kind`, as XML.
 pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, String> {
     let meta = metadata(kind);
@@ -193,11 +204,7 @@ pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, Stri
         .iter()
         .map(|(suffix, name, unit, _)| {
             // An input's nominal on its quantity's type (fmi-schema's variable has no `nominal`).
-            let nominal = describe
-                .ranges
-                .iter()
-                .find(|r| unit_of(r.name).is_some_and(|u| u.0 == *suffix))
-                .map(|r| r.nominal);
+            let nominal = describe.nominal(suffix);
             TypeDefinition::Float64(Float64Type {
                 name: (*name).to_string(),
                 quantity: Some((*name).to_string()),

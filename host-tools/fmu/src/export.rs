@@ -122,6 +122,16 @@ pub unsafe fn check_ranges<M: Exported>(
     result
 }
 
+/// A caught panic's message (`panic!` with a literal or a formatted one), for
+/// the log line that replaces it (FMI 3.0 and 2.0 alike).
+pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| (*s).to_owned())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_default()
+}
+
 /// Runs one C call: a panic becomes `fmi3Error` and a log line.
 pub fn guard<M: Exported>(
     instance: b::fmi3Instance,
@@ -131,11 +141,7 @@ pub fn guard<M: Exported>(
     match catch_unwind(AssertUnwindSafe(call)) {
         Ok(status) => status,
         Err(payload) => {
-            let why = payload
-                .downcast_ref::<&str>()
-                .map(|s| (*s).to_owned())
-                .or_else(|| payload.downcast_ref::<String>().cloned())
-                .unwrap_or_default();
+            let why = panic_message(payload.as_ref());
             log_error::<M>(instance, format_args!("{function} failed inside the FMU: {why}"));
             b::fmi3Status_fmi3Error
         }

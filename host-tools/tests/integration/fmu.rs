@@ -196,25 +196,8 @@ fn every_binary_exports_every_fmi3_function() {
     let model = dir.path().join("every-term.toml");
     std::fs::write(&model, mre_host::table_file::table_to_toml(&every_term_table())).unwrap();
     let damper = mre_fmu(&model, dir.path(), true);
-    let windows_toolchain = windows_toolchain_installed();
     for fmu in [damper.clone(), mre_host::fmu::controller_path(&damper)] {
-        let binaries = fmu_binaries(&fmu);
-        let names: Vec<&String> = binaries.iter().map(|(n, _)| n).collect();
-        let platforms: Vec<&str> = names.iter().filter_map(|n| n.split('/').nth(1)).collect();
-        assert!(platforms.contains(&"x86_64-linux"), "{names:?}");
-        if windows_toolchain {
-            assert!(platforms.contains(&"x86_64-windows"), "{}: {names:?}", fmu.display());
-        } else {
-            eprintln!("note: no MinGW-w64 or no x86_64-pc-windows-gnu target: Linux binaries only checked");
-        }
-        for (name, bytes) in &binaries {
-            let exported = exported_symbols(name, bytes);
-            let missing: Vec<&String> = required.iter().filter(|f| !exported.contains(f)).collect();
-            assert!(
-                missing.is_empty(),
-                "{}: {name} does not export {missing:?}",
-                fmu.display()
-            );
+        for (name, bytes) in &checked_binaries(&fmu, ["x86_64-linux", "x86_64-windows"], &required) {
             let expected_format = if name.ends_with(".dll") {
                 object::BinaryFormat::Pe
             } else {

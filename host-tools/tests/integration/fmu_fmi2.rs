@@ -7,10 +7,10 @@ use crate::fmu_support;
 
 use fmu_support::*;
 use std::path::Path;
-use std::process::Command;
 
 /// v2/ (damper.fmu, controller.fmu with FMI 2.0) and v3/damper.fmu of the
-/// every-term model, and trace.csv: the recorded drive and the core's force.
+/// every-term model, and trace.csv: the recorded drive and the core's force
+/// (the contract test adds the closed loop's FMUs and sim.json, `write_sim_case`).
 fn write_fmus(root: &Path) {
     let table = every_term_table();
     let model = root.join("every-term.toml");
@@ -23,23 +23,15 @@ fn write_fmus(root: &Path) {
     write_trace_csv(&table, &root.join("trace.csv"));
 }
 
-fn run_script(args: &[&std::ffi::OsStr]) {
-    let script = repo().join("tests/fmu/check_fmi2.py");
-    let o = Command::new("python3").arg(&script).args(args).output().unwrap();
-    let out = String::from_utf8_lossy(&o.stdout);
-    eprintln!("{out}{}", String::from_utf8_lossy(&o.stderr));
-    assert!(o.status.success(), "FMPy checks failed:\n{out}");
-    assert!(out.contains("all FMPy checks passed"));
-}
-
 #[test]
-fn fmi2_fmus_validate_simulate_and_keep_the_contract() {
+fn fmi2_fmus_validate_simulate_keep_the_contract_and_close_the_loop() {
     if !fmpy_available() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
     write_fmus(dir.path());
-    run_script(&[dir.path().as_os_str()]);
+    write_sim_case(dir.path(), 2);
+    run_fmpy_script("check_fmi2.py", &[dir.path().as_os_str()]);
 }
 
 #[test]
@@ -49,7 +41,7 @@ fn model_exchange_damper_switches_branch_at_state_events() {
     }
     let dir = tempfile::tempdir().unwrap();
     write_fmus(dir.path());
-    run_script(&["--events".as_ref(), dir.path().as_os_str()]);
+    run_fmpy_script("check_fmi2.py", &["--events".as_ref(), dir.path().as_os_str()]);
 }
 
 #[test]
@@ -64,25 +56,7 @@ fn every_fmi2_binary_exports_every_fmi2_function() {
     std::fs::write(&model, mre_host::table_file::table_to_toml(&every_term_table())).unwrap();
     let damper = mre_fmu_version(&model, dir.path(), true, 2);
     for fmu in [damper.clone(), mre_host::fmu::controller_path(&damper)] {
-        let binaries = fmu_binaries(&fmu);
-        let names: Vec<&String> = binaries.iter().map(|(n, _)| n).collect();
         // FMI 2.0's platform folders (FMI 2.0 §2.3), not 3.0's.
-        let platforms: Vec<&str> = names.iter().filter_map(|n| n.split('/').nth(1)).collect();
-        assert!(platforms.contains(&"linux64"), "{names:?}");
-        assert!(platforms.iter().all(|p| ["linux64", "win64"].contains(p)), "{names:?}");
-        if windows_toolchain_installed() {
-            assert!(platforms.contains(&"win64"), "{}: {names:?}", fmu.display());
-        } else {
-            eprintln!("note: no MinGW-w64 or no x86_64-pc-windows-gnu target: Linux binaries only checked");
-        }
-        for (name, bytes) in &binaries {
-            let exported = exported_symbols(name, bytes);
-            let missing: Vec<&String> = required.iter().filter(|f| !exported.contains(f)).collect();
-            assert!(
-                missing.is_empty(),
-                "{}: {name} does not export {missing:?}",
-                fmu.display()
-            );
-        }
+        checked_binaries(&fmu, ["linux64", "win64"], &required);
     }
 }

@@ -50,6 +50,7 @@ mod fit;
 mod fmu;
 mod fmu_fmi2;
 mod fmu_fmpy;
+mod fmu_windows;
 mod installation;
 mod installation_sources;
 mod model_cmd;

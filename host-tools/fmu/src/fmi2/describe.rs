@@ -146,10 +146,8 @@ pub fn model_description(kind: Kind, describe: &Describe) -> Result<String, Stri
         .iter()
         .map(|(suffix, name, unit, _)| {
             let nominal = describe
-                .ranges
-                .iter()
-                .find(|r| unit_of(r.name).is_some_and(|u| u.0 == *suffix))
-                .map_or_else(String::new, |r| format!(" nominal=\"{:e}\"", r.nominal));
+                .nominal(suffix)
+                .map_or_else(String::new, |n| format!(" nominal=\"{n:e}\""));
             format!(
                 "    <SimpleType name=\"{name}\">\n      <Real quantity=\"{name}\" unit=\"{}\"{nominal}/>\n    </SimpleType>\n",
                 escape(unit)

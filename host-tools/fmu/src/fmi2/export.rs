@@ -29,11 +29,7 @@ pub unsafe fn with<M: Exported + ModelGetSet<M>>(
     match catch_unwind(AssertUnwindSafe(|| call(unsafe { &mut *p }))) {
         Ok(status) => status,
         Err(payload) => {
-            let why = payload
-                .downcast_ref::<&str>()
-                .map(|s| (*s).to_owned())
-                .or_else(|| payload.downcast_ref::<String>().cloned())
-                .unwrap_or_default();
+            let why = crate::export::panic_message(payload.as_ref());
             // The closure's borrow ended with the unwind.
             let inst = unsafe { &mut *p };
             inst.mode = Mode::Error;
