@@ -177,7 +177,7 @@ pub fn markdown(r: &ReportJson) -> String {
     let mut s = format!(
         "# Model families side by side — {}\n\n\
          Fitted on the `fit` recordings only; recordings at {:?} A (and any `validate` recording) are only predicted. \
-         NRMSE = {}. AIC/BIC = n·ln(SSE/n) + 2k / + k·ln n over the fit samples (samples are correlated: use them to rank). \
+         {}. AIC/BIC = n·ln(SSE/n) + 2k / + k·ln n over the fit samples (samples are correlated: use them to rank). \
          Nonlinear families: GSA (N = {}, T = {}, recordings decimated to ≈ {} samples) then Levenberg–Marquardt \
          (≈ {} samples per recording); seed {}. Whole comparison: {:.1} s.\n\n",
         r.dataset,

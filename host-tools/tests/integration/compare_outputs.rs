@@ -106,9 +106,11 @@ fn report_schema_and_numbers_match_the_written_predictions() {
         );
     }
     assert!(r.best_heldout.is_some());
-    assert!(std::fs::read_to_string(dir.path().join("report.md"))
-        .unwrap()
-        .contains("predicts the held-out recordings best"));
+    let md = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
+    assert!(md.contains("predicts the held-out recordings best"));
+    // The error measure is defined once, as docs/error-measure.md words it.
+    assert_eq!(md.matches("NRMSE = RMSE / (max F − min F)").count(), 1);
+    assert!(!md.contains("NRMSE = NRMSE"));
     for stem in ["0A_2mm5Hz0A", "0p5A_10mm1Hz0x5A", "1A_25mm0x1Hz1A"] {
         for ext in ["png", "svg"] {
             assert!(
