@@ -65,6 +65,15 @@ pub struct ReportJson {
     pub families: Vec<FamilyJson>,
     /// Families the data set is too small for, with what it lacks.
     pub left_out: Vec<super::LeftOut>,
+    /// What the readers assumed reading each file (only files with notes).
+    pub reading_notes: Vec<RecordingNotes>,
+}
+
+/// One recording's reading notes (`Recording::notes`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RecordingNotes {
+    pub file: String,
+    pub notes: Vec<String>,
 }
 
 /// The numbers of a comparison.
@@ -137,6 +146,7 @@ pub fn summarise(c: &Comparison) -> ReportJson {
         best_heldout,
         families,
         left_out: c.left_out.clone(),
+        reading_notes: c.reading_notes.clone(),
     }
 }
 
@@ -167,7 +177,7 @@ pub fn markdown(r: &ReportJson) -> String {
     let mut s = format!(
         "# Model families side by side — {}\n\n\
          Fitted on the `fit` recordings only; recordings at {:?} A (and any `validate` recording) are only predicted. \
-         NRMSE = {}. AIC/BIC = n·ln(SSE/n) + 2k / + k·ln n over the fit samples (samples are correlated: use them to rank). \
+         {}. AIC/BIC = n·ln(SSE/n) + 2k / + k·ln n over the fit samples (samples are correlated: use them to rank). \
          Nonlinear families: GSA (N = {}, T = {}, recordings decimated to ≈ {} samples) then Levenberg–Marquardt \
          (≈ {} samples per recording); seed {}. Whole comparison: {:.1} s.\n\n",
         r.dataset,
@@ -185,6 +195,13 @@ pub fn markdown(r: &ReportJson) -> String {
             "**Reduced search budget** (as `mre demo` runs it): the nonlinear families may fit better with \
              `mre compare` at its defaults.\n\n",
         );
+    }
+    if !r.reading_notes.is_empty() {
+        s.push_str("Reading notes: what the readers assumed reading each file (docs/dataset-format.md):\n\n");
+        for x in &r.reading_notes {
+            s.push_str(&format!("- `{}`: {}\n", x.file, x.notes.join("; ")));
+        }
+        s.push('\n');
     }
     s.push_str("| family | kind | parameters | fit NRMSE | held-out NRMSE | AIC | BIC | fit time (s) |\n|---|---|---|---|---|---|---|---|\n");
     for f in &r.families {

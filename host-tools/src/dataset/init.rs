@@ -123,56 +123,33 @@ fn match_pattern(pieces: &[Piece], stem: &str) -> Option<Vec<(String, f64)>> {
     rest.is_empty().then_some(values)
 }
 
-/// The non-comment, non-blank lines split into fields; the first one
-/// tells the delimiter.
-fn sniff_records(text: &str) -> Result<(Delimiter, Vec<Vec<String>>)> {
-    let lines: Vec<&str> = text
+/// The delimiter, told from the last non-blank, non-`#` line: the data (a
+/// preamble line above it, `Results Table 1 : Specimen 1`, says nothing
+/// about it). Only the delimiter: the rows themselves are read once, by the
+/// loader (`super::read::text_rows`).
+fn sniff_delimiter(text: &str) -> Result<Delimiter> {
+    let Some(last) = text
         .trim_start_matches('\u{feff}')
         .lines()
         .map(str::trim)
-        .filter(|l| !l.is_empty() && !l.starts_with('#'))
-        .collect();
-    let Some(&last) = lines.last() else {
+        .rfind(|l| !l.is_empty() && !l.starts_with('#'))
+    else {
         bail!("no data lines")
     };
-    // The delimiter is told from the data, the last line: a preamble line
-    // above it (`Results Table 1 : Specimen 1`) says nothing about it.
-    let first = &last;
     // `;` first: its decimal commas would otherwise read as delimiters.
     // A tab-separated line whose fields read as numbers with decimal commas
     // (LabVIEW's spreadsheet text in a German locale) is blank-separated.
-    let tab_decimal_comma = first.contains('\t')
-        && first
+    let tab_decimal_comma = last.contains('\t')
+        && last
             .split_whitespace()
             .all(|f| f.replacen(',', ".", 1).parse::<f64>().is_ok());
-    let delimiter = if first.contains(';') {
+    Ok(if last.contains(';') {
         Delimiter::Semicolon
-    } else if first.contains(',') && !tab_decimal_comma {
+    } else if last.contains(',') && !tab_decimal_comma {
         Delimiter::Comma
     } else {
         Delimiter::Whitespace
-    };
-    let records = lines
-        .iter()
-        .map(|l| match delimiter {
-            Delimiter::Semicolon => l
-                .split(';')
-                .map(|f| f.trim().trim_matches('"').replacen(',', ".", 1))
-                .collect(),
-            Delimiter::Comma => l.split(',').map(|f| f.trim().trim_matches('"').to_string()).collect(),
-            Delimiter::Whitespace => l
-                .split_whitespace()
-                .map(|f| {
-                    let f = f.trim_matches('"');
-                    match f.contains('.') {
-                        true => f.to_string(),
-                        false => f.replacen(',', ".", 1),
-                    }
-                })
-                .collect(),
-        })
-        .collect();
-    Ok((delimiter, records))
+    })
 }
 
 fn is_number(s: &str) -> bool {
@@ -314,7 +291,7 @@ fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
     // In the encoding it was written in, as the loader reads it (super::text).
     let decoded = super::text::decode(&bytes)
         .map_err(|line| anyhow::anyhow!("binary bytes (NUL) at line {line}: not a text recording"))?;
-    let (delimiter, _) = sniff_records(&decoded.text)?;
+    let delimiter = sniff_delimiter(&decoded.text)?;
     // The rows as the loader will read them (quoted fields, CRLF, digit grouping).
     let (lines, records): (Vec<usize>, Vec<Vec<String>>) = super::read::text_rows(
         &bytes,

@@ -106,9 +106,11 @@ fn report_schema_and_numbers_match_the_written_predictions() {
         );
     }
     assert!(r.best_heldout.is_some());
-    assert!(std::fs::read_to_string(dir.path().join("report.md"))
-        .unwrap()
-        .contains("predicts the held-out recordings best"));
+    let md = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
+    assert!(md.contains("predicts the held-out recordings best"));
+    // The error measure is defined once, as docs/error-measure.md words it.
+    assert_eq!(md.matches("NRMSE = RMSE / (max F − min F)").count(), 1);
+    assert!(!md.contains("NRMSE = NRMSE"));
     for stem in ["0A_2mm5Hz0A", "0p5A_10mm1Hz0x5A", "1A_25mm0x1Hz1A"] {
         for ext in ["png", "svg"] {
             assert!(
@@ -194,4 +196,35 @@ fn a_held_out_current_outside_the_fitted_ones_is_named() {
     let e = compare(&ds, &options).unwrap_err().to_string();
     assert!(e.contains("held-out 1 A not between two fitted currents"), "{e}");
     assert!(e.contains("[0.0, 0.5]"), "{e}");
+}
+
+/// Real artifact with one stated change: three bundled MTS recordings, one
+/// with a line of channel names written above its data (hand-written, as
+/// lab exports have). The loader skips that line and notes it; the
+/// comparison's report.md and its HTML page say so for that file only.
+#[test]
+fn reading_notes_reach_the_comparison_page() {
+    let (dir, _) = subset(&[("10mm1Hz0A.txt", 0.0), ("10mm1Hz0x5A.txt", 0.5), ("10mm1Hz1A.txt", 1.0)]);
+    let named = dir.path().join("10mm1Hz0x5A.txt");
+    let text = std::fs::read_to_string(&named).unwrap();
+    std::fs::write(&named, format!("Time Position Velocity Load\n{text}")).unwrap();
+    let out = tempfile::tempdir().unwrap();
+    let r = run_compare(dir.path(), &tiny(true), out.path()).unwrap();
+    assert_eq!(r.reading_notes.len(), 1, "{:?}", r.reading_notes);
+    assert_eq!(r.reading_notes[0].file, "10mm1Hz0x5A.txt");
+    // Line 1 is the names row added above.
+    let md = std::fs::read_to_string(out.path().join("report.md")).unwrap();
+    assert!(
+        md.contains("- `10mm1Hz0x5A.txt`: 1 row(s) above the first data row skipped (lines 1–1"),
+        "{md}"
+    );
+    let html = std::fs::read_to_string(out.path().join("index.html")).unwrap();
+    assert!(
+        html.contains("<li><code>10mm1Hz0x5A.txt</code>: 1 row(s) above the first data row skipped (lines 1–1"),
+        "{html}"
+    );
+    assert!(
+        !html.contains("<code>10mm1Hz0A.txt</code>:"),
+        "a file read as written has no notes"
+    );
 }

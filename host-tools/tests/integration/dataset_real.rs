@@ -508,6 +508,31 @@ fn reading_notes_reach_dataset_check_and_the_validation_report() {
         .starts_with("10 row(s) above the first data row skipped"));
 }
 
+/// Real artifact (the Bluehill export above): the validation's HTML page
+/// (`index.html`, rendered from report.md) shows the reading notes per
+/// recording, as HTML: the file name as code, the note as text. The note's
+/// lines 1–11 are the file's own (metadata, names, units; counted by hand).
+#[test]
+fn reading_notes_reach_the_validation_html_page() {
+    let dir = bare("bluehill_pymechtest_tens_yield_1.csv", "Specimen_RawData_1.csv");
+    let text = mre_host::dataset::init::manifest_for(dir.path(), None, Some("lab")).unwrap();
+    let text = text.replace(
+        "file = \"Specimen_RawData_1.csv\"",
+        "file = \"Specimen_RawData_1.csv\"\ncurrent_a = 0.0",
+    );
+    std::fs::write(dir.path().join("dataset.toml"), text).unwrap();
+    let out = tempfile::tempdir().unwrap();
+    mre_host::validate::run_validate(dir.path(), "paper", &[], out.path()).unwrap();
+    let html = std::fs::read_to_string(out.path().join("index.html")).unwrap();
+    assert!(html.contains("<p>Reading notes: what the readers assumed"), "{html}");
+    assert!(
+        html.contains(
+            "<li><code>Specimen_RawData_1.csv</code>: 10 row(s) above the first data row skipped (lines 1–11"
+        ),
+        "{html}"
+    );
+}
+
 /// The TestSuite file with its two force channels renamed (`Ch 1 Kraft` →
 /// `Ch 1 Foo` on line 7; one stated change): `init` refuses it, naming the
 /// line the names are on as an editor counts it (BOM, 4 preamble lines and
