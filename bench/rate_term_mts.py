@@ -14,6 +14,12 @@ Gain = sqrt(SSE without / SSE with) over the held-out folds, samples with
 choice): its gain for c(I)*v is 1.234x where diagnose reports 1.25x.
 
     python3 bench/rate_term_mts.py            # about 3 min
+    python3 bench/rate_term_mts.py --cycles   # the half-widths only, seconds
+
+`--cycles` prints each test's mid-stroke loop half-width per cycle (cycles
+between upward zero crossings of v; |x| < 20 % of the stroke; half the
+difference of the mean force on the two branches): the first and last cycles
+are the test's amplitude tapers.
 
 Each candidate is a physical rate law, one set of coefficients per current
 unless said: Bingham's c(I)*v, per branch (valve asymmetry), v*|v| (orifice),
@@ -24,6 +30,8 @@ odd function of speed (hat functions every 10 mm/s): the most any memoryless
 rate law per current can do.
 """
 import os
+import sys
+
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -159,7 +167,25 @@ def time_memory(r):
     return z
 
 
+def cycles():
+    for c in CURRENTS:
+        for name in TESTS:
+            t, x, v, f = np.loadtxt(os.path.join(DATA, name + c + ".txt")).T
+            stroke = np.abs(x).max()
+            up = np.where((np.sign(v[:-1]) <= 0) & (np.sign(v[1:]) > 0))[0]
+            half = []
+            for a, b in zip(up[:-1], up[1:]):
+                mid = np.abs(x[a:b]) < 0.2 * stroke
+                vv, ff = v[a:b][mid], f[a:b][mid]
+                if (vv > 0).sum() > 2 and (vv < 0).sum() > 2:
+                    half.append(0.5 * (ff[vv > 0].mean() - ff[vv < 0].mean()))
+            print(f"{name + c:16s} peak {np.abs(v).max():5.1f} mm/s  half-width per cycle (N): "
+                  + " ".join(f"{h:.0f}" for h in half))
+
+
 def main():
+    if "--cycles" in sys.argv:
+        return cycles()
     recs, start_mm = load()
     base = [(baseline(r, start_mm)[r["scored"]], r["F"][r["scored"]]) for r in recs]
     without = held_out(recs, base)
