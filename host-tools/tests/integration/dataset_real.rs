@@ -458,12 +458,9 @@ fn mts_testsuite_export_loads_without_columns() {
 
 // --- Recording notes reach the reports ---------------------------------------
 
-/// Real artifact (the Bluehill export above): what its reader assumed
-/// reaches where a user reads about the data set: `mre dataset check`
-/// prints it per recording, and the validation report (report.md and
-/// report.json) carries it.
-#[test]
-fn reading_notes_reach_dataset_check_and_the_validation_report() {
+/// The real Bluehill export in a folder with the manifest `mre dataset init`
+/// writes for it, only the current filled in (as a lab would).
+fn bluehill_after_init() -> tempfile::TempDir {
     let dir = bare("bluehill_pymechtest_tens_yield_1.csv", "Specimen_RawData_1.csv");
     let text = mre_host::dataset::init::manifest_for(dir.path(), None, Some("lab")).unwrap();
     let text = text.replace(
@@ -471,6 +468,16 @@ fn reading_notes_reach_dataset_check_and_the_validation_report() {
         "file = \"Specimen_RawData_1.csv\"\ncurrent_a = 0.0",
     );
     std::fs::write(dir.path().join("dataset.toml"), text).unwrap();
+    dir
+}
+
+/// Real artifact (the Bluehill export above): what its reader assumed
+/// reaches where a user reads about the data set: `mre dataset check`
+/// prints it per recording, and the validation report (report.md and
+/// report.json) carries it.
+#[test]
+fn reading_notes_reach_dataset_check_and_the_validation_report() {
+    let dir = bluehill_after_init();
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_mre"))
         .args(["dataset", "check"])
         .arg(dir.path())
@@ -514,13 +521,7 @@ fn reading_notes_reach_dataset_check_and_the_validation_report() {
 /// lines 1–11 are the file's own (metadata, names, units; counted by hand).
 #[test]
 fn reading_notes_reach_the_validation_html_page() {
-    let dir = bare("bluehill_pymechtest_tens_yield_1.csv", "Specimen_RawData_1.csv");
-    let text = mre_host::dataset::init::manifest_for(dir.path(), None, Some("lab")).unwrap();
-    let text = text.replace(
-        "file = \"Specimen_RawData_1.csv\"",
-        "file = \"Specimen_RawData_1.csv\"\ncurrent_a = 0.0",
-    );
-    std::fs::write(dir.path().join("dataset.toml"), text).unwrap();
+    let dir = bluehill_after_init();
     let out = tempfile::tempdir().unwrap();
     mre_host::validate::run_validate(dir.path(), "paper", &[], out.path()).unwrap();
     let html = std::fs::read_to_string(out.path().join("index.html")).unwrap();
