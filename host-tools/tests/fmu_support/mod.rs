@@ -301,7 +301,7 @@ pub fn xml_attr(xml: &str, name: Option<&str>, attr: &str) -> String {
 }
 
 /// One binary of an unpacked FMU run by `fmu_run` (Linux directly, a
-/// Windows `.exe` under Wine with a prefix kept in the target folder):
+/// Windows `.exe` under Wine in the prefix `wine_prefix`):
 /// `inputs` per step, the named outputs back per step with the worst status
 /// of the step's calls, all as exact f64s.
 pub struct FmuRun<'a> {
@@ -311,6 +311,9 @@ pub struct FmuRun<'a> {
     pub unpacked: &'a Path,
     pub inputs: &'a [&'a str],
     pub outputs: &'a [&'a str],
+    /// Wine's prefix (made on first use, ~700 MB): a folder the test removes,
+    /// so no run leaves it in target/ (.ci/run's 3 GB budget).
+    pub wine_prefix: &'a Path,
 }
 
 impl FmuRun<'_> {
@@ -354,10 +357,9 @@ impl FmuRun<'_> {
         let mut cmd = Command::new("timeout");
         cmd.arg("600");
         if windows {
-            // No debug output, no Mono/Gecko install dialogs, no windows; the prefix
-            // (made on the first run, a few seconds) is kept for the next run.
+            // No debug output, no Mono/Gecko install dialogs, no windows.
             cmd.arg("wine")
-                .env("WINEPREFIX", Path::new(env!("CARGO_TARGET_TMPDIR")).join("wine-prefix"))
+                .env("WINEPREFIX", self.wine_prefix)
                 .env("WINEDEBUG", "-all")
                 .env("WINEDLLOVERRIDES", "mscoree,mshtml=")
                 .env_remove("DISPLAY");

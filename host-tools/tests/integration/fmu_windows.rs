@@ -77,6 +77,7 @@ fn windows_dlls_under_wine_compute_what_the_linux_libraries_do() {
                     unpacked: &unpacked,
                     inputs,
                     outputs,
+                    wine_prefix: &root.join("wine-prefix"),
                 }
                 .run(steps)
             };
