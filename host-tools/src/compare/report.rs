@@ -196,13 +196,9 @@ pub fn markdown(r: &ReportJson) -> String {
              `mre compare` at its defaults.\n\n",
         );
     }
-    if !r.reading_notes.is_empty() {
-        s.push_str("Reading notes: what the readers assumed reading each file (docs/dataset-format.md):\n\n");
-        for x in &r.reading_notes {
-            s.push_str(&format!("- `{}`: {}\n", x.file, x.notes.join("; ")));
-        }
-        s.push('\n');
-    }
+    s.push_str(&crate::dataset::summary::reading_notes_paragraph(
+        r.reading_notes.iter().map(|x| (x.file.as_str(), x.notes.as_slice())),
+    ));
     s.push_str("| family | kind | parameters | fit NRMSE | held-out NRMSE | AIC | BIC | fit time (s) |\n|---|---|---|---|---|---|---|---|\n");
     for f in &r.families {
         s.push_str(&format!(

@@ -39,6 +39,20 @@ pub fn reading_notes_markdown(ds: &Dataset) -> String {
     format!("## Reading notes\n\nWhat the readers assumed reading each file (docs/dataset-format.md):\n\n{s}\n")
 }
 
+/// The one-paragraph form of the reading notes the validation and
+/// comparison reports carry: a line per file that has notes, its notes
+/// joined by "; "; empty when no file has any.
+pub fn reading_notes_paragraph<'a>(files: impl IntoIterator<Item = (&'a str, &'a [String])>) -> String {
+    let mut s = String::new();
+    for (file, notes) in files.into_iter().filter(|(_, n)| !n.is_empty()) {
+        let _ = writeln!(s, "- `{file}`: {}", notes.join("; "));
+    }
+    if s.is_empty() {
+        return s;
+    }
+    format!("Reading notes: what the readers assumed reading each file (docs/dataset-format.md):\n\n{s}\n")
+}
+
 fn range(v: &[f64]) -> Option<(f64, f64)> {
     let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);

@@ -43,16 +43,11 @@ pub fn markdown(r: &ValidationReport) -> String {
         }
         let _ = writeln!(s);
     }
-    if r.recordings.iter().any(|x| !x.reading_notes.is_empty()) {
-        let _ = writeln!(
-            s,
-            "Reading notes: what the readers assumed reading each file (docs/dataset-format.md):\n"
-        );
-        for x in r.recordings.iter().filter(|x| !x.reading_notes.is_empty()) {
-            let _ = writeln!(s, "- `{}`: {}", x.file, x.reading_notes.join("; "));
-        }
-        let _ = writeln!(s);
-    }
+    s.push_str(&crate::dataset::summary::reading_notes_paragraph(
+        r.recordings
+            .iter()
+            .map(|x| (x.file.as_str(), x.reading_notes.as_slice())),
+    ));
     let _ = writeln!(s, "## Error per recording\n");
     let _ = writeln!(
         s,
