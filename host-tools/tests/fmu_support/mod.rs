@@ -168,14 +168,7 @@ pub fn fmpy_available() -> bool {
         .args(["-c", "import fmpy"])
         .output()
         .is_ok_and(|o| o.status.success());
-    if !ok {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "FMPy is missing on CI: .ci/run must `pip install fmpy`"
-        );
-        eprintln!("skipped: FMPy is not installed (pip install fmpy)");
-    }
-    ok
+    crate::tool_rule::installed_or_skipped(ok, "FMPy", "`pip install fmpy`")
 }
 
 /// Runs `tests/fmu/SCRIPT ARGS…` (an FMPy check script), echoes its lines,
@@ -218,19 +211,12 @@ pub fn wine_available() -> bool {
         .output()
         .is_ok_and(|o| o.status.success());
     let toolchain = windows_toolchain_installed();
-    if !(wine && toolchain) {
-        let missing = if wine {
-            "MinGW-w64 or the x86_64-pc-windows-gnu target"
-        } else {
-            "Wine (apt-get install wine wine64)"
-        };
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "{missing} is missing on CI: .ci/run must install it"
-        );
-        eprintln!("skipped: {missing} is not installed, the Windows DLLs are not run");
-    }
-    wine && toolchain
+    let (missing, install) = if wine {
+        ("MinGW-w64 or the x86_64-pc-windows-gnu target", "install it")
+    } else {
+        ("Wine", "`apt-get install wine wine64`")
+    };
+    crate::tool_rule::installed_or_skipped(wine && toolchain, missing, install)
 }
 
 /// tests/fmu/fmu_run.c built for Linux (`DIR/fmu_run`) and for Windows

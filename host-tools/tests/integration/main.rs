@@ -9,6 +9,8 @@ mod fmu_support;
 #[path = "../support/mat_v5.rs"]
 mod mat_v5;
 mod mre_cli;
+#[path = "../support/tool_rule.rs"]
+mod tool_rule;
 
 mod atomic_outputs;
 mod branch_rule;

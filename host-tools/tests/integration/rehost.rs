@@ -30,15 +30,11 @@ fn unicorn_available() -> bool {
 
 /// False (and a message) when the rehost cannot run here; a failure on CI.
 fn rehost_available() -> bool {
-    if unicorn_available() {
-        return true;
-    }
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "python3 with unicorn is missing on CI: .ci/run must `python3 -m pip install unicorn`"
-    );
-    eprintln!("skipped: python3 with the unicorn package is not installed (pip install unicorn)");
-    false
+    crate::tool_rule::installed_or_skipped(
+        unicorn_available(),
+        "python3 with the unicorn package",
+        "`python3 -m pip install unicorn`",
+    )
 }
 
 fn build(alias: &str) -> PathBuf {
