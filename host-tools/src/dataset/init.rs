@@ -285,16 +285,16 @@ fn infer_columns(data: &[Vec<f64>], amplitude_mm: Option<f64>, notes: &mut Vec<S
         .collect())
 }
 
-/// Sniffs one file's layout.
-fn sniff(path: &Path, amplitude_mm: Option<f64>) -> Result<Layout> {
-    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
-    // In the encoding it was written in, as the loader reads it (super::text).
-    let decoded = super::text::decode(&bytes)
+/// Sniffs one text file's layout from its bytes.
+fn sniff(path: &Path, bytes: &[u8], amplitude_mm: Option<f64>) -> Result<Layout> {
+    // In the encoding it was written in, as the loader reads it (super::text);
+    // decoded once, for the delimiter and the rows both.
+    let decoded = super::text::decode(bytes)
         .map_err(|line| anyhow::anyhow!("binary bytes (NUL) at line {line}: not a text recording"))?;
     let delimiter = sniff_delimiter(&decoded.text)?;
     // The rows as the loader will read them (quoted fields, CRLF, digit grouping).
     let (lines, records): (Vec<usize>, Vec<Vec<String>>) = super::read::text_rows(
-        &bytes,
+        &decoded.text,
         match delimiter {
             Delimiter::Comma => ',',
             Delimiter::Semicolon => ';',
@@ -648,11 +648,18 @@ pub fn manifest_for(dir: &Path, pattern: Option<&str>, name: Option<&str>) -> Re
             }
             continue;
         }
-        let bytes = std::fs::read(&path).unwrap_or_default();
-        let vendor = super::vendor::recognise(&bytes).is_some();
-        let sniffed = match super::vendor::recognise(&bytes) {
+        let bytes = match std::fs::read(&path) {
+            Ok(b) => b,
+            Err(e) => {
+                skipped.push(format!("{file}: cannot read it: {e}"));
+                continue;
+            }
+        };
+        let reader = super::vendor::recognise(&bytes);
+        let vendor = reader.is_some();
+        let sniffed = match reader {
             Some(reader) => sniff_vendor(reader, &path, &bytes),
-            None => sniff(&path, amplitude_mm),
+            None => sniff(&path, &bytes, amplitude_mm),
         };
         match sniffed {
             Ok(layout) => found.push(Found {
@@ -958,6 +965,27 @@ mod tests {
         assert_eq!(
             std::fs::read_to_string(dir.path().join("dataset.toml")).unwrap(),
             "name = \"mine\"\n"
+        );
+    }
+
+    /// Hand-written evidence: a Windows-1252 file (`Prüfkraft`, byte 0xFC),
+    /// the case where decoding runs the encoding guess. `init` reads its
+    /// delimiter and its rows from one decoding: text::decode runs once for
+    /// the file (it ran twice before, once per reading).
+    #[test]
+    fn init_decodes_each_file_once() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut bytes = b"Zeit (s);Weg (mm);Pr\xfcfkraft (N)\n".to_vec();
+        for k in 0..8 {
+            bytes.extend(format!("0,{k};{k},5;{}\n", 10 * k).into_bytes());
+        }
+        std::fs::write(dir.path().join("latin1.csv"), &bytes).unwrap();
+        crate::dataset::text::DECODES.with(|n| n.set(0));
+        let toml = manifest_for(dir.path(), None, None).unwrap();
+        assert_eq!(crate::dataset::text::DECODES.with(|n| n.get()), 1, "{toml}");
+        assert!(
+            toml.contains(r#"columns = ["time_s", "displacement_mm", "force_n"]"#),
+            "{toml}"
         );
     }
 }

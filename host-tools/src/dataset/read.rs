@@ -547,24 +547,25 @@ fn check_keys(text: &str, mpath: &str) -> Result<(), DatasetError> {
     Ok(())
 }
 
-/// The rows of a text recording as the loader reads them (decoded, quotes
-/// and CRLF handled, decimal commas and digit grouping read), for `mre
-/// dataset init`, which must see the file as the loader will.
+/// The rows of a text recording as the loader reads them (quotes and CRLF
+/// handled, decimal commas and digit grouping read), for `mre dataset
+/// init`, which must see the file as the loader will. `text` is the file
+/// already decoded (`super::text::decode`): init decodes each file once and
+/// reads both its delimiter and its rows from that text.
 /// `delimiter`: `,`, `;`, or anything else for whitespace.
 /// Each row comes with its line in the file.
-pub(super) fn text_rows(bytes: &[u8], delimiter: char, dpath: &str) -> Result<Vec<(usize, Vec<String>)>, DatasetError> {
+pub(super) fn text_rows(text: &str, delimiter: char, dpath: &str) -> Result<Vec<(usize, Vec<String>)>, DatasetError> {
     let delimiter = match delimiter {
         ',' => Delimiter::Comma,
         ';' => Delimiter::Semicolon,
         _ => Delimiter::Whitespace,
     };
-    records(bytes, delimiter, dpath)
+    records_in(text, delimiter, dpath)
 }
 
-/// The non-comment records of a recording file as (line, fields): through
-/// the csv crate for `,` (quotes, CRLF), split on runs of blanks for
-/// `whitespace`. The text is decoded first (a byte-order mark skipped);
-/// lines starting with `#` and blank lines are ignored.
+/// The non-comment records of a recording file as (line, fields): the
+/// bytes decoded (`super::text`, a byte-order mark skipped), then
+/// [`records_in`].
 fn records(bytes: &[u8], delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize, Vec<String>)>, DatasetError> {
     // Any encoding a lab's software writes (super::text), as UTF-8 from here on.
     let decoded = super::text::decode(bytes).map_err(|line| DatasetError::BadRecord {
@@ -572,11 +573,18 @@ fn records(bytes: &[u8], delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize
         line,
         message: "binary bytes (NUL) where a text recording was expected".to_string(),
     })?;
+    records_in(&decoded.text, delimiter, dpath)
+}
+
+/// The records of decoded text as (line, fields): through the csv crate for
+/// `,` and `;` (quotes, CRLF), split on runs of blanks for `whitespace`;
+/// lines starting with `#` and blank lines are ignored.
+fn records_in(text: &str, delimiter: Delimiter, dpath: &str) -> Result<Vec<(usize, Vec<String>)>, DatasetError> {
     // CRLF as LF: the csv crate counts a blank CRLF line short, which put
     // every later line number one too low.
-    let text = match decoded.text.contains("\r\n") {
-        true => std::borrow::Cow::Owned(decoded.text.replace("\r\n", "\n")),
-        false => decoded.text,
+    let text = match text.contains("\r\n") {
+        true => std::borrow::Cow::Owned(text.replace("\r\n", "\n")),
+        false => std::borrow::Cow::Borrowed(text),
     };
     let bytes = text.as_bytes();
     let mut out = Vec::new();

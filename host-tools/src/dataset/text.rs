@@ -23,6 +23,8 @@ impl Decoded<'_> {
 /// The text of `bytes`; `Err(line)` when they are binary (the line of the
 /// first NUL byte).
 pub fn decode(bytes: &[u8]) -> Result<Decoded<'_>, usize> {
+    #[cfg(test)]
+    DECODES.with(|n| n.set(n.get() + 1));
     if let Some((encoding, bom)) = Encoding::for_bom(bytes) {
         let (text, _) = encoding.decode_without_bom_handling(&bytes[bom..]);
         return Ok(Decoded { text, encoding });
@@ -42,4 +44,11 @@ pub fn decode(bytes: &[u8]) -> Result<Decoded<'_>, usize> {
     let encoding = detector.guess(None, false);
     let (text, _) = encoding.decode_without_bom_handling(bytes);
     Ok(Decoded { text, encoding })
+}
+
+// How many times this thread decoded a file: lets a test check that `mre
+// dataset init` decodes each file once (the encoding guess is the costly part).
+#[cfg(test)]
+thread_local! {
+    pub static DECODES: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
 }
