@@ -92,7 +92,7 @@ pub struct Comparison {
     pub outcomes: Vec<Outcome>,
     /// Families this data set is too small for, each with what is missing.
     pub left_out: Vec<LeftOut>,
-    /// What the readers assumed reading each recording (`Recording::notes`),
+    /// What the readers assumed reading each recording (`summary::recording_notes`),
     /// for the recordings where they assumed anything.
     pub reading_notes: Vec<report::RecordingNotes>,
     pub total_time_s: f64,
@@ -197,15 +197,9 @@ pub fn compare(ds: &Dataset, options: &CompareOptions) -> Result<Comparison> {
         tracks,
         outcomes,
         left_out,
-        reading_notes: ds
-            .recordings
-            .iter()
-            .filter(|r| !r.notes.is_empty())
-            .map(|r| report::RecordingNotes {
-                file: r.file.clone(),
-                notes: r.notes.clone(),
-            })
-            .collect(),
+        // The same notes `mre dataset check` and the diagnosis give: the
+        // readers', then how motion or velocity was had when not measured.
+        reading_notes: crate::dataset::summary::notes_by_file(&ds),
         total_time_s: start.elapsed().as_secs_f64(),
     })
 }

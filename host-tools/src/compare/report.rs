@@ -69,12 +69,8 @@ pub struct ReportJson {
     pub reading_notes: Vec<RecordingNotes>,
 }
 
-/// One recording's reading notes (`Recording::notes`).
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct RecordingNotes {
-    pub file: String,
-    pub notes: Vec<String>,
-}
+/// One recording's reading notes (`dataset::summary::recording_notes`).
+pub use crate::dataset::summary::RecordingNotes;
 
 /// The numbers of a comparison.
 pub fn summarise(c: &Comparison) -> ReportJson {

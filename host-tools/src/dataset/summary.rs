@@ -19,6 +19,26 @@ pub fn recording_notes(rec: &Recording) -> Vec<String> {
     out
 }
 
+/// One recording's reading notes ([`recording_notes`]), as the comparison's
+/// and the diagnosis's `report.json` carry them.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct RecordingNotes {
+    pub file: String,
+    pub notes: Vec<String>,
+}
+
+/// [`recording_notes`] of every recording that has any, in the manifest's order.
+pub fn notes_by_file(ds: &Dataset) -> Vec<RecordingNotes> {
+    ds.recordings
+        .iter()
+        .map(|r| RecordingNotes {
+            file: r.file.clone(),
+            notes: recording_notes(r),
+        })
+        .filter(|r| !r.notes.is_empty())
+        .collect()
+}
+
 /// A "Reading notes" section in Markdown: per recording, what its reader
 /// assumed; empty when no reader assumed anything.
 pub fn reading_notes_markdown(ds: &Dataset) -> String {
@@ -39,8 +59,8 @@ pub fn reading_notes_markdown(ds: &Dataset) -> String {
     format!("## Reading notes\n\nWhat the readers assumed reading each file (docs/dataset-format.md):\n\n{s}\n")
 }
 
-/// The one-paragraph form of the reading notes the validation and
-/// comparison reports carry: a line per file that has notes, its notes
+/// The one-paragraph form of the reading notes the validation, comparison
+/// and diagnosis reports carry: a line per file that has notes, its notes
 /// joined by "; "; empty when no file has any.
 pub fn reading_notes_paragraph<'a>(files: impl IntoIterator<Item = (&'a str, &'a [String])>) -> String {
     let mut s = String::new();

@@ -228,3 +228,37 @@ fn reading_notes_reach_the_comparison_page() {
         "a file read as written has no notes"
     );
 }
+
+/// Real artifact with one stated change: three bundled MTS recordings, the
+/// velocity column of one set to `ignore` in the manifest. Its velocity is
+/// then estimated from displacement (docs/dataset-format.md), and the
+/// comparison's notes say so for that file, as `mre validate`'s do
+/// (`dataset::summary::recording_notes`); the comparison used to list only
+/// the readers' own notes and left this out.
+#[test]
+fn comparison_notes_say_velocity_was_estimated() {
+    let (dir, _) = subset(&[("10mm1Hz0A.txt", 0.0), ("10mm1Hz0x5A.txt", 0.5), ("10mm1Hz1A.txt", 1.0)]);
+    let manifest = dir.path().join("dataset.toml");
+    let toml = std::fs::read_to_string(&manifest).unwrap().replace(
+        "file = \"10mm1Hz0x5A.txt\"\n",
+        "file = \"10mm1Hz0x5A.txt\"\ncolumns = [\"time_s\", \"displacement_mm\", \"ignore\", \"force_n\"]\n",
+    );
+    std::fs::write(&manifest, toml).unwrap();
+    let out = tempfile::tempdir().unwrap();
+    let r = run_compare(dir.path(), &tiny(true), out.path()).unwrap();
+    assert_eq!(r.reading_notes.len(), 1, "{:?}", r.reading_notes);
+    assert_eq!(r.reading_notes[0].file, "10mm1Hz0x5A.txt");
+    assert!(
+        r.reading_notes[0]
+            .notes
+            .iter()
+            .any(|n| n.starts_with("velocity estimated from displacement")),
+        "{:?}",
+        r.reading_notes
+    );
+    let md = std::fs::read_to_string(out.path().join("report.md")).unwrap();
+    assert!(
+        md.contains("- `10mm1Hz0x5A.txt`: velocity estimated from displacement"),
+        "{md}"
+    );
+}
