@@ -302,7 +302,7 @@ pub fn run_to_files(
     let json_path = &in_a_folder(json_path);
     let ds = Dataset::load(dataset_dir)?;
     let d = diagnose(&ds, opts)?;
-    let json = report::write_all(&d, report_dir, json_path, predictions_dir)?;
+    let json = report::write_all(&d, &ds, report_dir, json_path, predictions_dir)?;
     crate::html::Page::new(format!("Diagnosis of {}", dataset_dir.display()))
         .folder(report_dir)
         .file(json_path)

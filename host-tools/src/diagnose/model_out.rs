@@ -144,7 +144,7 @@ pub fn run_to_files_with_model(
     let installation = StatedInstallation::from_dataset(&ds).with_options(installation_options)?;
     let d = diagnose(&ds, opts)?;
     let (table, text) = model_file_in(&d, &ds, &installation)?;
-    let report = write_all(&d, report_dir, json_path, predictions_dir)?;
+    let report = write_all(&d, &ds, report_dir, json_path, predictions_dir)?;
     crate::atomic_write::write_atomic(model_out, text.as_bytes())?;
     Ok((report, table, installation))
 }

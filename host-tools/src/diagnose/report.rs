@@ -54,6 +54,11 @@ pub struct ReportJson {
     /// Where the final residual is still concentrated and no vocabulary term
     /// explains it (every term was tested on top of the final model).
     pub unexplained: Vec<super::unexplained::Unexplained>,
+    /// What the readers assumed reading each file (only files with notes;
+    /// the key is absent when every file was read as written). Filled by
+    /// [`write_all`], which has the data set.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub reading_notes: Vec<crate::dataset::summary::RecordingNotes>,
 }
 
 /// RMSE over every scored sample of every recording (validate recordings
@@ -105,6 +110,7 @@ pub fn report_json(d: &Diagnosis) -> ReportJson {
             .collect(),
         final_: metrics(d, &d.final_pred),
         unexplained: d.unexplained.clone(),
+        reading_notes: Vec::new(),
     }
 }
 
@@ -275,6 +281,9 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
         n_total - n_scored - n_ambiguous,
     );
     let _ = writeln!(s, "{}\n", velocity_sentence(p));
+    s.push_str(&crate::dataset::summary::reading_notes_paragraph(
+        json.reading_notes.iter().map(|x| (x.file.as_str(), x.notes.as_slice())),
+    ));
     let _ = writeln!(s, "## Result\n");
     verdict_markdown(&mut s, &json.verdict);
     for (k, (e, f)) in json.effects.iter().zip(&d.findings).enumerate() {
@@ -410,9 +419,19 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
     s
 }
 
-/// Writes every output; `report_dir` gets `report.md` and its PNGs.
-pub fn write_all(d: &Diagnosis, report_dir: &Path, json_path: &Path, predictions_dir: &Path) -> Result<ReportJson> {
-    let json = report_json(d);
+/// Writes every output; `report_dir` gets `report.md` and its PNGs. `ds`
+/// is the data set `d` was made from: its reading notes go in the report.
+pub fn write_all(
+    d: &Diagnosis,
+    ds: &crate::dataset::Dataset,
+    report_dir: &Path,
+    json_path: &Path,
+    predictions_dir: &Path,
+) -> Result<ReportJson> {
+    let json = ReportJson {
+        reading_notes: crate::dataset::summary::notes_by_file(ds),
+        ..report_json(d)
+    };
     plots::residual_map(d, &report_dir.join("residual_map.png"))?;
     plots::residual_covariates(d, &report_dir.join("residual_covariates.png"))?;
     plots::loops_worst(d, &report_dir.join("loops_worst.png"))?;

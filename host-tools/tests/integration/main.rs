@@ -28,6 +28,7 @@ mod dataset_matlab;
 mod dataset_motion;
 mod dataset_read;
 mod dataset_real;
+mod dataset_report_notes;
 mod dataset_sign;
 mod dataset_vendor;
 mod diagnose_accelerometer;
