@@ -397,6 +397,45 @@ fn bluehill_export_loads_without_columns_and_notes_what_it_ignored() {
     );
 }
 
+/// Real artifact: an Instron Bluehill 2.0 raw-data export of a cyclic
+/// compression test (the example data of the R package bluer, CC0; CRLF):
+/// `Text Inputs : Specimen label,"22L.3"` and `General : Start Date,…` over a
+/// blank line, then `Time,Extension,Load,Segment ID,Total Cycle Count`
+/// (line 4) over `(sec),(mm),(N),,` (line 5: the counters have empty units);
+/// data lines 6–18016, 18 011 rows over three cycles. Compression reads
+/// negative in both load and extension (the crosshead moves down 10 mm, the
+/// load falls to -53 N): init flips both and says so, and the manifest
+/// loads once the current is filled in.
+#[test]
+fn bluehill_cyclic_compression_export_is_flipped_by_init_and_loads() {
+    let (manifest, ds) = init_then_load("bluehill_bluer_vero_clear_ccyclic_6.csv", "Specimen_RawData_6.csv");
+    assert!(
+        manifest.contains(r#"columns = ["time_s", "displacement_mm", "force_n", "ignore", "ignore"]"#),
+        "{manifest}"
+    );
+    assert!(
+        manifest.contains("sign = { force_n = -1, displacement_mm = -1 }"),
+        "{manifest}"
+    );
+    let s = &ds.recordings[0].samples;
+    assert_eq!(s.len(), 18_011);
+    // Line 6: 0.00000,-2.04726,-4.31900,22476,0 (flipped).
+    assert!(close(s.time_s[0], 0.0, 1e-12) && close(s.x_mm[0], 2.04726, 1e-12));
+    assert!(close(s.force_n[0], 4.319, 1e-12));
+    // Line 18016: 360.06000,-2.04555,0.28068,22412,2.
+    assert!(close(s.time_s[18_010], 360.06, 1e-9) && close(s.force_n[18_010], -0.28068, 1e-12));
+    // Line 3006 holds the largest compression, -52.97507 N at 59.98 s and
+    // -12.04026 mm (a script over lines 6–18016).
+    let (k, peak) = s
+        .force_n
+        .iter()
+        .copied()
+        .enumerate()
+        .fold((0, f64::MIN), |a, (i, f)| if f > a.1 { (i, f) } else { a });
+    assert!(close(peak, 52.97507, 1e-9) && k == 3000, "{peak} at {k}");
+    assert!(close(s.time_s[k], 59.98, 1e-9) && close(s.x_mm[k], 12.04026, 1e-9));
+}
+
 /// Real artifact: an MTS TestSuite export in a German locale (BAM's
 /// E-modulus test, UTF-8 with a byte-order mark): `;`, quoted fields,
 /// decimal commas (`-7,89761571695635E-05` too), four preamble lines and two
