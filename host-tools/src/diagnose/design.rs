@@ -200,7 +200,7 @@ pub fn cycle_index(x_mm: &[f64]) -> Vec<f64> {
     let (lo, hi) = range_of(x_mm.iter());
     let band = REVERSAL_BAND * (hi - lo);
     let mut out = vec![1.0; x_mm.len()];
-    if !(band > 0.0) {
+    if band.is_nan() || band <= 0.0 {
         return out;
     }
     // The reversal samples: each running extreme left by more than the band.
