@@ -13,14 +13,15 @@
 //! filtered copy of that prediction, NARX-style). Its coefficient is 1 when
 //! the term is there at the chosen value. A crossed term (softening) keeps
 //! only the part of its regressor a gain per test condition cannot explain
-//! ([`Term::crossed`]).
+//! ([`Term::crossed`]); one crossed by recording (a decline within each
+//! test) keeps only what a gain per recording cannot explain.
 use super::acceptance::Thresholds;
 use super::candidates::{self, Effect};
 use super::cv::score_refined;
 use super::design::{Designs, Terms, QUARTIC_TERMS};
 use super::prepared::Prepared;
 use super::sparse::{Group, Library};
-use super::terms::{Term, REGISTRY};
+use super::terms::{Crossing, Term, REGISTRY};
 use anyhow::Result;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
@@ -80,14 +81,25 @@ fn choose(prep: &Prepared, term: &'static dyn Term, on: &Terms) -> Option<Terms>
 }
 
 /// Keeps only the part of a crossed term's regressor ([`Term::crossed`])
-/// that a gain per test condition ([`candidates::conditions`]) on the
-/// prediction without the term cannot explain: within each condition,
-/// `c_r − k_c·b_r` with `k_c` the least-squares gain of the condition's
-/// fit recordings. A condition run once leaves nothing; a library recording
-/// whose condition has no fit recording (a validate one read as evidence)
-/// gets a zero regressor.
-fn cross(prep: &Prepared, recs: &[usize], cols: &mut [Vec<f64>], bases: &[Vec<f64>], masks: &[Vec<bool>]) {
-    let cond = candidates::conditions(prep);
+/// that a gain per test condition ([`candidates::conditions`]), or per
+/// recording, on the prediction without the term cannot explain: within
+/// each condition (recording), `c_r − k_c·b_r` with `k_c` the least-squares
+/// gain of its fit recordings. A condition run once, or a per-test gain,
+/// leaves nothing; a library recording whose condition has no fit recording
+/// (a validate one read as evidence) gets a zero regressor.
+fn cross(
+    prep: &Prepared,
+    by: Crossing,
+    recs: &[usize],
+    cols: &mut [Vec<f64>],
+    bases: &[Vec<f64>],
+    masks: &[Vec<bool>],
+) {
+    let cond = match by {
+        Crossing::No => return,
+        Crossing::ByCondition => candidates::conditions(prep),
+        Crossing::ByRecording => (0..prep.recs.len()).collect(),
+    };
     let mut sums: std::collections::BTreeMap<usize, (f64, f64)> = std::collections::BTreeMap::new();
     for (j, &i) in recs.iter().enumerate().filter(|(_, &i)| prep.recs[i].is_fit()) {
         let e = sums.entry(cond[i]).or_insert((0.0, 0.0));
@@ -195,9 +207,7 @@ pub fn build(prep: &Prepared, th: &Thresholds) -> Result<Built> {
                 })
                 .unzip();
             let masks: Vec<Vec<bool>> = recs.iter().map(|&i| dt.recs[i].mask.clone()).collect();
-            if term.crossed() {
-                cross(prep, &recs, &mut cols, &bases, &masks);
-            }
+            cross(prep, term.crossed(own), &recs, &mut cols, &bases, &masks);
             Ok((cols, masks))
         })
         .collect::<Result<_>>()?;
@@ -298,4 +308,83 @@ pub fn build(prep: &Prepared, th: &Thresholds) -> Result<Built> {
         not_identifiable,
         fold_of,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dataset::{Dataset, Recording, Role, Samples};
+    use crate::diagnose::design::SofteningLaw;
+    use crate::diagnose::prepared::{prepare, FoldPlan};
+
+    /// Evidence: hand-written. Three recordings of one condition, 4 cycles
+    /// each; the reference fit's prediction b is the displacement times 100.
+    /// A regressor that is a constant gain per recording times b, (γ_r − 1)·b
+    /// with γ = 0.9, 1.0, 1.1, is left with nothing when crossed by
+    /// recording, and kept whole uncrossed; a decline within each test,
+    /// −g(k)·b, keeps what a per-recording gain cannot explain.
+    #[test]
+    fn crossing_by_recording_leaves_nothing_of_a_constant_gain_per_test() {
+        let n = 400;
+        let x: Vec<f64> = (0..n)
+            .map(|t| 5.0 * (2.0 * std::f64::consts::PI * t as f64 / 100.0).sin())
+            .collect();
+        let rec = |k: usize| Recording {
+            file: format!("r{k}.csv"),
+            current_a: 0.0,
+            role: Role::Fit,
+            mass_kg: None,
+            impact_velocity_m_s: None,
+            sequence: None,
+            temperature_c: None,
+            tags: Default::default(),
+            samples: Samples {
+                time_s: (0..n).map(|t| t as f64 * 0.01).collect(),
+                x_mm: x.clone(),
+                v_m_s: (0..n)
+                    .map(|t| 0.5 * 2.0 * std::f64::consts::PI * (2.0 * std::f64::consts::PI * t as f64 / 100.0).cos())
+                    .collect(),
+                force_n: x.iter().map(|x| 100.0 * x).collect(),
+                ..Samples::default()
+            },
+            velocity_estimated: false,
+            motion_from: None,
+            notes: Vec::new(),
+        };
+        let ds = Dataset {
+            name: "crossing".into(),
+            root: Default::default(),
+            recordings: (0..3).map(rec).collect(),
+        };
+        let prep = prepare(&ds, &FoldPlan::Stratified { k: 3 }, &[]).expect("prepared");
+        let recs: Vec<usize> = (0..3).collect();
+        let bases: Vec<Vec<f64>> = recs.iter().map(|_| x.iter().map(|x| 100.0 * x).collect()).collect();
+        let masks = vec![vec![true; n]; 3];
+        let gains = [0.9, 1.0, 1.1];
+        let gain_cols = || -> Vec<Vec<f64>> {
+            (0..3)
+                .map(|r| bases[r].iter().map(|b| (gains[r] - 1.0) * b).collect())
+                .collect()
+        };
+        let size = |cols: &[Vec<f64>]| cols.iter().flatten().map(|c| c * c).sum::<f64>().sqrt();
+        let mut crossed = gain_cols();
+        cross(&prep, Crossing::ByRecording, &recs, &mut crossed, &bases, &masks);
+        assert!(size(&crossed) < 1e-9 * size(&gain_cols()), "{}", size(&crossed));
+        let mut plain = gain_cols();
+        cross(&prep, Crossing::No, &recs, &mut plain, &bases, &masks);
+        assert_eq!(plain, gain_cols());
+        // The per-cycle decline: g(k) at k0 = 1 cycle.
+        let g = SofteningLaw::Cycle { k0: 1.0 }.per_sample(&prep.recs[0]);
+        let decline: Vec<Vec<f64>> = (0..3)
+            .map(|r| bases[r].iter().zip(&g).map(|(b, g)| -g * b).collect())
+            .collect();
+        let mut kept = decline.clone();
+        cross(&prep, Crossing::ByRecording, &recs, &mut kept, &bases, &masks);
+        assert!(
+            size(&kept) > 0.2 * size(&decline),
+            "{} of {}",
+            size(&kept),
+            size(&decline)
+        );
+    }
 }

@@ -127,14 +127,30 @@ fn softening_is_identifiable_only_where_a_test_condition_is_repeated_in_the_run(
     assert!(identifiable(&prep, Effect::StressSoftening, &Thresholds::default()).is_ok());
     // The outside-class campaign runs each test once per current (four
     // sinusoids of different stroke or speed, a multisine, a drop), in a
-    // shuffled order: nothing is repeated.
-    let case = mre_host::plant::outside::case(Effect::StressSoftening, 1).expect("campaign");
-    let prep = prepare(
-        &case.dataset,
-        &FoldPlan::Stratified { k: 5 },
-        &[mre_host::plant::outside::VALIDATE_CURRENT_A],
-    )
-    .expect("prepared");
+    // shuffled order: nothing is repeated, but each sinusoid runs 3 cycles,
+    // enough for the decline within a test.
+    let mut case = mre_host::plant::outside::case(Effect::StressSoftening, 1).expect("campaign");
+    let plan = FoldPlan::Stratified { k: 5 };
+    let validate = [mre_host::plant::outside::VALIDATE_CURRENT_A];
+    let prep = prepare(&case.dataset, &plan, &validate).expect("prepared");
+    assert!(identifiable(&prep, Effect::StressSoftening, &Thresholds::default()).is_ok());
+    // Without the multisines, each sinusoid cut to its first 2.5 cycles (5/6
+    // of its 3-cycle length): too few cycles, and nothing repeated.
+    case.dataset.recordings.retain(|r| !r.file.contains("multisine"));
+    for r in &mut case.dataset.recordings {
+        let keep = (r.samples.time_s.len() * 5) / 6;
+        let s = &mut r.samples;
+        for v in [&mut s.time_s, &mut s.x_mm, &mut s.v_m_s, &mut s.force_n] {
+            v.truncate(keep);
+        }
+        for v in [&mut s.accel_m_s2, &mut s.current_a, &mut s.temperature_c]
+            .into_iter()
+            .flatten()
+        {
+            v.truncate(keep);
+        }
+    }
+    let prep = prepare(&case.dataset, &plan, &validate).expect("prepared");
     let why = identifiable(&prep, Effect::StressSoftening, &Thresholds::default()).unwrap_err();
-    assert!(why.contains("repeated"), "{why}");
+    assert!(why.contains("repeated") && why.contains("cycles"), "{why}");
 }

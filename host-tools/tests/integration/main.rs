@@ -44,6 +44,7 @@ mod diagnose_physical;
 mod diagnose_pipeline;
 mod diagnose_rate;
 mod diagnose_real_bench;
+mod diagnose_softening;
 mod diagnose_start;
 mod diagnose_terms;
 mod diagnose_unexplained;

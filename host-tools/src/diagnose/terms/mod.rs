@@ -45,6 +45,16 @@ pub fn of(effect: Effect) -> Option<&'static dyn Term> {
     REGISTRY.iter().copied().find(|t| t.effect() == effect)
 }
 
+/// What a crossed term's regressor is crossed with ([`Term::crossed`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Crossing {
+    No,
+    /// Less its gain within each test condition.
+    ByCondition,
+    /// Less its gain within each recording.
+    ByRecording,
+}
+
 /// A block of linear design columns a term adds.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Block {
@@ -166,13 +176,15 @@ pub trait Term: Sync {
     fn set_by_design(&self) -> &'static [&'static str] {
         &[]
     }
-    /// A crossed effect: its linearised regressor keeps only what a gain per
-    /// test condition cannot explain ([`super::library`]), so the term can
-    /// only explain a change between repeats of one condition (softening:
-    /// the run order crossed with the test condition, never a difference
-    /// between conditions, which the baseline's misfit also makes).
-    fn crossed(&self) -> bool {
-        false
+    /// A crossed effect in the model `t`: its linearised regressor keeps
+    /// only what a gain per test condition, or per recording, cannot explain
+    /// ([`super::library`]), so the term can only explain a change between
+    /// repeats of one condition, or within one test (softening: the run
+    /// order crossed with the test condition, or the cycles of one test;
+    /// never a difference between conditions or tests, which the baseline's
+    /// misfit also makes).
+    fn crossed(&self, _t: &Terms) -> Crossing {
+        Crossing::No
     }
     /// The experiment that would separate the term from the baseline when
     /// these data cannot (reported with an `inconclusive` verdict).

@@ -1,13 +1,55 @@
-//! `stress_softening`: each recording's force scaled by `1 − Δ·g_r`, with
-//! `g_r` from its place in the run order or its temperature.
-use super::{Term, Value};
+//! `stress_softening`: the force scaled by `1 − Δ·g`, with `g` from the
+//! recording's place in the run order or its temperature (between repeats
+//! of a test condition), or from the cycle within the test (a decline over
+//! the cycles of one test, [`SofteningLaw::Cycle`]).
+use super::{Crossing, Term, Value};
 use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::candidates::{crossed_recordings, distinct_sequences, temperature_span_c};
-use crate::diagnose::design::{Layout, SofteningLaw, Solution, Terms};
+use crate::diagnose::design::{cycle_index, Layout, SofteningLaw, Solution, Terms};
 use crate::diagnose::prepared::Prepared;
 use crate::vocabulary::Effect;
 
 pub struct StressSoftening;
+
+/// Complete cycles a recording needs for its within-test decline to be
+/// judged: Δ and k0 are two parameters of the decline, and the crossing
+/// spends the recording's own gain, so the cycles' levels must give at
+/// least two contrasts beyond the gain: three cycles. (With two, the one
+/// contrast is the first cycle against the second, which a start from rest
+/// also makes.)
+pub const MIN_CYCLES: f64 = 3.0;
+
+/// Fit recordings with at least [`MIN_CYCLES`] cycles.
+fn cycled_recordings(prep: &Prepared) -> usize {
+    prep.fit_indices()
+        .iter()
+        .filter(|&&i| cycle_index(&prep.recs[i].x_mm).last().is_some_and(|&k| k > MIN_CYCLES))
+        .count()
+}
+
+/// Between-repeats evidence: `Ok`, or what the data lack.
+fn between_repeats(prep: &Prepared) -> Result<(), String> {
+    if distinct_sequences(prep) < 3 && temperature_span_c(prep) < 2.0 {
+        return Err("repeated tests with their run order recorded (`sequence`), or temperature records".into());
+    }
+    // A drift across the run is told from a difference between test
+    // conditions only where one condition is repeated at another place
+    // in the run (a crossed effect, [`Term::crossed`]).
+    if crossed_recordings(prep) < 2 {
+        return Err(
+            "a test condition repeated at another place in the run order (each condition here is run once, \
+             so a drift over the run cannot be told from a difference between conditions)"
+                .into(),
+        );
+    }
+    Ok(())
+}
+
+/// Within-test evidence: two fit recordings of [`MIN_CYCLES`] cycles or
+/// more (one to train a fold on while the other is held out).
+fn within_test(prep: &Prepared) -> bool {
+    cycled_recordings(prep) >= 2
+}
 
 impl Term for StressSoftening {
     fn effect(&self) -> Effect {
@@ -23,53 +65,49 @@ impl Term for StressSoftening {
         Terms { softening: None, ..*t }
     }
     fn identifiable(&self, prep: &Prepared, _th: &Thresholds) -> Result<(), String> {
-        if distinct_sequences(prep) < 3 && temperature_span_c(prep) < 2.0 {
-            return Err("repeated tests with their run order recorded (`sequence`), or temperature records".into());
+        match between_repeats(prep) {
+            Ok(()) => Ok(()),
+            Err(_) if within_test(prep) => Ok(()),
+            Err(why) => Err(format!(
+                "{why}; or tests of {MIN_CYCLES} cycles or more, for a decline within each test"
+            )),
         }
-        // A drift across the run is told from a difference between test
-        // conditions only where one condition is repeated at another place
-        // in the run (a crossed effect, [`Term::crossed`]).
-        if crossed_recordings(prep) < 2 {
-            return Err(
-                "a test condition repeated at another place in the run order (each condition here is run once, \
-                 so a drift over the run cannot be told from a difference between conditions)"
-                    .into(),
-            );
-        }
-        Ok(())
     }
-    fn crossed(&self) -> bool {
-        true
+    fn crossed(&self, t: &Terms) -> Crossing {
+        match t.softening {
+            Some(law) if law.within_test() => Crossing::ByRecording,
+            Some(_) => Crossing::ByCondition,
+            None => Crossing::No,
+        }
     }
     fn variants(&self, prep: &Prepared, base: &Terms) -> Vec<Terms> {
         let with = |law: SofteningLaw| Terms {
             softening: Some(law),
             ..*base
         };
-        if distinct_sequences(prep) >= 3 {
-            [2.0, 4.0, 8.0, 16.0, 40.0]
-                .iter()
-                .map(|&n0| with(SofteningLaw::Sequence { n0 }))
-                .collect()
-        } else {
-            let t: Vec<f64> = prep
-                .fit_indices()
-                .iter()
-                .filter_map(|&i| prep.recs[i].temperature_c)
-                .collect();
-            let t_ref_c = t.iter().sum::<f64>() / t.len().max(1) as f64;
-            vec![with(SofteningLaw::Temperature { t_ref_c })]
+        let mut out = Vec::new();
+        if between_repeats(prep).is_ok() {
+            out.extend(self.between_variants(prep, base));
         }
+        if within_test(prep) {
+            // k0 in cycles: a step after the first cycle (the Mullins first
+            // loading) to a decline still going at the test's end.
+            out.extend(CYCLE_K0.iter().map(|&k0| with(SofteningLaw::Cycle { k0 })));
+        }
+        out
     }
-    /// Quarter octaves of n0 around the grid's best.
+    /// Quarter octaves of n0 (k0) around the grid's best.
     fn refinements(&self, _prep: &Prepared, best: &Terms) -> Vec<Terms> {
-        let Some(SofteningLaw::Sequence { n0 }) = best.softening else {
-            return Vec::new();
+        let law = |f: f64| match best.softening {
+            Some(SofteningLaw::Sequence { n0 }) => Some(SofteningLaw::Sequence { n0: n0 * f }),
+            Some(SofteningLaw::Cycle { k0 }) => Some(SofteningLaw::Cycle { k0: k0 * f }),
+            _ => None,
         };
         [-0.5, -0.25, 0.25, 0.5]
             .iter()
-            .map(|e| Terms {
-                softening: Some(SofteningLaw::Sequence { n0: n0 * 2f64.powf(*e) }),
+            .filter_map(|e| law(2f64.powf(*e)))
+            .map(|l| Terms {
+                softening: Some(l),
                 ..*best
             })
             .collect()
@@ -93,12 +131,16 @@ impl Term for StressSoftening {
                 ("delta".into(), sol.delta, "1".into()),
                 ("n0".into(), n0, "tests".into()),
             ],
+            Some(SofteningLaw::Cycle { k0 }) => vec![
+                ("delta".into(), sol.delta, "1".into()),
+                ("k0".into(), k0, "cycles".into()),
+            ],
             Some(SofteningLaw::Temperature { .. }) => vec![("beta_per_c".into(), -sol.delta, "1/°C".into())],
             None => Vec::new(),
         }
     }
     fn searched(&self) -> &'static [&'static str] {
-        &["n0"]
+        &["n0", "k0"]
     }
     fn signature(&self) -> &'static [&'static str] {
         &["sequence", "temperature_c"]
@@ -106,7 +148,34 @@ impl Term for StressSoftening {
     fn describe(&self, t: &Terms) -> Option<String> {
         t.softening.map(|law| match law {
             SofteningLaw::Sequence { n0 } => format!("softening over the run order (n0 = {n0:.2} tests)"),
+            SofteningLaw::Cycle { k0 } => format!("softening over the cycles of each test (k0 = {k0:.2} cycles)"),
             SofteningLaw::Temperature { t_ref_c } => format!("softening with temperature (about {t_ref_c:.1} °C)"),
         })
+    }
+}
+
+/// The searched k0 of the within-test law (cycles).
+const CYCLE_K0: [f64; 4] = [0.3, 1.0, 3.0, 10.0];
+
+impl StressSoftening {
+    fn between_variants(&self, prep: &Prepared, base: &Terms) -> Vec<Terms> {
+        let with = |law: SofteningLaw| Terms {
+            softening: Some(law),
+            ..*base
+        };
+        if distinct_sequences(prep) >= 3 {
+            [2.0, 4.0, 8.0, 16.0, 40.0]
+                .iter()
+                .map(|&n0| with(SofteningLaw::Sequence { n0 }))
+                .collect()
+        } else {
+            let t: Vec<f64> = prep
+                .fit_indices()
+                .iter()
+                .filter_map(|&i| prep.recs[i].temperature_c)
+                .collect();
+            let t_ref_c = t.iter().sum::<f64>() / t.len().max(1) as f64;
+            vec![with(SofteningLaw::Temperature { t_ref_c })]
+        }
     }
 }
