@@ -87,7 +87,7 @@ const TIE_REL: f64 = 1e-9;
 /// The first of `choices` (in their listed order: each term lists its
 /// simplest form first) whose `key` is within [`TIE_REL`] of the smallest,
 /// so a choice among equal fits does not depend on rounding.
-fn first_best(choices: &[usize], key: impl Fn(usize) -> f64) -> Option<usize> {
+pub(crate) fn first_best(choices: &[usize], key: impl Fn(usize) -> f64) -> Option<usize> {
     let min = choices.iter().map(|&v| key(v)).fold(f64::INFINITY, f64::min);
     choices.iter().copied().find(|&v| key(v) <= min + TIE_REL * min.abs())
 }

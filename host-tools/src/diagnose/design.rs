@@ -125,6 +125,37 @@ pub fn memory_feature_on_branches(
     (feature, compressing)
 }
 
+/// Per sample, the share of a full turn-around's relaxation still ahead,
+/// `(1 − s·z)/2` in [0, 1] (s = ±1 the direction of travel, `compressing`),
+/// of a first-order rate-independent state over length `length_mm`:
+/// `z ← s + (z − s)·e^{−|Δx|/length}` (Dahl's law, exponent 1), started
+/// relaxed (z = 0) when the recording starts from rest and saturated in the
+/// first direction when it starts in motion. After a stroke that saturated it this
+/// is `e^{−d/length}`, the old column; after a shorter stroke (a minor
+/// loop of a multisine, a small sinusoid against a long memory) it is
+/// smaller: a material recovers after a reversal only what the stroke
+/// before it displaced (the return-point memory of Preisach/Masing laws).
+/// Without it every minor reversal was predicted with the whole loop's
+/// transient (on outside-class play plants the memory basis lost held out
+/// on the multisines, 0.61×, and was never named).
+pub fn reversal_share(x: &[f64], compressing: &[bool], length_mm: f64, from_rest: bool) -> Vec<f64> {
+    let sign = |c: bool| if c { 1.0 } else { -1.0 };
+    let mut z = match compressing.first() {
+        Some(&c) if !from_rest => sign(c),
+        _ => 0.0,
+    };
+    let mut last = x.first().copied().unwrap_or(0.0);
+    x.iter()
+        .zip(compressing)
+        .map(|(&xt, &c)| {
+            let s = sign(c);
+            z = s + (z - s) * (-(xt - last).abs() / length_mm.max(1e-12)).exp();
+            last = xt;
+            (1.0 - s * z) / 2.0
+        })
+        .collect()
+}
+
 /// Where x turned around between samples `t − 1` and `t` (v changes sign):
 /// v taken linear across the interval, x at its zero crossing. Anchoring at
 /// the sample after the crossing instead puts every reversal half a sample
@@ -968,6 +999,17 @@ fn design_for(
     let memory = terms
         .memory_mm
         .map(|_| memory_feature_on_branches(&rec.time_s, &xs, &vs, rec.branch_band_m_s()));
+    // Per basis length: the share of a full turn-around still ahead.
+    let shares: Vec<Vec<f64>> = match (&memory, terms.memory_mm) {
+        (Some((m, dir)), Some(delta)) => {
+            let from_rest = m.first().copied().flatten().is_some_and(|a| a.from_rest);
+            MEMORY_LENGTHS
+                .iter()
+                .map(|len| reversal_share(&xs, dir, len * delta, from_rest))
+                .collect()
+        }
+        _ => Vec::new(),
+    };
     let per_current: Vec<&Placed> = layout.blocks.iter().filter(|p| p.block == Block::PerCurrent).collect();
     let global: Vec<&Placed> = layout.blocks.iter().filter(|p| p.block == Block::Global).collect();
     for t in 0..n {
@@ -996,7 +1038,7 @@ fn design_for(
                 }
             }
         }
-        if let (Some((m, dir)), Some(delta)) = (&memory, terms.memory_mm) {
+        if let (Some((m, dir)), Some(_)) = (&memory, terms.memory_mm) {
             if let Some(Anchor {
                 distance_mm: d,
                 x_r_mm: x_r,
@@ -1009,8 +1051,8 @@ fn design_for(
                     basis[0] = (MEMORY_TERMS - 1, (-d / start_mm).exp(), 0);
                     1
                 } else {
-                    for (l, len) in MEMORY_LENGTHS.iter().enumerate() {
-                        let e = (-d / (len * delta)).exp();
+                    for (l, share) in shares.iter().enumerate() {
+                        let e = share[t];
                         for p in 0..MEMORY_POWERS {
                             basis[l * MEMORY_POWERS + p] = (l * MEMORY_POWERS + p, e, p as i32);
                         }
@@ -1175,5 +1217,48 @@ mod tests {
             let packed = ((&ra - &rg * delta) * &beta - &ry).norm();
             assert!((raw - packed).abs() < 1e-9 * raw, "Δ = {delta}: {raw} vs {packed}");
         }
+    }
+
+    /// Hand-written physics: a Dahl element `F = f₀·z`, `dz/dx = (s − z)/L`
+    /// (s = ±1 the direction of travel), integrated by small Euler steps
+    /// (its own integration, not the closed form), on a stroke with a minor
+    /// loop: up 0 → 10 mm (saturates), down to 9.5 mm, up to 12 mm. Its
+    /// force after each reversal is `s·f₀·(1 − 2·share)`, so the memory
+    /// column `share` must follow it at the minor reversal too, where the
+    /// material recovers only what the 0.5 mm stroke displaced: the share
+    /// there starts at `1 − e^{−0.5} = 0.393`, not at 1 as after a full
+    /// stroke (the column before the fix, `e^{−d/L}`, is off by 0.61).
+    #[test]
+    fn the_reversal_share_follows_a_dahl_element_through_a_minor_loop() {
+        let length_mm = 1.0;
+        let h = 1e-4;
+        let mut x = Vec::new();
+        let ramp = |x: &mut Vec<f64>, from: f64, to: f64| {
+            let n = ((to - from) / h).abs().round() as usize;
+            x.extend((1..=n).map(|k| from + (to - from) * k as f64 / n as f64));
+        };
+        x.push(0.0);
+        ramp(&mut x, 0.0, 10.0);
+        ramp(&mut x, 10.0, 9.5);
+        ramp(&mut x, 9.5, 12.0);
+        let compressing: Vec<bool> = (0..x.len())
+            .map(|t| if t == 0 { true } else { x[t] > x[t - 1] })
+            .collect();
+        let share = reversal_share(&x, &compressing, length_mm, false);
+        // Euler on the Dahl law, started saturated (z = 1).
+        let mut z = 1.0f64;
+        let mut worst = 0.0f64;
+        for t in 1..x.len() {
+            let s = if compressing[t] { 1.0 } else { -1.0 };
+            z += (s - z) * (x[t] - x[t - 1]).abs() / length_mm;
+            worst = worst.max((z - s * (1.0 - 2.0 * share[t])).abs());
+        }
+        assert!(worst < 1e-3, "Dahl force vs column: {worst}");
+        // By hand: just after the minor reversal at 9.5 mm.
+        let at = (1..x.len())
+            .find(|&t| compressing[t] && !compressing[t - 1])
+            .expect("the minor reversal");
+        assert!((x[at - 1] - 9.5).abs() < 1e-9);
+        assert!((share[at] - (1.0 - (-0.5f64).exp())).abs() < 1e-3, "{}", share[at]);
     }
 }

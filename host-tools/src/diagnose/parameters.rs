@@ -207,9 +207,12 @@ pub fn with_intervals(
 /// neighbours along `name` (the variants whose other searched and design
 /// values, `keyed`, are the same). `None` when the best variant has no such
 /// parameter. At an end of the searched range, or where the three points do
-/// not bend upwards, the best variant's own value.
+/// not bend upwards, the best variant's own value. Variants whose SSEs tie
+/// to rounding are one fit: the first listed wins, as in every choice of
+/// the search (`cv::first_best`), so an interval does not hang on rounding.
 pub fn refined_optimum(name: &str, keyed: &[&str], values: &[Vec<Value>], sse: &[f64]) -> Option<f64> {
-    let best = (0..sse.len()).min_by(|&a, &b| sse[a].total_cmp(&sse[b]))?;
+    let all: Vec<usize> = (0..sse.len()).collect();
+    let best = super::cv::first_best(&all, |v| sse[v])?;
     let get = |v: usize, n: &str| values[v].iter().find(|q| q.0 == n).map(|q| q.1);
     let p_b = get(best, name)?;
     let same_line = |v: usize| {
@@ -282,5 +285,23 @@ mod tests {
         // At the end of the searched range the best value stands.
         let sse = vec![0.0, 1.0, 4.0, 10.0];
         assert_eq!(refined_optimum("tau_s", &["tau_s", "side"], &values, &sse), Some(1.0));
+    }
+
+    /// Hand-written: two variants (a linear and a saturating form that the
+    /// sign constraint made one model) whose SSEs differ by rounding only,
+    /// 1e-15 relative, the later listed the smaller. They are one fit, so
+    /// the first listed stands, as in the search; a plain argmin takes the
+    /// later one's value.
+    #[test]
+    fn a_tie_to_rounding_keeps_the_first_listed_variant() {
+        let values = vec![
+            vec![("v0_m_s".to_string(), 0.05, "m/s".to_string())],
+            vec![("v0_m_s".to_string(), 0.4, "m/s".to_string())],
+        ];
+        let sse = vec![100.0, 100.0 * (1.0 - 1e-15)];
+        assert_eq!(refined_optimum("v0_m_s", &["v0_m_s"], &values, &sse), Some(0.05));
+        // A real difference still decides.
+        let sse = vec![100.0, 99.0];
+        assert_eq!(refined_optimum("v0_m_s", &["v0_m_s"], &values, &sse), Some(0.4));
     }
 }

@@ -40,6 +40,7 @@ mod diagnose_endstop;
 mod diagnose_headline;
 mod diagnose_oracle;
 mod diagnose_outputs;
+mod diagnose_outside_memory;
 mod diagnose_physical;
 mod diagnose_pipeline;
 mod diagnose_rate;
