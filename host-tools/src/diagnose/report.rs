@@ -275,6 +275,7 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
         n_total - n_scored - n_ambiguous,
     );
     let _ = writeln!(s, "{}\n", velocity_sentence(p));
+    let _ = writeln!(s, "{}\n", independent_check_sentence(d));
     let _ = writeln!(s, "## Result\n");
     verdict_markdown(&mut s, &json.verdict);
     for (k, (e, f)) in json.effects.iter().zip(&d.findings).enumerate() {
@@ -473,4 +474,44 @@ fn interval_sentence(resamples: usize) -> String {
         resamples.div_ceil(4),
         resamples.max(200),
     )
+}
+
+/// The validate recordings no decision read, and the RMSE over them: the
+/// independent check ([`super::validate_terms`]).
+pub fn independent_check_sentence(d: &Diagnosis) -> String {
+    let p = &d.prep;
+    let read = &d.selection.validate_read;
+    let free: Vec<usize> = p.validate_indices().into_iter().filter(|i| !read.contains(i)).collect();
+    let names = |ix: &[usize]| {
+        ix.iter()
+            .map(|&i| p.recs[i].file.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    if p.validate_indices().is_empty() {
+        return "No validate recordings: no independent check beyond the held-out folds.".into();
+    }
+    let rmse = |pred: &[Vec<f64>]| {
+        let (mut se, mut n) = (0.0, 0usize);
+        for &i in &free {
+            for (f, q) in scored(p.recs[i].force_n.iter().zip(&pred[i]), &d.scored_mask[i]) {
+                se += (f - q) * (f - q);
+                n += 1;
+            }
+        }
+        (n > 0).then(|| (se / n as f64).sqrt())
+    };
+    let head = if read.is_empty() {
+        "No decision read a validate recording".to_string()
+    } else {
+        format!("Validate recordings read by a decision: {}", names(read))
+    };
+    match (rmse(&d.baseline_pred), rmse(&d.final_pred)) {
+        (Some(b), Some(f)) => format!(
+            "{head}. Independent check, over the validate recordings no decision read ({}): RMSE {b:.3} N \
+             (baseline) → {f:.3} N (final model).",
+            names(&free)
+        ),
+        _ => format!("{head}. No validate recording is left unread: there is no independent validate check."),
+    }
 }

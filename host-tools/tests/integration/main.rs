@@ -47,6 +47,7 @@ mod diagnose_start;
 mod diagnose_terms;
 mod diagnose_unexplained;
 mod diagnose_validate_blind;
+mod diagnose_validate_terms;
 mod diagnose_verdict;
 mod fit;
 mod fmu;
