@@ -373,7 +373,13 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
             "| {} | {}{} | {:.2} | {:.3} ({:.3}–{:.3}) | {:.3} | {:.2} | {} |",
             c.effect.name(),
             form,
-            if c.linearised { " (linearised)" } else { "" },
+            if c.linearised {
+                " (linearised)"
+            } else if !c.decided_by.is_empty() {
+                " (validate stage)"
+            } else {
+                ""
+            },
             c.inclusion,
             c.gain.ratio,
             c.gain.ci95[0],
@@ -381,6 +387,16 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
             c.gain_plain,
             c.outside_baseline,
             if c.named { "**yes**" } else { "no" }
+        );
+    }
+    if sel.candidates.iter().any(|c| !c.decided_by.is_empty()) {
+        let _ = writeln!(
+            s,
+            "\nA term marked *validate stage* changes only the validate recordings' predictions and is not in \
+             the library: it was judged on the deciding half of its validate recordings, each predicted with \
+             its value chosen on the others; its inclusion is the share of those recordings on which it gains \
+             the gain gate alone, its gains are over them, and the recordings it kept as the check were read \
+             by no decision (its evidence, below, names both)."
         );
     }
     let _ = writeln!(s, "\n## Not identifiable from this data set\n");
