@@ -36,10 +36,10 @@ pub struct Thresholds {
     /// choose the rest of the model without it.
     pub min_folds: usize,
     /// Let the terms that change nothing but how validate currents are
-    /// predicted (`magnetic_saturation`, `coil_lag`) be judged on the
-    /// validate recordings (they join the library, each its own fold). Off
-    /// by default: then no decision reads a validate recording, and those
-    /// two effects are reported as not identifiable.
+    /// predicted be judged in the library on every validate recording (each
+    /// its own fold). Off by default: then such a term is decided on half of
+    /// its validate recordings, leave-one-out, and the other half is read by
+    /// no decision ([`super::validate_terms`]).
     pub validate_evidence: bool,
     /// `inertia` (an `m·a` term on a measured or derived acceleration) is
     /// tested only when the acceleration departs from an affine function of

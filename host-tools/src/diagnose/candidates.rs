@@ -156,32 +156,31 @@ pub fn temperature_span_c(prep: &Prepared) -> f64 {
 }
 
 pub fn intermediate_validate_count(prep: &Prepared) -> usize {
+    intermediate_validate(prep).len()
+}
+
+/// Validate recordings held at a current strictly between the lowest and
+/// highest tabulated ones (predicted by interpolation).
+pub fn intermediate_validate(prep: &Prepared) -> Vec<usize> {
     let (lo, hi) = (prep.currents_a[0], prep.currents_a[prep.currents_a.len() - 1]);
     prep.validate_indices()
-        .iter()
-        .filter(|&&i| prep.recs[i].current_a > lo + 1e-9 && prep.recs[i].current_a < hi - 1e-9)
-        .count()
+        .into_iter()
+        .filter(|&i| prep.recs[i].current_a > lo + 1e-9 && prep.recs[i].current_a < hi - 1e-9)
+        .collect()
 }
 
 /// `Err(needs)` when this data set cannot separate the effect from the
 /// baseline, with the test that would.
 ///
 /// A term that changes only how validate currents are predicted
-/// (`magnetic_saturation`, `coil_lag`) has only the validate recordings as
-/// evidence: unless `validate_evidence` lets those be read, it is not
-/// identifiable.
+/// ([`terms::Term::validate_only`]) is identifiable when enough of its
+/// evidence recordings exist; by default it is then decided on a part of
+/// them ([`super::validate_terms`]), not in the library.
 pub fn identifiable(prep: &Prepared, effect: Effect, th: &Thresholds) -> Result<(), String> {
     // No term: nothing to separate from the baseline.
     let Some(term) = terms::of(effect) else {
         return Ok(());
     };
-    if !th.validate_evidence && term.validate_only() {
-        return Err(
-            "its only evidence is the `validate` recordings, which no decision reads by default; \
-             `--set validate_evidence=true` judges it on them (they then stop being an independent check)"
-                .into(),
-        );
-    }
     term.identifiable(prep, th)
 }
 
@@ -241,11 +240,16 @@ pub fn acceleration_misfit_over_noise(prep: &Prepared) -> f64 {
 /// Validate recordings whose recorded current moves by at least a tenth of
 /// the table's current span during the test.
 pub fn stepped_validate_count(prep: &Prepared) -> usize {
+    stepped_validate(prep).len()
+}
+
+/// The validate recordings [`stepped_validate_count`] counts.
+pub fn stepped_validate(prep: &Prepared) -> Vec<usize> {
     let span = prep.currents_a[prep.currents_a.len() - 1] - prep.currents_a[0];
     prep.validate_indices()
-        .iter()
-        .filter(|&&i| span > 0.0 && prep.recs[i].current_change_a() >= 0.1 * span)
-        .count()
+        .into_iter()
+        .filter(|&i| span > 0.0 && prep.recs[i].current_change_a() >= 0.1 * span)
+        .collect()
 }
 
 /// Extra variants around the grid's best, `best`, where the effect's grid is

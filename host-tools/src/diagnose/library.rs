@@ -127,6 +127,9 @@ pub fn build(prep: &Prepared, th: &Thresholds) -> Result<Built> {
     let mut not_identifiable = Vec::new();
     for &t in REGISTRY {
         match candidates::identifiable(prep, t.effect(), th) {
+            // Decided after the joint fit, on part of its validate recordings
+            // ([`super::validate_terms`]).
+            Ok(()) if t.validate_only() && !th.validate_evidence => {}
             Ok(()) => testable.push(t),
             Err(needs) => not_identifiable.push((t.effect(), needs)),
         }

@@ -28,6 +28,7 @@ pub mod signals;
 pub mod sparse;
 pub mod terms;
 pub mod unexplained;
+pub mod validate_terms;
 pub mod verdict;
 
 use crate::dataset::Dataset;
@@ -165,12 +166,13 @@ pub fn diagnose(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Diagnosis> {
             }
             _ => selection.final_model.variant_sse.clone(),
         };
-        let n_samples: usize = prep
-            .fit_indices()
-            .iter()
-            .map(|&i| selection.final_model.n[i])
-            .sum::<usize>()
-            .max(1);
+        // The recordings its held-out ratio is over.
+        let pool = if c.decided_by.is_empty() {
+            prep.fit_indices()
+        } else {
+            c.decided_by.clone()
+        };
+        let n_samples: usize = pool.iter().map(|&i| selection.final_model.n[i]).sum::<usize>().max(1);
         findings.push(Finding {
             effect: c.effect,
             parameters: parameters::with_intervals(
@@ -248,11 +250,31 @@ fn evidence_for(prep: &Prepared, c: &select::Candidate, pred_before: &[Vec<f64>]
         .find(|(n, _)| sig.contains(&n.as_str()))
         .map(|(n, r)| format!("; residual correlates with {n} (r = {r:+.2})"))
         .unwrap_or_default();
+    let files = |ix: &[usize]| {
+        let f: Vec<&str> = ix.iter().map(|&i| prep.recs[i].file.as_str()).collect();
+        if f.is_empty() {
+            "none".to_string()
+        } else {
+            f.join(", ")
+        }
+    };
+    let kept = if c.decided_by.is_empty() {
+        format!("kept by {:.0} % of the ensemble's fits", 100.0 * c.inclusion)
+    } else {
+        format!(
+            "decided on the validate recordings {} (each predicted with the value chosen on the others; it \
+             lowered the error of {:.0} % of them), the rest of the model chosen on the fit recordings; kept \
+             as the check, read by no decision: {}",
+            files(&c.decided_by),
+            100.0 * c.inclusion,
+            files(&c.checked_by)
+        )
+    };
     format!(
-        "kept by {:.0} % of the ensemble's fits; {:.2}× held out, nested (95 % bootstrap over the recordings \
+        "{}; {:.2}× held out, nested (95 % bootstrap over the recordings \
          {:.2}–{:.2}×; {:.2}× with the rest of the model chosen on all data); \
          residual before: {}{}; the term acts most on {} and explains the residual with r = {:.2}",
-        100.0 * c.inclusion,
+        kept,
         c.gain.ratio,
         c.gain.ci95[0],
         c.gain.ci95[1],

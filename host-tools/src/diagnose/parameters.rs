@@ -111,8 +111,8 @@ pub fn with_intervals(
     // The recordings the searched value was chosen on: the fit recordings,
     // or the validate ones for a term judged on them (never both).
     let term = super::terms::of(effect);
-    let pool = if prep.validate_evidence && term.is_some_and(|t| t.validate_only()) {
-        prep.validate_indices()
+    let pool = if let Some(t) = term.filter(|t| t.validate_only()) {
+        super::validate_terms::deciding(prep, t)
     } else {
         fit.clone()
     };

@@ -281,6 +281,7 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
         n_total - n_scored - n_ambiguous,
     );
     let _ = writeln!(s, "{}\n", velocity_sentence(p));
+    let _ = writeln!(s, "{}\n", independent_check_sentence(d));
     s.push_str(&crate::dataset::summary::reading_notes_paragraph(
         json.reading_notes.iter().map(|x| (x.file.as_str(), x.notes.as_slice())),
     ));
@@ -381,7 +382,13 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
             "| {} | {}{} | {:.2} | {:.3} ({:.3}–{:.3}) | {:.3} | {:.2} | {} |",
             c.effect.name(),
             form,
-            if c.linearised { " (linearised)" } else { "" },
+            if c.linearised {
+                " (linearised)"
+            } else if !c.decided_by.is_empty() {
+                " (validate stage)"
+            } else {
+                ""
+            },
             c.inclusion,
             c.gain.ratio,
             c.gain.ci95[0],
@@ -389,6 +396,16 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
             c.gain_plain,
             c.outside_baseline,
             if c.named { "**yes**" } else { "no" }
+        );
+    }
+    if sel.candidates.iter().any(|c| !c.decided_by.is_empty()) {
+        let _ = writeln!(
+            s,
+            "\nA term marked *validate stage* changes only the validate recordings' predictions and is not in \
+             the library: it was judged on the deciding half of its validate recordings, each predicted with \
+             its value chosen on the others; its inclusion is the share of those recordings on which it gains \
+             the gain gate alone, its gains are over them, and the recordings it kept as the check were read \
+             by no decision (its evidence, below, names both)."
         );
     }
     let _ = writeln!(s, "\n## Not identifiable from this data set\n");
@@ -492,4 +509,44 @@ fn interval_sentence(resamples: usize) -> String {
         resamples.div_ceil(4),
         resamples.max(200),
     )
+}
+
+/// The validate recordings no decision read, and the RMSE over them: the
+/// independent check ([`super::validate_terms`]).
+pub fn independent_check_sentence(d: &Diagnosis) -> String {
+    let p = &d.prep;
+    let read = &d.selection.validate_read;
+    let free: Vec<usize> = p.validate_indices().into_iter().filter(|i| !read.contains(i)).collect();
+    let names = |ix: &[usize]| {
+        ix.iter()
+            .map(|&i| p.recs[i].file.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    if p.validate_indices().is_empty() {
+        return "No validate recordings: no independent check beyond the held-out folds.".into();
+    }
+    let rmse = |pred: &[Vec<f64>]| {
+        let (mut se, mut n) = (0.0, 0usize);
+        for &i in &free {
+            for (f, q) in scored(p.recs[i].force_n.iter().zip(&pred[i]), &d.scored_mask[i]) {
+                se += (f - q) * (f - q);
+                n += 1;
+            }
+        }
+        (n > 0).then(|| (se / n as f64).sqrt())
+    };
+    let head = if read.is_empty() {
+        "No decision read a validate recording".to_string()
+    } else {
+        format!("Validate recordings read by a decision: {}", names(read))
+    };
+    match (rmse(&d.baseline_pred), rmse(&d.final_pred)) {
+        (Some(b), Some(f)) => format!(
+            "{head}. Independent check, over the validate recordings no decision read ({}): RMSE {b:.3} N \
+             (baseline) → {f:.3} N (final model).",
+            names(&free)
+        ),
+        _ => format!("{head}. No validate recording is left unread: there is no independent validate check."),
+    }
 }

@@ -12,6 +12,7 @@ use super::heldout::HeldOutRatio;
 use super::library::{self, Built};
 use super::prepared::Prepared;
 use super::sparse::{self, group_stlsq, Library};
+use super::validate_terms;
 use anyhow::Result;
 use rayon::prelude::*;
 
@@ -41,6 +42,11 @@ pub struct Candidate {
     /// the baseline can bend to absorb it.
     pub outside_baseline: f64,
     pub named: bool,
+    /// For a term decided in the validate stage ([`super::validate_terms`]):
+    /// the validate recordings that decided it, and those of its evidence
+    /// kept as the check (both empty for a library term).
+    pub decided_by: Vec<usize>,
+    pub checked_by: Vec<usize>,
 }
 
 /// The result of the selection.
@@ -60,6 +66,9 @@ pub struct Selection {
     /// Library recordings and columns.
     pub n_recordings: usize,
     pub n_columns: usize,
+    /// Validate recordings some decision read (every one under
+    /// `validate_evidence`); the rest are the independent check.
+    pub validate_read: Vec<usize>,
 }
 
 impl Selection {
@@ -162,6 +171,8 @@ pub fn select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
                 gain_plain,
                 refit_gain: f64::NAN,
                 outside_baseline: sparse::share_outside(&lib, c.group, &quartics),
+                decided_by: Vec::new(),
+                checked_by: Vec::new(),
             }
         })
         .collect();
@@ -178,6 +189,11 @@ pub fn select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
         ),
         n_recordings: recs.len(),
         n_columns: lib.a.ncols(),
+        validate_read: if prep.validate_evidence {
+            prep.validate_indices()
+        } else {
+            Vec::new()
+        },
     };
     // The named terms as one model; a term whose refit is not physical
     // (a net negative damping, a stop pulling) is not named.
@@ -234,5 +250,53 @@ pub fn select(prep: &Prepared, th: &Thresholds) -> Result<Selection> {
         selection.final_model = model;
         break;
     }
+    validate_stage(prep, th, &mut selection)?;
     Ok(selection)
+}
+
+/// The terms whose only evidence is the validate recordings, judged on
+/// their deciding half on top of the model the fit recordings chose
+/// ([`super::validate_terms`]); the named ones join the final model. Their
+/// real form has no free coefficient (the searched value only), so there is
+/// no linearised stand-in to refit.
+fn validate_stage(prep: &Prepared, th: &Thresholds, selection: &mut Selection) -> Result<()> {
+    if prep.validate_evidence {
+        return Ok(());
+    }
+    let on = selection.final_model.terms;
+    let mut added = Terms::default();
+    for &t in super::terms::REGISTRY.iter().filter(|t| t.validate_only()) {
+        if super::candidates::identifiable(prep, t.effect(), th).is_err() {
+            continue;
+        }
+        let Some(j) = validate_terms::judge(prep, t, &on, th)? else {
+            continue;
+        };
+        let named = j.improved_share >= th.min_inclusion && j.gain.ratio >= th.min_nested_gain;
+        if named {
+            added = added.merged(j.own);
+        }
+        selection.validate_read.extend(&j.split.deciding);
+        selection.candidates.push(Candidate {
+            effect: t.effect(),
+            own: j.own,
+            linearised: false,
+            inclusion: j.improved_share,
+            share: f64::NAN,
+            refit_gain: if named { j.gain.ratio } else { f64::NAN },
+            gain: j.gain,
+            gain_plain: j.gain_plain,
+            // Not in the quartics' span: it changes nothing they are fitted to.
+            outside_baseline: 1.0,
+            named,
+            decided_by: j.split.deciding,
+            checked_by: j.split.checking,
+        });
+    }
+    selection.validate_read.sort_unstable();
+    selection.validate_read.dedup();
+    if added != Terms::default() {
+        selection.final_model = score(prep, &[on.merged(added)])?;
+    }
+    Ok(())
 }

@@ -50,6 +50,7 @@ mod diagnose_start;
 mod diagnose_terms;
 mod diagnose_unexplained;
 mod diagnose_validate_blind;
+mod diagnose_validate_terms;
 mod diagnose_verdict;
 mod fit;
 mod fmu;

@@ -2,7 +2,7 @@
 //! lag L/R ([`crate::diagnose::design::effective_current_a`]).
 use super::{TableParts, Term, Value};
 use crate::diagnose::acceptance::Thresholds;
-use crate::diagnose::candidates::{median_dt_s, stepped_validate_count};
+use crate::diagnose::candidates::{median_dt_s, stepped_validate, stepped_validate_count};
 use crate::diagnose::design::{Layout, Solution, Terms};
 use crate::diagnose::locate::CURRENT_NOT_FOLLOWED;
 use crate::diagnose::prepared::Prepared;
@@ -39,6 +39,9 @@ impl Term for CoilLag {
     /// (validate) impacts change.
     fn validate_only(&self) -> bool {
         true
+    }
+    fn evidence(&self, prep: &Prepared) -> Vec<usize> {
+        stepped_validate(prep)
     }
     /// From one sample period to about 720 (√2 steps; 36 ms at the drop
     /// tests' 50 µs): an L/R from well under the sampling time to the 20 ms

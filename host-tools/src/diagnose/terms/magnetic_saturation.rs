@@ -2,7 +2,7 @@
 //! on `tanh(I/I_s)` instead of I.
 use super::{TableParts, Term, Value};
 use crate::diagnose::acceptance::Thresholds;
-use crate::diagnose::candidates::intermediate_validate_count;
+use crate::diagnose::candidates::{intermediate_validate, intermediate_validate_count};
 use crate::diagnose::design::{Layout, Solution, Terms};
 use crate::diagnose::prepared::Prepared;
 use crate::vocabulary::Effect;
@@ -36,6 +36,9 @@ impl Term for MagneticSaturation {
     /// (validate) recordings change.
     fn validate_only(&self) -> bool {
         true
+    }
+    fn evidence(&self, prep: &Prepared) -> Vec<usize> {
+        intermediate_validate(prep)
     }
     fn variants(&self, prep: &Prepared, base: &Terms) -> Vec<Terms> {
         let imax = prep.currents_a[prep.currents_a.len() - 1].abs().max(1e-3);

@@ -117,6 +117,11 @@ pub trait Term: Sync {
     fn validate_only(&self) -> bool {
         false
     }
+    /// For a [`Term::validate_only`] term: the validate recordings whose
+    /// prediction it changes (its evidence), in data-set order.
+    fn evidence(&self, _prep: &Prepared) -> Vec<usize> {
+        Vec::new()
+    }
     /// `base` plus this term at every searched value of its nonlinear
     /// parameter (one variant when it has none).
     fn variants(&self, prep: &Prepared, base: &Terms) -> Vec<Terms>;
