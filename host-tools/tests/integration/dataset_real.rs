@@ -30,6 +30,15 @@ fn close(a: f64, b: f64, tol: f64) -> bool {
     (a - b).abs() <= tol
 }
 
+/// The first largest value and its index (the peak load a test reads off the file).
+fn largest(values: &[f64]) -> (usize, f64) {
+    values
+        .iter()
+        .copied()
+        .enumerate()
+        .fold((0, f64::MIN), |a, (i, f)| if f > a.1 { (i, f) } else { a })
+}
+
 // --- MTS 793, German locale -------------------------------------------------
 
 /// BAM's E-modulus test: ISO-8859-1 (`Prüfer`, `Länge`), decimal comma,
@@ -357,12 +366,7 @@ fn bluehill_export_with_digit_grouping_loads_after_init_with_only_the_current() 
     // Line 281 holds the peak, "3,802.00708" N at 46.332 s (awk over lines
     // 12–290). The file's own results agree: 188.43817 MPa at tensile
     // strength over 1.989 mm × 10.144 mm (lines 5–7) is 3801.99 N.
-    let (k, peak) = s
-        .force_n
-        .iter()
-        .copied()
-        .enumerate()
-        .fold((0, f64::MIN), |a, (i, f)| if f > a.1 { (i, f) } else { a });
+    let (k, peak) = largest(&s.force_n);
     assert!(
         close(peak, 3802.00708, 1e-9) && close(s.time_s[k], 46.332, 1e-9),
         "{peak} at {k}"
@@ -426,12 +430,7 @@ fn bluehill_cyclic_compression_export_is_flipped_by_init_and_loads() {
     assert!(close(s.time_s[18_010], 360.06, 1e-9) && close(s.force_n[18_010], -0.28068, 1e-12));
     // Line 3006 holds the largest compression, -52.97507 N at 59.98 s and
     // -12.04026 mm (a script over lines 6–18016).
-    let (k, peak) = s
-        .force_n
-        .iter()
-        .copied()
-        .enumerate()
-        .fold((0, f64::MIN), |a, (i, f)| if f > a.1 { (i, f) } else { a });
+    let (k, peak) = largest(&s.force_n);
     assert!(close(peak, 52.97507, 1e-9) && k == 3000, "{peak} at {k}");
     assert!(close(s.time_s[k], 59.98, 1e-9) && close(s.x_mm[k], 12.04026, 1e-9));
 }
@@ -467,12 +466,7 @@ fn mts_testsuite_semicolon_export_loads_after_init_with_only_the_current() {
     assert!(close(s.x_mm[949], 0.0145405529110576, 1e-15));
     // Line 138 holds the largest load, -134,766296875 kN at 185,646484375 s
     // (awk over lines 9–958).
-    let (k, peak) = s
-        .force_n
-        .iter()
-        .copied()
-        .enumerate()
-        .fold((0, f64::MIN), |a, (i, f)| if f > a.1 { (i, f) } else { a });
+    let (k, peak) = largest(&s.force_n);
     assert!(close(peak, 134_766.296_875, 1e-6) && k == 129, "{peak} at {k}");
 }
 
