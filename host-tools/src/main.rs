@@ -483,6 +483,7 @@ fn main() {
         Command::Demo { .. } => run(cli),
         _ => mre_host::atomic_write::command(|| run(cli)),
     };
+    mre_host::atomic_write::interrupt::defer_to_handler_if_interrupted();
     if let Err(e) = result {
         eprintln!("error: {e:#}");
         std::process::exit(1);

@@ -3,6 +3,7 @@
 //! status 130. Without this, killing `mre demo` left its whole staging folder
 //! (tens of MB, named `.mre-stage-…`) beside `--out`.
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, PoisonError};
 use std::time::Duration;
 
@@ -96,10 +97,25 @@ pub fn remove_staging() {
     LIVE.remove_all();
 }
 
+/// Set when the handler starts, before it removes anything.
+static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+
+/// Called by `main` before it exits: once interrupted, the command's own
+/// result does not count. Its step may have failed only because the handler
+/// renamed its staging folder away ("cannot read … model.toml"), and exiting
+/// with that error (status 1) would race the handler's status 130; so this
+/// thread waits for the handler to finish and exit the process.
+pub fn defer_to_handler_if_interrupted() {
+    while INTERRUPTED.load(Ordering::SeqCst) {
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
 /// Installs the handler once per process: staging removed, exit status 130
 /// (128 + SIGINT, what shells report for Ctrl-C).
 pub fn install() -> anyhow::Result<()> {
     ctrlc::set_handler(|| {
+        INTERRUPTED.store(true, Ordering::SeqCst);
         remove_staging();
         eprintln!("interrupted: no output was written");
         std::process::exit(130);
