@@ -43,13 +43,9 @@ pub fn notes_by_file(ds: &Dataset) -> Vec<RecordingNotes> {
 /// assumed; empty when no reader assumed anything.
 pub fn reading_notes_markdown(ds: &Dataset) -> String {
     let mut s = String::new();
-    for rec in &ds.recordings {
-        let notes = recording_notes(rec);
-        if notes.is_empty() {
-            continue;
-        }
+    for rec in notes_by_file(ds) {
         let _ = writeln!(s, "- `{}`:", rec.file);
-        for n in notes {
+        for n in rec.notes {
             let _ = writeln!(s, "  - {n}");
         }
     }

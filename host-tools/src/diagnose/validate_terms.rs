@@ -16,7 +16,7 @@
 //! validate recording outside every term's evidence, is read by a decision:
 //! the report's independent validate RMSE is over those only.
 use super::acceptance::Thresholds;
-use super::cv::score;
+use super::cv::{first_best, score};
 use super::design::Terms;
 use super::heldout::HeldOutRatio;
 use super::prepared::Prepared;
@@ -71,13 +71,6 @@ pub struct Judged {
     /// [`Thresholds::min_nested_gain`] held out.
     pub improved_share: f64,
     pub split: Split,
-}
-
-/// Index of the lowest `key` among `choices` (the first listed on a tie
-/// within round-off, as [`super::cv`] breaks them).
-fn first_best(choices: &[usize], key: impl Fn(usize) -> f64) -> Option<usize> {
-    let min = choices.iter().map(|&v| key(v)).fold(f64::INFINITY, f64::min);
-    choices.iter().copied().find(|&v| key(v) <= min + 1e-9 * min.abs())
 }
 
 /// Judges `term` on top of `on` (the model the fit recordings chose); `None`
