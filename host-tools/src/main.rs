@@ -213,7 +213,7 @@ enum Command {
         /// With --real: treat recordings at these currents as `validate` (held out of every fit).
         #[arg(long, alias = "validate-current", value_delimiter = ',')]
         hold_out_current: Vec<f64>,
-        /// With --real: run only the cases injecting these effects (`none` included by name);
+        /// With --real or --outside: run only the cases of these effects (`none` included by name);
         /// each case keeps its seed, so the cases run are the same as in the full benchmark.
         #[arg(long, value_delimiter = ',')]
         only: Vec<String>,
@@ -715,12 +715,13 @@ fn run(cli: Cli) -> Result<()> {
             seed,
             json,
             outside: Some(n),
+            only,
             rules,
             ..
         } => {
             let mut opts = mre_host::diagnose::DiagnoseOptions::default();
             opts.thresholds = opts.thresholds.with_overrides(&rules)?;
-            let summary = mre_host::diagnose_bench::outside::run(n, seed, &opts, |c| {
+            let summary = mre_host::diagnose_bench::outside::run(n, seed, &only, &opts, |c| {
                 eprintln!(
                     "seed {}: truth {:<20} verdict {:<12} found {:?} ({:.1} s)",
                     c.seed, c.truth, c.verdict, c.found, c.seconds

@@ -39,17 +39,31 @@ pub fn options(rules: &DiagnoseOptions) -> DiagnoseOptions {
     }
 }
 
-/// `per_effect` cases of every vocabulary word, seeds `first_seed…`.
+/// `per_effect` cases of every vocabulary word (or only of the words in
+/// `only`, when it is not empty), seeds `first_seed…`. A case keeps its seed
+/// whatever `only` holds, so a filtered run repeats cases of the full one.
 pub fn run(
     per_effect: usize,
     first_seed: u64,
+    only: &[String],
     rules: &DiagnoseOptions,
     mut progress: impl FnMut(&OutsideOutcome),
 ) -> Result<OutsideSummary> {
+    for name in only {
+        if !Effect::VOCABULARY.iter().any(|e| e.name() == name) {
+            anyhow::bail!(
+                "--only {name}: not a vocabulary word ({:?})",
+                Effect::VOCABULARY.iter().map(|e| e.name()).collect::<Vec<_>>()
+            );
+        }
+    }
     let opts = options(rules);
     let mut cases = Vec::new();
     for k in 0..per_effect as u64 {
         for effect in Effect::VOCABULARY {
+            if !only.is_empty() && !only.iter().any(|n| n == effect.name()) {
+                continue;
+            }
             let seed = first_seed + k;
             let c = case(effect, seed)?;
             let start = std::time::Instant::now();
