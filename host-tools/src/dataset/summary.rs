@@ -14,10 +14,14 @@ pub fn recording_notes(rec: &Recording) -> Vec<String> {
         out.push(m.describe());
     }
     if rec.velocity_estimated {
-        out.push("velocity estimated from displacement (7-point local quadratic, Savitzky–Golay)".to_string());
+        out.push(VELOCITY_ESTIMATED_NOTE.to_string());
     }
     out
 }
+
+/// The note of a recording whose velocity was estimated (its file had none).
+pub const VELOCITY_ESTIMATED_NOTE: &str =
+    "velocity estimated from displacement (7-point local quadratic, Savitzky–Golay)";
 
 /// One recording's reading notes ([`recording_notes`]), as the comparison's
 /// and the diagnosis's `report.json` carry them.

@@ -282,8 +282,19 @@ pub fn report_markdown(d: &Diagnosis, json: &ReportJson) -> String {
     );
     let _ = writeln!(s, "{}\n", velocity_sentence(p));
     let _ = writeln!(s, "{}\n", independent_check_sentence(d));
+    // The velocity sentence above already says how motion was had; the
+    // per-file paragraph keeps what else the readers assumed.
+    let stated = motion_notes(p);
+    let unstated: Vec<(&str, Vec<String>)> = json
+        .reading_notes
+        .iter()
+        .map(|x| {
+            let rest = x.notes.iter().filter(|n| !stated.contains(n)).cloned().collect();
+            (x.file.as_str(), rest)
+        })
+        .collect();
     s.push_str(&crate::dataset::summary::reading_notes_paragraph(
-        json.reading_notes.iter().map(|x| (x.file.as_str(), x.notes.as_slice())),
+        unstated.iter().map(|(file, notes)| (*file, notes.as_slice())),
     ));
     let _ = writeln!(s, "## Result\n");
     verdict_markdown(&mut s, &json.verdict);
@@ -457,6 +468,17 @@ pub fn write_all(
     let text = serde_json::to_string_pretty(&json)?;
     write_atomic(json_path, text.as_bytes())?;
     Ok(json)
+}
+
+/// The reading notes [`velocity_sentence`] states for the whole data set.
+fn motion_notes(p: &crate::diagnose::prepared::Prepared) -> Vec<String> {
+    let mut out = vec![crate::dataset::summary::VELOCITY_ESTIMATED_NOTE.to_string()];
+    out.extend(
+        p.recs
+            .iter()
+            .filter_map(|r| r.motion_from.as_ref().map(|m| m.describe())),
+    );
+    out
 }
 
 /// How the velocity every rate term and branch reads was obtained.

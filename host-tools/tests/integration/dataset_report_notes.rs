@@ -45,3 +45,38 @@ fn reading_notes_reach_the_diagnosis_report() {
     let html = std::fs::read_to_string(rep.join("index.html")).unwrap();
     assert!(html.contains("<li><code>i0_x2_r1.csv</code>: "), "{html}");
 }
+
+/// Physics (the same simulated damper) written without its velocity column,
+/// so the reader estimates velocity in every file. The report says so once,
+/// in its velocity sentence, not again per file: before, every file's line in
+/// the reading-notes paragraph repeated it.
+#[test]
+fn an_estimated_velocity_is_stated_once_in_the_diagnosis_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("data");
+    let mut ds = dataset(Added::Viscous { c_n_s_per_m: 400.0 }, 7);
+    for rec in &mut ds.recordings {
+        // The writer leaves an estimated velocity out of the file.
+        rec.velocity_estimated = true;
+    }
+    write_dataset(&ds, &data, &WriteOptions::default()).unwrap();
+    let header = std::fs::read_to_string(data.join("i0_x2_r1.csv")).unwrap();
+    assert!(!header.lines().next().unwrap().contains("velocity"), "{header}");
+    let (rep, json, pred) = (
+        dir.path().join("rep"),
+        dir.path().join("r.json"),
+        dir.path().join("pred"),
+    );
+    run_to_files(&data, &DiagnoseOptions::default(), &rep, &json, &pred).expect("diagnose");
+
+    let md = std::fs::read_to_string(rep.join("report.md")).unwrap();
+    let n = ds.recordings.len();
+    assert!(
+        md.contains(&format!("in {n} of {n} recordings estimated from displacement")),
+        "{md}"
+    );
+    assert_eq!(md.matches("estimated from displacement").count(), 1, "{md}");
+    // The json keeps every file's full notes for programs.
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert_eq!(v["reading_notes"].as_array().map(Vec::len), Some(n));
+}
