@@ -16,9 +16,10 @@
 //! out on the reference's residual, as a validate-only candidate's value is,
 //! and the decision reads the validate recordings.
 //!
-//! Softening scales the measured force, so its column would carry each
-//! held-out recording's own force; its oracle is the softening law at the
-//! true n0 instead ([`oracle_terms`]).
+//! Softening (Mullins damage, [`super::real`]) scales the measured force by a
+//! factor of the strain history, so its column carries the untouched
+//! recording's own force times that factor's departure from 1: an oracle
+//! told the history exactly, which no candidate is.
 use crate::diagnose::acceptance::Thresholds;
 use crate::diagnose::cv::{self, Scored};
 use crate::diagnose::design::{Designs, Terms};
@@ -42,8 +43,7 @@ pub struct Oracle {
     /// the shape gains anything even where nothing is held out.
     pub in_sample_ratio: f64,
     /// RMS over every sample of the fitted column(s) (N, full fit):
-    /// the injected RMS when the column is recovered exactly. For
-    /// [`oracle_terms`] (softening) the full fit's Δ instead.
+    /// the injected RMS when the column is recovered exactly.
     pub amplitude_rms_n: f64,
 }
 
@@ -141,19 +141,6 @@ fn verdict(prep: &Prepared, before: &Scored, after: Scored, th: &Thresholds, amp
         in_sample_ratio,
         amplitude_rms_n: amplitude,
     }
-}
-
-/// The oracle for an injection that scales the measured force (softening,
-/// `−Δ·g_r·F_r`): as a column it would carry each held-out recording's own
-/// measured force, nearly collinear with the target (on the real set it
-/// scored below 1, worse than nothing, in 8 of 10 cases), so it is given in the model's own form
-/// instead: `truth` is `reference` plus the term at its true nonlinear
-/// parameter (n0), its amplitude (Δ) solved per fold as every candidate's is.
-pub fn oracle_terms(prep: &Prepared, reference: &Terms, truth: &Terms, th: &Thresholds) -> Result<Oracle> {
-    let before = cv::score(prep, &[*reference])?;
-    let after = cv::score(prep, &[*truth])?;
-    let delta = after.solution.delta;
-    Ok(verdict(prep, &before, after, th, delta))
 }
 
 /// One column per tabulated current: each recording's column times its

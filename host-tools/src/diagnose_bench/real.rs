@@ -5,10 +5,22 @@
 //! where validate currents sit between the tabulated ones, or nothing) at a
 //! random strength of 3–15 % of the force RMS, diagnoses the result blind,
 //! and scores it against what the untouched recordings already give.
-use super::oracle::{oracle, oracle_terms, Amplitude, Oracle};
-use crate::dataset::Dataset;
-use crate::diagnose::design::{SofteningLaw, Terms};
-use crate::diagnose::{baseline, diagnose, prepared, DiagnoseOptions};
+//!
+//! The injections are written from the physics and call nothing of the
+//! estimator (issue 38: an injection through the estimator's own shapes
+//! proves only that it finds its own columns): the stop is a Hunt–Crossley
+//! contact, softening is Mullins damage carried through the run in its
+//! recorded order, saturation follows Fröhlich–Kennelly flux between two
+//! least-squares quartics of the product's fit (`fit::lsq`), and the delay
+//! interpolates the force in time with its own code. The laws are the
+//! outside-class plants' (`plant::outside`), which never call the estimator.
+use super::oracle::{oracle, Amplitude, Oracle};
+use crate::dataset::{Dataset, Role};
+use crate::diagnose::design::Terms;
+use crate::diagnose::{diagnose, DiagnoseOptions};
+use crate::plant::outside::hunt_crossley::HuntCrossley;
+use crate::plant::outside::mullins::{Mullins, MullinsState};
+use crate::plant::outside::saturation::FieldGain;
 use crate::vocabulary::{names, Effect};
 use anyhow::{bail, Result};
 use mre_algorithm::model::Branch;
@@ -53,9 +65,8 @@ pub struct RealCase {
     /// effects nested (absent when not found or `none`).
     pub heldout_improvement: Option<f64>,
     /// Held-out ratio of the oracle (the reference model given the true
-    /// injected force as a column with a free amplitude, [`oracle`]; for
-    /// softening the law at the true n0, [`oracle_terms`]) over its
-    /// decision pool; 1 for `none`.
+    /// injected force as a column with a free amplitude, [`oracle`]) over
+    /// its decision pool; 1 for `none`.
     pub oracle_held_out_ratio: f64,
     /// The oracle in full: its support numbers and the route it passes.
     pub oracle: Oracle,
@@ -129,11 +140,23 @@ pub fn delayed_force(ds: &Dataset, delay_s: f64) -> Vec<Vec<f64>> {
     ds.recordings
         .iter()
         .map(|r| {
-            let s = &r.samples;
-            let mut hint = 0;
-            s.time_s
-                .iter()
-                .map(|&t| crate::diagnose::signals::sample_at(&s.time_s, &s.force_n, t - delay_s, &mut hint))
+            let (t, f) = (&r.samples.time_s, &r.samples.force_n);
+            // Samples are in time order: the bracket only moves forward.
+            let mut k = 0;
+            t.iter()
+                .map(|&now| {
+                    let at = now - delay_s;
+                    if at <= t[0] {
+                        return f[0];
+                    }
+                    while k + 1 < t.len() && t[k + 1] < at {
+                        k += 1;
+                    }
+                    match t.get(k + 1) {
+                        Some(&t1) if t1 > t[k] => f[k] + (at - t[k]) / (t1 - t[k]) * (f[k + 1] - f[k]),
+                        _ => f[k],
+                    }
+                })
                 .collect()
         })
         .collect()
@@ -183,20 +206,59 @@ pub fn injectable(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Vec<Effect>> {
     Ok(out)
 }
 
+/// Whether a recording is only predicted under `opts` (its role, or its
+/// current among the validate currents).
+fn is_validate(r: &crate::dataset::Recording, opts: &DiagnoseOptions) -> bool {
+    r.role == Role::Validate || opts.validate_currents_a.iter().any(|c| (c - r.current_a).abs() < 1e-9)
+}
+
 /// Validate recordings strictly between two fit currents, with the bracket.
 fn saturation_pairs(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Vec<(usize, f64, f64)>> {
-    let prep = prepared::prepare(ds, &opts.folds, &opts.validate_currents_a)?;
-    let c = &prep.currents_a;
-    Ok(prep
-        .validate_indices()
-        .into_iter()
-        .filter_map(|i| {
-            let cur = prep.recs[i].current_a;
-            let k = c.iter().rposition(|&x| x < cur - 1e-9)?;
-            let hi = *c.get(k + 1)?;
-            (hi > cur + 1e-9).then_some((prep.recs[i].index, c[k], hi))
+    let mut fit_currents: Vec<f64> = ds
+        .recordings
+        .iter()
+        .filter(|r| !is_validate(r, opts))
+        .map(|r| r.current_a)
+        .collect();
+    fit_currents.sort_by(f64::total_cmp);
+    fit_currents.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    Ok(ds
+        .recordings
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| is_validate(r, opts))
+        .filter_map(|(i, r)| {
+            let cur = r.current_a;
+            let k = fit_currents.iter().rposition(|&x| x < cur - 1e-9)?;
+            let hi = *fit_currents.get(k + 1)?;
+            (hi > cur + 1e-9).then_some((i, fit_currents[k], hi))
         })
         .collect())
+}
+
+/// The exact least-squares quartic (`fit::lsq`, the paper's model) of one
+/// branch at one fit current, highest power first.
+fn branch_quartic(ds: &Dataset, opts: &DiagnoseOptions, current_a: f64, compression: bool) -> Result<[f64; 5]> {
+    let (mut x, mut f) = (Vec::new(), Vec::new());
+    for r in ds
+        .recordings
+        .iter()
+        .filter(|r| !is_validate(r, opts) && (r.current_a - current_a).abs() < 1e-9)
+    {
+        let s = &r.samples;
+        for t in 0..s.len().min(s.v_m_s.len()) {
+            if (Branch::from_velocity(s.v_m_s[t] as f32) == Branch::Compression) == compression {
+                x.push(s.x_mm[t]);
+                f.push(s.force_n[t]);
+            }
+        }
+    }
+    Ok(crate::fit::lsq::fit_quartic(&x, &f)?.coeffs)
+}
+
+/// A quartic, highest power first, at `x_mm` (Horner).
+fn horner(c: &[f64; 5], x_mm: f64) -> f64 {
+    c.iter().fold(0.0, |acc, k| acc * x_mm + k)
 }
 
 /// The force each recording of `injected` carries beyond `ds`'s (N).
@@ -250,20 +312,34 @@ pub fn inject(
             let two_sided = lo < -0.3 * hi.abs();
             let lower = two_sided && rng.random_bool(0.5);
             let x_e = rng.random_range(0.6..0.85) * if lower { lo } else { hi };
+            // One Hunt–Crossley contact for every current and both
+            // directions, at k = 1 N/mmⁿ (scaled below); the lower stop is
+            // the mirror image.
+            let unit_contact = HuntCrossley {
+                x_stop_mm: x_e.abs(),
+                k_n_per_mm_n: 1.0,
+                exponent: rng.random_range(1.3..1.7),
+                alpha_s_per_mm: rng.random_range(0.002..0.01),
+            };
+            let side = if lower { -1.0 } else { 1.0 };
             let shape: Vec<Vec<f64>> = ds
                 .recordings
                 .iter()
                 .map(|r| {
-                    r.samples
-                        .x_mm
-                        .iter()
-                        .map(|&x| crate::diagnose::design::end_stop_shape(x, x_e, lower))
+                    let s = &r.samples;
+                    (0..s.len())
+                        .map(|t| {
+                            let v_mm_s = s.v_m_s.get(t).map_or(0.0, |v| 1e3 * v);
+                            side * unit_contact.force_n(side * s.x_mm[t], side * v_mm_s)
+                        })
                         .collect()
                 })
                 .collect();
             let k = target / added_rms_n(&shape).max(1e-300);
             params.insert("x_e_mm".into(), x_e);
-            params.insert("k_e_n_per_mm2".into(), k);
+            params.insert("k_n_per_mm_n".into(), k);
+            params.insert("exponent".into(), unit_contact.exponent);
+            params.insert("alpha_s_per_mm".into(), unit_contact.alpha_s_per_mm);
             params.insert("lower_end".into(), f64::from(u8::from(lower)));
             shape
                 .into_iter()
@@ -271,26 +347,62 @@ pub fn inject(
                 .collect()
         }
         Effect::StressSoftening => {
-            // The run order is assigned to every case (below); here the force
-            // of test n is scaled by 1 − Δ·(1 − e^{−(n−1)/n0}).
-            let n0 = rng.random_range(2.0..8.0);
+            // Mullins damage through the recorded run order (assigned here):
+            // the force of each sample times the Ogden–Roxburgh factor of the
+            // run's strain history and the cumulative per-cycle damage, a
+            // cycle per two velocity reversals; its depth scaled to the
+            // strength. The whole measured force is softened (a real record
+            // does not separate the elastomer's elastic part).
             let order = run_order(ds.recordings.len(), rng);
             for (r, n) in out.recordings.iter_mut().zip(&order) {
                 r.sequence = Some(*n);
             }
-            let g: Vec<f64> = order
-                .iter()
-                .map(|&n| 1.0 - (-(f64::from(n) - 1.0) / n0).exp())
-                .collect();
-            let unit: Vec<Vec<f64>> = ds
+            let w_top_mm2 = ds
                 .recordings
                 .iter()
-                .zip(&g)
-                .map(|(r, g)| r.samples.force_n.iter().map(|f| -g * f).collect())
-                .collect();
-            let depth = (target / added_rms_n(&unit).max(1e-300)).min(0.6);
+                .flat_map(|r| r.samples.x_mm.iter())
+                .fold(0.0f64, |m, x| m.max(0.5 * x * x))
+                .max(1e-12);
+            let law = Mullins {
+                r: rng.random_range(1.5..4.0),
+                m_mm2: rng.random_range(0.05..0.3) * w_top_mm2,
+                d_inf: rng.random_range(0.05..0.2),
+                n0_cycles: rng.random_range(10.0..30.0),
+            };
+            let mut in_run_order: Vec<usize> = (0..ds.recordings.len()).collect();
+            in_run_order.sort_by_key(|&i| order[i]);
+            let mut state = MullinsState::default();
+            let mut unit: Vec<Vec<f64>> = vec![Vec::new(); ds.recordings.len()];
+            for i in in_run_order {
+                let s = &ds.recordings[i].samples;
+                let mut last_sign = 0.0;
+                unit[i] = (0..s.len())
+                    .map(|t| {
+                        let sign = s.v_m_s.get(t).map_or(0.0, |v| v.signum());
+                        if sign != 0.0 {
+                            if last_sign != 0.0 && sign != last_sign {
+                                state.cycles += 0.5;
+                            }
+                            last_sign = sign;
+                        }
+                        (law.factor(&mut state, s.x_mm[t]) - 1.0) * s.force_n[t]
+                    })
+                    .collect();
+            }
+            // The softened force keeps at least 40 % of the measured one.
+            let deepest = ds
+                .recordings
+                .iter()
+                .zip(&unit)
+                .flat_map(|(r, u)| r.samples.force_n.iter().zip(u))
+                .filter(|(f, _)| f.abs() > 0.0)
+                .fold(0.0f64, |m, (f, u)| m.max(-u / f));
+            let depth = (target / added_rms_n(&unit).max(1e-300)).min(0.6 / deepest.max(1e-12));
             params.insert("depth".into(), depth);
-            params.insert("tests_n0".into(), n0);
+            params.insert("ogden_roxburgh_r".into(), law.r);
+            params.insert("ogden_roxburgh_m_mm2".into(), law.m_mm2);
+            params.insert("damage_d_inf".into(), law.d_inf);
+            params.insert("damage_n0_cycles".into(), law.n0_cycles);
             unit.into_iter()
                 .map(|v| v.into_iter().map(|s| depth * s).collect())
                 .collect()
@@ -308,11 +420,22 @@ pub fn inject(
                 .collect()
         }
         Effect::MagneticSaturation => {
+            // Per affected recording: the force difference between the
+            // bracketing currents at each sample, from the product's exact
+            // least-squares quartic per current and branch on the fit
+            // recordings (the paper's model, not the estimator).
             let pairs = saturation_pairs(ds, opts)?;
-            let prep = prepared::prepare(ds, &opts.folds, &opts.validate_currents_a)?;
-            let table = baseline::fit_table(&prep)?;
-            // Per affected recording: the fitted table's force difference
-            // between the bracketing currents at each sample.
+            let mut quartics: BTreeMap<(u64, bool), [f64; 5]> = BTreeMap::new();
+            for &(_, lo, hi) in &pairs {
+                for current_a in [lo, hi] {
+                    for compression in [true, false] {
+                        let key = (current_a.to_bits(), compression);
+                        if !quartics.contains_key(&key) {
+                            quartics.insert(key, branch_quartic(ds, opts, current_a, compression)?);
+                        }
+                    }
+                }
+            }
             let spans: Vec<(usize, f64, f64, f64, Vec<f64>)> = pairs
                 .iter()
                 .map(|&(i, lo, hi)| {
@@ -320,33 +443,42 @@ pub fn inject(
                     let s = &r.samples;
                     let span: Vec<f64> = (0..s.len())
                         .map(|t| {
-                            let b = Branch::from_velocity(s.v_m_s[t] as f32);
-                            let f = |c: f64| f64::from(table.force_on_branch(s.x_mm[t] as f32, b, c as f32).force_n);
+                            let compression = Branch::from_velocity(s.v_m_s[t] as f32) == Branch::Compression;
+                            let f = |c: f64| horner(&quartics[&(c.to_bits(), compression)], s.x_mm[t]);
                             f(hi) - f(lo)
                         })
                         .collect();
                     (i, r.current_a, lo, hi, span)
                 })
                 .collect();
-            let build = |i_s: f64| -> Vec<Vec<f64>> {
+            // Fröhlich–Kennelly flux, force ∝ B²: the share of the step
+            // between the bracketing currents reached at `cur`, less the
+            // linear interpolation's share.
+            let build = |knee_a: f64| -> Vec<Vec<f64>> {
+                let g = |c: f64| {
+                    FieldGain {
+                        per_a: 1.0,
+                        knee_a: Some(knee_a),
+                    }
+                    .gain(c)
+                };
                 let mut added: Vec<Vec<f64>> = ds.recordings.iter().map(|r| vec![0.0; r.samples.len()]).collect();
                 for (i, cur, lo, hi, span) in &spans {
-                    let u = |c: f64| (c / i_s).tanh();
-                    let w = (u(*cur) - u(*lo)) / (u(*hi) - u(*lo)) - (cur - lo) / (hi - lo);
+                    let w = (g(*cur) - g(*lo)) / (g(*hi) - g(*lo)) - (cur - lo) / (hi - lo);
                     added[*i] = span.iter().map(|d| w * d).collect();
                 }
                 added
             };
-            // Smaller I_s saturates harder: strength falls as I_s grows.
+            // A smaller knee saturates harder: strength falls as it grows.
             let imax = ds
                 .recordings
                 .iter()
                 .map(|r| r.current_a.abs())
                 .fold(0.0, f64::max)
                 .max(1e-3);
-            let i_s = imax / solve_increasing(&|p| added_rms_n(&build(imax / p)), target, 0.2, 200.0);
-            params.insert("i_s_a".into(), i_s);
-            build(i_s)
+            let knee_a = imax / solve_increasing(&|p| added_rms_n(&build(imax / p)), target, 0.2, 200.0);
+            params.insert("frohlich_kennelly_knee_a".into(), knee_a);
+            build(knee_a)
         }
         other => bail!("cannot inject `{other}` into real recordings"),
     };
@@ -416,20 +548,8 @@ pub fn run_real_bench(
         let seconds = start.elapsed().as_secs_f64();
         let added = added_force_n(ds, &injected);
         let reference = &reference_terms(&d.selection);
-        let (oracle, oracle_per_current) = match (effect, injection.parameters.get("tests_n0")) {
-            (Effect::StressSoftening, Some(&n0)) => {
-                let truth = Terms {
-                    softening: Some(SofteningLaw::Sequence { n0 }),
-                    ..*reference
-                };
-                let o = oracle_terms(&d.prep, reference, &truth, &opts.thresholds)?;
-                (o.clone(), o)
-            }
-            _ => (
-                oracle(&d.prep, reference, &added, &opts.thresholds, Amplitude::Shared)?,
-                oracle(&d.prep, reference, &added, &opts.thresholds, Amplitude::PerCurrent)?,
-            ),
-        };
+        let shared = oracle(&d.prep, reference, &added, &opts.thresholds, Amplitude::Shared)?;
+        let per_current = oracle(&d.prep, reference, &added, &opts.thresholds, Amplitude::PerCurrent)?;
         let found: Vec<Effect> = d.findings.iter().map(|f| f.effect).collect();
         let new_found: Vec<Effect> = found.iter().filter(|e| !untouched.contains(e)).copied().collect();
         let truth = effect;
@@ -463,9 +583,9 @@ pub fn run_real_bench(
             injection,
             found,
             new_found,
-            oracle_held_out_ratio: oracle.held_out_ratio,
-            oracle,
-            oracle_per_current,
+            oracle_held_out_ratio: shared.held_out_ratio,
+            oracle: shared,
+            oracle_per_current: per_current,
             seconds,
         };
         progress(&c);

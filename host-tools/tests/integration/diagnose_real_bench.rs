@@ -1,6 +1,8 @@
 //! `mre bench-diagnose --real`: the injections realise the strength they
 //! claim, in time units whatever the sampling rate, at either end of a
-//! two-sided stroke. Expected values from closed forms of sinusoids.
+//! two-sided stroke, with the physics' laws (Hunt–Crossley contact, Mullins
+//! damage), not the estimator's shapes. Expected values from closed forms of
+//! sinusoids and the published laws, by hand.
 use crate::diagnose_support;
 
 use mre_host::dataset::{Dataset, Samples};
@@ -113,14 +115,32 @@ fn end_stops_act_at_either_end_with_the_requested_strength() {
             (0.6 * AMP_MM * 0.99..=0.85 * AMP_MM).contains(&x_e.abs()),
             "x_e = {x_e}"
         );
+        // Hunt & Crossley (1975): F = k·δⁿ·(1 + α·δ̇), δ the penetration.
+        let (k, expo, alpha) = (
+            inj.parameters["k_n_per_mm_n"],
+            inj.parameters["exponent"],
+            inj.parameters["alpha_s_per_mm"],
+        );
+        assert!(
+            (1.3..1.7).contains(&expo) && (0.002..0.01).contains(&alpha),
+            "{:?}",
+            inj.parameters
+        );
+        let side = if lower { -1.0 } else { 1.0 };
         let add = added_force_n(&ds, &out);
         let (mut s2, mut n) = (0.0, 0);
         for (r, a) in ds.recordings.iter().zip(&add) {
-            for (x, d) in r.samples.x_mm.iter().zip(a) {
+            for ((x, v), d) in r.samples.x_mm.iter().zip(&r.samples.v_m_s).zip(a) {
                 let beyond = if lower { *x < x_e } else { *x > x_e };
                 if beyond {
                     // The stop pushes back towards the middle.
                     assert!(if lower { *d < 0.0 } else { *d > 0.0 });
+                    let (delta_mm, rate_mm_s) = ((x - x_e).abs(), side * 1e3 * v);
+                    let expected = side * k * delta_mm.powf(expo) * (1.0 + alpha * rate_mm_s);
+                    assert!(
+                        (d - expected).abs() < 1e-9 * expected.abs().max(1.0),
+                        "{d} vs {expected}"
+                    );
                 } else {
                     assert!(d.abs() < 1e-9);
                 }
@@ -143,7 +163,19 @@ fn every_case_records_a_random_run_order_and_none_changes_no_force() {
     let mut order: Vec<u32> = out.recordings.iter().map(|r| r.sequence.unwrap()).collect();
     order.sort_unstable();
     assert_eq!(order, vec![1, 2, 3, 4]);
-    // Softening: test n scaled by 1 − Δ·(1 − e^{−(n−1)/n0}), the first untouched.
+}
+
+/// Softening is Mullins damage carried through the recorded run order, not
+/// the estimator's law. Expected values from Ogden & Roxburgh (1999) and a
+/// saturating cumulative damage, by hand: while the first test in run order
+/// first loads to its largest stroke nothing is softened (no larger strain
+/// yet, no cycle completed); at the last test's first peak (the largest
+/// strain again, so no pseudo-elastic softening) only the cumulative damage
+/// of the 3 × 10 cycles before it acts, `1 − depth·d_∞·(1 − e^{−30/N₀})`.
+#[test]
+fn softening_is_mullins_damage_in_run_order() {
+    let ds = sinusoid_set();
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
     let (out, inj) = inject(
         &ds,
         Effect::StressSoftening,
@@ -152,23 +184,47 @@ fn every_case_records_a_random_run_order_and_none_changes_no_force() {
         &DiagnoseOptions::default(),
     )
     .unwrap();
-    let (depth, n0) = (inj.parameters["depth"], inj.parameters["tests_n0"]);
-    // The injection: a random recorded run order (a permutation of
-    // 1..=n), n0 of 2–8 tests, and 5 % of the force RMS over every sample.
     let mut order: Vec<u32> = out.recordings.iter().map(|r| r.sequence.unwrap()).collect();
     order.sort_unstable();
-    assert_eq!(order, vec![1, 2, 3, 4]);
-    assert!((2.0..8.0).contains(&n0) && depth > 0.0 && depth <= 0.6, "{depth} {n0}");
-    let (s2, n) = added_force_n(&ds, &out)
+    assert_eq!(order, vec![1, 2, 3, 4], "a permutation of the run");
+    let p = &inj.parameters;
+    let (depth, d_inf, n0) = (p["depth"], p["damage_d_inf"], p["damage_n0_cycles"]);
+    assert!(
+        depth > 0.0 && (0.05..0.2).contains(&d_inf) && (10.0..30.0).contains(&n0),
+        "{p:?}"
+    );
+    let added = added_force_n(&ds, &out);
+    let (s2, n) = added
         .iter()
         .flatten()
         .fold((0.0, 0usize), |(s, n), d| (s + d * d, n + 1));
     assert!(((s2 / n as f64).sqrt() / force_rms_n(&ds) - 0.05).abs() < 1e-9);
-    for (r, o) in ds.recordings.iter().zip(&out.recordings) {
-        let n = f64::from(o.sequence.unwrap());
-        let factor = 1.0 - depth * (1.0 - (-(n - 1.0) / n0).exp());
-        for (a, b) in r.samples.force_n.iter().zip(&o.samples.force_n).step_by(101) {
-            assert!((b - factor * a).abs() < 1e-9 * a.abs().max(1.0));
+    for (r, a) in ds.recordings.iter().zip(&added) {
+        for (f, d) in r.samples.force_n.iter().zip(a) {
+            assert!(f * d <= 1e-12, "softening never stiffens: F {f}, added {d}");
         }
     }
+    let by_order = |k: u32| out.recordings.iter().position(|r| r.sequence == Some(k)).unwrap();
+    let first = by_order(1);
+    let quarter = ds.recordings[first]
+        .samples
+        .time_s
+        .iter()
+        .take_while(|t| **t < 0.25 / F_HZ)
+        .count();
+    assert!(
+        added[first][..quarter].iter().all(|d| *d == 0.0),
+        "{:?}",
+        &added[first][..quarter]
+    );
+    let last = by_order(4);
+    let s = &ds.recordings[last].samples;
+    let peak = s.time_s.iter().position(|t| (t - 0.25 / F_HZ).abs() < 1e-9).unwrap();
+    let expected = -depth * d_inf * (1.0 - (-30.0 / n0).exp());
+    let got = added[last][peak] / s.force_n[peak];
+    assert!(
+        (got - expected).abs() < 1e-6,
+        "added/F at the last test's first peak {got}, expected {expected}"
+    );
+    assert!(got < -1e-3, "the cumulative damage shows");
 }
