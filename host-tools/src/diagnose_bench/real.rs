@@ -429,9 +429,10 @@ pub fn inject(
             for &(_, lo, hi) in &pairs {
                 for current_a in [lo, hi] {
                     for compression in [true, false] {
-                        let key = (current_a.to_bits(), compression);
-                        if !quartics.contains_key(&key) {
-                            quartics.insert(key, branch_quartic(ds, opts, current_a, compression)?);
+                        if let std::collections::btree_map::Entry::Vacant(slot) =
+                            quartics.entry((current_a.to_bits(), compression))
+                        {
+                            slot.insert(branch_quartic(ds, opts, current_a, compression)?);
                         }
                     }
                 }
