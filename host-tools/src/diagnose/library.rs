@@ -222,6 +222,7 @@ pub fn build(prep: &Prepared, th: &Thresholds) -> Result<Built> {
         name: "baseline quartics".into(),
         cols: (0..n_quartic).collect(),
         always: true,
+        nonnegative: false,
     }];
     let mut candidates_out = Vec::new();
     let mut next_lin = p0;
@@ -253,10 +254,12 @@ pub fn build(prep: &Prepared, th: &Thresholds) -> Result<Built> {
             group: groups.len(),
             linearised: lin,
         });
+        let blocks = t.blocks(&joint);
         groups.push(Group {
             name: t.effect().name().into(),
             cols,
             always: false,
+            nonnegative: !lin && !blocks.is_empty() && (0..blocks.len()).all(|b| t.nonnegative(&joint, b)),
         });
     }
     // Compress each recording's rows to the R factor of its [A | y].

@@ -28,6 +28,9 @@ pub struct Group {
     pub cols: Vec<usize>,
     /// Baseline groups (the branch quartics) are never thresholded.
     pub always: bool,
+    /// A sign-constrained term (every column ≥ 0 in its real form): a fit
+    /// whose coefficients sum below 0 drops it, as the real form would hold it at 0.
+    pub nonnegative: bool,
 }
 
 /// The library over a set of rows, each row tagged by its recording.
@@ -179,8 +182,13 @@ pub fn group_stlsq(lib: &Library, rows: &[usize], threshold: f64) -> Sparse {
                 * DVector::from_iterator(group.cols.len(), group.cols.iter().map(|&c| beta[c]));
             share[g] = part.norm() / unexplained;
         }
+        // A sign-constrained group fitted net negative stands in for
+        // something else (a lagged elastic force is −τ·k·v: negative
+        // damping), which its real form cannot carry.
+        let negative =
+            |g: usize| lib.groups[g].nonnegative && lib.groups[g].cols.iter().map(|&c| beta[c]).sum::<f64>() < 0.0;
         let next: Vec<bool> = (0..n_groups)
-            .map(|g| kept[g] && (lib.groups[g].always || share[g] >= threshold))
+            .map(|g| kept[g] && (lib.groups[g].always || (share[g] >= threshold && !negative(g))))
             .collect();
         if next == kept {
             break;
@@ -301,16 +309,19 @@ mod tests {
                     name: "baseline".into(),
                     cols: vec![0, 1],
                     always: true,
+                    nonnegative: false,
                 },
                 Group {
                     name: "z".into(),
                     cols: vec![2],
                     always: false,
+                    nonnegative: false,
                 },
                 Group {
                     name: "w".into(),
                     cols: vec![3],
                     always: false,
+                    nonnegative: false,
                 },
             ],
         }
@@ -377,6 +388,49 @@ mod tests {
         for ((_, x), (_, y)) in s1.iter().zip(&s2) {
             assert!((x - y).abs() < 1e-9 * x.max(1.0), "{x} vs {y}");
         }
+    }
+
+    /// Evidence: hand-written. A spring read through a lagged force channel,
+    /// `y = sin(ω(t − τ)) ≈ sin ωt − ωτ·cos ωt`, on a library of the spring
+    /// and a damping group `cos ωt` that must be ≥ 0: least squares fits the
+    /// damping at −ωτ (negative damping standing in for the lag), which its
+    /// real form would hold at 0, so the fit does not keep it.
+    #[test]
+    fn a_sign_constrained_group_fitted_net_negative_is_not_kept() {
+        let (w, tau) = (2.0 * std::f64::consts::PI, 0.05);
+        let t: Vec<f64> = (0..400).map(|k| k as f64 * 0.005).collect();
+        let lib = Library {
+            a: DMatrix::from_fn(
+                t.len(),
+                2,
+                |i, j| if j == 0 { (w * t[i]).sin() } else { (w * t[i]).cos() },
+            ),
+            y: DVector::from_iterator(t.len(), t.iter().map(|t| (w * (t - tau)).sin())),
+            recording_of_row: (0..t.len()).map(|i| i / 100).collect(),
+            groups: vec![
+                Group {
+                    name: "spring".into(),
+                    cols: vec![0],
+                    always: true,
+                    nonnegative: false,
+                },
+                Group {
+                    name: "damping".into(),
+                    cols: vec![1],
+                    always: false,
+                    nonnegative: true,
+                },
+            ],
+        };
+        let all: Vec<usize> = (0..lib.y.len()).collect();
+        // Unconstrained it would be kept: sin(ωτ) ≈ 0.31 of the force, far
+        // above the 5 % share.
+        let mut free = lib.clone();
+        free.groups[1].nonnegative = false;
+        let s = group_stlsq(&free, &all, 0.05);
+        assert_eq!(s.kept, vec![true, true]);
+        assert!((s.beta[1] + (w * tau).sin()).abs() < 1e-6, "{}", s.beta[1]);
+        assert_eq!(group_stlsq(&lib, &all, 0.05).kept, vec![true, false]);
     }
 
     #[test]
