@@ -428,7 +428,14 @@ mod tests {
             let on = score(&p, &memory.variants(&p, &Terms::default()))
                 .expect("memory")
                 .terms;
-            let s = score(&p, &viscous.variants(&p, &on)).expect("viscous");
+            // The instantaneous forms only: a Maxwell form lags v and is
+            // not this fit (at τ = 16 ms it takes 0.07 % of the SSE here).
+            let forms: Vec<Terms> = viscous
+                .variants(&p, &on)
+                .into_iter()
+                .filter(|t| !matches!(t.viscous, Some(Viscous::Maxwell { .. })))
+                .collect();
+            let s = score(&p, &forms).expect("viscous");
             let fit = p.fit_indices();
             let sums: Vec<f64> = s
                 .variant_sse

@@ -179,6 +179,10 @@ pub enum Viscous {
     Linear,
     /// `φ(v) = v0·tanh(v/v0)`.
     Saturating { v0_m_s: f64 },
+    /// `φ = v_τ`, v through a first-order lag τ (a spring in series with
+    /// the dashpot: a Maxwell branch), relaxed when the recording starts
+    /// ([`crate::diagnose::terms::maxwell_velocity_m_s`]).
+    Maxwell { tau_s: f64 },
 }
 
 /// Softening covariate, per recording or per sample.
@@ -667,6 +671,7 @@ fn tangent_points(s: &Sample, bounds: [(f64, f64); 3]) -> [(f64, Sample); 2] {
         x_mm: c[0],
         v_m_s: c[1],
         a_m_s2: c[2],
+        v_lag_m_s: s.v_lag_m_s,
     };
     if d.iter().all(|dj| *dj == 0.0) {
         return [(1.0, *s), (0.0, *s)];
@@ -996,6 +1001,10 @@ fn design_for(
             }),
         None => (rec.x_mm.clone(), rec.v_m_s.clone(), rec.a_m_s2.clone()),
     };
+    let v_lag = match terms.viscous {
+        Some(Viscous::Maxwell { tau_s }) => super::terms::maxwell_velocity_m_s(&rec.time_s, &vs, tau_s),
+        _ => Vec::new(),
+    };
     let memory = terms
         .memory_mm
         .map(|_| memory_feature_on_branches(&rec.time_s, &xs, &vs, rec.branch_band_m_s()));
@@ -1018,6 +1027,7 @@ fn design_for(
             x_mm: x,
             v_m_s: v,
             a_m_s2: acc,
+            v_lag_m_s: v_lag.get(t).copied().unwrap_or(v),
         };
         let comp = v > 0.0;
         let weights = &weights_at[t.min(weights_at.len() - 1)];

@@ -41,6 +41,7 @@ mod diagnose_headline;
 mod diagnose_oracle;
 mod diagnose_outputs;
 mod diagnose_outside_memory;
+mod diagnose_outside_viscous;
 mod diagnose_physical;
 mod diagnose_pipeline;
 mod diagnose_rate;

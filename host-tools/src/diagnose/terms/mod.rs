@@ -25,6 +25,7 @@ mod stress_softening;
 mod viscous_damping;
 
 pub use hysteresis_memory::memory_variants;
+pub use viscous_damping::maxwell_velocity_m_s;
 
 /// Every effect diagnose can add, in column order (the layout places each
 /// term's [`Block`]s in this order).
@@ -74,6 +75,9 @@ pub struct Sample {
     pub x_mm: f64,
     pub v_m_s: f64,
     pub a_m_s2: f64,
+    /// v through the viscous term's Maxwell lag (v itself without one):
+    /// the one column input that needs the recording's history.
+    pub v_lag_m_s: f64,
 }
 
 /// `(name, value, unit)` of one parameter.
