@@ -146,6 +146,79 @@ pub fn crossed_recordings(prep: &Prepared) -> usize {
         .count()
 }
 
+/// Fit recordings that repeat one prescribed motion (the same x(t), sample
+/// by sample, within [`SAME_CONDITION`] of the stroke over their common
+/// length, the lengths within it too), whatever their current: the group of
+/// each recording (in the order groups first appear), `None` for one that
+/// shares its motion with no other. Read from the excitation only.
+pub fn same_motion(prep: &Prepared) -> Vec<Option<usize>> {
+    let fit = prep.fit_indices();
+    let same = |i: usize, j: usize| {
+        let (a, b) = (&prep.recs[i].x_mm, &prep.recs[j].x_mm);
+        let n = a.len().min(b.len());
+        let stroke = prep.recs[i].max_x_mm() - prep.recs[i].min_x_mm();
+        n >= 8
+            && (a.len().max(b.len()) - n) as f64 <= SAME_CONDITION * n as f64
+            && stroke > 0.0
+            && a[..n]
+                .iter()
+                .zip(&b[..n])
+                .all(|(p, q)| (p - q).abs() <= SAME_CONDITION * stroke)
+    };
+    let mut group: Vec<Option<usize>> = vec![None; prep.recs.len()];
+    let mut n_groups = 0;
+    for (k, &i) in fit.iter().enumerate() {
+        if group[i].is_some() {
+            continue;
+        }
+        let partners: Vec<usize> = fit[k + 1..]
+            .iter()
+            .copied()
+            .filter(|&j| group[j].is_none() && same(i, j))
+            .collect();
+        if !partners.is_empty() {
+            group[i] = Some(n_groups);
+            partners.iter().for_each(|&j| group[j] = Some(n_groups));
+            n_groups += 1;
+        }
+    }
+    group
+}
+
+/// The share of a test's own squared peak by which the run's largest
+/// displacement before it must differ between two runs of one motion for
+/// the strain history to differ between them (a definition, not tuned).
+pub const HISTORY_CONTRAST: f64 = 0.2;
+
+/// Groups of [`same_motion`] whose runs met different strain histories:
+/// the run's largest |x| up to the end of each (before it, or its own
+/// peak) differs by [`HISTORY_CONTRAST`] of the motion's squared peak, so
+/// one ran after a larger test and another did not.
+pub fn history_contrasts(prep: &Prepared) -> usize {
+    let groups = same_motion(prep);
+    let n_groups = groups.iter().flatten().max().map_or(0, |g| g + 1);
+    (0..n_groups)
+        .filter(|&g| {
+            let members: Vec<&super::prepared::Rec> = (0..prep.recs.len())
+                .filter(|&i| groups[i] == Some(g))
+                .map(|i| &prep.recs[i])
+                .collect();
+            let peak = |r: &super::prepared::Rec| r.max_x_mm().abs().max(r.min_x_mm().abs());
+            let run_peak2: Option<Vec<f64>> = members
+                .iter()
+                .map(|r| r.run_peak_before_mm.map(|b| b.max(peak(r)).powi(2)))
+                .collect();
+            let own2 = members.iter().map(|r| peak(r).powi(2)).fold(0.0, f64::max);
+            run_peak2.is_some_and(|x2| {
+                let (lo, hi) = x2
+                    .iter()
+                    .fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(*v), h.max(*v)));
+                hi - lo >= HISTORY_CONTRAST * own2
+            })
+        })
+        .count()
+}
+
 pub fn temperature_span_c(prep: &Prepared) -> f64 {
     let t: Vec<f64> = prep
         .fit_indices()

@@ -190,26 +190,39 @@ pub enum Viscous {
 pub enum SofteningLaw {
     /// `g = 1 − e^{−(n−1)/n0}` with n the recording's `sequence`.
     Sequence { n0: f64 },
+    /// As `Sequence`, judged between runs of one motion at different
+    /// places in the run (crossed by motion, not by test condition).
+    Run { n0: f64 },
     /// `g = T − T_ref` (°C): a linear drift with temperature.
     Temperature { t_ref_c: f64 },
     /// Within a test: `g(t) = 1 − e^{−(k−1)/k0}` with k the cycle of sample
     /// t, counted from the displacement reversals ([`cycle_index`]).
     Cycle { k0: f64 },
+    /// Strain history (Mullins): `g(t) = 1 − e^{−u/u0}` with
+    /// `u = X(t)² − x(t)²` (mm²), X(t) the largest |x| of the run so far
+    /// (every recording run before this one, [`Rec::run_peak_before_mm`],
+    /// and this one up to t): softer the further below the run's largest
+    /// displacement the sample lies.
+    History { u0_mm2: f64 },
 }
 
 impl SofteningLaw {
     /// The recording's covariate (its largest, for a per-sample law).
     pub fn covariate(&self, rec: &Rec) -> f64 {
         match *self {
-            SofteningLaw::Sequence { n0 } => rec.sequence.map_or(0.0, |n| 1.0 - (-(n - 1.0) / n0).exp()),
+            SofteningLaw::Sequence { n0 } | SofteningLaw::Run { n0 } => {
+                rec.sequence.map_or(0.0, |n| 1.0 - (-(n - 1.0) / n0).exp())
+            }
             SofteningLaw::Temperature { t_ref_c } => rec.temperature_c.map_or(0.0, |t| t - t_ref_c),
-            SofteningLaw::Cycle { .. } => self.per_sample(rec).into_iter().fold(0.0, f64::max),
+            SofteningLaw::Cycle { .. } | SofteningLaw::History { .. } => {
+                self.per_sample(rec).into_iter().fold(0.0, f64::max)
+            }
         }
     }
 
     /// The law varies within a recording.
     pub fn within_test(&self) -> bool {
-        matches!(self, SofteningLaw::Cycle { .. })
+        matches!(self, SofteningLaw::Cycle { .. } | SofteningLaw::History { .. })
     }
 
     /// The covariate at each sample of `rec`.
@@ -219,6 +232,16 @@ impl SofteningLaw {
                 .iter()
                 .map(|&k| 1.0 - (-(k - 1.0) / k0).exp())
                 .collect(),
+            SofteningLaw::History { u0_mm2 } => {
+                let mut peak = rec.run_peak_before_mm.unwrap_or(0.0);
+                rec.x_mm
+                    .iter()
+                    .map(|&x| {
+                        peak = peak.max(x.abs());
+                        1.0 - (-(peak * peak - x * x) / u0_mm2).exp()
+                    })
+                    .collect()
+            }
             _ => vec![self.covariate(rec); rec.len()],
         }
     }

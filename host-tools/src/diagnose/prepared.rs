@@ -44,6 +44,10 @@ pub struct Rec {
     /// The file had no displacement: x and v were integrated from force or
     /// acceleration.
     pub motion_from: Option<crate::dataset::motion::MotionSource>,
+    /// The largest |x| (mm) of every recording run before this one (a
+    /// smaller `sequence`, validate ones included): the strain history a
+    /// Mullins-type softening remembers. `None` without a run order.
+    pub run_peak_before_mm: Option<f64>,
 }
 
 impl Rec {
@@ -259,6 +263,19 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
             velocity_noise_m_s: velocity_noise_m_s(&s.v_m_s),
             velocity_estimated: r.velocity_estimated,
             motion_from: r.motion_from,
+            run_peak_before_mm: None,
+        });
+    }
+    let peaks: Vec<(Option<f64>, f64)> = recs
+        .iter()
+        .map(|r| (r.sequence, r.x_mm.iter().fold(0.0f64, |m, x| m.max(x.abs()))))
+        .collect();
+    for r in &mut recs {
+        r.run_peak_before_mm = r.sequence.map(|n| {
+            peaks
+                .iter()
+                .filter(|(s, _)| s.is_some_and(|s| s < n))
+                .fold(0.0f64, |m, (_, p)| m.max(*p))
         });
     }
     let currents_a = crate::dataset::distinct_currents_a(recs.iter().filter(|r| r.is_fit()).map(|r| r.current_a));

@@ -135,9 +135,11 @@ fn softening_is_identifiable_only_where_a_test_condition_is_repeated_in_the_run(
     let prep = prepare(&case.dataset, &plan, &validate).expect("prepared");
     assert!(identifiable(&prep, Effect::StressSoftening, &Thresholds::default()).is_ok());
     // Without the multisines, each sinusoid cut to its first 2.5 cycles (5/6
-    // of its 3-cycle length): too few cycles, and nothing repeated.
+    // of its 3-cycle length), and the run order not recorded: too few
+    // cycles, nothing repeated, and no strain history to compare runs by.
     case.dataset.recordings.retain(|r| !r.file.contains("multisine"));
     for r in &mut case.dataset.recordings {
+        r.sequence = None;
         let keep = (r.samples.time_s.len() * 5) / 6;
         let s = &mut r.samples;
         for v in [&mut s.time_s, &mut s.x_mm, &mut s.v_m_s, &mut s.force_n] {
@@ -152,5 +154,8 @@ fn softening_is_identifiable_only_where_a_test_condition_is_repeated_in_the_run(
     }
     let prep = prepare(&case.dataset, &plan, &validate).expect("prepared");
     let why = identifiable(&prep, Effect::StressSoftening, &Thresholds::default()).unwrap_err();
-    assert!(why.contains("repeated") && why.contains("cycles"), "{why}");
+    assert!(
+        why.contains("repeated") && why.contains("cycles") && why.contains("strain history"),
+        "{why}"
+    );
 }

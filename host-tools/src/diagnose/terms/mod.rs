@@ -54,6 +54,11 @@ pub enum Crossing {
     ByCondition,
     /// Less its gain within each recording.
     ByRecording,
+    /// Less, at each sample, its gain on the prediction over the runs of one
+    /// prescribed motion ([`super::candidates::same_motion`]): only what
+    /// differs between those runs beyond a common ratio to the force is
+    /// left. A recording that repeats no other's motion keeps nothing.
+    ByMotion,
 }
 
 /// A block of linear design columns a term adds.
