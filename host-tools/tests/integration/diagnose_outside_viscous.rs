@@ -45,21 +45,3 @@ fn diagnose_names_nothing_but_memory_on_a_none_plant_whose_relaxation_is_slower_
 /// named). The branch's own τ is 4.1 ms; the form chosen, 11.3 ms.
 const SEEDS_NAMED: [u64; 1] = [7278];
 
-/// The tuning sweep (run by hand, `--ignored --nocapture`): per seed, what
-/// is named on the viscous, sensor-delay and effect-free plants.
-#[test]
-#[ignore]
-fn diagnose_viscous_tuning_sweep() {
-    let (mut visc, mut delay_ok, mut delay_as_visc, mut fp) = (0, 0, 0, 0);
-    for seed in 7260..7280 {
-        let (v, _) = found(Effect::ViscousDamping, seed);
-        let (d, _) = found(Effect::SensorDelay, seed);
-        let (n, _) = found(Effect::None, seed);
-        println!("seed {seed}: viscous {v:?} | sensor_delay {d:?} | none {n:?}");
-        visc += usize::from(v.contains(&"viscous_damping"));
-        delay_ok += usize::from(d.contains(&"sensor_delay"));
-        delay_as_visc += usize::from(d.contains(&"viscous_damping"));
-        fp += usize::from(n.iter().any(|e| *e != "hysteresis_memory"));
-    }
-    println!("viscous named {visc}/20; sensor_delay named {delay_ok}/20 (viscous on it {delay_as_visc}); none plants with a finding other than memory {fp}/20");
-}
