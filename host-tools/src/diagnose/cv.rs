@@ -453,9 +453,10 @@ mod tests {
         }
         for c in &chosen {
             assert_eq!(c.1, Some(Viscous::Linear), "{chosen:?}");
-            // Memory's tied yield-force variants (a zero yield force) likewise
-            // give way to memory alone, listed first.
-            assert_eq!(c.0, None, "{chosen:?}");
+            // Memory's yield-force choice does not move with rounding either.
+            // (Before every channel of the plant passed the same filter,
+            // `26f1370`, its variants tied here too, at a zero yield force.)
+            assert_eq!(c.0, chosen[0].0, "{chosen:?}");
         }
     }
 }

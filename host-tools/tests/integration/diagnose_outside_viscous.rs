@@ -44,4 +44,3 @@ fn diagnose_names_nothing_but_memory_on_a_none_plant_whose_relaxation_is_slower_
 /// 7273 and 7276 of 7268–7279; without the Maxwell forms none of the 12 is
 /// named). The branch's own τ is 4.1 ms; the form chosen, 11.3 ms.
 const SEEDS_NAMED: [u64; 1] = [7278];
-

@@ -517,7 +517,11 @@ mod tests {
                 t[k]
             };
             let rise_s = at(0.9) - at(0.1);
-            assert!((1.2e-3..2.4e-3).contains(&rise_s), "{}: 10–90 % rise {rise_s} s", r.file);
+            assert!(
+                (1.2e-3..2.4e-3).contains(&rise_s),
+                "{}: 10–90 % rise {rise_s} s",
+                r.file
+            );
             steps += 1;
         }
         assert!(steps > 0);
