@@ -83,9 +83,7 @@ pub fn tracks(ds: &Dataset, hold_out_a: &[f64]) -> Vec<Track> {
         .iter()
         .map(|r| {
             let mut t = Track::from_recording(r);
-            if hold_out_a.iter().any(|&c| (c - r.current_a).abs() < 1e-9) {
-                t.role = Role::Validate;
-            }
+            t.role = r.role_holding_out(hold_out_a);
             t
         })
         .collect()

@@ -94,6 +94,19 @@ pub struct Recording {
     pub notes: Vec<String>,
 }
 
+impl Recording {
+    /// Its role when the recordings at `held_out_a` are held out (predicted
+    /// by interpolation, never fitted): `validate` at those currents, its
+    /// own role otherwise.
+    pub fn role_holding_out(&self, held_out_a: &[f64]) -> Role {
+        if held_out_a.iter().any(|&c| (c - self.current_a).abs() < 1e-9) {
+            Role::Validate
+        } else {
+            self.role
+        }
+    }
+}
+
 /// A data set folder, loaded.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Dataset {

@@ -228,8 +228,7 @@ pub fn prepare(ds: &Dataset, plan: &FoldPlan, validate_currents_a: &[f64]) -> Re
             Some(a) if a.len() == s.len() && a.iter().all(|v| v.is_finite()) => a.clone(),
             _ => differentiate(&s.time_s, &s.v_m_s),
         };
-        let forced_validate = validate_currents_a.iter().any(|c| (c - r.current_a).abs() < 1e-9);
-        let role = if forced_validate { Role::Validate } else { r.role };
+        let role = r.role_holding_out(validate_currents_a);
         let current_trace_a = match &s.current_a {
             Some(c) if role == Role::Validate => {
                 if c.len() != s.len() || c.iter().any(|v| !v.is_finite()) {

@@ -209,19 +209,17 @@ pub fn injectable(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Vec<Effect>> {
 /// Whether a recording is only predicted under `opts` (its role, or its
 /// current among the validate currents).
 fn is_validate(r: &crate::dataset::Recording, opts: &DiagnoseOptions) -> bool {
-    r.role == Role::Validate || opts.validate_currents_a.iter().any(|c| (c - r.current_a).abs() < 1e-9)
+    r.role_holding_out(&opts.validate_currents_a) == Role::Validate
 }
 
 /// Validate recordings strictly between two fit currents, with the bracket.
 fn saturation_pairs(ds: &Dataset, opts: &DiagnoseOptions) -> Result<Vec<(usize, f64, f64)>> {
-    let mut fit_currents: Vec<f64> = ds
-        .recordings
-        .iter()
-        .filter(|r| !is_validate(r, opts))
-        .map(|r| r.current_a)
-        .collect();
-    fit_currents.sort_by(f64::total_cmp);
-    fit_currents.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    let fit_currents = crate::dataset::distinct_currents_a(
+        ds.recordings
+            .iter()
+            .filter(|r| !is_validate(r, opts))
+            .map(|r| r.current_a),
+    );
     Ok(ds
         .recordings
         .iter()

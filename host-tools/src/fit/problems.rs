@@ -65,8 +65,6 @@ pub fn branch_problems(ds: &Dataset) -> Result<Vec<BranchProblem>> {
 /// predicted by interpolation instead of fitted.
 pub fn hold_out(ds: &mut Dataset, currents_a: &[f64]) {
     for r in &mut ds.recordings {
-        if currents_a.iter().any(|&c| (c - r.current_a).abs() < 1e-9) {
-            r.role = Role::Validate;
-        }
+        r.role = r.role_holding_out(currents_a);
     }
 }
